@@ -1,0 +1,43 @@
+"""The set of physical effects an EHL solve simulates (the "scene" plan), recorded with every result.
+
+:func:`ehl_dataset.planner.plan_effects` decides it from a case's dimensionless numbers; ``Effects.full()`` forces
+everything. The solver honours each flag:
+
+* ``roughness`` — moving surface roughness R1(x − u1 t), R2(x − u2 t) and asperity contact (unified Reynolds,
+  Hu & Zhu 2000). Off: smooth surfaces.
+* ``transient`` — the squeeze term ∂(ρh)/∂t and time stepping. Off: steady solution.
+* ``shear_thinning`` — the Eyring factor cosh(τ_m/τ0) in the Poiseuille flow coefficient (paper Eq. 1b). Off:
+  Newtonian flow (traction always uses the Eyring stress).
+* ``compressibility`` — Dowson–Higginson density (paper Eq. 6). Off: ρ = ρ0.
+"""
+
+from __future__ import annotations
+
+from dataclasses import asdict, dataclass, field
+from typing import Any
+
+
+@dataclass(frozen=True)
+class Effects:
+    """Which effects a solve includes, why, and whether the plan was automatic (``mode="auto"``) or forced."""
+
+    roughness: bool = True
+    transient: bool = True
+    shear_thinning: bool = True
+    compressibility: bool = True
+    mode: str = "full"
+    reasons: dict[str, Any] = field(default_factory=dict, compare=False)
+
+    @classmethod
+    def full(cls) -> "Effects":
+        """Every effect on (``--effects full``)."""
+        return cls(True, True, True, True, "full", {"forced": "effects=full"})
+
+    @classmethod
+    def smooth_steady(cls, **reasons: Any) -> "Effects":
+        """Steady smooth-surface solve (still non-Newtonian and compressible)."""
+        return cls(False, False, True, True, "auto", dict(reasons))
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-serialisable form stored with results."""
+        return asdict(self)

@@ -1,0 +1,76 @@
+"""Result of one EHL contact solve (SI units). The dataset store writes :meth:`ContactResult.to_record`."""
+
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+RECORD_UNITS: dict[str, str] = {
+    "mu": "1",
+    "mu_std": "1",
+    "h_min": "m",
+    "h_central": "m",
+    "lambda_bar": "1",
+    "asperity_load_share": "1",
+    "p_max": "Pa",
+    "iterations": "1",
+    "converged": "bool",
+    "wall_time": "s",
+    "effects": "json",
+    "level": "name",
+}
+"""Scalar outputs stored per factorial point and their units (also the HDF5 column names)."""
+
+
+@dataclass
+class ContactResult:
+    """Outcome of an EHL line-contact solve.
+
+    Scalars: ``mu`` friction coefficient [-] (time average for transient runs), ``mu_std`` its standard deviation
+    over the averaging window [-] (0 for steady runs), ``h_min`` minimum film [m], ``h_central`` film at x = 0 [m],
+    ``lambda_bar`` Dowson–Higginson film over composite roughness [-] (inf for smooth surfaces),
+    ``asperity_load_share`` fraction of the load carried where asperities touch [-], ``p_max`` [Pa],
+    ``converged``, ``iterations``, ``wall_time`` [s], ``effects`` the plan that was simulated, ``level`` the accuracy
+    level name. Profiles (optional): ``x`` [m], ``pressure`` [Pa], ``film`` [m] at the last step.
+    ``residuals`` records the final residual norms (and ``history`` where kept) so non-convergence is visible.
+    """
+
+    mu: float
+    h_min: float
+    h_central: float
+    p_max: float
+    converged: bool
+    iterations: int
+    wall_time: float
+    level: str
+    effects: dict[str, Any]
+    mu_std: float = 0.0
+    lambda_bar: float = math.inf
+    asperity_load_share: float = 0.0
+    residuals: dict[str, float] = field(default_factory=dict)
+    message: str = ""
+    x: np.ndarray | None = field(default=None, repr=False)
+    pressure: np.ndarray | None = field(default=None, repr=False)
+    film: np.ndarray | None = field(default=None, repr=False)
+    extra: dict[str, Any] = field(default_factory=dict)
+
+    def to_record(self) -> dict[str, Any]:
+        """Flat dict of the scalar outputs named as in :data:`RECORD_UNITS` (effects as a JSON string)."""
+        return {
+            "mu": float(self.mu),
+            "mu_std": float(self.mu_std),
+            "h_min": float(self.h_min),
+            "h_central": float(self.h_central),
+            "lambda_bar": float(self.lambda_bar),
+            "asperity_load_share": float(self.asperity_load_share),
+            "p_max": float(self.p_max),
+            "iterations": int(self.iterations),
+            "converged": bool(self.converged),
+            "wall_time": float(self.wall_time),
+            "effects": json.dumps(self.effects, sort_keys=True),
+            "level": str(self.level),
+        }

@@ -1,0 +1,1 @@
+"""Pipelines, reports and the ``gearloss`` command line that combine the three stages."""
