@@ -1,0 +1,239 @@
+"""Factorial plans of contact conditions: load a TOML plan, validate it, expand it to points, hash it.
+
+A factorial is data (``data/factorials/*.toml``, DESIGN §4), written in engineering units with the unit in each key::
+
+    name = "paper2009"
+    lubricant = "atf"            # default lubricant (NAME or FILE), overridable at run time
+    level = "standard"           # default accuracy level of the solver
+    effects = "auto"             # "auto" (the planner decides) or "full"
+
+    [axes]
+    p_h_gpa = [0.5, 1.0]         # maximum Hertz pressure [GPa]
+    r_eq_mm = [5, 10]            # equivalent radius [mm]
+    u_r_m_s = [1, 2]             # rolling (entrainment) velocity [m/s]
+    sr = [0, 0.5]                # slide-to-roll ratio [-]
+    temp_c = [25, 100]           # oil inlet temperature [°C]
+    roughness_um = [[0.1, 0.1], [0.2, 0.5]]   # (Rq1, Rq2) pairs [µm]
+
+The full tensor product is expanded in C order: the first axis (``p_h_gpa``) varies slowest, the roughness pair
+fastest. Point ``i`` is therefore the same contact condition on every machine and in every run, which is what lets a
+store be resumed. :meth:`Factorial.points_hash` is a SHA-256 of the expanded SI point table, so two plan files that
+describe the same points (in the same order) are interchangeable, and any change of a level is detected.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from .data_files import resolve_named_file
+from .validation import InputError, check_range
+
+CELSIUS_ZERO_K = 273.15
+
+POINT_FIELDS: tuple[str, ...] = ("p_h", "r_eq", "u_r", "sr", "temperature", "rq1", "rq2")
+"""Input columns of a point, SI units (see :data:`POINT_UNITS`)."""
+
+POINT_UNITS: dict[str, str] = {
+    "p_h": "Pa", "r_eq": "m", "u_r": "m/s", "sr": "1", "temperature": "K", "rq1": "m", "rq2": "m",
+}
+
+POINT_DTYPE = np.dtype([(name, "<f8") for name in POINT_FIELDS])
+
+# axis key -> (accepted low, high, unit, low inclusive) in the file's engineering units
+_SCALAR_AXES: dict[str, tuple[float, float, str, bool]] = {
+    "p_h_gpa": (0.0, 10.0, "GPa", False),
+    "r_eq_mm": (0.0, 1e4, "mm", False),
+    "u_r_m_s": (0.0, 200.0, "m/s", False),
+    "sr": (-2.0, 2.0, "", True),
+    "temp_c": (-CELSIUS_ZERO_K, 726.0, "C", False),
+}
+_ROUGHNESS_AXIS = "roughness_um"
+AXIS_KEYS: tuple[str, ...] = (*_SCALAR_AXES, _ROUGHNESS_AXIS)
+_TOP_KEYS = {"name", "description", "source", "lubricant", "level", "effects", "axes"}
+EFFECTS_MODES = ("auto", "full")
+
+
+@dataclass(frozen=True)
+class Factorial:
+    """A full factorial plan in engineering units (as written in its TOML file).
+
+    Attributes: ``name``; ``p_h_gpa`` [GPa], ``r_eq_mm`` [mm], ``u_r_m_s`` [m/s], ``sr`` [-], ``temp_c`` [°C] axis
+    levels; ``roughness_um`` ((Rq1, Rq2) [µm], ...) pairs; default ``lubricant`` (name or file), ``level`` and
+    ``effects`` for the solver; ``description`` and ``source`` free text.
+    """
+
+    name: str
+    p_h_gpa: tuple[float, ...]
+    r_eq_mm: tuple[float, ...]
+    u_r_m_s: tuple[float, ...]
+    sr: tuple[float, ...]
+    temp_c: tuple[float, ...]
+    roughness_um: tuple[tuple[float, float], ...]
+    lubricant: str = "atf"
+    level: str = "standard"
+    effects: str = "auto"
+    description: str = ""
+    source: str = ""
+    origin: str = field(default="<dict>", compare=False)
+
+    @property
+    def shape(self) -> tuple[int, ...]:
+        """Number of levels per axis, in expansion order."""
+        return tuple(len(getattr(self, key)) for key in AXIS_KEYS)
+
+    @property
+    def size(self) -> int:
+        """Number of points (product of :attr:`shape`)."""
+        return math.prod(self.shape)
+
+    def points(self) -> np.ndarray:
+        """Structured array (dtype :data:`POINT_DTYPE`, SI units) of every point, C order over :data:`AXIS_KEYS`."""
+        grids = np.meshgrid(
+            np.asarray(self.p_h_gpa) * 1e9,
+            np.asarray(self.r_eq_mm) * 1e-3,
+            np.asarray(self.u_r_m_s, dtype=float),
+            np.asarray(self.sr, dtype=float),
+            np.asarray(self.temp_c) + CELSIUS_ZERO_K,
+            np.arange(len(self.roughness_um)),
+            indexing="ij",
+        )
+        rough = np.asarray(self.roughness_um, dtype=float) * 1e-6
+        out = np.empty(self.size, dtype=POINT_DTYPE)
+        for name, grid in zip(POINT_FIELDS[:5], grids[:5]):
+            out[name] = grid.ravel()
+        pair = grids[5].ravel()
+        out["rq1"] = rough[pair, 0]
+        out["rq2"] = rough[pair, 1]
+        return out
+
+    def points_hash(self) -> str:
+        """SHA-256 (hex) of the expanded SI point table (little-endian float64 bytes, row order included)."""
+        return hashlib.sha256(np.ascontiguousarray(self.points()).tobytes()).hexdigest()
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-serialisable definition (the TOML structure, with the point count and hash)."""
+        return {
+            "name": self.name,
+            "description": self.description,
+            "source": self.source,
+            "lubricant": self.lubricant,
+            "level": self.level,
+            "effects": self.effects,
+            "axes": {
+                "p_h_gpa": list(self.p_h_gpa),
+                "r_eq_mm": list(self.r_eq_mm),
+                "u_r_m_s": list(self.u_r_m_s),
+                "sr": list(self.sr),
+                "temp_c": list(self.temp_c),
+                "roughness_um": [list(pair) for pair in self.roughness_um],
+            },
+            "n_points": self.size,
+            "points_sha256": self.points_hash(),
+        }
+
+
+def _number_list(axes: dict, key: str, where: str) -> tuple[float, ...]:
+    low, high, unit, low_inclusive = _SCALAR_AXES[key]
+    values = axes.get(key)
+    name = f"{where}.{key}"
+    if not isinstance(values, list) or not values:
+        raise InputError(name, values if values is not None else "<missing>", "a non-empty list of numbers")
+    out = []
+    for i, value in enumerate(values):
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            raise InputError(f"{name}[{i}]", value, "a number")
+        out.append(check_range(f"{name}[{i}]", value, low, high, low_inclusive=low_inclusive, unit=unit))
+    if len(set(out)) != len(out):
+        raise InputError(name, values, "distinct levels (a repeated level would duplicate points)")
+    return tuple(out)
+
+
+def _roughness_pairs(axes: dict, where: str) -> tuple[tuple[float, float], ...]:
+    values = axes.get(_ROUGHNESS_AXIS)
+    name = f"{where}.{_ROUGHNESS_AXIS}"
+    if not isinstance(values, list) or not values:
+        raise InputError(name, values if values is not None else "<missing>",
+                         "a non-empty list of [rq1_um, rq2_um] pairs")
+    pairs = []
+    for i, pair in enumerate(values):
+        if not (isinstance(pair, list) and len(pair) == 2):
+            raise InputError(f"{name}[{i}]", pair, "a pair [rq1_um, rq2_um]")
+        for j, value in enumerate(pair):
+            if isinstance(value, bool) or not isinstance(value, (int, float)):
+                raise InputError(f"{name}[{i}][{j}]", value, "a number")
+        pairs.append((check_range(f"{name}[{i}][0]", pair[0], 0.0, 100.0, unit="um"),
+                      check_range(f"{name}[{i}][1]", pair[1], 0.0, 100.0, unit="um")))
+    if len(set(pairs)) != len(pairs):
+        raise InputError(name, values, "distinct pairs (a repeated pair would duplicate points)")
+    return tuple(pairs)
+
+
+def _string(data: dict, key: str, default: str, where: str) -> str:
+    value = data.get(key, default)
+    if not isinstance(value, str) or (key in ("name", "lubricant", "level") and not value.strip()):
+        raise InputError(f"{where}{key}", value, "a non-empty string")
+    return value
+
+
+def factorial_from_dict(data: dict[str, Any], origin: str = "<dict>") -> Factorial:
+    """Validate a parsed factorial (TOML structure, see the module docstring) and build a :class:`Factorial`.
+
+    Unknown keys are rejected (a misspelt axis would otherwise be silently ignored); every error names the field.
+    """
+    if not isinstance(data, dict):
+        raise InputError("factorial", type(data).__name__, f"a table (in {origin})")
+    unknown = sorted(set(data) - _TOP_KEYS - {"n_points", "points_sha256"})
+    if unknown:
+        raise InputError(f"factorial key {unknown[0]!r}", data[unknown[0]], f"one of {sorted(_TOP_KEYS)} in {origin}")
+    axes = data.get("axes")
+    if not isinstance(axes, dict):
+        raise InputError("axes", axes if axes is not None else "<missing>", f"an [axes] table in {origin}")
+    unknown_axes = sorted(set(axes) - set(AXIS_KEYS))
+    if unknown_axes:
+        raise InputError(f"axes.{unknown_axes[0]}", axes[unknown_axes[0]], f"axes named {list(AXIS_KEYS)}")
+    effects = _string(data, "effects", "auto", "")
+    if effects not in EFFECTS_MODES:
+        raise InputError("effects", effects, f"one of {list(EFFECTS_MODES)}")
+    factorial = Factorial(
+        name=_string(data, "name", "", ""),
+        p_h_gpa=_number_list(axes, "p_h_gpa", "axes"),
+        r_eq_mm=_number_list(axes, "r_eq_mm", "axes"),
+        u_r_m_s=_number_list(axes, "u_r_m_s", "axes"),
+        sr=_number_list(axes, "sr", "axes"),
+        temp_c=_number_list(axes, "temp_c", "axes"),
+        roughness_um=_roughness_pairs(axes, "axes"),
+        lubricant=_string(data, "lubricant", "atf", ""),
+        level=_string(data, "level", "standard", ""),
+        effects=effects,
+        description=_string(data, "description", "", ""),
+        source=_string(data, "source", "", ""),
+        origin=origin,
+    )
+    recorded = data.get("points_sha256")
+    if recorded is not None and recorded != factorial.points_hash():
+        raise InputError("points_sha256", recorded, f"the hash of the listed axes, {factorial.points_hash()}")
+    return factorial
+
+
+def load_factorial(name_or_path: str | Path) -> Factorial:
+    """Load a factorial by shipped name (``paper2009``, ``quick``, ``smoke``) or from a TOML file path."""
+    path = resolve_named_file("factorials", name_or_path, ".toml")
+    try:
+        with open(path, "rb") as handle:
+            data = tomllib.load(handle)
+    except tomllib.TOMLDecodeError as err:
+        raise InputError("factorial file", str(path), "a valid TOML file", str(err)) from None
+    return factorial_from_dict(data, origin=str(path))
+
+
+def canonical_json(value: Any) -> str:
+    """Compact, key-sorted JSON: the form in which configurations are stored and compared."""
+    return json.dumps(value, sort_keys=True, separators=(",", ":"), allow_nan=False)
