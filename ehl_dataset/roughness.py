@@ -1,0 +1,400 @@
+"""Surface roughness profiles for the transient mixed-EHL solver (DESIGN §7; paper Sect. 2.1, Eq. 3).
+
+The paper scales one measured shaved-gear profile (Rq = 0.5 µm) by a constant to get every roughness level. No
+measured profile is available to this project, so :func:`generate_profile` makes a synthetic stand-in: a stationary
+Gaussian-height random process with a Gaussian autocorrelation
+
+    C(τ) = Rq² exp(−τ²/β²)        (β: correlation length, C(β) = Rq²/e),
+
+synthesised spectrally (complex Gaussian Fourier coefficients with variance ∝ the power spectral density
+S(k) ∝ exp(−k²β²/4), zero mean, inverse FFT), then scaled to Rq exactly. The result is periodic with the profile
+length, so reading it modulo its length is continuous. An exponential autocorrelation C = Rq² exp(−|τ|/β) is also
+available (``acf="exponential"``); the baseline uses the Gaussian one because its spectrum is negligible beyond
+k ≈ 2π/β, so point sampling on a solver grid of spacing ≤ β/2 neither aliases nor misses roughness, and μ has a
+grid-converged limit (an exponential ACF has roughness at every scale).
+
+The shipped baseline ``data/roughness/baseline_synthetic.txt`` (two columns x [µm], z [µm]) is regenerated
+bit-for-bit by :func:`baseline_text` (constants ``BASELINE_*`` below).
+
+:func:`load_profile` reads a user's measured profile (two-column text), detrends it (least-squares line),
+resamples it to uniform spacing and optionally scales it to a target Rq.
+
+:func:`plan_surfaces` / :func:`surface_pair` give the two moving surfaces R1(x − u1 t), R2(x − u2 t) on the
+solver's grid, read from two non-overlapping segments of the profile, each scaled to the case's Rq1, Rq2.
+All functions are pure and work in SI units (m, s).
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from .data_files import data_path
+from .validation import InputError, check_range
+
+BASELINE_FILE = "baseline_synthetic.txt"
+"""File name of the shipped baseline profile in ``data/roughness/``."""
+BASELINE_SEED = 20090317
+"""Seed of the baseline profile (legacy ``numpy.random.RandomState``, whose stream NumPy keeps frozen, NEP 19)."""
+BASELINE_POINTS = 2**17
+"""Number of samples of the baseline profile."""
+BASELINE_SPACING_M = 1.0e-6
+"""Sampling interval of the baseline profile [m] (β/15: linear interpolation error ≈ 0.2 % of Rq, see docs)."""
+BASELINE_CORRELATION_LENGTH_M = 15.0e-6
+"""Correlation length β of the baseline [m] (C(β) = Rq²/e), middle of the 10–20 µm of shaved/ground flanks."""
+BASELINE_RQ_M = 0.5e-6
+"""RMS roughness of the baseline [m] (the paper's measured shaved profile)."""
+
+SEGMENT_GAP_CORRELATION_LENGTHS = 10.0
+"""Gap between the two surfaces' segments, in correlation lengths (Gaussian ACF at 10β: e^-100)."""
+
+_UNIT_SCALE = {"m": 1.0, "mm": 1e-3, "um": 1e-6}
+
+
+@dataclass(frozen=True, eq=False)
+class RoughnessProfile:
+    """A uniformly sampled, zero-mean, periodic-by-convention roughness profile.
+
+    ``z`` heights [m] (positive = material above the mean line), ``spacing`` sampling interval [m], ``source``
+    a short provenance text. Position s [m] maps to sample s/spacing; reading wraps modulo :attr:`length`.
+    """
+
+    z: np.ndarray
+    spacing: float
+    source: str = ""
+
+    @property
+    def length(self) -> float:
+        """Profile length [m] (number of samples × spacing; the wrap period)."""
+        return self.z.size * self.spacing
+
+    @property
+    def rq(self) -> float:
+        """RMS roughness [m] about the mean line."""
+        return float(np.sqrt(np.mean((self.z - self.z.mean()) ** 2)))
+
+    @functools.cached_property
+    def correlation_length(self) -> float:
+        """Lag [m] at which the (circular) autocorrelation first falls to 1/e."""
+        return autocorrelation_length(self.z, self.spacing)
+
+    def scaled(self, rq: float) -> "RoughnessProfile":
+        """The same profile multiplied by a constant so that its Rq equals ``rq`` [m] (paper Sect. 2.1)."""
+        check_range("rq", rq, 0.0, 1e-4, unit="m")
+        current = self.rq
+        if current == 0.0:
+            raise InputError("roughness profile", self.source or "<profile>", "a profile with non-zero Rq")
+        return RoughnessProfile(self.z * (rq / current), self.spacing, self.source)
+
+    def sample(self, s) -> np.ndarray:
+        """Heights [m] at positions ``s`` [m] (any shape) by periodic linear interpolation."""
+        pos = np.asarray(s, dtype=float) / self.spacing
+        base = np.floor(pos)
+        frac = pos - base
+        n = self.z.size
+        i0 = np.mod(base, n).astype(np.intp)
+        i1 = np.where(i0 + 1 == n, 0, i0 + 1)
+        return self.z[i0] * (1.0 - frac) + self.z[i1] * frac
+
+
+# ---------------------------------------------------------------------------------------------------------------
+# Synthesis and statistics
+# ---------------------------------------------------------------------------------------------------------------
+def gaussian_acf_psd(k, correlation_length: float):
+    """One-sided spectral shape of C(τ) = exp(−τ²/β²): S(k) ∝ exp(−k²β²/4) (unnormalised), k [rad/m]."""
+    return np.exp(-0.25 * (np.asarray(k) * correlation_length) ** 2)
+
+
+def exponential_acf_psd(k, correlation_length: float):
+    """One-sided spectral shape of C(τ) = exp(−|τ|/β): S(k) ∝ 1/(1 + k²β²) (unnormalised), k [rad/m]."""
+    return 1.0 / (1.0 + (np.asarray(k) * correlation_length) ** 2)
+
+
+def generate_profile(n_points: int, spacing_m: float, correlation_length_m: float, rq_m: float, seed: int,
+                     acf: str = "gaussian") -> RoughnessProfile:
+    """Synthesise a periodic Gaussian random profile with the given autocorrelation, scaled to Rq exactly.
+
+    Fourier coefficients c_k = √S(k)·(g1 + i g2)/√2 with g1, g2 independent standard normals from
+    ``numpy.random.RandomState(seed)`` (legacy stream, frozen by NumPy), c_0 = 0, c_{N/2} real; z = irfft(c);
+    then z ← z·rq/rms(z). Deterministic for given arguments.
+    """
+    if not isinstance(n_points, (int, np.integer)) or n_points < 16 or n_points % 2:
+        raise InputError("n_points", n_points, "an even integer >= 16")
+    check_range("spacing_m", spacing_m, 0.0, 1e-2, low_inclusive=False, unit="m")
+    check_range("correlation_length_m", correlation_length_m, 0.0, 1e-2, low_inclusive=False, unit="m")
+    check_range("rq_m", rq_m, 0.0, 1e-4, low_inclusive=False, unit="m")
+    psd = {"gaussian": gaussian_acf_psd, "exponential": exponential_acf_psd}.get(acf)
+    if psd is None:
+        raise InputError("acf", acf, "'gaussian' or 'exponential'")
+    if correlation_length_m * 20 > n_points * spacing_m:
+        raise InputError("correlation_length_m", correlation_length_m,
+                         f"<= profile length/20 = {n_points * spacing_m / 20:g} m")
+    k = 2.0 * math.pi * np.fft.rfftfreq(n_points, d=spacing_m)
+    amplitude = np.sqrt(psd(k, correlation_length_m))
+    rng = np.random.RandomState(seed)
+    noise = rng.standard_normal((2, k.size))
+    coefficients = amplitude * (noise[0] + 1j * noise[1]) / math.sqrt(2.0)
+    coefficients[0] = 0.0
+    coefficients[-1] = amplitude[-1] * noise[0, -1]  # Nyquist term of an even-length real signal is real
+    z = np.fft.irfft(coefficients, n_points)
+    z *= rq_m / np.sqrt(np.mean(z**2))
+    return RoughnessProfile(z, float(spacing_m), f"synthetic {acf} ACF, beta={correlation_length_m:g} m, seed={seed}")
+
+
+def circular_autocorrelation(z: np.ndarray) -> np.ndarray:
+    """Normalised circular autocorrelation ρ(j) of a sampled profile (ρ(0) = 1), by FFT (Wiener–Khinchin)."""
+    zz = np.asarray(z, dtype=float) - np.mean(z)
+    spectrum = np.abs(np.fft.rfft(zz)) ** 2
+    acf = np.fft.irfft(spectrum, zz.size)
+    return acf / acf[0]
+
+
+def autocorrelation_length(z: np.ndarray, spacing: float) -> float:
+    """First lag [m] where the circular autocorrelation falls to 1/e (linear interpolation between samples)."""
+    rho = circular_autocorrelation(z)[: z.size // 2]
+    below = np.flatnonzero(rho <= math.exp(-1.0))
+    if below.size == 0:
+        return math.inf
+    j = int(below[0])
+    r0, r1 = rho[j - 1], rho[j]
+    return (j - 1 + (r0 - math.exp(-1.0)) / (r0 - r1)) * spacing
+
+
+def correlation_length_standard_error(correlation_length: float, profile_length: float) -> float:
+    """Standard error [m] of the 1/e-lag estimate of β for a Gaussian ACF profile of the given length.
+
+    Bartlett's large-sample variance of the normalised sample autocorrelation at lag τ (continuous form),
+        Var ρ̂(τ) ≈ (1/L) ∫ [ρ²(u) + ρ(u+τ)ρ(u−τ) + 2ρ²(τ)ρ²(u) − 4ρ(τ)ρ(u)ρ(u+τ)] du,
+    evaluated for ρ(u) = exp(−u²/β²) at τ = β in closed form, Var ρ̂(β) = (β√(π/2)/L)·(1 + 3e⁻² − 4e^{−3/2}),
+    and propagated through the slope ρ'(β) = −2/(eβ): σ_β = σ_ρ̂(β)/|ρ'(β)|.
+    (Integrals: ∫ρ² = β√(π/2); ∫ρ(u+β)ρ(u−β) = β√(π/2)e⁻²; ∫ρ(u)ρ(u+β) = β√(π/2)e^{−1/2}.)
+    """
+    beta = correlation_length
+    var_rho = beta * math.sqrt(math.pi / 2.0) / profile_length * (1 + 3 * math.exp(-2.0) - 4 * math.exp(-1.5))
+    return math.sqrt(var_rho) * beta * math.e / 2.0
+
+
+# ---------------------------------------------------------------------------------------------------------------
+# The shipped baseline
+# ---------------------------------------------------------------------------------------------------------------
+def generate_baseline() -> RoughnessProfile:
+    """The baseline profile from the ``BASELINE_*`` constants (what ``data/roughness/`` ships)."""
+    return generate_profile(BASELINE_POINTS, BASELINE_SPACING_M, BASELINE_CORRELATION_LENGTH_M, BASELINE_RQ_M,
+                            BASELINE_SEED)
+
+
+def profile_text(profile: RoughnessProfile, header: str = "") -> str:
+    """Two-column text of a profile: x [µm] with 3 decimals, z [µm] with 6 decimals (1 pm); '#' header lines."""
+    lines = [f"# {line}" if line else "#" for line in header.splitlines()]
+    x_um = np.arange(profile.z.size) * (profile.spacing * 1e6)
+    z_um = profile.z * 1e6
+    lines += [f"{x:.3f} {z:.6f}" for x, z in zip(x_um.tolist(), z_um.tolist())]
+    return "\n".join(lines) + "\n"
+
+
+BASELINE_HEADER = f"""gearloss synthetic baseline roughness profile (stand-in for a measured shaved-gear trace)
+columns: x [um]  z [um]   (z positive = material above the mean line)
+Gaussian random process, Gaussian autocorrelation C(tau) = Rq^2 exp(-tau^2/beta^2)
+beta = {BASELINE_CORRELATION_LENGTH_M * 1e6:g} um, Rq = {BASELINE_RQ_M * 1e6:g} um, spacing = {BASELINE_SPACING_M * 1e6:g} um, \
+N = {BASELINE_POINTS}, periodic, seed = {BASELINE_SEED}
+regenerate: python -c "from ehl_dataset.roughness import write_baseline; write_baseline()"
+"""
+
+
+def baseline_text() -> str:
+    """Exact text of the shipped baseline file."""
+    return profile_text(generate_baseline(), BASELINE_HEADER)
+
+
+def write_baseline(path: str | Path | None = None) -> Path:
+    """Write the baseline profile file (default: the shipped location) and return its path."""
+    target = Path(path) if path is not None else data_path("roughness", BASELINE_FILE)
+    target.write_text(baseline_text(), encoding="ascii")
+    return target
+
+
+@functools.lru_cache(maxsize=1)
+def baseline_profile() -> RoughnessProfile:
+    """The shipped baseline profile (read once per process). Not detrended: it is periodic and zero-mean."""
+    path = data_path("roughness", BASELINE_FILE)
+    data = _read_two_columns(path)
+    x = data[:, 0] * 1e-6
+    z = data[:, 1] * 1e-6
+    spacing = float((x[-1] - x[0]) / (x.size - 1))
+    return RoughnessProfile(z - z.mean(), spacing, f"shipped baseline {BASELINE_FILE}")
+
+
+# ---------------------------------------------------------------------------------------------------------------
+# User profiles
+# ---------------------------------------------------------------------------------------------------------------
+def _read_two_columns(path: Path) -> np.ndarray:
+    if not path.is_file():
+        raise InputError("roughness file", str(path), "an existing two-column text file")
+    rows = []
+    with open(path, encoding="utf-8", errors="replace") as handle:
+        for number, raw in enumerate(handle, start=1):
+            line = raw.split("#", 1)[0].strip()
+            if not line:
+                continue
+            fields = line.replace(",", " ").replace(";", " ").split()
+            if len(fields) != 2:
+                raise InputError("roughness file", str(path), "two numeric columns x z per line",
+                                 f"line {number} has {len(fields)} fields: {line[:60]!r}")
+            try:
+                x, z = float(fields[0]), float(fields[1])
+            except ValueError:
+                raise InputError("roughness file", str(path), "two numeric columns x z per line",
+                                 f"line {number} is not numeric: {line[:60]!r}") from None
+            if not (math.isfinite(x) and math.isfinite(z)):
+                raise InputError("roughness file", str(path), "finite numbers",
+                                 f"line {number}: {line[:60]!r}")
+            rows.append((x, z))
+    if len(rows) < 16:
+        raise InputError("roughness file", str(path), "at least 16 data lines", f"found {len(rows)}")
+    data = np.array(rows)
+    if np.any(np.diff(data[:, 0]) <= 0):
+        bad = int(np.flatnonzero(np.diff(data[:, 0]) <= 0)[0]) + 2
+        raise InputError("roughness file", str(path), "strictly increasing x",
+                         f"data line {bad} does not increase x")
+    return data
+
+
+def detrend(x, z) -> np.ndarray:
+    """z minus its least-squares straight line in x (removes a + b·x exactly)."""
+    x = np.asarray(x, dtype=float)
+    z = np.asarray(z, dtype=float)
+    design = np.column_stack([np.ones_like(x), x - x.mean()])
+    coefficients, *_ = np.linalg.lstsq(design, z, rcond=None)
+    return z - design @ coefficients
+
+
+def resample_uniform(x, z, spacing: float) -> tuple[np.ndarray, np.ndarray]:
+    """Linear interpolation of (x, z) onto a uniform grid of ``spacing`` from x[0]; box-averaged first when the
+    new spacing is coarser than the data (anti-aliasing)."""
+    x = np.asarray(x, dtype=float)
+    z = np.asarray(z, dtype=float)
+    data_spacing = float(np.median(np.diff(x)))
+    if spacing > 1.5 * data_spacing:
+        width = int(round(spacing / data_spacing))
+        kernel = np.ones(width) / width
+        z = np.convolve(z, kernel, mode="same")
+    n = int(math.floor((x[-1] - x[0]) / spacing + 1e-9)) + 1
+    grid = x[0] + spacing * np.arange(n)
+    return grid, np.interp(grid, x, z)
+
+
+def load_profile(path: str | Path, *, unit: str = "um", spacing_m: float | None = None,
+                 target_rq_m: float | None = None) -> RoughnessProfile:
+    """Read a measured roughness profile: two columns x, z in ``unit`` (``"um"`` default, ``"mm"`` or ``"m"``),
+    whitespace/comma separated, ``#`` comments. The profile is detrended (least-squares line), resampled to a
+    uniform ``spacing_m`` [m] (default: the file's median spacing) and scaled to ``target_rq_m`` [m] if given.
+
+    Raises :class:`InputError` naming the file and the problem (non-numeric line, wrong column count, NaN,
+    non-increasing x, fewer than 16 points, flat profile, spacing outside the data).
+    """
+    if unit not in _UNIT_SCALE:
+        raise InputError("unit", unit, f"one of {sorted(_UNIT_SCALE)}")
+    path = Path(path)
+    data = _read_two_columns(path)
+    x = data[:, 0] * _UNIT_SCALE[unit]
+    raw = data[:, 1] * _UNIT_SCALE[unit]
+    z = detrend(x, raw)
+    if np.sqrt(np.mean(z**2)) <= 1e-9 * np.max(np.abs(raw)):
+        raise InputError("roughness file", str(path), "a profile that is not flat after detrending",
+                         "the heights lie on a straight line")
+    span = x[-1] - x[0]
+    if spacing_m is None:
+        spacing_m = float(np.median(np.diff(x)))
+    check_range("spacing_m", spacing_m, 0.0, span / 15.0, low_inclusive=False, unit=f"m for {path.name}")
+    _, zu = resample_uniform(x, z, spacing_m)
+    zu = zu - zu.mean()
+    profile = RoughnessProfile(zu, float(spacing_m), f"measured {path.name} (detrended)")
+    if target_rq_m is not None:
+        profile = profile.scaled(target_rq_m)
+    return profile
+
+
+# ---------------------------------------------------------------------------------------------------------------
+# The two moving surfaces
+# ---------------------------------------------------------------------------------------------------------------
+@dataclass(frozen=True, eq=False)
+class SurfacePair:
+    """Roughness of both surfaces on a fixed solver grid for one transient run (see :func:`plan_surfaces`).
+
+    R_i(x, t) = (Rq_i/Rq_profile)·P(x − u_i t − c_i) with offsets c_i that put surface 1 and surface 2 on
+    non-overlapping stretches of the profile for 0 ≤ t ≤ ``t_end``. ``independent`` is False when the profile is too
+    short for that (it is then read periodically and the stretches overlap; the solver should record it).
+    """
+
+    profile: RoughnessProfile
+    x: np.ndarray
+    u1: float
+    u2: float
+    scale1: float
+    scale2: float
+    offset1: float
+    offset2: float
+    t_end: float
+    required_length: float
+
+    @property
+    def independent(self) -> bool:
+        """True when the two surfaces read disjoint stretches of the profile (separated by the gap)."""
+        return self.required_length <= self.profile.length
+
+    def at(self, t) -> tuple[np.ndarray, np.ndarray]:
+        """(R1, R2) [m] at time(s) ``t`` [s]: shape ``x.shape`` for scalar t, ``t.shape + x.shape`` for arrays."""
+        tt = np.asarray(t, dtype=float)[..., None] if np.ndim(t) else float(t)
+        r1 = self.profile.sample(self.x - self.u1 * tt - self.offset1) * self.scale1
+        r2 = self.profile.sample(self.x - self.u2 * tt - self.offset2) * self.scale2
+        return r1, r2
+
+    def stretches(self) -> tuple[tuple[float, float], tuple[float, float]]:
+        """Profile-coordinate intervals [m] (unwrapped) that surfaces 1 and 2 read over the run."""
+        return (_stretch(self.x, self.u1, self.t_end, self.offset1), _stretch(self.x, self.u2, self.t_end,
+                                                                               self.offset2))
+
+
+def _stretch(x: np.ndarray, u: float, t_end: float, offset: float) -> tuple[float, float]:
+    travel = u * t_end
+    return (float(x.min() - max(travel, 0.0) - offset), float(x.max() - min(travel, 0.0) - offset))
+
+
+def plan_surfaces(case, x_m, t_end_s: float, profile: RoughnessProfile | None = None) -> SurfacePair:
+    """Lay the two surfaces of ``case`` (a :class:`~ehl_dataset.contact.ContactCase`: u1, u2, rq1, rq2) out on
+    the profile for a run over the solver grid ``x_m`` [m] from t = 0 to ``t_end_s`` [s].
+
+    Surface 1 reads the stretch starting at profile coordinate 0, surface 2 the stretch that follows after a gap
+    of :data:`SEGMENT_GAP_CORRELATION_LENGTHS` correlation lengths. Needed profile length:
+    2(x_max − x_min) + (|u1| + |u2|) t_end + gap.
+    """
+    x = np.ascontiguousarray(x_m, dtype=float)
+    if x.ndim != 1 or x.size < 2 or not np.all(np.isfinite(x)):
+        raise InputError("x_m", f"array of shape {x.shape}", "a finite 1-D grid with at least 2 nodes")
+    check_range("t_end_s", t_end_s, 0.0, 1e3, unit="s")
+    profile = profile if profile is not None else baseline_profile()
+    rq0 = profile.rq
+    if rq0 == 0.0:
+        raise InputError("roughness profile", profile.source, "a profile with non-zero Rq")
+    gap = SEGMENT_GAP_CORRELATION_LENGTHS * min(profile.correlation_length, profile.length / 40)
+    u1, u2 = float(case.u1), float(case.u2)
+    lo1, hi1 = _stretch(x, u1, t_end_s, 0.0)
+    offset1 = lo1  # surface 1 starts at profile coordinate 0
+    lo2, hi2 = _stretch(x, u2, t_end_s, 0.0)
+    offset2 = lo2 - (hi1 - lo1) - gap  # surface 2 starts after surface 1's stretch and the gap
+    required = (hi1 - lo1) + gap + (hi2 - lo2)
+    return SurfacePair(profile, x, u1, u2, case.rq1 / rq0, case.rq2 / rq0, offset1, offset2, float(t_end_s),
+                       float(required))
+
+
+def surface_pair(case, x_m, t_s, t_end_s: float, profile: RoughnessProfile | None = None):
+    """(R1, R2) [m] = (R1(x − u1 t), R2(x − u2 t)) on the grid ``x_m`` at time(s) ``t_s`` of a run lasting
+    ``t_end_s`` [s], from independent stretches of ``profile`` (default: the shipped baseline) scaled to the
+    case's Rq1 and Rq2. Equivalent to ``plan_surfaces(case, x_m, t_end_s, profile).at(t_s)``; use
+    :func:`plan_surfaces` once per run when calling at many time steps.
+    """
+    return plan_surfaces(case, x_m, t_end_s, profile).at(t_s)
