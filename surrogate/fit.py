@@ -1,0 +1,463 @@
+"""Fitting the two-branch ln μ regression (paper Eq. 9a/9b) with statsmodels OLS, with honest diagnostics.
+
+Pipeline (:func:`fit_surrogate`):
+
+1. :func:`prepare_table` computes the features (:mod:`surrogate.features`) and excludes, counting each reason, rows
+   that cannot enter a ln μ regression: status other than ``ok``, non-converged solves, μ ≤ 0 or non-finite,
+   SR = 0 (ln SR = −∞), smooth surfaces (S_c = 0, λ̄ = ∞) and non-finite features.
+2. :func:`fit_branch` fits each branch by OLS on *standardised* columns (zero mean, unit variance; the intercept
+   stays 1), which removes the scale part of the ill-conditioning (V̄^r̄ is ~10⁴, ᾱ ln SR ~1), then maps the
+   coefficients and their covariance back exactly (β = T β_z, Σ = T Σ_z Tᵀ). It reports the condition number of the
+   raw and of the standardised design, the rank (column-pivoted QR), the variance inflation factors and checks that
+   the raw-design solve agrees with the standardised one. Rank deficiency raises; a standardised condition number
+   above :data:`MAX_STANDARDISED_CONDITION` marks the fit unstable, and :func:`fit_surrogate` refuses to return an
+   unstable fit unless ``allow_unstable=True`` (then the flag travels into the coefficient file).
+3. k-fold cross-validation of ln μ and μ with the same evaluator the coefficient file uses (including the blend).
+4. The jump between the branches at λ̄ = 1 (:func:`branch_jump`).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+import warnings
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+import pandas as pd
+import scipy.linalg
+
+from ehl_dataset.validation import InputError, SolverError
+
+from .features import at_lambda_one, compute_features
+from .forms import LI_KAHRAMAN_2009, Formula, design_matrix
+from .model import branch_ln_mu, predict_ln_mu
+
+MAX_STANDARDISED_CONDITION = 1e8
+"""Above this condition number of the standardised design, OLS loses more than 8 of 16 significant digits: unstable."""
+HIGH_VIF = 1000.0
+"""Variance inflation above this is reported as severe multicollinearity (a warning, not a failure)."""
+RAW_AGREEMENT_SE = 1e-2
+"""Raw-design and standardised solutions must agree within this many standard errors."""
+
+INPUT_COLUMNS = ("p_h", "r_eq", "u_r", "sr", "temperature", "rq1", "rq2")
+RANGE_KEYS = {"p_h": "p_h_pa", "r_eq": "r_eq_m", "u_r": "u_r_m_s", "sr_abs": "sr_abs", "temperature": "temperature_k",
+              "rq1": "rq1_m", "rq2": "rq2_m", "lam": "lambda_bar"}
+"""Input columns → names of the fitted-range entries in coefficient files (SI units in the suffix)."""
+
+
+class UnstableFitWarning(UserWarning):
+    """The regression is ill-conditioned or severely multicollinear (details in the message)."""
+
+
+# ---------------------------------------------------------------------------------------------------------------
+# Data preparation
+# ---------------------------------------------------------------------------------------------------------------
+@dataclass
+class PreparedTable:
+    """Rows usable for the fit, their features, ln μ and the exclusion counts."""
+
+    table: pd.DataFrame
+    features: dict[str, np.ndarray]
+    ln_mu: np.ndarray
+    exclusions: dict[str, int]
+    n_input_rows: int
+    lambda_column_max_rel_diff: float | None = None
+
+
+def prepare_table(table: pd.DataFrame, lubricant, e_reduced: float) -> PreparedTable:
+    """Compute features and drop (and count) rows that cannot enter the ln μ regression. See module docstring."""
+    missing = [c for c in (*INPUT_COLUMNS, "mu") if c not in table.columns]
+    if missing:
+        raise InputError("dataset columns", missing, f"a table with columns {list(INPUT_COLUMNS) + ['mu']}")
+    n = len(table)
+    keep = np.ones(n, dtype=bool)
+    exclusions: dict[str, int] = {}
+
+    def drop(reason: str, bad: np.ndarray):
+        bad = np.asarray(bad, dtype=bool) & keep
+        exclusions[reason] = int(bad.sum())
+        keep[bad] = False
+
+    if "status" in table.columns:
+        status = table["status"].astype(str).to_numpy()
+        drop("failed", status == "failed")
+        drop("not_ok", status != "ok")
+    if "converged" in table.columns:
+        drop("not_converged", ~table["converged"].astype(bool).to_numpy())
+    drop("sr_zero", table["sr"].to_numpy(dtype=float) == 0.0)
+    drop("smooth_surfaces", (table["rq1"].to_numpy(dtype=float) <= 0) | (table["rq2"].to_numpy(dtype=float) <= 0))
+    mu = table["mu"].to_numpy(dtype=float)
+    drop("mu_nonpositive_or_nan", ~(np.isfinite(mu) & (mu > 0)))
+    inputs = {c: table[c].to_numpy(dtype=float) for c in INPUT_COLUMNS}
+    drop("nonfinite_inputs", ~np.all([np.isfinite(v) for v in inputs.values()], axis=0))
+    lo, hi = lubricant.t_min, lubricant.t_max
+    drop("temperature_outside_lubricant", (inputs["temperature"] < lo) | (inputs["temperature"] > hi))
+
+    sub = {c: v[keep] for c, v in inputs.items()}
+    feats = compute_features(sub["p_h"], sub["r_eq"], sub["u_r"], sub["sr"], sub["temperature"], sub["rq1"],
+                             sub["rq2"], lubricant, e_reduced)
+    finite = np.all([np.isfinite(feats[k]) for k in ("W", "alpha", "r", "V", "lam", "SR", "Sc", "Seq")], axis=0)
+    idx = np.flatnonzero(keep)
+    exclusions["nonfinite_features"] = int((~finite).sum())
+    keep[idx[~finite]] = False
+    feats = {k: v[finite] for k, v in feats.items()}
+    used = table.loc[keep].reset_index(drop=True)
+
+    lam_diff = None
+    if "lambda_bar" in used.columns and len(used):
+        stored = used["lambda_bar"].to_numpy(dtype=float)
+        ok = np.isfinite(stored) & (stored > 0)
+        if ok.any():
+            lam_diff = float(np.max(np.abs(feats["lam"][ok] / stored[ok] - 1.0)))
+    return PreparedTable(used, feats, np.log(used["mu"].to_numpy(dtype=float)), exclusions, n, lam_diff)
+
+
+# ---------------------------------------------------------------------------------------------------------------
+# One branch
+# ---------------------------------------------------------------------------------------------------------------
+@dataclass
+class BranchFit:
+    """OLS fit of one branch. Arrays are in the order of ``terms``; ``vif`` excludes the intercept."""
+
+    branch: str
+    terms: list[str]
+    params: np.ndarray
+    std_errors: np.ndarray
+    covariance: np.ndarray
+    r2: float
+    adj_r2: float
+    resid_std_error: float
+    n_obs: int
+    df_resid: int
+    condition_number_raw: float
+    condition_number_standardized: float
+    rank: int
+    vif: dict[str, float]
+    raw_vs_standardized_max_dev_se: float
+    lambda_range: tuple[float, float]
+    summary_text: str = ""
+    messages: list[str] = field(default_factory=list)
+    stable: bool = True
+
+    def to_dict(self) -> dict[str, Any]:
+        return {
+            "terms": list(self.terms),
+            "params": [float(v) for v in self.params],
+            "std_errors": [float(v) for v in self.std_errors],
+            "r2": float(self.r2),
+            "adj_r2": float(self.adj_r2),
+            "resid_std_error": float(self.resid_std_error),
+            "n_obs": int(self.n_obs),
+            "df_resid": int(self.df_resid),
+            "condition_number_raw": float(self.condition_number_raw),
+            "condition_number_standardized": float(self.condition_number_standardized),
+            "rank": int(self.rank),
+            "vif": {k: float(v) for k, v in self.vif.items()},
+            "raw_vs_standardized_max_dev_se": float(self.raw_vs_standardized_max_dev_se),
+            "lambda_range": [float(v) for v in self.lambda_range],
+            "stable": bool(self.stable),
+            "messages": list(self.messages),
+        }
+
+
+def _standardise(x: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Columns scaled to zero mean, unit std; returns (Z, mean, scale) with Z = (X − mean)/scale.
+
+    Constant columns (the intercept) are only scaled by their magnitude (mean 0), and nothing is centred when the
+    design has no intercept, so that the back-transformation to raw coefficients is exact.
+    """
+    mean = x.mean(axis=0)
+    scale = x.std(axis=0)
+    constant = scale <= 1e-14 * np.maximum(np.abs(mean), 1.0)
+    magnitude = np.abs(x[0]) if x.shape[0] else np.ones(x.shape[1])
+    scale = np.where(constant, np.where(magnitude > 0, magnitude, 1.0), scale)
+    mean = np.where(constant, 0.0, mean)
+    if _intercept_column(x) is None:
+        mean = np.zeros_like(mean)
+    return (x - mean) / scale, mean, scale
+
+
+def _back_transform(mean: np.ndarray, scale: np.ndarray, intercept_col: int | None) -> np.ndarray:
+    """Matrix T with β_raw = T β_z for the model y = Z β_z, Z = (X − m)/s (intercept column stays 1)."""
+    k = mean.size
+    t = np.diag(1.0 / scale)
+    if intercept_col is not None:
+        t[intercept_col, intercept_col] = 1.0
+        for j in range(k):
+            if j != intercept_col:
+                t[intercept_col, j] = -mean[j] / scale[j]
+    return t
+
+
+def rank_and_dependent_terms(z: np.ndarray, names: list[str], rtol: float = 1e-10) -> tuple[int, list[str]]:
+    """Numerical rank of the standardised design by column-pivoted QR and the terms that are linearly dependent."""
+    _, r, piv = scipy.linalg.qr(z, mode="economic", pivoting=True)
+    diag = np.abs(np.diag(r))
+    rank = int(np.sum(diag > rtol * diag[0]))
+    return rank, [names[i] for i in piv[rank:]]
+
+
+def variance_inflation(z: np.ndarray, names: list[str]) -> dict[str, float]:
+    """VIF_j = 1/(1 − R_j²) of each non-constant column, from the diagonal of the inverse correlation matrix.
+
+    Equivalent to statsmodels' ``variance_inflation_factor`` on a design that includes the intercept.
+    """
+    cols = [j for j in range(z.shape[1]) if np.std(z[:, j]) > 0]
+    if len(cols) < 2:
+        return {names[j]: 1.0 for j in cols}
+    corr = np.corrcoef(z[:, cols], rowvar=False)
+    inv = np.linalg.pinv(corr, hermitian=True)
+    return {names[j]: float(inv[i, i]) for i, j in enumerate(cols)}
+
+
+def solve_standardised(x: np.ndarray, y: np.ndarray) -> np.ndarray:
+    """Least-squares coefficients of the raw design solved on standardised columns (fast path for CV)."""
+    z, mean, scale = _standardise(x)
+    intercept = _intercept_column(x)
+    beta_z, *_ = np.linalg.lstsq(z, y, rcond=None)
+    return _back_transform(mean, scale, intercept) @ beta_z
+
+
+def _intercept_column(x: np.ndarray) -> int | None:
+    hits = [j for j in range(x.shape[1]) if np.all(x[:, j] == 1.0)]
+    return hits[0] if hits else None
+
+
+def fit_branch(x: np.ndarray, y: np.ndarray, names: list[str], branch: str, lam: np.ndarray | None = None) -> BranchFit:
+    """OLS fit of ln μ on one branch's design matrix with statsmodels (see module docstring for the checks)."""
+    import statsmodels.api as sm
+
+    n, k = x.shape
+    if n <= k:
+        raise SolverError(f"branch {branch}: {n} usable rows for {k} coefficients; need more data in this branch")
+    z, mean, scale = _standardise(x)
+    intercept = _intercept_column(x)
+    rank, dependent = rank_and_dependent_terms(z, names)
+    if rank < k:
+        raise SolverError(f"branch {branch}: design matrix has rank {rank} < {k}; the data cannot separate the "
+                          f"terms {dependent} from the others (add factorial levels or drop terms)")
+    result_z = sm.OLS(y, z).fit()
+    t = _back_transform(mean, scale, intercept)
+    params = t @ result_z.params
+    cov = t @ result_z.cov_params() @ t.T
+    std_errors = np.sqrt(np.diag(cov))
+    cond_raw = float(np.linalg.cond(x))
+    cond_z = float(np.linalg.cond(z))
+    vif = variance_inflation(z, names)
+
+    result_raw = sm.OLS(y, x).fit()
+    deviation = float(np.max(np.abs(result_raw.params - params) / std_errors))
+    try:
+        summary = result_raw.summary(xname=names, yname="ln(mu)", title=f"ln mu regression, branch {branch}")
+        summary_text = summary.as_text()
+    except Exception as err:  # statsmodels summary can fail on pathological data; the fit itself stands
+        summary_text = f"(statsmodels summary unavailable: {err})"
+
+    messages = []
+    stable = True
+    if cond_z > MAX_STANDARDISED_CONDITION:
+        stable = False
+        messages.append(f"condition number of the standardised design {cond_z:.3g} > "
+                        f"{MAX_STANDARDISED_CONDITION:.0e}: coefficients are numerically unreliable")
+    if deviation > RAW_AGREEMENT_SE:
+        stable = False
+        messages.append(f"raw-design and standardised solutions differ by {deviation:.3g} standard errors")
+    severe = {name: v for name, v in vif.items() if v > HIGH_VIF}
+    if severe:
+        worst = max(severe, key=severe.get)
+        messages.append(f"severe multicollinearity: {len(severe)} terms with VIF > {HIGH_VIF:g} "
+                        f"(worst {worst}: {severe[worst]:.3g}); individual coefficients are poorly determined "
+                        f"although predictions may be fine")
+    lam_range = (float(np.min(lam)), float(np.max(lam))) if lam is not None and len(lam) else (math.nan, math.nan)
+    return BranchFit(
+        branch=branch, terms=list(names), params=params, std_errors=std_errors, covariance=cov,
+        r2=float(result_z.rsquared), adj_r2=float(result_z.rsquared_adj),
+        resid_std_error=float(np.sqrt(result_z.scale)), n_obs=int(n), df_resid=int(result_z.df_resid),
+        condition_number_raw=cond_raw, condition_number_standardized=cond_z, rank=rank, vif=vif,
+        raw_vs_standardized_max_dev_se=deviation, lambda_range=lam_range, summary_text=summary_text,
+        messages=messages, stable=stable,
+    )
+
+
+# ---------------------------------------------------------------------------------------------------------------
+# Metrics, cross-validation and the jump at λ̄ = 1
+# ---------------------------------------------------------------------------------------------------------------
+def error_metrics(ln_mu_true: np.ndarray, ln_mu_pred: np.ndarray) -> dict[str, float]:
+    """Errors of ln μ (RMSE, MAE, bias) and of μ (RMSE, mean/median/95th-percentile relative error, R² of ln μ)."""
+    ln_mu_true = np.asarray(ln_mu_true, dtype=float)
+    ln_mu_pred = np.asarray(ln_mu_pred, dtype=float)
+    resid = ln_mu_pred - ln_mu_true
+    mu_t, mu_p = np.exp(ln_mu_true), np.exp(ln_mu_pred)
+    rel = np.abs(mu_p / mu_t - 1.0)
+    ss_tot = float(np.sum((ln_mu_true - ln_mu_true.mean()) ** 2))
+    return {
+        "n": int(resid.size),
+        "rmse_ln_mu": float(np.sqrt(np.mean(resid**2))),
+        "mae_ln_mu": float(np.mean(np.abs(resid))),
+        "bias_ln_mu": float(np.mean(resid)),
+        "r2_ln_mu": float(1.0 - np.sum(resid**2) / ss_tot) if ss_tot > 0 else math.nan,
+        "rmse_mu": float(np.sqrt(np.mean((mu_p - mu_t) ** 2))),
+        "mean_rel_err_mu": float(np.mean(rel)),
+        "median_rel_err_mu": float(np.median(rel)),
+        "p95_rel_err_mu": float(np.percentile(rel, 95)),
+    }
+
+
+def branch_masks(lam: np.ndarray, threshold: float) -> dict[str, np.ndarray]:
+    """Row masks of the two branches (λ̄ ≤ threshold: mixed, λ̄ > threshold: full film)."""
+    return {"mixed": lam <= threshold, "full_film": lam > threshold}
+
+
+def fit_params(formula: Formula, features: dict[str, np.ndarray], ln_mu: np.ndarray) -> dict[str, np.ndarray]:
+    """Least-squares coefficients of both branches (fast path without statistics; used inside CV)."""
+    masks = branch_masks(features["lam"], formula.lambda_threshold)
+    out = {}
+    for branch, mask in masks.items():
+        sub = {k: v[mask] for k, v in features.items()}
+        x = design_matrix(formula.terms[branch], sub)
+        if x.shape[0] <= x.shape[1]:
+            raise SolverError(f"branch {branch}: {x.shape[0]} rows for {x.shape[1]} coefficients in a CV fold")
+        out[branch] = solve_standardised(x, ln_mu[mask])
+    return out
+
+
+def cross_validate(formula: Formula, features: dict[str, np.ndarray], ln_mu: np.ndarray, *, k_folds: int = 5,
+                   seed: int = 0, blend_half_width: float = 0.0) -> dict[str, Any]:
+    """k-fold CV (shuffled, ``seed``): out-of-fold ln μ predictions → :func:`error_metrics`, overall and per branch."""
+    from sklearn.model_selection import KFold
+
+    n = ln_mu.size
+    if k_folds < 2 or n < 2 * k_folds:
+        raise InputError("k_folds", k_folds, f"an integer in [2, {max(2, n // 2)}] for {n} rows")
+    pred = np.empty(n)
+    for train, test in KFold(k_folds, shuffle=True, random_state=seed).split(np.arange(n)):
+        params = fit_params(formula, {k: v[train] for k, v in features.items()}, ln_mu[train])
+        pred[test] = predict_ln_mu(formula, params, {k: v[test] for k, v in features.items()}, blend_half_width)
+    out = {"k": int(k_folds), "seed": int(seed), "blend_half_width": float(blend_half_width),
+           "overall": error_metrics(ln_mu, pred)}
+    for branch, mask in branch_masks(features["lam"], formula.lambda_threshold).items():
+        out[branch] = error_metrics(ln_mu[mask], pred[mask]) if mask.any() else {"n": 0}
+    return out | {"_predictions": pred}
+
+
+def branch_jump(formula: Formula, params: dict[str, np.ndarray], features: dict[str, np.ndarray],
+                lambda_window: tuple[float, float] = (0.5, 2.0)) -> dict[str, float]:
+    """Jump Δ = ln μ_9b − ln μ_9a at λ̄ = 1 over the fitted conditions.
+
+    Each row with λ̄ in ``lambda_window`` (so its roughness needs scaling by at most ×2 to reach λ̄ = 1, staying near
+    the data) is moved to λ̄ = 1 (:func:`surrogate.features.at_lambda_one`) and both branches are evaluated there.
+    Reports |Δ| statistics and the corresponding ratio μ_9b/μ_9a.
+    """
+    lam = features["lam"]
+    sel = (lam >= lambda_window[0]) & (lam <= lambda_window[1])
+    if not sel.any():
+        return {"n": 0}
+    at_one = at_lambda_one({k: v[sel] for k, v in features.items()})
+    delta = (branch_ln_mu(formula.terms["full_film"], params["full_film"], at_one)
+             - branch_ln_mu(formula.terms["mixed"], params["mixed"], at_one))
+    mag = np.abs(delta)
+    return {
+        "n": int(sel.sum()),
+        "lambda_window": [float(v) for v in lambda_window],
+        "median_abs_delta_ln_mu": float(np.median(mag)),
+        "p95_abs_delta_ln_mu": float(np.percentile(mag, 95)),
+        "max_abs_delta_ln_mu": float(np.max(mag)),
+        "mean_delta_ln_mu": float(np.mean(delta)),
+        "median_abs_rel_jump_mu": float(np.median(np.abs(np.expm1(delta)))),
+        "p95_abs_rel_jump_mu": float(np.percentile(np.abs(np.expm1(delta)), 95)),
+    }
+
+
+# ---------------------------------------------------------------------------------------------------------------
+# The whole surrogate
+# ---------------------------------------------------------------------------------------------------------------
+@dataclass
+class SurrogateFit:
+    """Result of :func:`fit_surrogate`: both branch fits plus everything a coefficient file records."""
+
+    formula: Formula
+    branches: dict[str, BranchFit]
+    exclusions: dict[str, int]
+    n_input_rows: int
+    n_used: int
+    input_ranges: dict[str, list[float]]
+    sr_floor: float
+    blend_half_width: float
+    cv: dict[str, Any]
+    jump: dict[str, float]
+    fit_time_s: float
+    e_reduced: float
+    lubricant: dict[str, Any]
+    stable: bool
+    lambda_column_max_rel_diff: float | None = None
+    prepared: PreparedTable | None = field(default=None, repr=False)
+
+    @property
+    def params(self) -> dict[str, np.ndarray]:
+        return {b: f.params for b, f in self.branches.items()}
+
+    def summary_text(self) -> str:
+        """Both statsmodels summaries plus the diagnostics, as written beside the coefficient file."""
+        parts = [f"formula {self.formula.name} v{self.formula.version}; rows: {self.n_input_rows} in, "
+                 f"{self.n_used} used; excluded: {self.exclusions}"]
+        for b, f in self.branches.items():
+            parts.append(f"\n=== branch {b} ({'lambda <= 1, Eq. 9a' if b == 'mixed' else 'lambda > 1, Eq. 9b'}) ===")
+            parts.append(f.summary_text)
+            parts.append(f"condition number: raw design {f.condition_number_raw:.4g}, standardised "
+                         f"{f.condition_number_standardized:.4g}; rank {f.rank}/{len(f.terms)}; stable={f.stable}")
+            parts.append("variance inflation factors: " + ", ".join(f"{k}={v:.4g}" for k, v in f.vif.items()))
+            parts.extend(f"note: {m}" for m in f.messages)
+        cv = self.cv["overall"]
+        parts.append(f"\n{self.cv['k']}-fold CV: RMSE ln mu {cv['rmse_ln_mu']:.4g}, mean |rel err mu| "
+                     f"{cv['mean_rel_err_mu']:.4g}, p95 {cv['p95_rel_err_mu']:.4g}")
+        parts.append(f"jump at lambda = 1: {self.jump}")
+        return "\n".join(parts)
+
+
+def fit_surrogate(table: pd.DataFrame, lubricant, e_reduced: float, *, formula: Formula = LI_KAHRAMAN_2009,
+                  k_folds: int = 5, seed: int = 0, blend_half_width: float = 0.1,
+                  allow_unstable: bool = False) -> SurrogateFit:
+    """Fit both branches of ``formula`` on a dataset table (columns of the HDF5 store, SI units).
+
+    ``blend_half_width`` δ of the λ̄ band where the evaluator blends the branches (0 = paper's hard switch).
+    Raises :class:`SolverError` for rank-deficient branches and — unless ``allow_unstable`` — for unstable ones
+    (:data:`MAX_STANDARDISED_CONDITION`); always emits :class:`UnstableFitWarning` with the reasons.
+    """
+    if not 0.0 <= blend_half_width < 0.5:
+        raise InputError("blend_half_width", blend_half_width, "[0, 0.5)")
+    start = time.perf_counter()
+    prepared = prepare_table(table, lubricant, e_reduced)
+    feats, ln_mu = prepared.features, prepared.ln_mu
+    masks = branch_masks(feats["lam"], formula.lambda_threshold)
+    branches = {}
+    for branch, mask in masks.items():
+        sub = {k: v[mask] for k, v in feats.items()}
+        x = design_matrix(formula.terms[branch], sub)
+        branches[branch] = fit_branch(x, ln_mu[mask], formula.term_names(branch), branch, sub["lam"])
+    stable = all(f.stable for f in branches.values())
+    for f in branches.values():
+        if f.messages:
+            warnings.warn(f"branch {f.branch}: " + "; ".join(f.messages), UnstableFitWarning, stacklevel=2)
+    if not stable and not allow_unstable:
+        reasons = "; ".join(f"{f.branch}: {m}" for f in branches.values() for m in f.messages)
+        raise SolverError(f"unstable regression ({reasons}); pass allow_unstable=True (--allow-unstable) to keep it")
+    fit_time = time.perf_counter() - start
+    params = {b: f.params for b, f in branches.items()}
+    cv = cross_validate(formula, feats, ln_mu, k_folds=k_folds, seed=seed, blend_half_width=blend_half_width)
+    cv.pop("_predictions")
+    jump = branch_jump(formula, params, feats)
+    used = prepared.table
+    ranges = {}
+    for column, key in RANGE_KEYS.items():
+        values = (np.abs(used["sr"].to_numpy(dtype=float)) if column == "sr_abs"
+                  else feats["lam"] if column == "lam" else used[column].to_numpy(dtype=float))
+        ranges[key] = [float(np.min(values)), float(np.max(values))]
+    return SurrogateFit(
+        formula=formula, branches=branches, exclusions=prepared.exclusions, n_input_rows=prepared.n_input_rows,
+        n_used=int(ln_mu.size), input_ranges=ranges, sr_floor=ranges["sr_abs"][0],
+        blend_half_width=float(blend_half_width), cv=cv, jump=jump, fit_time_s=fit_time, e_reduced=float(e_reduced),
+        lubricant=lubricant.to_json_dict(), stable=stable,
+        lambda_column_max_rel_diff=prepared.lambda_column_max_rel_diff, prepared=prepared,
+    )
