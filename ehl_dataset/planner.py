@@ -1,0 +1,168 @@
+"""The effect planner (DESIGN §3, "scene"): which physical effects one EHL contact solve needs, and why.
+
+:func:`plan_effects` computes the case's dimensionless numbers and switches an effect off only where a measured
+threshold says it does not change the result beyond the level's tolerance (the calibration is in
+``docs/planner.md`` and ``tests/ehl_dataset/test_planner.py``):
+
+* **roughness and transient** — film parameter λ̄ = h_min,DH/S_c (Dowson–Higginson minimum film over the
+  composite roughness S_c = √(Rq1² + Rq2²), as in the paper). At λ̄ ≥ ``lambda_smooth`` the surfaces no longer
+  touch and μ of the transient rough solve equals that of the steady smooth solve within the level's tolerance:
+  solve the steady smooth problem (the saving: one steady solve instead of hundreds of time steps). Moving
+  roughness is what makes a line contact transient, so both flags go together. S_c = 0 gives λ̄ = ∞.
+* **shear thinning** — Eyring number X = η(p_h)·|u_s|/(τ0·h_min,DH), i.e. sinh(τ_m/τ0) at the Hertz pressure
+  and the DH film: an upper bound over the contact, since η is largest at p_h. The Eyring flow factor is
+  cosh(asinh X) = √(1 + X²); at X ≤ ``eyring_newtonian`` the Poiseuille flow is Newtonian to within
+  √(1 + X²) − 1. SR = 0 gives X = 0 (exact).
+* **compressibility** — Dowson–Higginson density change ρ(p_h)/ρ0 − 1 (paper Eq. 6); it costs nothing to
+  simulate, so it is switched off only below ``density_change_rigid`` (never inside the paper's factorial).
+
+Also recorded (they choose no flag but tell the user which regime the case is in): SR, Moes M and L, p_h/p_a for
+the two-slope viscosity law (above p_a the high-pressure branch α2 is active), S_c, h_min,DH, the thresholds used and
+the level. The ``reference`` level skips only what is exactly absent (S_c = 0, SR = 0), so the accuracy study
+measures the planner's approximations as part of each level's error.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import asdict, dataclass
+
+from .effects import Effects
+from .film_formulas import dimensionless_groups, dowson_higginson_min_film
+from .lubricant import dowson_higginson_density
+from .validation import InputError
+
+
+@dataclass(frozen=True)
+class PlannerThresholds:
+    """Thresholds of the planner for one accuracy level.
+
+    ``lambda_smooth`` λ̄ at or above which roughness and the transient are skipped [-];
+    ``eyring_newtonian`` Eyring number X at or below which the flow is taken as Newtonian [-];
+    ``density_change_rigid`` ρ(p_h)/ρ0 − 1 at or below which the lubricant is taken as incompressible [-];
+    ``mu_tolerance`` the relative change of μ (and h_min) a skipped effect may cause at this level [-] — what the
+    planned-versus-full tests assert on cases straddling the thresholds.
+    """
+
+    lambda_smooth: float
+    eyring_newtonian: float
+    density_change_rigid: float
+    mu_tolerance: float
+
+
+THRESHOLDS: dict[str, PlannerThresholds] = {
+    "fast": PlannerThresholds(lambda_smooth=3.0, eyring_newtonian=0.1, density_change_rigid=0.01, mu_tolerance=0.10),
+    "standard": PlannerThresholds(lambda_smooth=3.0, eyring_newtonian=0.05, density_change_rigid=0.005,
+                                  mu_tolerance=0.05),
+    "reference": PlannerThresholds(lambda_smooth=math.inf, eyring_newtonian=0.0, density_change_rigid=0.0,
+                                   mu_tolerance=0.0),
+}
+"""Thresholds per level (levels not listed use ``standard``). Justification and measurements: docs/planner.md."""
+
+
+def thresholds_for(level) -> PlannerThresholds:
+    """Thresholds for a level name or :class:`~ehl_dataset.levels.AccuracyLevel` (validated by ``get_level``)."""
+    try:
+        from .levels import get_level
+    except ImportError:  # pragma: no cover - levels.py ships with the solver
+        name = str(level)
+    else:
+        name = get_level(level).name
+    return THRESHOLDS.get(name, THRESHOLDS["standard"])
+
+
+def dimensionless_numbers(case, lubricant) -> dict[str, float]:
+    """The numbers the planner decides from (SI inputs; the lubricant's temperature range is checked).
+
+    Returns ``lambda_bar``, ``h_min_dh_m``, ``s_c_m``, ``sr``, ``eyring_number`` (X), ``tau_m_over_tau0``
+    (asinh X), ``eta_hertz_pa_s``, ``density_change`` (ρ(p_h)/ρ0 − 1), ``p_h_over_p_a`` (NaN if the law has no
+    p_a), ``moes_m``, ``moes_l``.
+    """
+    state = lubricant.state(case.temperature)
+    e_red = case.e_reduced
+    w = case.load_per_length
+    h_dh = float(dowson_higginson_min_film(state.eta0, case.u_r, state.alpha1, e_red, case.r_eq, w))
+    s_c = case.s_c
+    lambda_bar = h_dh / s_c if s_c > 0 else math.inf
+    eta_h = float(state.viscosity(case.p_h))
+    eyring = eta_h * abs(case.u_s) / (state.tau0 * h_dh)
+    u, g, w_dim = (float(v) for v in dimensionless_groups(state.eta0, case.u_r, state.alpha1, e_red, case.r_eq, w))
+    # Moes (1992) line-contact parameters with the sum velocity u1 + u2 = 2 u_r: M = W (2U)^-1/2, L = G (2U)^1/4
+    moes_m = w_dim * (2 * u) ** -0.5
+    moes_l = g * (2 * u) ** 0.25
+    density_change = float(dowson_higginson_density(case.p_h, 1.0)) - 1.0 if state.compressible else 0.0
+    p_a = getattr(state.law, "p_a", 0.0) if state.law.kind == "two_slope" else 0.0
+    return {
+        "lambda_bar": lambda_bar,
+        "h_min_dh_m": h_dh,
+        "s_c_m": s_c,
+        "sr": float(case.sr),
+        "eyring_number": eyring,
+        "tau_m_over_tau0": math.asinh(eyring),
+        "eta_hertz_pa_s": eta_h,
+        "density_change": density_change,
+        "p_h_over_p_a": case.p_h / p_a if p_a > 0 else math.nan,
+        "moes_m": moes_m,
+        "moes_l": moes_l,
+    }
+
+
+def plan_effects(case, lubricant, level="standard") -> Effects:
+    """Decide which effects to simulate for ``case`` with ``lubricant`` at accuracy ``level``.
+
+    Returns an :class:`~ehl_dataset.effects.Effects` with ``mode="auto"`` and ``reasons`` holding the numbers,
+    the thresholds and one sentence per decision. Bad input raises :class:`InputError` (unknown level,
+    temperature outside the lubricant's data).
+    """
+    limits = thresholds_for(level)
+    nums = dimensionless_numbers(case, lubricant)
+    lam = nums["lambda_bar"]
+    rough = not lam >= limits.lambda_smooth
+    newtonian = nums["eyring_number"] <= limits.eyring_newtonian
+    rigid = nums["density_change"] <= limits.density_change_rigid
+    decisions = {
+        "roughness": (f"lambda_bar={lam:.3g} < {limits.lambda_smooth:g}: asperities and moving roughness matter"
+                      if rough else
+                      (f"S_c=0: smooth surfaces" if math.isinf(lam) else
+                       f"lambda_bar={lam:.3g} >= {limits.lambda_smooth:g}: roughness does not change mu within "
+                       f"the level tolerance, steady smooth solve")),
+        "transient": ("moving roughness makes the contact transient" if rough else
+                      "smooth surfaces under constant load: steady"),
+        "shear_thinning": (f"Eyring number X={nums['eyring_number']:.3g} <= {limits.eyring_newtonian:g}: Newtonian "
+                           f"flow (factor sqrt(1+X^2)-1={math.sqrt(1 + nums['eyring_number'] ** 2) - 1:.2g})"
+                           if newtonian else
+                           f"Eyring number X={nums['eyring_number']:.3g} > {limits.eyring_newtonian:g}: "
+                           f"shear thinning in the Poiseuille flow"),
+        "compressibility": (f"density change {nums['density_change']:.3g} <= {limits.density_change_rigid:g}: "
+                            f"incompressible" if rigid else
+                            f"density change {nums['density_change']:.3g} at p_h: Dowson-Higginson density"),
+    }
+    level_name = getattr(level, "name", level)
+    reasons = {"level": str(level_name), "numbers": _json_safe(nums), "thresholds": _json_safe(asdict(limits)),
+               "decisions": decisions}
+    return Effects(roughness=rough, transient=rough, shear_thinning=not newtonian, compressibility=not rigid,
+                   mode="auto", reasons=reasons)
+
+
+def resolve_effects(effects, case, lubricant, level="standard") -> Effects:
+    """``"auto"`` → :func:`plan_effects`; ``"full"`` → :meth:`Effects.full`; an :class:`Effects` as given."""
+    if isinstance(effects, Effects):
+        return effects
+    if effects == "auto":
+        return plan_effects(case, lubricant, level)
+    if effects == "full":
+        return Effects.full()
+    raise InputError("effects", effects, "'auto', 'full' or an Effects instance")
+
+
+def _json_safe(values: dict) -> dict:
+    """Floats as JSON-safe values: inf → "inf", NaN → None (results are stored as JSON)."""
+    out = {}
+    for key, value in values.items():
+        if isinstance(value, float) and math.isinf(value):
+            out[key] = "inf" if value > 0 else "-inf"
+        elif isinstance(value, float) and math.isnan(value):
+            out[key] = None
+        else:
+            out[key] = value
+    return out
