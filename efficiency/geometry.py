@@ -251,10 +251,16 @@ class GearPair:
 
     @property
     def tip_reduction_coefficient(self):
-        """k = x1 + x2 − y when ``tip_reduction`` and positive, else 0 [-] (ISO 21771 addendum reduction)."""
+        """k = x1 + x2 − y0 when ``tip_reduction`` and positive, else 0 [-] (ISO 21771 tip reduction).
+
+        y0 = (a_0b − a0)/m_n is taken at the zero-backlash centre distance a_0b of the nominal teeth: the tips are
+        cut for the design, so mounting the pair at another centre distance does not change them.
+        """
         if not self.tip_reduction:
             return np.zeros_like(np.asarray(self.normal_module, float))[()]
-        k = np.asarray(self.x1, float) + self.x2 - self.center_distance_modification_coefficient
+        a_zero = self.standard_center_distance * np.cos(self.transverse_pressure_angle) / np.cos(
+            self._zero_backlash_working_pressure_angle())
+        k = np.asarray(self.x1, float) + self.x2 - (a_zero - self.standard_center_distance) / self.normal_module
         return np.maximum(k, 0.0)
 
     @property
