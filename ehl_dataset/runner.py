@@ -1,0 +1,503 @@
+"""Run a factorial of EHL contacts into a :mod:`ehl_dataset.store` file: local processes or Dask, resumable.
+
+One coordinating process owns the HDF5 file; workers only compute (:func:`compute_point`, a top-level picklable
+function) and send back ``ContactResult.to_record()``. The coordinator keeps a bounded window of tasks in flight,
+writes results as they arrive and flushes every ``flush_interval_s`` seconds.
+
+Failures
+    * The solver raises inside a worker -> the point is recorded ``failed`` with the exception text; the run goes on.
+      Solver errors are deterministic, so they are not retried.
+    * The solver returns ``converged=False`` -> ``ok`` with ``converged`` False and the solver's message in
+      ``error`` (the surrogate stage filters on ``converged``); ``converged=True`` with a NaN output -> ``failed``.
+    * The task itself fails (a worker process died, a Dask ``KilledWorker``, a result that cannot be sent back)
+      -> retried up to ``max_attempts`` computations, then ``failed``. When a local worker dies, every task in
+      flight fails with it; those points are then re-run one at a time, so only the point that really kills its
+      worker is charged an attempt.
+    * SIGINT (Ctrl-C) or SIGTERM -> no new tasks; results already received are written, the workers are stopped,
+      the session is closed in the file; :class:`RunSummary` says ``interrupted``. A second Ctrl-C aborts at once.
+      SIGKILL loses at most the last ``flush_interval_s`` seconds of results; the file stays readable.
+Resuming computes every row that is not ``ok`` (pending and failed).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import hashlib
+import importlib
+import json
+import math
+import os
+import signal
+import socket
+import sys
+import threading
+import time
+import traceback
+from collections import deque
+from concurrent.futures.process import BrokenProcessPool
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any, Callable, TextIO
+
+import numpy as np
+
+from .factorial import Factorial, canonical_json, load_factorial
+from .store import FAILED, OK, DatasetStore, package_version
+from .validation import InputError
+
+DEFAULT_SOLVER = "ehl_dataset.solver:solve_contact"
+_FLOAT_CHECKED = ("mu", "mu_std", "h_min", "h_central", "asperity_load_share", "p_max")
+
+
+# ---------------------------------------------------------------------------------------------------------------
+# Worker side
+# ---------------------------------------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class PointTask:
+    """Everything a worker needs for one point (picklable): row ``index``, SI ``point`` (p_h, r_eq, u_r, sr,
+    temperature, rq1, rq2), the lubricant as JSON, level, effects, and the solver (``"module:function"`` or a
+    top-level function)."""
+
+    index: int
+    point: tuple[float, ...]
+    lubricant_json: str
+    level: str
+    effects: str
+    solver: str | Callable = DEFAULT_SOLVER
+
+
+_SOLVER_CACHE: dict[str, Callable] = {}
+_LUBRICANT_CACHE: dict[str, Any] = {}
+
+
+def solver_reference(solver: str | Callable) -> str:
+    """``"module:qualname"`` of a solve function (how it is recorded in the file)."""
+    if isinstance(solver, str):
+        return solver
+    return f"{solver.__module__}:{solver.__qualname__}"
+
+
+def resolve_solver(solver: str | Callable) -> Callable:
+    """The solve function of ``"module:function"`` (imported once per process) or the callable itself."""
+    if callable(solver):
+        return solver
+    if solver not in _SOLVER_CACHE:
+        module_name, _, qualname = solver.partition(":")
+        if not module_name or not qualname:
+            raise InputError("solver", solver, "MODULE:FUNCTION, e.g. ehl_dataset.solver:solve_contact")
+        try:
+            target: Any = importlib.import_module(module_name)
+            for part in qualname.split("."):
+                target = getattr(target, part)
+        except (ImportError, AttributeError) as err:
+            raise InputError("solver", solver, "an importable MODULE:FUNCTION", str(err)) from None
+        _SOLVER_CACHE[solver] = target
+    return _SOLVER_CACHE[solver]
+
+
+def _lubricant(lubricant_json: str):
+    lubricant = _LUBRICANT_CACHE.get(lubricant_json)
+    if lubricant is None:
+        from .lubricant import lubricant_from_dict
+
+        lubricant = lubricant_from_dict(json.loads(lubricant_json), origin="dataset file")
+        if len(_LUBRICANT_CACHE) > 8:
+            _LUBRICANT_CACHE.clear()
+        _LUBRICANT_CACHE[lubricant_json] = lubricant
+    return lubricant
+
+
+def describe_exception(err: BaseException) -> str:
+    """``Type: message (at file:line in function)`` — one line, with where it was raised."""
+    frames = traceback.extract_tb(err.__traceback__)
+    where = f" (at {os.path.basename(frames[-1].filename)}:{frames[-1].lineno} in {frames[-1].name})" if frames else ""
+    message = " ".join(str(err).split())
+    return f"{type(err).__name__}: {message}{where}"
+
+
+def judge_record(record: dict, message: str = "") -> tuple[int, str]:
+    """Status and error text of a solver record: non-converged -> ok + message; converged with NaN -> failed."""
+    if not record.get("converged", False):
+        return OK, f"not converged: {message}".strip()
+    bad = [name for name in _FLOAT_CHECKED if not math.isfinite(float(record.get(name, math.nan)))]
+    if math.isnan(float(record.get("lambda_bar", math.nan))):
+        bad.append("lambda_bar")
+    if bad:
+        values = ", ".join(f"{name}={record.get(name)!r}" for name in bad)
+        return FAILED, f"solver reported converged=True with non-finite outputs: {values}"
+    return OK, ""
+
+
+def compute_point(task: PointTask) -> dict[str, Any]:
+    """Solve one point (runs in a worker). Never raises for a solver error: the error is returned as text."""
+    from .contact import ContactCase
+
+    start = time.perf_counter()
+    record = None
+    try:
+        solve = resolve_solver(task.solver)
+        case = ContactCase(*task.point)
+        result = solve(case, _lubricant(task.lubricant_json), level=task.level, effects=task.effects)
+        record = result.to_record()
+        status, error = judge_record(record, getattr(result, "message", ""))
+    except Exception as err:  # noqa: BLE001 - any solver failure is recorded, the run goes on
+        status, error = FAILED, describe_exception(err)
+    return {
+        "index": task.index,
+        "status": status,
+        "record": record,
+        "error": error,
+        "worker_time": time.perf_counter() - start,
+        "worker": f"{socket.gethostname()}:{os.getpid()}",
+    }
+
+
+# ---------------------------------------------------------------------------------------------------------------
+# Configuration
+# ---------------------------------------------------------------------------------------------------------------
+def solver_config(solver: str | Callable, level: str, effects: str) -> dict[str, Any]:
+    """What identifies the computation of a point: function, its version, level (and its definition), effects.
+
+    The version is the function's ``solver_version`` attribute, else its module's ``SOLVER_VERSION`` or
+    ``__version__``, else ``gearloss <package version>``. The level definition comes from
+    ``ehl_dataset.levels.get_level`` when that module exists (an unknown level name is rejected there).
+    """
+    from .factorial import EFFECTS_MODES
+
+    if effects not in EFFECTS_MODES:
+        raise InputError("effects", effects, f"one of {list(EFFECTS_MODES)}")
+    fn = resolve_solver(solver)
+    module = sys.modules.get(getattr(fn, "__module__", ""), None)
+    version = (getattr(fn, "solver_version", None) or getattr(module, "SOLVER_VERSION", None)
+               or getattr(module, "__version__", None) or f"gearloss {package_version()}")
+    return {
+        "function": solver_reference(solver),
+        "version": str(version),
+        "level": level,
+        "level_definition": _level_definition(level),
+        "effects": effects,
+    }
+
+
+def _level_definition(level: str):
+    try:
+        from .levels import get_level
+    except ImportError:
+        return None
+    definition = get_level(level)
+    if dataclasses.is_dataclass(definition):
+        definition = dataclasses.asdict(definition)
+    return json.loads(json.dumps(definition, default=str))
+
+
+def _points_sha256(points: np.ndarray) -> str:
+    return hashlib.sha256(np.ascontiguousarray(points).tobytes()).hexdigest()
+
+
+# ---------------------------------------------------------------------------------------------------------------
+# Progress
+# ---------------------------------------------------------------------------------------------------------------
+class Progress:
+    """A tqdm bar (rate, ETA) on a terminal, or a log line every ``log_every_s`` seconds; ``mode="none"`` silent."""
+
+    def __init__(self, total: int, name: str, mode: str = "auto", stream: TextIO | None = None,
+                 log_every_s: float = 30.0):
+        self.stream = stream if stream is not None else sys.stderr
+        if mode == "auto":
+            mode = "bar" if getattr(self.stream, "isatty", lambda: False)() else "log"
+        if mode not in ("bar", "log", "none"):
+            raise InputError("progress", mode, "'auto', 'bar', 'log' or 'none'")
+        self.mode, self.total, self.name, self.log_every_s = mode, total, name, log_every_s
+        self.done = self.ok = self.failed = self.non_converged = 0
+        self.start = self._last_log = time.monotonic()
+        self._bar = None
+        if mode == "bar":
+            from tqdm import tqdm
+
+            self._bar = tqdm(total=total, unit="pt", desc=name, file=self.stream, dynamic_ncols=True, smoothing=0.05)
+
+    def advance(self, status: int, converged: bool = True) -> None:
+        self.done += 1
+        self.ok += status == OK
+        self.failed += status == FAILED
+        self.non_converged += status == OK and not converged
+        if self._bar is not None:
+            self._bar.update(1)
+            self._bar.set_postfix(ok=self.ok, failed=self.failed, refresh=False)
+        elif self.mode == "log" and time.monotonic() - self._last_log >= self.log_every_s:
+            self.log()
+
+    def log(self, prefix: str = "") -> None:
+        if self.mode != "log":
+            return
+        self._last_log = now = time.monotonic()
+        elapsed = now - self.start
+        rate = self.done / elapsed if elapsed > 0 else 0.0
+        eta = (self.total - self.done) / rate if rate > 0 else math.inf
+        print(f"{time.strftime('%Y-%m-%dT%H:%M:%S')} {prefix}{self.name}: {self.done}/{self.total} points "
+              f"(ok {self.ok}, failed {self.failed}, not converged {self.non_converged}), {rate:.3g} points/s, "
+              f"elapsed {_hms(elapsed)}, ETA {_hms(eta)}", file=self.stream, flush=True)
+
+    def close(self) -> None:
+        if self._bar is not None:
+            self._bar.close()
+        else:
+            self.log("done " if self.done == self.total else "stopped ")
+
+
+def _hms(seconds: float) -> str:
+    if not math.isfinite(seconds):
+        return "?"
+    seconds = int(round(seconds))
+    return f"{seconds // 3600}h{seconds % 3600 // 60:02d}m{seconds % 60:02d}s"
+
+
+# ---------------------------------------------------------------------------------------------------------------
+# Signals: a flag, checked by the loop, so that an interrupt never lands inside a write
+# ---------------------------------------------------------------------------------------------------------------
+class _StopFlag:
+    def __init__(self):
+        self.signal_name: str | None = None
+        self._previous: dict[int, Any] = {}
+
+    def __enter__(self):
+        if threading.current_thread() is threading.main_thread():
+            for signum in (signal.SIGINT, signal.SIGTERM):
+                self._previous[signum] = signal.signal(signum, self._handle)
+        return self
+
+    def _handle(self, signum, frame):
+        if self.signal_name is not None and signum == signal.SIGINT:
+            raise KeyboardInterrupt  # second Ctrl-C: abort now
+        self.signal_name = signal.Signals(signum).name
+
+    def __exit__(self, *exc):
+        for signum, handler in self._previous.items():
+            signal.signal(signum, handler)
+
+
+# ---------------------------------------------------------------------------------------------------------------
+# The run
+# ---------------------------------------------------------------------------------------------------------------
+@dataclass
+class RunSummary:
+    """Outcome of one run or resume session."""
+
+    path: str
+    n_points: int
+    computed: int
+    ok: int
+    failed: int
+    pending: int
+    non_converged: int
+    wall_time_s: float
+    points_per_s: float
+    store_time_s: float
+    interrupted: str | None
+    executor: dict
+
+    def to_dict(self) -> dict[str, Any]:
+        out = dataclasses.asdict(self)
+        out["store_time_per_point_s"] = self.store_time_s / self.computed if self.computed else 0.0
+        return out
+
+
+def run_factorial(out, factorial: Factorial | str | os.PathLike, *, lubricant=None, level: str | None = None,
+                  effects: str | None = None, workers: int = 1, scheduler: str | None = None,
+                  solver: str | Callable = DEFAULT_SOLVER, overwrite: bool = False, **options) -> RunSummary:
+    """Compute ``factorial`` into the HDF5 file ``out``.
+
+    ``lubricant`` (name, file or :class:`~ehl_dataset.lubricant.Lubricant`), ``level`` and ``effects`` default to
+    the factorial's. If ``out`` exists and records the same factorial, solver and lubricant, the run continues it
+    (like :func:`resume_run`); if it records something else the call is refused (``InputError``) unless
+    ``overwrite``. ``options``: see :func:`execute` (window, max_attempts, flush_interval_s, progress, warm_up,
+    stream, log_every_s).
+    """
+    from .lubricant import Lubricant, load_lubricant
+
+    plan = factorial if isinstance(factorial, Factorial) else load_factorial(factorial)
+    lub = lubricant if isinstance(lubricant, Lubricant) else load_lubricant(lubricant or plan.lubricant)
+    config = solver_config(solver, level or plan.level, effects or plan.effects)
+    lubricant_dict = json.loads(canonical_json(lub.to_json_dict()))
+    factorial_dict = plan.to_dict()
+    out = Path(out)
+    if out.exists() and not overwrite:
+        store = DatasetStore.open(out, "r+")
+        kind = "continue"
+        try:
+            store.check_compatible(factorial_sha256=factorial_dict["points_sha256"], solver=config,
+                                   lubricant=lubricant_dict)
+        except BaseException:
+            store.close()
+            raise
+    else:
+        store = DatasetStore.create(out, plan.points(), factorial=factorial_dict, solver=config,
+                                    lubricant=lubricant_dict, overwrite=overwrite)
+        kind = "run"
+    with store:
+        return execute(store, solver=solver, workers=workers, scheduler=scheduler, kind=kind, **options)
+
+
+def resume_run(path, *, workers: int = 1, scheduler: str | None = None, solver: str | Callable | None = None,
+               factorial=None, lubricant=None, level: str | None = None, effects: str | None = None,
+               **options) -> RunSummary:
+    """Continue the run recorded in ``path``: compute every row that is not ``ok``.
+
+    The solver, level, effects and lubricant are those recorded in the file. The solver's current version (and
+    level definition) must equal the recorded ones; ``factorial``, ``lubricant``, ``level``, ``effects`` and
+    ``solver``, when given, must match the file too — otherwise the resume is refused with ``InputError``.
+    """
+    from .lubricant import Lubricant, load_lubricant
+
+    with DatasetStore.open(path, "r+") as store:
+        recorded = store.solver
+        solver_used = solver if solver is not None else recorded.get("function", DEFAULT_SOLVER)
+        config = solver_config(solver_used, level or recorded.get("level"), effects or recorded.get("effects"))
+        lubricant_dict = None
+        if lubricant is not None:
+            lub = lubricant if isinstance(lubricant, Lubricant) else load_lubricant(lubricant)
+            lubricant_dict = json.loads(canonical_json(lub.to_json_dict()))
+        factorial_hash = None
+        if factorial is not None:
+            plan = factorial if isinstance(factorial, Factorial) else load_factorial(factorial)
+            factorial_hash = plan.points_hash()
+        store.check_compatible(factorial_sha256=factorial_hash, solver=config, lubricant=lubricant_dict)
+        return execute(store, solver=solver_used, workers=workers, scheduler=scheduler, kind="resume", **options)
+
+
+def execute(store: DatasetStore, *, solver: str | Callable = DEFAULT_SOLVER, workers: int = 1,
+            scheduler: str | None = None, kind: str = "run", window: int | None = None, max_attempts: int = 3,
+            flush_interval_s: float = 5.0, flush_rows: int = 2000, progress: str = "auto",
+            warm_up: bool = True, stream: TextIO | None = None, log_every_s: float = 30.0) -> RunSummary:
+    """Compute every row of an open (writable) store that is not ``ok``, with the configuration it records.
+
+    ``workers``: local processes (0: in this process); ``scheduler``: a Dask scheduler address or
+    ``"dask-local"`` (then ``workers`` sizes the LocalCluster). ``window``: tasks in flight (default 4 per worker).
+    ``max_attempts``: computations of a point whose *task* fails (worker death) before it is recorded failed.
+    ``warm_up``: with local execution, compute the first pending point in this process before the workers start,
+    so numba-compiled code is in the cache (and, with fork, in memory) for every worker.
+    """
+    from .executors import make_executor
+
+    if max_attempts < 1:
+        raise InputError("max_attempts", max_attempts, ">= 1")
+    if workers < 0:
+        raise InputError("workers", workers, ">= 0")
+    recorded = store.solver
+    points = store.points()
+    if _points_sha256(points) != store.metadata()["factorial_sha256"]:
+        raise InputError("dataset file", str(store.path), "input columns matching the recorded factorial hash",
+                         "the input columns were modified or are corrupt")
+    lubricant_json = canonical_json(store.lubricant)
+    level, effects = recorded["level"], recorded["effects"]
+
+    def task(index: int) -> PointTask:
+        return PointTask(int(index), tuple(float(v) for v in points[index]), lubricant_json, level, effects, solver)
+
+    pending = deque(int(i) for i in store.pending_indices())
+    suspects: deque[int] = deque()
+    failures: dict[int, int] = {}
+    in_flight: dict[Any, int] = {}
+    name = f"{store.factorial.get('name', 'dataset')}"
+    reporter = Progress(len(pending), name, progress, stream, log_every_s)
+    computed = 0
+    store_time = 0.0
+    started = time.perf_counter()
+    executor = None
+    session = store.begin_session(kind=kind, workers=workers, scheduler=scheduler or "",
+                                  solver=solver_reference(solver), pid_host=socket.gethostname())
+    last_flush = time.monotonic()
+
+    def record(result: dict, extra_attempts: int = 0) -> None:
+        nonlocal computed, store_time
+        t0 = time.perf_counter()
+        store.record(result["index"], status=result["status"], record=result["record"], error=result["error"],
+                     attempts=1 + extra_attempts, worker_time=result["worker_time"], worker=result["worker"])
+        store_time += time.perf_counter() - t0
+        computed += 1
+        converged = bool(result["record"] and result["record"].get("converged"))
+        reporter.advance(result["status"], converged)
+
+    def task_failed(index: int, err: BaseException, retry_alone: bool) -> None:
+        nonlocal computed
+        failures[index] = failures.get(index, 0) + 1
+        if failures[index] >= max_attempts:
+            store.record(index, status=FAILED, error=f"task failed {failures[index]} times, last: "
+                         f"{describe_exception(err)}", attempts=failures[index], worker="")
+            computed += 1
+            reporter.advance(FAILED)
+        elif retry_alone:
+            suspects.append(index)
+        else:
+            pending.appendleft(index)
+
+    with _StopFlag() as stop:
+        try:
+            if warm_up and pending and not scheduler and workers > 0:
+                index = pending.popleft()
+                record(compute_point(task(index)))
+            if pending and stop.signal_name is None:
+                executor = make_executor(workers, scheduler)
+            window = window or 4 * (executor.n_workers if executor else 1)
+            while (pending or suspects or in_flight) and stop.signal_name is None:
+                if suspects:
+                    if not in_flight:
+                        index = suspects.popleft()
+                        in_flight[executor.submit(compute_point, task(index))] = index
+                else:
+                    while pending and len(in_flight) < window:
+                        index = pending.popleft()
+                        in_flight[executor.submit(compute_point, task(index))] = index
+                done, _ = executor.wait_first(list(in_flight), timeout=0.5)
+                broken: list[int] = []
+                for future in done:
+                    index = in_flight.pop(future)
+                    err = future.exception()
+                    if err is None:
+                        record(future.result(), failures.get(index, 0))
+                    elif isinstance(err, BrokenProcessPool):
+                        broken.append(index)
+                    else:
+                        task_failed(index, err, retry_alone=False)
+                if broken:
+                    for future, index in list(in_flight.items()):
+                        if future.done() and future.exception() is None:
+                            record(future.result(), failures.get(index, 0))
+                        else:
+                            broken.append(index)
+                    in_flight.clear()
+                    if len(broken) == 1:
+                        task_failed(broken[0], BrokenProcessPool("the worker process died while computing this "
+                                                                 "point"), retry_alone=True)
+                    else:
+                        suspects.extend(sorted(broken))
+                    executor.restart()
+                now = time.monotonic()
+                if store.buffered and (now - last_flush >= flush_interval_s or store.buffered >= flush_rows):
+                    t0 = time.perf_counter()
+                    store.flush()
+                    store_time += time.perf_counter() - t0
+                    last_flush = now
+            # Stopped by a signal: keep whatever already arrived.
+            for future, index in list(in_flight.items()):
+                if future.done() and future.exception() is None:
+                    record(future.result(), failures.get(index, 0))
+        finally:
+            if executor is not None:
+                executor.shutdown(cancel=True)
+            t0 = time.perf_counter()
+            store.flush()
+            store_time += time.perf_counter() - t0
+            wall = time.perf_counter() - started
+            store.end_session(session, computed=computed, wall_time_s=round(wall, 3),
+                              interrupted=stop.signal_name, **(executor.describe() if executor else {}))
+            reporter.close()
+    counts = store.counts()
+    status = store.status()
+    converged = store.column("converged")
+    return RunSummary(
+        path=str(store.path), n_points=store.n_points, computed=computed, ok=counts["ok"], failed=counts["failed"],
+        pending=counts["pending"], non_converged=int(np.count_nonzero((status == OK) & ~converged)),
+        wall_time_s=wall, points_per_s=computed / wall if wall > 0 else 0.0, store_time_s=store_time,
+        interrupted=stop.signal_name, executor=executor.describe() if executor else {"executor": "parent"},
+    )

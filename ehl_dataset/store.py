@@ -1,0 +1,584 @@
+"""The HDF5 store of a factorial run: one file per run, one preallocated row per point, resumable (DESIGN §4).
+
+Layout (format ``gearloss-ehl-dataset``, version :data:`FORMAT_VERSION`)::
+
+    /                     root attributes: format, format_version, package_version, created (ISO 8601, UTC),
+                          git_revision, n_points, factorial (JSON), factorial_sha256, solver (JSON),
+                          lubricant (JSON, ``Lubricant.to_json_dict()``), sessions (JSON list of runs/resumes)
+    /points/point         row index 0..N-1 (an HDF5 dimension scale attached to every column)
+    /points/<column>      one 1-D dataset per column, length N; attributes ``units`` and ``description``
+
+Columns: the inputs (:data:`ehl_dataset.factorial.POINT_FIELDS`, SI), the solver outputs
+(:data:`ehl_dataset.result.RECORD_UNITS`), ``status`` (enum pending/ok/failed), ``error`` (failure text, or the
+solver's message for a non-converged result), ``attempts`` (how many computations of the point were recorded, over
+all sessions), ``worker_time`` [s] (worker-side time including retries), ``finished_at`` [s since the Unix epoch]
+and ``worker`` (host:pid).
+
+Crash safety. Every dataset is contiguous, fixed-size and written in full when the file is created (strings are
+fixed-length UTF-8), and the file is built under a temporary name and renamed into place. After creation a run
+only overwrites raw data in place — no HDF5 metadata (heaps, B-trees, chunk indices) changes while points are being
+computed — so killing the writer at any moment loses at most the rows buffered since the last :meth:`flush`, never
+the file. Only the ``sessions`` attribute is rewritten, once when a session starts and once when it ends.
+Readers open the file without HDF5 file locking, so ``gearloss dataset info`` works while a run is writing.
+"""
+
+from __future__ import annotations
+
+import datetime as _dt
+import json
+import math
+import os
+import socket
+import subprocess
+import time
+from dataclasses import dataclass
+from importlib import metadata as _metadata
+from pathlib import Path
+from typing import Any, Iterable
+
+import numpy as np
+
+from .factorial import POINT_DTYPE, POINT_FIELDS, POINT_UNITS, canonical_json
+from .result import RECORD_UNITS
+from .validation import InputError
+
+FORMAT_NAME = "gearloss-ehl-dataset"
+FORMAT_VERSION = 1
+STATUS_NAMES: tuple[str, ...] = ("pending", "ok", "failed")
+PENDING, OK, FAILED = 0, 1, 2
+
+EFFECTS_WIDTH = 1024
+"""Bytes reserved per row for the effect plan (compact JSON)."""
+ERROR_WIDTH = 512
+"""Bytes reserved per row for the error text (longer text is cut, keeping its start and end)."""
+
+_FLOAT_OUTPUTS = ("mu", "mu_std", "h_min", "h_central", "lambda_bar", "asperity_load_share", "p_max", "wall_time")
+
+_DESCRIPTIONS: dict[str, str] = {
+    "p_h": "maximum Hertz pressure",
+    "r_eq": "equivalent radius of curvature",
+    "u_r": "rolling (entrainment) velocity",
+    "sr": "slide-to-roll ratio (u1 - u2)/u_r",
+    "temperature": "oil inlet temperature",
+    "rq1": "RMS roughness of surface 1",
+    "rq2": "RMS roughness of surface 2",
+    "mu": "friction coefficient (time average)",
+    "mu_std": "standard deviation of mu over the averaging window",
+    "h_min": "minimum film thickness",
+    "h_central": "film thickness at x = 0",
+    "lambda_bar": "Dowson-Higginson minimum film over composite roughness",
+    "asperity_load_share": "share of the load carried where asperities touch",
+    "p_max": "maximum pressure",
+    "iterations": "solver iterations (-1: not computed)",
+    "converged": "solver met its tolerances",
+    "wall_time": "solver wall time reported by the solver",
+    "effects": "effect plan simulated (JSON)",
+    "level": "accuracy level",
+    "status": "pending / ok / failed",
+    "error": "error text of a failed point, or the solver message of a non-converged one",
+    "attempts": "computations of this point recorded in the file (all sessions)",
+    "worker_time": "worker-side time of the last computation, retries included",
+    "finished_at": "time the result was received, seconds since the Unix epoch (UTC)",
+    "worker": "host:pid of the worker process",
+}
+
+
+@dataclass(frozen=True)
+class Column:
+    """One per-point dataset: name, numpy dtype, fill value of a pending row, unit."""
+
+    name: str
+    dtype: Any
+    fill: Any
+    units: str
+
+
+def _str_dtype(length: int):
+    import h5py
+
+    return h5py.string_dtype("utf-8", length)
+
+
+def _columns() -> tuple[Column, ...]:
+    import h5py
+
+    cols = [Column(name, "<f8", math.nan, POINT_UNITS[name]) for name in POINT_FIELDS]
+    cols += [Column(name, "<f8", math.nan, RECORD_UNITS[name]) for name in _FLOAT_OUTPUTS if name != "wall_time"]
+    cols += [
+        Column("iterations", "<i4", -1, RECORD_UNITS["iterations"]),
+        Column("converged", np.bool_, False, RECORD_UNITS["converged"]),
+        Column("wall_time", "<f8", math.nan, RECORD_UNITS["wall_time"]),
+        Column("effects", _str_dtype(EFFECTS_WIDTH), b"", RECORD_UNITS["effects"]),
+        Column("level", _str_dtype(32), b"", RECORD_UNITS["level"]),
+        Column("status", h5py.enum_dtype({n: i for i, n in enumerate(STATUS_NAMES)}, basetype="i1"), PENDING,
+               "enum"),
+        Column("error", _str_dtype(ERROR_WIDTH), b"", "text"),
+        Column("attempts", "<i4", 0, "1"),
+        Column("worker_time", "<f8", math.nan, "s"),
+        Column("finished_at", "<f8", math.nan, "s since 1970-01-01T00:00:00Z"),
+        Column("worker", _str_dtype(64), b"", "host:pid"),
+    ]
+    return tuple(cols)
+
+
+TABLE_COLUMNS: tuple[str, ...] = (
+    "point", *POINT_FIELDS, "mu", "mu_std", "h_min", "h_central", "lambda_bar", "asperity_load_share", "p_max",
+    "iterations", "converged", "wall_time", "effects", "level", "status", "error",
+    "attempts", "worker_time", "finished_at", "worker",
+)
+"""Column order of :func:`read_table` (the first 22 are the contract used by the surrogate stage)."""
+
+
+# ---------------------------------------------------------------------------------------------------------------
+# Provenance helpers
+# ---------------------------------------------------------------------------------------------------------------
+def package_version() -> str:
+    """Installed gearloss version (``unknown`` when run from an uninstalled tree)."""
+    try:
+        return _metadata.version("gearloss")
+    except _metadata.PackageNotFoundError:  # pragma: no cover
+        return "unknown"
+
+
+def git_revision() -> str:
+    """``<sha>`` of the source checkout, with ``+dirty`` if it has uncommitted changes; ``""`` if not a checkout."""
+    here = Path(__file__).resolve().parent
+    try:
+        sha = subprocess.run(["git", "rev-parse", "HEAD"], cwd=here, capture_output=True, text=True, timeout=5)
+        if sha.returncode != 0:
+            return ""
+        dirty = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no"], cwd=here,
+                               capture_output=True, text=True, timeout=5)
+        return sha.stdout.strip() + ("+dirty" if dirty.stdout.strip() else "")
+    except (OSError, subprocess.SubprocessError):
+        return ""
+
+
+def _now_iso() -> str:
+    return _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds")
+
+
+def _fit_utf8(text: str, width: int) -> bytes:
+    """UTF-8 bytes of ``text`` cut to ``width`` bytes (keeping the start and the end, which hold the useful parts)."""
+    raw = text.encode("utf-8")
+    if len(raw) <= width:
+        return raw
+    marker = " ... ".encode()
+    head = (width - len(marker)) * 2 // 3
+    tail = width - len(marker) - head
+    return (raw[:head].decode("utf-8", "ignore") + " ... " + raw[-tail:].decode("utf-8", "ignore")).encode()[:width]
+
+
+def encode_effects(effects: str | dict) -> bytes:
+    """Compact JSON of an effect plan within :data:`EFFECTS_WIDTH` bytes.
+
+    If the plan's ``reasons`` make it too long, they are replaced by a note saying so (the flags are always kept).
+    """
+    plan = json.loads(effects) if isinstance(effects, str) else dict(effects)
+    raw = json.dumps(plan, sort_keys=True, separators=(",", ":")).encode()
+    if len(raw) <= EFFECTS_WIDTH:
+        return raw
+    plan["reasons"] = {"omitted": f"plan longer than {EFFECTS_WIDTH} bytes"}
+    raw = json.dumps(plan, sort_keys=True, separators=(",", ":")).encode()
+    if len(raw) > EFFECTS_WIDTH:
+        raise ValueError(f"effect plan does not fit in {EFFECTS_WIDTH} bytes even without reasons: {raw[:80]!r}...")
+    return raw
+
+
+def _bad_file(path, detail: str) -> InputError:
+    return InputError("dataset file", str(path), f"a {FORMAT_NAME} HDF5 file (format version <= {FORMAT_VERSION})",
+                      detail)
+
+
+def _open_h5(path, mode: str):
+    import h5py
+
+    path = Path(path)
+    if not path.exists():
+        raise FileNotFoundError(2, "No such file", str(path))
+    try:
+        if mode == "r":
+            return h5py.File(path, "r", locking=False)
+        return h5py.File(path, mode)
+    except OSError as err:
+        text = str(err)
+        if "lock" in text.lower():
+            raise InputError("dataset file", str(path), "a file no other process is writing",
+                             "it is locked: is a run still going on?") from None
+        if "truncated" in text.lower():
+            raise _bad_file(path, f"the file is truncated: {text}") from None
+        raise _bad_file(path, f"not a readable HDF5 file: {text}") from None
+
+
+# ---------------------------------------------------------------------------------------------------------------
+# The store
+# ---------------------------------------------------------------------------------------------------------------
+class DatasetStore:
+    """A dataset file opened for reading (``mode="r"``) or by the single writer (``mode="r+"``).
+
+    Create with :meth:`create`, open with :meth:`open`; use as a context manager. The writer buffers results
+    (:meth:`record`) and writes them on :meth:`flush` (which the runner calls every few seconds).
+    """
+
+    def __init__(self, handle, path: Path, writable: bool):
+        self._h5 = handle
+        self.path = Path(path)
+        self.writable = writable
+        self._buffer: dict[int, dict[str, Any]] = {}
+        self._columns = {c.name: c for c in _columns()}
+        self._validate()
+        points = self._h5["points"]
+        try:
+            self._status = points["status"][...].astype(np.int8)
+            self._attempts = points["attempts"][...].astype(np.int64)
+        except OSError as err:
+            raise _bad_file(self.path, f"cannot read the status column: {err}") from None
+
+    # -- creation and opening ---------------------------------------------------------------------------------
+    @classmethod
+    def create(cls, path, points: np.ndarray, *, factorial: dict, solver: dict, lubricant: dict,
+               overwrite: bool = False) -> "DatasetStore":
+        """Create a new file for ``points`` (dtype :data:`POINT_DTYPE`) and open it for writing.
+
+        ``factorial`` (with ``points_sha256``), ``solver`` (function, version, level, effects, ...) and
+        ``lubricant`` (``Lubricant.to_json_dict()``) are stored as JSON root attributes and checked on resume.
+        """
+        import h5py
+
+        path = Path(path)
+        if path.exists() and not overwrite:
+            raise InputError("out", str(path), "a new file (or pass overwrite to replace it)", "the file exists")
+        points = np.asarray(points)
+        if points.dtype != POINT_DTYPE or points.ndim != 1 or points.size == 0:
+            raise ValueError(f"points must be a non-empty 1-D array of dtype {POINT_DTYPE}")
+        n = points.size
+        path.parent.mkdir(parents=True, exist_ok=True)
+        tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+        try:
+            with h5py.File(tmp, "w", track_order=True) as h5:
+                attrs = h5.attrs
+                attrs["format"] = FORMAT_NAME
+                attrs["format_version"] = FORMAT_VERSION
+                attrs["package_version"] = package_version()
+                attrs["created"] = _now_iso()
+                attrs["git_revision"] = git_revision()
+                attrs["n_points"] = n
+                attrs["factorial"] = canonical_json(factorial)
+                attrs["factorial_sha256"] = str(factorial.get("points_sha256", ""))
+                attrs["solver"] = canonical_json(solver)
+                attrs["lubricant"] = canonical_json(lubricant)
+                attrs["sessions"] = "[]"
+                group = h5.create_group("points", track_order=True)
+                scale = group.create_dataset("point", data=np.arange(n, dtype="<i8"), track_times=False)
+                scale.make_scale("point")
+                scale.attrs["units"] = "1"
+                scale.attrs["description"] = "row index of the factorial point (C order over the axes)"
+                for col in _columns():
+                    if col.name in POINT_FIELDS:
+                        data = np.ascontiguousarray(points[col.name])
+                    else:
+                        data = np.full(n, col.fill, dtype=col.dtype)
+                    ds = group.create_dataset(col.name, data=data, dtype=col.dtype, track_times=False)
+                    ds.attrs["units"] = col.units
+                    ds.attrs["description"] = _DESCRIPTIONS[col.name]
+                    ds.dims[0].attach_scale(scale)
+                    if col.name == "status":
+                        ds.attrs["states"] = ", ".join(f"{i}={s}" for i, s in enumerate(STATUS_NAMES))
+            os.replace(tmp, path)
+        finally:
+            if tmp.exists():
+                tmp.unlink()
+        return cls.open(path, "r+")
+
+    @classmethod
+    def open(cls, path, mode: str = "r") -> "DatasetStore":
+        """Open an existing dataset file; ``mode`` is ``"r"`` (reader, no lock) or ``"r+"`` (the one writer)."""
+        if mode not in ("r", "r+"):
+            raise ValueError("mode must be 'r' or 'r+'")
+        handle = _open_h5(path, mode)
+        try:
+            return cls(handle, Path(path), mode == "r+")
+        except BaseException:
+            handle.close()
+            raise
+
+    def _validate(self) -> None:
+        attrs = self._h5.attrs
+        fmt = attrs.get("format")
+        if fmt is None:
+            raise _bad_file(self.path, "no 'format' attribute: a foreign HDF5 file")
+        if _as_str(fmt) != FORMAT_NAME:
+            raise _bad_file(self.path, f"format is {_as_str(fmt)!r}")
+        version = int(attrs.get("format_version", -1))
+        if not 1 <= version <= FORMAT_VERSION:
+            raise _bad_file(self.path, f"format_version {version} is not supported by this gearloss")
+        for key in ("factorial", "solver", "lubricant", "sessions"):
+            try:
+                json.loads(_as_str(attrs[key]))
+            except (KeyError, ValueError) as err:
+                raise _bad_file(self.path, f"root attribute {key!r} missing or not JSON ({err})") from None
+        n = int(attrs.get("n_points", -1))
+        if "points" not in self._h5:
+            raise _bad_file(self.path, "the 'points' group is missing")
+        group = self._h5["points"]
+        for name in ("point", *self._columns):
+            if name not in group:
+                raise _bad_file(self.path, f"column 'points/{name}' is missing")
+            if group[name].shape != (n,):
+                raise _bad_file(self.path, f"column 'points/{name}' has shape {group[name].shape}, expected ({n},)")
+
+    # -- metadata ------------------------------------------------------------------------------------------------
+    @property
+    def n_points(self) -> int:
+        return int(self._h5.attrs["n_points"])
+
+    def _json_attr(self, key: str):
+        return json.loads(_as_str(self._h5.attrs[key]))
+
+    @property
+    def factorial(self) -> dict:
+        return self._json_attr("factorial")
+
+    @property
+    def solver(self) -> dict:
+        return self._json_attr("solver")
+
+    @property
+    def lubricant(self) -> dict:
+        return self._json_attr("lubricant")
+
+    @property
+    def sessions(self) -> list:
+        return self._json_attr("sessions")
+
+    def counts(self) -> dict[str, int]:
+        """Number of rows per status (including results still in the write buffer)."""
+        return {name: int(np.count_nonzero(self._status == i)) for i, name in enumerate(STATUS_NAMES)}
+
+    def metadata(self) -> dict[str, Any]:
+        """Root attributes decoded (JSON parsed) plus counts by status."""
+        attrs = self._h5.attrs
+        counts = self.counts()
+        return {
+            "path": str(self.path),
+            "format": FORMAT_NAME,
+            "format_version": int(attrs["format_version"]),
+            "package_version": _as_str(attrs["package_version"]),
+            "created": _as_str(attrs["created"]),
+            "git_revision": _as_str(attrs["git_revision"]),
+            "n_points": self.n_points,
+            "factorial": self.factorial,
+            "factorial_sha256": _as_str(attrs["factorial_sha256"]),
+            "solver": self.solver,
+            "lubricant": self.lubricant,
+            "sessions": self.sessions,
+            "counts": counts,
+            "n_ok": counts["ok"],
+            "n_failed": counts["failed"],
+            "n_pending": counts["pending"],
+        }
+
+    # -- reading ---------------------------------------------------------------------------------------------------
+    def status(self) -> np.ndarray:
+        """Status codes (int8: 0 pending, 1 ok, 2 failed) of every row, buffered results included."""
+        return self._status.copy()
+
+    def pending_indices(self) -> np.ndarray:
+        """Rows that still need computing: every row whose status is not ``ok``."""
+        return np.flatnonzero(self._status != OK)
+
+    def points(self) -> np.ndarray:
+        """The input table (dtype :data:`POINT_DTYPE`, SI)."""
+        out = np.empty(self.n_points, dtype=POINT_DTYPE)
+        for name in POINT_FIELDS:
+            out[name] = self._read(name)
+        return out
+
+    def column(self, name: str) -> np.ndarray:
+        """One stored column as written so far (buffered results not included until :meth:`flush`)."""
+        if name != "point" and name not in self._columns:
+            raise InputError("column", name, f"one of {list(TABLE_COLUMNS)}")
+        return self._read(name)
+
+    def _read(self, name: str) -> np.ndarray:
+        try:
+            return self._h5["points"][name][...]
+        except OSError as err:
+            raise _bad_file(self.path, f"cannot read column {name!r}: {err}") from None
+
+    def table(self, status: str | None = "ok"):
+        """Tidy :class:`pandas.DataFrame` (columns :data:`TABLE_COLUMNS`), filtered by ``status`` (None: all)."""
+        import pandas as pd
+
+        if status is not None and status not in STATUS_NAMES:
+            raise InputError("status", status, f"one of {list(STATUS_NAMES)} or None")
+        columns: dict[str, Any] = {"point": self._read("point").astype(np.int64)}
+        for name in TABLE_COLUMNS[1:]:
+            data = self._read(name)
+            if name == "status":
+                data = np.asarray(STATUS_NAMES, dtype=object)[data.astype(np.int64)]
+            elif data.dtype.kind == "S":
+                data = np.char.decode(data, "utf-8").astype(object)
+            elif data.dtype.kind == "O":  # pragma: no cover - variable-length strings (not written by this version)
+                data = np.array([v.decode() if isinstance(v, bytes) else str(v) for v in data], dtype=object)
+            columns[name] = data
+        frame = pd.DataFrame(columns)
+        frame["converged"] = frame["converged"].astype(bool)
+        if status is not None:
+            frame = frame[frame["status"] == status].reset_index(drop=True)
+        return frame
+
+    # -- compatibility ------------------------------------------------------------------------------------------
+    def check_compatible(self, *, factorial_sha256: str | None = None, solver: dict | None = None,
+                         lubricant: dict | None = None) -> None:
+        """Refuse (``InputError``) to continue this file with a different factorial, solver or lubricant."""
+        hint = "start a new file (another --out, or --overwrite) to change it"
+        recorded_hash = _as_str(self._h5.attrs["factorial_sha256"])
+        if factorial_sha256 is not None and factorial_sha256 != recorded_hash:
+            raise InputError("factorial", f"points_sha256 {factorial_sha256[:16]}...",
+                             f"the factorial recorded in {self.path} "
+                             f"({self.factorial.get('name')!r}, points_sha256 {recorded_hash[:16]}...)", hint)
+        if solver is not None:
+            recorded = self.solver
+            for key in sorted(set(recorded) | set(solver)):
+                if canonical_json(recorded.get(key)) != canonical_json(solver.get(key)):
+                    raise InputError(f"solver.{key}", solver.get(key),
+                                     f"{recorded.get(key)!r} as recorded in {self.path}", hint)
+        if lubricant is not None and canonical_json(lubricant) != canonical_json(self.lubricant):
+            raise InputError("lubricant", lubricant.get("name", "<unnamed>"),
+                             f"the lubricant definition recorded in {self.path} "
+                             f"({self.lubricant.get('name', '<unnamed>')!r}, compared field by field)", hint)
+
+    # -- writing ---------------------------------------------------------------------------------------------------
+    def _require_writable(self):
+        if not self.writable:
+            raise PermissionError(f"{self.path} is open read-only")
+
+    def record(self, index: int, *, status: int, record: dict | None = None, error: str = "",
+               attempts: int = 1, worker_time: float = math.nan, worker: str = "",
+               finished_at: float | None = None) -> None:
+        """Buffer the result of one point; written at the next :meth:`flush`.
+
+        ``record`` is ``ContactResult.to_record()`` (may be None for a failed point); ``attempts`` computations
+        are added to the row's counter.
+        """
+        self._require_writable()
+        index = int(index)
+        if not 0 <= index < self.n_points:
+            raise IndexError(f"point {index} outside 0..{self.n_points - 1}")
+        if status not in (OK, FAILED):
+            raise ValueError("status must be OK or FAILED")
+        row: dict[str, Any] = {name: self._columns[name].fill for name in
+                               (*_FLOAT_OUTPUTS, "iterations", "converged", "effects", "level")}
+        if record:
+            for name in _FLOAT_OUTPUTS:
+                row[name] = float(record.get(name, math.nan))
+            row["iterations"] = int(record.get("iterations", -1))
+            row["converged"] = bool(record.get("converged", False))
+            row["effects"] = encode_effects(record["effects"]) if record.get("effects") else b""
+            row["level"] = _fit_utf8(str(record.get("level", "")), 32)
+        row["status"] = status
+        row["error"] = _fit_utf8(error, ERROR_WIDTH)
+        self._attempts[index] += int(attempts)
+        row["attempts"] = int(self._attempts[index])
+        row["worker_time"] = float(worker_time)
+        row["finished_at"] = time.time() if finished_at is None else float(finished_at)
+        row["worker"] = _fit_utf8(worker, 64)
+        self._buffer[index] = row
+        self._status[index] = status
+
+    @property
+    def buffered(self) -> int:
+        """Results waiting for the next flush."""
+        return len(self._buffer)
+
+    def flush(self) -> int:
+        """Write the buffered rows (contiguous runs as slices) and flush the file; return the rows written."""
+        if not self._buffer:
+            return 0
+        self._require_writable()
+        indices = np.array(sorted(self._buffer), dtype=np.int64)
+        breaks = np.flatnonzero(np.diff(indices) != 1) + 1
+        group = self._h5["points"]
+        names = list(next(iter(self._buffer.values())))
+        for run in np.split(indices, breaks):
+            start, stop = int(run[0]), int(run[-1]) + 1
+            rows = [self._buffer[int(i)] for i in run]
+            for name in names:
+                col = self._columns[name]
+                group[name][start:stop] = np.array([r[name] for r in rows], dtype=col.dtype)
+        self._h5.flush()
+        written = len(self._buffer)
+        self._buffer.clear()
+        return written
+
+    def begin_session(self, **info: Any) -> int:
+        """Append a session entry (kind, workers, scheduler, started) to the ``sessions`` attribute; flush."""
+        self._require_writable()
+        sessions = self.sessions
+        entry = {"started": _now_iso(), "host": socket.gethostname(), "pid": os.getpid(), **info,
+                 "pending_at_start": int(np.count_nonzero(self._status != OK))}
+        sessions.append(entry)
+        self._h5.attrs["sessions"] = canonical_json(sessions)
+        self._h5.flush()
+        return len(sessions) - 1
+
+    def end_session(self, number: int, **info: Any) -> None:
+        """Complete session ``number`` with its outcome (computed, wall time, interrupted, ...); flush."""
+        self._require_writable()
+        self.flush()
+        sessions = self.sessions
+        sessions[number].update({"ended": _now_iso(), **info})
+        self._h5.attrs["sessions"] = canonical_json(sessions)
+        self._h5.flush()
+
+    def close(self) -> None:
+        """Flush buffered rows (writer) and close the file."""
+        if self._h5 is None:
+            return
+        try:
+            if self.writable and self._buffer:
+                self.flush()
+        finally:
+            self._h5.close()
+            self._h5 = None
+
+    def __enter__(self) -> "DatasetStore":
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.close()
+
+
+def _as_str(value) -> str:
+    return value.decode("utf-8") if isinstance(value, bytes) else str(value)
+
+
+# ---------------------------------------------------------------------------------------------------------------
+# The reader contract (used by the surrogate stage)
+# ---------------------------------------------------------------------------------------------------------------
+def read_table(path, status: str | None = "ok"):
+    """Tidy table of a dataset file as a :class:`pandas.DataFrame` (SI units), rows filtered by ``status``.
+
+    Columns: ``point`` (row index), ``p_h`` [Pa], ``r_eq`` [m], ``u_r`` [m/s], ``sr`` [-], ``temperature`` [K],
+    ``rq1``, ``rq2`` [m], ``mu``, ``mu_std``, ``h_min`` [m], ``h_central`` [m], ``lambda_bar``,
+    ``asperity_load_share``, ``p_max`` [Pa], ``iterations``, ``converged``, ``wall_time`` [s], ``effects`` (JSON
+    str), ``level``, ``status`` (pending/ok/failed), ``error``; then ``attempts``, ``worker_time`` [s],
+    ``finished_at`` [s since the epoch], ``worker``. ``status=None`` returns every row.
+    A corrupt, truncated or foreign file raises :class:`InputError` naming the file and the problem.
+    """
+    with DatasetStore.open(path, "r") as store:
+        return store.table(status)
+
+
+def read_metadata(path) -> dict[str, Any]:
+    """Provenance of a dataset file: format_version, package_version, created, git_revision, factorial (dict),
+    solver (dict: function, version, level, effects, ...), lubricant (dict as parsed from the lubricant TOML:
+    rebuild with :func:`ehl_dataset.lubricant.lubricant_from_dict`), sessions, n_points and counts by status."""
+    with DatasetStore.open(path, "r") as store:
+        return store.metadata()
+
+
+def iter_status_names(codes: Iterable[int]) -> list[str]:
+    """Status names of integer codes."""
+    return [STATUS_NAMES[int(c)] for c in codes]
