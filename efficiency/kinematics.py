@@ -1,0 +1,153 @@
+"""Kinematics of a helical gear mesh on the plane of action (slice model), SI units.
+
+The plane of action of a parallel-axis involute pair is the plane tangent to both base cylinders. It is spanned by
+the transverse line of action T1T2 (roll distance ``s`` measured from T1, the tangent point on gear 1's base circle)
+and the axial direction ``z`` (0 ≤ z ≤ b). The contact lines of a helical pair are straight lines in this plane,
+inclined at the base helix angle ψ_b to the axial direction (Litvin & Fuentes, *Gear Geometry and Applied Theory*,
+2nd ed., §14; ISO 21771 §5): tooth pair ``k`` touches at
+
+    s_k(z, φ) = s_0 + k p_bt + r_b1 φ + z tan ψ_b,
+
+where φ is the rotation of gear 1 and p_bt the transverse base pitch. The face is split into ``S`` thin transverse
+slices (the paper's "thin slices of spur gears staggered according to the helix angle", Li & Kahraman 2009 §2.1);
+each slice centre on each contact line is a contact point. A point is loaded only if it lies on the active path of
+contact, ``contact_start ≤ s ≤ contact_end``. One mesh cycle is one transverse base pitch of roll, sampled at M
+positions φ_m = m p_bt / (M r_b1), m = 0 … M − 1.
+
+At a contact point (DESIGN §6):
+- transverse radii of curvature ρ1 = s, ρ2 = T1T2 − s (involute radius = roll distance from the tangent point),
+- normal radii (perpendicular to the contact line, in the normal section) ρ_i / cos ψ_b,
+- rolling (entrainment) velocity u_r = (ω1 ρ1 + ω2 ρ2)/2 and sliding velocity u_s = ω1 ρ1 − ω2 ρ2 with
+  ω2 = ω1 r_b1 / r_b2. Both are in the transverse direction, which is perpendicular to the contact line in the
+  tangent plane, so they are the velocities an EHL line contact across the contact line sees. u_s = 0 at the
+  pitch point s = r_b1 tan α_wt and is linear in s (and in the roll angle s / r_b1).
+
+Arrays have shape (M, K, S): positions × tooth pairs (contact lines) × slices.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ehl_dataset.validation import InputError, check_range
+
+
+@dataclass(frozen=True)
+class MeshKinematics:
+    """Contact points of a helical pair over one mesh cycle (shapes (M, K, S) unless stated).
+
+    Attributes
+    ----------
+    mesh_angle : (M,) rotation φ_m of gear 1 from the reference position [rad]
+    roll_offset : (M,) roll distance r_b1 φ_m [m]
+    z : (S,) slice centres across the face [m]
+    slice_width : Δz = b / S [m]
+    roll : s, roll distance of the contact point from T1 along the transverse line of action [m]
+    in_contact : True where the point lies on the active path of contact
+    rho1, rho2 : transverse radii of curvature of gears 1 and 2 [m]
+    rho1_normal, rho2_normal : normal radii of curvature ρ_i / cos ψ_b [m]
+    r_eq_normal : equivalent normal radius ρ1n ρ2n / (ρ1n + ρ2n) [m]
+    u_r : rolling velocity (ω1 ρ1 + ω2 ρ2)/2 [m/s]
+    u_s : sliding velocity ω1 ρ1 − ω2 ρ2 [m/s] (positive where gear 1's surface is faster: approach side negative)
+    omega1, omega2 : angular speeds of gears 1 and 2 [rad/s]
+    base_helix_angle : ψ_b [rad]
+    line_of_action_length : T1T2 [m]
+    contact_start, contact_end : active path of contact on the line of action, roll from T1 [m]
+    transverse_base_pitch : p_bt [m]
+    """
+
+    mesh_angle: np.ndarray
+    roll_offset: np.ndarray
+    z: np.ndarray
+    slice_width: float
+    roll: np.ndarray
+    in_contact: np.ndarray
+    rho1: np.ndarray
+    rho2: np.ndarray
+    rho1_normal: np.ndarray
+    rho2_normal: np.ndarray
+    r_eq_normal: np.ndarray
+    u_r: np.ndarray
+    u_s: np.ndarray
+    omega1: float
+    omega2: float
+    base_helix_angle: float
+    line_of_action_length: float
+    contact_start: float
+    contact_end: float
+    transverse_base_pitch: float
+
+    @property
+    def shape(self) -> tuple[int, int, int]:
+        """(M positions, K contact lines, S slices)."""
+        return self.roll.shape
+
+    def contact_count_per_slice(self) -> np.ndarray:
+        """(M, S) number of tooth pairs in contact in each slice; its mean over a cycle → ε_α."""
+        return self.in_contact.sum(axis=1)
+
+    def pairs_in_contact(self) -> np.ndarray:
+        """(M,) number of tooth pairs touching anywhere on the face; its mean over a cycle → ε_α + ε_β."""
+        return self.in_contact.any(axis=2).sum(axis=1)
+
+
+def contact_line_count(pair) -> int:
+    """K: number of contact lines that can touch during one mesh cycle, ⌈ε_α + ε_β⌉ + 1."""
+    return int(math.ceil(float(pair.total_contact_ratio))) + 1
+
+
+def mesh_kinematics(pair, positions: int = 24, slices: int = 30, speed_rad_s: float = 1.0) -> MeshKinematics:
+    """Contact points, radii and velocities of ``pair`` (an :class:`efficiency.geometry.GearPair`) over a mesh cycle.
+
+    Parameters
+    ----------
+    pair : scalar GearPair (gear 1 drives; contact runs from gear 1's root to its tip, s increasing)
+    positions : M mesh positions per cycle (≥ 1)
+    slices : S slices across the face width (≥ 1)
+    speed_rad_s : angular speed ω1 of gear 1 [rad/s] (> 0)
+    """
+    positions = int(check_range("positions", positions, 1, 100000))
+    slices = int(check_range("slices", slices, 1, 100000))
+    omega1 = check_range("speed_rad_s", speed_rad_s, 0.0, 1e6, low_inclusive=False, unit="rad/s")
+    start, end = float(pair.contact_start), float(pair.contact_end)
+    length = float(pair.line_of_action_length)
+    if not start < end:
+        raise InputError("path_of_contact", end - start, "> 0 m (the tip circles do not overlap on the line of "
+                         "action)")
+    if start < 0.0 or end > length:
+        raise InputError("contact_start/contact_end", (start, end), f"within [0, {length:.6g}] m (involute "
+                         "interference: contact beyond the base-circle tangent points)")
+    rb1, rb2 = (float(r) for r in pair.base_radii)
+    psi_b = float(pair.base_helix_angle)
+    p_bt = float(pair.transverse_base_pitch)
+    width = float(pair.face_width)
+
+    dz = width / slices
+    z = (np.arange(slices) + 0.5) * dz
+    k_lines = contact_line_count(pair)
+    offset = np.arange(positions) * p_bt / positions
+    # Lowest intercept: a line that just touches the start of the path at the far face end z = b.
+    s0 = start - width * math.tan(psi_b)
+    roll = (s0 + offset[:, None, None] + p_bt * np.arange(k_lines)[None, :, None]
+            + math.tan(psi_b) * z[None, None, :])
+    in_contact = (roll >= start) & (roll <= end)
+
+    rho1 = roll
+    rho2 = length - roll
+    cos_b = math.cos(psi_b)
+    rho1n = rho1 / cos_b
+    rho2n = rho2 / cos_b
+    with np.errstate(divide="ignore", invalid="ignore"):
+        r_eq = np.where(in_contact, rho1n * rho2n / (rho1n + rho2n), 0.0)
+    omega2 = omega1 * rb1 / rb2
+    u1 = omega1 * rho1
+    u2 = omega2 * rho2
+    return MeshKinematics(
+        mesh_angle=offset / rb1, roll_offset=offset, z=z, slice_width=dz, roll=roll, in_contact=in_contact,
+        rho1=rho1, rho2=rho2, rho1_normal=rho1n, rho2_normal=rho2n, r_eq_normal=r_eq,
+        u_r=0.5 * (u1 + u2), u_s=u1 - u2, omega1=omega1, omega2=omega2, base_helix_angle=psi_b,
+        line_of_action_length=length, contact_start=start, contact_end=end, transverse_base_pitch=p_bt,
+    )

@@ -1,0 +1,258 @@
+"""Loaded tooth contact over one mesh cycle: load distribution, transmission error, contact and root stresses.
+
+Orchestrates :mod:`efficiency.kinematics` (contact points), :mod:`efficiency.compliance` (tooth, foundation, face
+coupling and Hertz compliance), :mod:`efficiency.modifications` (unloaded separations) and
+:mod:`efficiency.load_distribution` (the complementarity solve) for a :class:`efficiency.geometry.GearPair` at a
+given input torque. Only the outputs asked for are computed (DESIGN §1: ``outputs`` ⊆ {"te", "stresses"}; the loads,
+radii and velocities that the power-loss stage needs are always returned).
+
+Definitions (all SI):
+- normal load to carry W = T_in / (r_b1 cos ψ_b); the transverse base-circle force is F_bt = T_in / r_b1;
+- loaded transmission error at the base circle TE(φ) = δ(φ) / cos ψ_b (δ the rigid-body normal approach; it
+  includes the unloaded TE of the modifications), peak-to-peak TE = max − min over the cycle;
+- mesh stiffness k(φ) = dF_bt / dTE = cos² ψ_b · dW/dδ on the current active set [N/m]; per unit face width
+  c_γ = mean k / b [N/m²] (comparable with ISO 6336-1 c_γα);
+- Hertz contact pressure at a point p = √(w E' / (2π R_n)), w = F cos ψ_b / Δz the load per unit length of contact
+  line, R_n the normal equivalent radius (DESIGN §3, W' = 2π r_eq p_h² / E');
+- root bending stress of gear i at a point, consistent with ISO 6336-3 (σ_F0 = F_t/(b m_n) Y_F Y_S Y_β):
+  σ = (f_t / m_n) · Y_F Y_S Y_β · h(ρ_i)/h(ρ_Di), with f_t = F cos ψ_b cos α_t / Δz the slice's tangential load per
+  unit face width at the reference circle, h the bending lever arm of the load about the root section
+  (:func:`efficiency.compliance.root_bending_arm`) and ρ_Di the outer point of single pair contact of gear i in the
+  transverse section (the ISO load position). A uniform load F_t/b at that point gives exactly σ_F0.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ehl_dataset.materials import STEEL, Material, reduced_modulus
+from ehl_dataset.validation import InputError, check_range
+
+from .compliance import (DEFAULT_HUB_RATIO, contact_compliance, face_coupling, root_bending_arm, tooth_compliance,
+                         whole_depth)
+from .kinematics import MeshKinematics, mesh_kinematics
+from .load_distribution import solve_contact
+from .modifications import Modifications, normal_separation
+
+OUTPUTS = frozenset({"te", "stresses"})
+
+
+@dataclass(frozen=True)
+class MeshOptions:
+    """Resolution and model options of a mesh-cycle evaluation.
+
+    positions : M mesh positions per cycle; slices : S slices across the face
+    outputs : subset of {"te", "stresses"} to compute (loads, radii, velocities are always returned)
+    coupling_length_factor : face-coupling length ℓ in units of the whole tooth depth (default 1)
+    hub_ratio : r_f / r_int for the foundation compliance (default 2)
+    material1, material2 : gear materials (default steel, E = 206 GPa, ν = 0.3)
+    root_stress_factors : (Y_F Y_S Y_β of gear 1, of gear 2); None → from :mod:`efficiency.iso6336`
+    """
+
+    positions: int = 24
+    slices: int = 30
+    outputs: frozenset = OUTPUTS
+    coupling_length_factor: float = 1.0
+    hub_ratio: float = DEFAULT_HUB_RATIO
+    material1: Material = STEEL
+    material2: Material = STEEL
+    root_stress_factors: tuple[float, float] | None = None
+
+    def __post_init__(self):
+        check_range("positions", self.positions, 1, 10000)
+        check_range("slices", self.slices, 1, 2000)
+        unknown = set(self.outputs) - OUTPUTS
+        if unknown:
+            raise InputError("outputs", sorted(unknown), f"a subset of {sorted(OUTPUTS)}")
+        object.__setattr__(self, "outputs", frozenset(self.outputs))
+        check_range("coupling_length_factor", self.coupling_length_factor, 0.0, 100.0, low_inclusive=False)
+        check_range("hub_ratio", self.hub_ratio, 1.0, 10.0, low_inclusive=False)
+        if self.root_stress_factors is not None:
+            for i, y in enumerate(self.root_stress_factors, start=1):
+                check_range(f"root_stress_factor{i}", y, 0.0, 50.0, low_inclusive=False)
+
+
+@dataclass(frozen=True)
+class MeshCycleResult:
+    """Loaded mesh over one cycle. Point arrays have shape (M positions, K contact lines, S slices).
+
+    Attributes
+    ----------
+    kinematics : contact points, radii [m], rolling and sliding velocities [m/s] (see MeshKinematics)
+    torque : input torque T_in on gear 1 [N·m]; normal_load : W = T_in/(r_b1 cos ψ_b) [N]
+    loads : normal load per contact point [N] (0 where not loaded or not in contact)
+    load_per_length : normal load per unit length of contact line w = F cos ψ_b / Δz [N/m]
+    approach : (M,) rigid-body normal approach δ [m]
+    transmission_error : (M,) loaded TE at the base circle δ/cos ψ_b [m] (None unless "te" asked)
+    te_peak_to_peak : max − min of the TE over the cycle [m] (None unless "te")
+    mesh_stiffness : (M,) tangent mesh stiffness dF_bt/dTE [N/m]
+    mesh_stiffness_per_width : mean mesh stiffness / b [N/m²] (1 N/(mm·µm) = 1e9 N/m²)
+    contact_pressure : Hertz pressure per point [Pa] (None unless "stresses")
+    sigma_c_max : max Hertz pressure [Pa]; sigma_c_position : its mesh position index m
+    root_stress : (2, M, K, S) root bending stress of gears 1 and 2 [Pa] (None unless "stresses")
+    sigma_b_max : max root stress [Pa]; sigma_b_position : (gear 1 or 2, m)
+    converged : every position's complementarity problem converged
+    iterations : (M,) active-set iterations; equilibrium_residual : max |ΣF − W|/W
+    max_penetration : max penetration over all positions [m]; min_load : min load [N]
+    wall_time_s : evaluation time [s]
+    """
+
+    kinematics: MeshKinematics
+    torque: float
+    normal_load: float
+    loads: np.ndarray
+    load_per_length: np.ndarray
+    approach: np.ndarray
+    mesh_stiffness: np.ndarray
+    mesh_stiffness_per_width: float
+    converged: bool
+    iterations: np.ndarray
+    equilibrium_residual: float
+    max_penetration: float
+    min_load: float
+    wall_time_s: float
+    transmission_error: np.ndarray | None = None
+    te_peak_to_peak: float | None = None
+    contact_pressure: np.ndarray | None = None
+    sigma_c_max: float | None = None
+    sigma_c_position: int | None = None
+    root_stress: np.ndarray | None = None
+    sigma_b_max: float | None = None
+    sigma_b_position: tuple[int, int] | None = None
+    extra: dict = field(default_factory=dict)
+
+    def friction_power(self, mu) -> np.ndarray:
+        """(M,) instantaneous friction power loss P(φ_m) = Σ_q μ_q W_q |u_s,q| [W] (paper Eq. 11a) for a friction
+        coefficient ``mu`` (scalar or array broadcastable to the point arrays)."""
+        return np.sum(np.asarray(mu) * self.loads * np.abs(self.kinematics.u_s), axis=(1, 2))
+
+
+def evaluate_mesh(pair, torque: float, speed_rad_s: float = 1.0, modifications: Modifications = Modifications(),
+                  options: MeshOptions = MeshOptions()) -> MeshCycleResult:
+    """Load distribution, TE and stresses of ``pair`` at input torque ``torque`` [N·m] over one mesh cycle.
+
+    ``speed_rad_s`` (ω1 [rad/s]) only scales the velocities in the kinematics (the model is quasi-static).
+    Raises :class:`InputError` for bad input; non-convergence is reported in ``converged`` and the residuals.
+    """
+    started = time.perf_counter()
+    torque = check_range("torque", torque, 0.0, 1e7, low_inclusive=False, unit="N·m")
+    kin = mesh_kinematics(pair, options.positions, options.slices, speed_rad_s)
+    n_pos, n_lines, n_slices = kin.shape
+    psi_b = kin.base_helix_angle
+    cos_b = math.cos(psi_b)
+    rb1 = float(pair.base_radii[0])
+    dz = kin.slice_width
+    width = float(pair.face_width)
+    normal_load = torque / (rb1 * cos_b)
+
+    # Compliance factors at the points in contact (pairs of the √c outer product; gear 2's roll is T1T2 − s).
+    inside = kin.in_contact
+    c1 = np.zeros(kin.shape)
+    c2 = np.zeros(kin.shape)
+    c1[inside] = tooth_compliance(pair, 1, kin.rho1[inside], options.material1, options.hub_ratio)["total"]
+    c2[inside] = tooth_compliance(pair, 2, kin.rho2[inside], options.material2, options.hub_ratio)["total"]
+    root1 = np.sqrt(c1) * cos_b
+    root2 = np.sqrt(c2) * cos_b
+    coupling = face_coupling(kin.z, width, options.coupling_length_factor * whole_depth(pair, 1)) / dz
+    hertz = contact_compliance(options.material1, options.material2) * cos_b / dz
+
+    line = np.broadcast_to(np.arange(n_lines)[:, None], (n_lines, n_slices))
+    slc = np.broadcast_to(np.arange(n_slices)[None, :], (n_lines, n_slices))
+    separation = normal_separation(modifications, kin.roll, kin.z[None, None, :], line[None], kin.contact_start,
+                                   kin.contact_end, width)
+
+    loads = np.zeros(kin.shape)
+    approach = np.zeros(n_pos)
+    stiffness = np.zeros(n_pos)
+    iterations = np.zeros(n_pos, dtype=int)
+    converged = True
+    equilibrium = 0.0
+    penetration = 0.0
+    previous = None
+    for m in range(n_pos):
+        flat = np.flatnonzero(inside[m].ravel())
+        k_idx = line.ravel()[flat]
+        j_idx = slc.ravel()[flat]
+        a = root1[m].ravel()[flat]
+        b = root2[m].ravel()[flat]
+        same_line = k_idx[:, None] == k_idx[None, :]
+        compliance = (np.outer(a, a) + np.outer(b, b)) * coupling[np.ix_(j_idx, j_idx)] * same_line
+        compliance[np.diag_indices_from(compliance)] += hertz
+        warm = None if previous is None else previous.ravel()[flat]
+        sol = solve_contact(compliance, separation[m].ravel()[flat], normal_load, initial_loads=warm)
+        out = np.zeros(n_lines * n_slices)
+        out[flat] = sol.loads
+        loads[m] = out.reshape(n_lines, n_slices)
+        previous = loads[m]
+        approach[m] = sol.approach
+        stiffness[m] = sol.stiffness * cos_b**2
+        iterations[m] = sol.iterations
+        converged &= sol.converged
+        equilibrium = max(equilibrium, sol.equilibrium_residual)
+        penetration = max(penetration, sol.max_penetration)
+
+    load_per_length = loads * cos_b / dz
+    result = dict(
+        kinematics=kin, torque=torque, normal_load=normal_load, loads=loads, load_per_length=load_per_length,
+        approach=approach, mesh_stiffness=stiffness, mesh_stiffness_per_width=float(stiffness.mean() / width),
+        converged=bool(converged), iterations=iterations, equilibrium_residual=float(equilibrium),
+        max_penetration=float(penetration), min_load=float(loads.min()),
+    )
+    if "te" in options.outputs:
+        te = approach / cos_b
+        result.update(transmission_error=te, te_peak_to_peak=float(te.max() - te.min()))
+    if "stresses" in options.outputs:
+        e_red = reduced_modulus(options.material1, options.material2)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            pressure = np.where(inside, np.sqrt(load_per_length * e_red / (2.0 * math.pi * kin.r_eq_normal)), 0.0)
+        m_c = int(np.unravel_index(np.argmax(pressure), pressure.shape)[0])
+        sigma = root_stress(pair, kin, loads, options.root_stress_factors)
+        g_b, m_b = (int(i) for i in np.unravel_index(np.argmax(sigma), sigma.shape)[:2])
+        result.update(contact_pressure=pressure, sigma_c_max=float(pressure.max()), sigma_c_position=m_c,
+                      root_stress=sigma, sigma_b_max=float(sigma.max()), sigma_b_position=(g_b + 1, m_b))
+    result["wall_time_s"] = time.perf_counter() - started
+    return MeshCycleResult(**result)
+
+
+def single_pair_outer_points(pair) -> tuple[float, float]:
+    """Roll distances (from each gear's own tangent point) of the outer point of single pair contact of gears 1
+    and 2 in the transverse section [m]: ρ_D1 = T1A + p_bt, ρ_D2 = T1T2 − (T1E − p_bt), limited to the active
+    profile (for ε_α < 1 the tip)."""
+    start, end = float(pair.contact_start), float(pair.contact_end)
+    p_bt = float(pair.transverse_base_pitch)
+    length = float(pair.line_of_action_length)
+    rho_d1 = min(start + p_bt, end)
+    rho_d2 = length - max(end - p_bt, start)
+    return rho_d1, rho_d2
+
+
+def root_stress(pair, kin: MeshKinematics, loads: np.ndarray, factors: tuple[float, float] | None = None):
+    """(2, M, K, S) root bending stress of gears 1 and 2 [Pa] (definition in the module docstring)."""
+    if factors is None:
+        factors = iso_root_stress_factors(pair)
+    cos_b = math.cos(kin.base_helix_angle)
+    alpha_t = float(pair.transverse_pressure_angle)
+    m_n = float(pair.normal_module)
+    f_t = loads * cos_b * math.cos(alpha_t) / kin.slice_width
+    out = np.zeros((2,) + loads.shape)
+    inside = kin.in_contact
+    for i, (rho, rho_d) in enumerate(zip((kin.rho1, kin.rho2), single_pair_outer_points(pair))):
+        arm_d = float(root_bending_arm(pair, i + 1, rho_d))
+        ratio = np.zeros(loads.shape)
+        ratio[inside] = np.clip(root_bending_arm(pair, i + 1, rho[inside]), 0.0, None) / arm_d
+        out[i] = f_t / m_n * factors[i] * ratio
+    return out
+
+
+def iso_root_stress_factors(pair) -> tuple[float, float]:
+    """Y_F Y_S Y_β of gears 1 and 2 from ISO 6336-3 method B (:mod:`efficiency.iso6336`)."""
+    try:
+        from . import iso6336
+    except ImportError as err:  # pragma: no cover - depends on the parallel work
+        raise InputError("root_stress_factors", None, "explicit (Y_F Y_S Y_β) per gear: efficiency.iso6336 is "
+                         "not available") from err
+    return iso6336.root_stress_factor_products(pair)
