@@ -1,0 +1,274 @@
+"""Coefficient files: the portable result of a surrogate fit (JSON, no pickles; DESIGN §5).
+
+Layout (``format = "gearloss.friction_coefficients"``, ``format_version = 1``), all quantities SI:
+
+* ``formula``: ``name``, ``version``, ``reference``, ``lambda_threshold`` — must match the term registry in
+  :mod:`surrogate.forms`;
+* ``branches.mixed`` / ``branches.full_film``: ``terms`` (registry names), ``expressions``, ``params``,
+  ``std_errors``, ``r2``, ``adj_r2``, ``resid_std_error``, ``n_obs``, ``df_resid``, condition numbers, ``rank``,
+  ``vif``, ``lambda_range``, ``stable``, ``messages``;
+* ``evaluation``: ``blend_half_width`` (δ of the λ̄ blend band), ``sr_floor`` (|SR| below it is evaluated at it);
+* ``cross_validation`` (k-fold errors of ln μ and μ), ``jump_at_threshold``, ``exclusions``, ``n_input_rows``,
+  ``n_used``, ``input_ranges`` ({name: [min, max]} seen in the fitted data), ``stable``;
+* ``lubricant`` (the lubricant definition, rebuilt with ``lubricant_from_dict``), ``e_reduced_pa``;
+* ``source``: ``path``, ``sha256`` of the dataset file, ``n_points``, ``accuracy_level``, ``description``;
+* ``package_version``, ``created_utc``;
+* ``content_sha256``: SHA-256 of the canonical JSON (sorted keys, compact) of everything else. A file edited
+  after writing fails this check; to change a file deliberately, refit.
+
+The statsmodels summaries are written beside the file as ``NAME.summary.txt``.
+:func:`load_coefficients` validates everything and raises :class:`InputError` naming the offending field.
+"""
+
+from __future__ import annotations
+
+import datetime as _dt
+import hashlib
+import json
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from ehl_dataset.lubricant import Lubricant, lubricant_from_dict
+from ehl_dataset.validation import InputError
+
+from .fit import RANGE_KEYS, SurrogateFit
+from .forms import BRANCHES, FORMULAS, Formula
+
+FORMAT = "gearloss.friction_coefficients"
+FORMAT_VERSION = 1
+SUMMARY_SUFFIX = ".summary.txt"
+
+
+def package_version() -> str:
+    try:
+        from importlib.metadata import version
+
+        return version("gearloss")
+    except Exception:  # pragma: no cover - running from a tree without metadata
+        return "unknown"
+
+
+def file_sha256(path: str | Path) -> str:
+    """SHA-256 hex digest of a file's bytes (the dataset hash recorded in coefficient files)."""
+    digest = hashlib.sha256()
+    with open(path, "rb") as handle:
+        for block in iter(lambda: handle.read(1 << 20), b""):
+            digest.update(block)
+    return digest.hexdigest()
+
+
+def _clean(value: Any) -> Any:
+    """JSON-safe copy: numpy scalars/arrays → Python, non-finite floats → None."""
+    if isinstance(value, dict):
+        return {str(k): _clean(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_clean(v) for v in value]
+    if isinstance(value, np.ndarray):
+        return _clean(value.tolist())
+    if isinstance(value, (np.bool_, bool)):
+        return bool(value)
+    if isinstance(value, (np.integer,)):
+        return int(value)
+    if isinstance(value, (float, np.floating)):
+        number = float(value)
+        return number if math.isfinite(number) else None
+    return value
+
+
+def content_hash(payload: dict[str, Any]) -> str:
+    """SHA-256 of the canonical JSON of ``payload`` without its ``content_sha256`` entry."""
+    body = {k: v for k, v in payload.items() if k != "content_sha256"}
+    text = json.dumps(body, sort_keys=True, separators=(",", ":"), ensure_ascii=True, allow_nan=False)
+    return hashlib.sha256(text.encode("ascii")).hexdigest()
+
+
+def coefficients_payload(fit: SurrogateFit, *, source: dict[str, Any] | None = None) -> dict[str, Any]:
+    """The JSON document (as a dict, hash included) describing ``fit``."""
+    branches = {}
+    for name, branch in fit.branches.items():
+        entry = branch.to_dict()
+        entry["expressions"] = [t.expression for t in fit.formula.terms[name]]
+        entry["condition"] = (f"lambda_bar <= {fit.formula.lambda_threshold:g}" if name == "mixed"
+                              else f"lambda_bar > {fit.formula.lambda_threshold:g}")
+        branches[name] = entry
+    payload = {
+        "format": FORMAT,
+        "format_version": FORMAT_VERSION,
+        "formula": {"name": fit.formula.name, "version": fit.formula.version, "reference": fit.formula.reference,
+                    "lambda_threshold": fit.formula.lambda_threshold, "response": "ln(mu)"},
+        "branches": branches,
+        "evaluation": {
+            "blend_half_width": fit.blend_half_width,
+            "sr_floor": fit.sr_floor,
+            "notes": "ln mu blended with a smoothstep over lambda_bar in [1 - d, 1 + d] (d = blend_half_width); "
+                     "|SR| below sr_floor is evaluated at sr_floor; inputs outside input_ranges warn",
+        },
+        "cross_validation": fit.cv,
+        "jump_at_threshold": fit.jump,
+        "exclusions": fit.exclusions,
+        "n_input_rows": fit.n_input_rows,
+        "n_used": fit.n_used,
+        "input_ranges": fit.input_ranges,
+        "stable": fit.stable,
+        "lambda_column_max_rel_diff": fit.lambda_column_max_rel_diff,
+        "fit_time_s": fit.fit_time_s,
+        "lubricant": fit.lubricant,
+        "e_reduced_pa": fit.e_reduced,
+        "source": source or {},
+        "package_version": package_version(),
+        "created_utc": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
+    }
+    payload = _clean(payload)
+    payload["content_sha256"] = content_hash(payload)
+    return payload
+
+
+def summary_path(path: str | Path) -> Path:
+    path = Path(path)
+    return path.with_name(path.stem + SUMMARY_SUFFIX)
+
+
+def write_coefficients(fit: SurrogateFit, path: str | Path, *, source: dict[str, Any] | None = None) -> Path:
+    """Write the coefficient file (JSON) and the statsmodels summary beside it; returns the JSON path."""
+    path = Path(path)
+    if path.suffix != ".json":
+        raise InputError("out", str(path), "a file name ending in .json")
+    path.parent.mkdir(parents=True, exist_ok=True)
+    payload = coefficients_payload(fit, source=source)
+    tmp = path.with_name(path.name + ".tmp")
+    tmp.write_text(json.dumps(payload, indent=1, sort_keys=True, allow_nan=False) + "\n", encoding="utf-8")
+    tmp.replace(path)
+    summary_path(path).write_text(fit.summary_text() + "\n", encoding="utf-8")
+    return path
+
+
+# ---------------------------------------------------------------------------------------------------------------
+# Loading and validation
+# ---------------------------------------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class CoefficientSet:
+    """A validated coefficient file (what the evaluator needs, plus the raw document in ``document``)."""
+
+    formula: Formula
+    params: dict[str, np.ndarray]
+    std_errors: dict[str, np.ndarray]
+    blend_half_width: float
+    sr_floor: float
+    input_ranges: dict[str, tuple[float, float]]
+    lubricant: Lubricant
+    e_reduced: float
+    document: dict[str, Any] = field(repr=False, compare=False)
+    path: str = ""
+
+
+def _require(doc: dict, dotted: str, kind: type | tuple[type, ...], accepted: str):
+    node: Any = doc
+    for part in dotted.split("."):
+        if not isinstance(node, dict) or part not in node:
+            raise InputError(dotted, "<missing>", accepted, "incomplete coefficient file")
+        node = node[part]
+    if kind is float:
+        ok = isinstance(node, (int, float)) and not isinstance(node, bool) and math.isfinite(node)
+    elif kind is int:
+        ok = isinstance(node, int) and not isinstance(node, bool)
+    else:
+        ok = isinstance(node, kind)
+    if not ok:
+        raise InputError(dotted, node, accepted)
+    return node
+
+
+def _number_list(doc: dict, dotted: str, length: int) -> np.ndarray:
+    values = _require(doc, dotted, list, f"a list of {length} finite numbers")
+    if len(values) != length or not all(isinstance(v, (int, float)) and not isinstance(v, bool)
+                                        and math.isfinite(v) for v in values):
+        raise InputError(dotted, values, f"a list of {length} finite numbers")
+    return np.asarray(values, dtype=float)
+
+
+def validate_coefficients(doc: Any, origin: str = "<dict>") -> CoefficientSet:
+    """Validate a parsed coefficient document; raise :class:`InputError` naming the first bad field."""
+    if not isinstance(doc, dict):
+        raise InputError("coefficient file", origin, "a JSON object")
+    fmt = doc.get("format", "<missing>")
+    if fmt != FORMAT:
+        raise InputError("format", fmt, f"'{FORMAT}'")
+    version = _require(doc, "format_version", int, f"{FORMAT_VERSION}")
+    if version != FORMAT_VERSION:
+        raise InputError("format_version", version, f"{FORMAT_VERSION} (this gearloss version)")
+    name = _require(doc, "formula.name", str, f"one of {sorted({k[0] for k in FORMULAS})}")
+    fversion = _require(doc, "formula.version", int, "a formula version number")
+    formula = FORMULAS.get((name, fversion))
+    if formula is None:
+        raise InputError("formula.name/version", f"{name} v{fversion}", f"one of {sorted(FORMULAS)}")
+    threshold = _require(doc, "formula.lambda_threshold", float, f"{formula.lambda_threshold}")
+    if threshold != formula.lambda_threshold:
+        raise InputError("formula.lambda_threshold", threshold, f"{formula.lambda_threshold} for {name}")
+    params, errors = {}, {}
+    for branch in BRANCHES:
+        expected = formula.term_names(branch)
+        terms = _require(doc, f"branches.{branch}.terms", list, f"the term list {expected}")
+        if terms != expected:
+            raise InputError(f"branches.{branch}.terms", terms, f"exactly {expected} for {name} v{fversion}")
+        params[branch] = _number_list(doc, f"branches.{branch}.params", len(expected))
+        errors[branch] = _number_list(doc, f"branches.{branch}.std_errors", len(expected))
+        if np.any(errors[branch] < 0):
+            raise InputError(f"branches.{branch}.std_errors", errors[branch].tolist(), "non-negative numbers")
+        n_obs = _require(doc, f"branches.{branch}.n_obs", int, "a positive integer")
+        if n_obs <= len(expected):
+            raise InputError(f"branches.{branch}.n_obs", n_obs, f"> {len(expected)} (number of coefficients)")
+        adj = _require(doc, f"branches.{branch}.adj_r2", float, "a number <= 1")
+        if adj > 1.0:
+            raise InputError(f"branches.{branch}.adj_r2", adj, "a number <= 1")
+        _require(doc, f"branches.{branch}.resid_std_error", float, "a non-negative number")
+    blend = _require(doc, "evaluation.blend_half_width", float, "a number in [0, 0.5)")
+    if not 0.0 <= blend < 0.5:
+        raise InputError("evaluation.blend_half_width", blend, "[0, 0.5)")
+    sr_floor = _require(doc, "evaluation.sr_floor", float, "a number in (0, 2]")
+    if not 0.0 < sr_floor <= 2.0:
+        raise InputError("evaluation.sr_floor", sr_floor, "(0, 2]")
+    _require(doc, "cross_validation.overall.rmse_ln_mu", float, "the k-fold CV RMSE of ln mu")
+    ranges = {}
+    for key in RANGE_KEYS.values():
+        pair = _require(doc, f"input_ranges.{key}", list, "[min, max] with finite min <= max")
+        if (len(pair) != 2 or not all(isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
+                                      for v in pair) or pair[0] > pair[1]):
+            raise InputError(f"input_ranges.{key}", pair, "[min, max] with finite min <= max")
+        ranges[key] = (float(pair[0]), float(pair[1]))
+    e_reduced = _require(doc, "e_reduced_pa", float, "a positive number [Pa]")
+    if e_reduced <= 0:
+        raise InputError("e_reduced_pa", e_reduced, "(0, inf) Pa")
+    lub_doc = _require(doc, "lubricant", dict, "the lubricant definition table")
+    try:
+        lubricant = lubricant_from_dict(lub_doc, origin=f"{origin} [lubricant]")
+    except InputError as err:
+        raise InputError(f"lubricant.{err.parameter}", err.value, err.accepted) from None
+    _require(doc, "source", dict, "a table describing the source dataset")
+    _require(doc, "package_version", str, "the gearloss version that wrote the file")
+    stored = _require(doc, "content_sha256", str, "the SHA-256 of the file content")
+    try:
+        actual = content_hash(doc)
+    except ValueError as err:
+        raise InputError("coefficient file", origin, "JSON without NaN/Infinity", str(err)) from None
+    if stored != actual:
+        raise InputError("content_sha256", stored, "the SHA-256 of the file's content",
+                         f"content hashes to {actual[:12]}...; the file was modified after it was written — refit "
+                         f"instead of editing coefficients")
+    return CoefficientSet(formula, params, errors, float(blend), float(sr_floor), ranges, lubricant,
+                          float(e_reduced), doc, origin)
+
+
+def load_coefficients(name_or_path: str | Path) -> CoefficientSet:
+    """Load and validate a coefficient file by path or by shipped name (``data/coefficients/NAME.json``)."""
+    from ehl_dataset.data_files import resolve_named_file
+
+    path = resolve_named_file("coefficients", name_or_path, ".json")
+    try:
+        doc = json.loads(Path(path).read_text(encoding="utf-8"))
+    except (UnicodeDecodeError, json.JSONDecodeError) as err:
+        raise InputError("coefficient file", str(path), "a valid JSON coefficient file", str(err)) from None
+    return validate_coefficients(doc, origin=str(path))

@@ -1,0 +1,134 @@
+"""The vectorised friction surrogate μ(p_h, r_eq, u_r, SR, T, Rq1, Rq2) from a coefficient file.
+
+Input policy (documented in docs/surrogate.md):
+
+* NaN/inf anywhere, p_h ≤ 0, r_eq ≤ 0, u_r ≤ 0, Rq1 ≤ 0 or Rq2 ≤ 0 (Eq. 9 needs rough surfaces: ln S̄c, ln λ̄),
+  |SR| > 2, or a temperature outside the lubricant's range → :class:`InputError` naming the input, the first bad
+  value, its index and the accepted range.
+* The sign of SR is ignored (μ is a magnitude; the friction force opposes sliding). |SR| below the file's
+  ``sr_floor`` (the smallest SR in the fitted data) is evaluated at ``sr_floor``: μ stays finite and continuous
+  as SR → 0 (Eq. 9 contains ln SR), and the power loss μ W u_s still vanishes at the pitch point because u_s → 0.
+* Inputs outside the fitted ranges (and λ̄ outside the fitted λ̄ range) evaluate but emit one
+  :class:`SurrogateExtrapolationWarning` per call listing each extrapolated input and how many points.
+"""
+
+from __future__ import annotations
+
+import warnings
+from pathlib import Path
+
+import numpy as np
+
+from ehl_dataset.validation import InputError
+
+from .coefficients import CoefficientSet, load_coefficients
+from .features import compute_features
+from .model import predict_ln_mu
+
+
+class SurrogateExtrapolationWarning(UserWarning):
+    """Inputs outside the ranges the coefficients were fitted on."""
+
+
+_INPUTS = (("p_h", "Pa", "p_h_pa"), ("r_eq", "m", "r_eq_m"), ("u_r", "m/s", "u_r_m_s"), ("sr", "-", "sr_abs"),
+           ("temperature", "K", "temperature_k"), ("rq1", "m", "rq1_m"), ("rq2", "m", "rq2_m"))
+
+
+def _first_bad(name: str, values: np.ndarray, bad: np.ndarray, accepted: str):
+    index = int(np.flatnonzero(bad.ravel())[0])
+    raise InputError(name, float(values.ravel()[index]), accepted,
+                     f"at index {index}; {int(bad.sum())} of {values.size} values")
+
+
+class FrictionSurrogate:
+    """μ from a validated :class:`CoefficientSet` (use :meth:`load` for a file or shipped name)."""
+
+    def __init__(self, coefficients: CoefficientSet):
+        self.coefficients = coefficients
+        self.formula = coefficients.formula
+        self.lubricant = coefficients.lubricant
+        self.e_reduced = coefficients.e_reduced
+
+    @classmethod
+    def load(cls, name_or_path: str | Path) -> "FrictionSurrogate":
+        return cls(load_coefficients(name_or_path))
+
+    def validate(self, p_h, r_eq, u_r, sr, temperature, rq1, rq2) -> dict[str, np.ndarray]:
+        """Broadcast, check (see module docstring) and return the inputs as float arrays."""
+        names = ("p_h", "r_eq", "u_r", "sr", "temperature", "rq1", "rq2")
+        arrays = {}
+        for name, value in zip(names, (p_h, r_eq, u_r, sr, temperature, rq1, rq2)):
+            try:
+                arrays[name] = np.asarray(value, dtype=float)
+            except (TypeError, ValueError):
+                raise InputError(name, value, "numbers or arrays of numbers") from None
+        try:
+            shaped = np.broadcast_arrays(*arrays.values())
+        except ValueError:
+            raise InputError("input shapes", {k: v.shape for k, v in arrays.items()}, "broadcastable arrays") from None
+        arrays = dict(zip(names, shaped))
+        for name, unit, _ in _INPUTS:
+            values = arrays[name]
+            finite = np.isfinite(values)
+            if not finite.all():
+                _first_bad(name, values, ~finite, "finite numbers")
+        for name, unit in (("p_h", "Pa"), ("r_eq", "m"), ("u_r", "m/s"), ("rq1", "m"), ("rq2", "m")):
+            bad = arrays[name] <= 0
+            if bad.any():
+                _first_bad(name, arrays[name], bad, f"(0, inf) {unit}")
+        bad = np.abs(arrays["sr"]) > 2.0
+        if bad.any():
+            _first_bad("sr", arrays["sr"], bad, "[-2, 2]")
+        t_lo, t_hi = self.lubricant.t_min, self.lubricant.t_max
+        bad = (arrays["temperature"] < t_lo) | (arrays["temperature"] > t_hi)
+        if bad.any():
+            _first_bad("temperature", arrays["temperature"], bad, f"[{t_lo:g}, {t_hi:g}] K for {self.lubricant.name}")
+        return arrays
+
+    def _warn_extrapolation(self, arrays: dict[str, np.ndarray], lam: np.ndarray) -> None:
+        ranges = self.coefficients.input_ranges
+        notes = []
+        for name, unit, key in _INPUTS:
+            lo, hi = ranges[key]
+            values = np.abs(arrays[name]) if name == "sr" else arrays[name]
+            below = 0 if name == "sr" else int(np.count_nonzero(values < lo * (1 - 1e-9)))
+            above = int(np.count_nonzero(values > hi * (1 + 1e-9)))
+            if below or above:
+                notes.append(f"{name} ({below} below {lo:.4g}, {above} above {hi:.4g} {unit})")
+        lo, hi = ranges["lambda_bar"]
+        below, above = int(np.count_nonzero(lam < lo * (1 - 1e-9))), int(np.count_nonzero(lam > hi * (1 + 1e-9)))
+        if below or above:
+            notes.append(f"lambda_bar ({below} below {lo:.4g}, {above} above {hi:.4g})")
+        if notes:
+            warnings.warn(f"friction surrogate extrapolates outside its fitted ranges: {'; '.join(notes)}",
+                          SurrogateExtrapolationWarning, stacklevel=3)
+
+    def features(self, p_h, r_eq, u_r, sr, temperature, rq1, rq2, *, warn: bool = True) -> dict[str, np.ndarray]:
+        """Validated features (SR floored at ``sr_floor``) of the inputs."""
+        arrays = self.validate(p_h, r_eq, u_r, sr, temperature, rq1, rq2)
+        sr_eff = np.maximum(np.abs(arrays["sr"]), self.coefficients.sr_floor)
+        feats = compute_features(arrays["p_h"], arrays["r_eq"], arrays["u_r"], sr_eff, arrays["temperature"],
+                                 arrays["rq1"], arrays["rq2"], self.lubricant, self.e_reduced)
+        if warn:
+            self._warn_extrapolation(arrays, feats["lam"])
+        return feats
+
+    def ln_mu(self, p_h, r_eq, u_r, sr, temperature, rq1, rq2, *, warn: bool = True) -> np.ndarray:
+        """ln μ (array shaped like the broadcast inputs)."""
+        feats = self.features(p_h, r_eq, u_r, sr, temperature, rq1, rq2, warn=warn)
+        with np.errstate(invalid="ignore", over="ignore", divide="ignore"):
+            out = predict_ln_mu(self.formula, self.coefficients.params, feats, self.coefficients.blend_half_width)
+        bad = ~np.isfinite(out)
+        if bad.any():
+            index = int(np.flatnonzero(bad.ravel())[0])
+            point = {k: float(np.ravel(feats[k])[index]) for k in ("W", "alpha", "r", "V", "lam", "Sc", "Seq")}
+            raise InputError("inputs", point, "contact conditions where the regression terms are defined "
+                             "(positive W, V, r, alpha)", f"non-finite ln mu at index {index}")
+        return out
+
+    def mu(self, p_h, r_eq, u_r, sr, temperature, rq1, rq2, *, warn: bool = True) -> np.ndarray:
+        """Friction coefficient μ [-] for SI inputs p_h [Pa], r_eq [m], u_r [m/s], SR [-], T [K], Rq1, Rq2 [m]."""
+        return np.exp(self.ln_mu(p_h, r_eq, u_r, sr, temperature, rq1, rq2, warn=warn))
+
+    def __call__(self, *args, **kwargs) -> np.ndarray:
+        return self.mu(*args, **kwargs)
