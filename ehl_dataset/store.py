@@ -202,11 +202,11 @@ def _open_h5(path, mode: str):
         return h5py.File(path, mode)
     except OSError as err:
         text = str(err)
-        if "lock" in text.lower():
-            raise InputError("dataset file", str(path), "a file no other process is writing",
-                             "it is locked: is a run still going on?") from None
         if "truncated" in text.lower():
             raise _bad_file(path, f"the file is truncated: {text}") from None
+        if "unable to lock" in text.lower() or "file locking" in text.lower():
+            raise InputError("dataset file", str(path), "a file no other process is writing",
+                             f"it is locked: is a run still going on? ({text})") from None
         raise _bad_file(path, f"not a readable HDF5 file: {text}") from None
 
 
@@ -582,3 +582,50 @@ def read_metadata(path) -> dict[str, Any]:
 def iter_status_names(codes: Iterable[int]) -> list[str]:
     """Status names of integer codes."""
     return [STATUS_NAMES[int(c)] for c in codes]
+
+
+_INPUT_KEYS = {"p_h": "p_h_pa", "r_eq": "r_eq_m", "u_r": "u_r_m_s", "sr": "sr", "temperature": "temperature_k",
+               "rq1": "rq1_m", "rq2": "rq2_m"}
+
+
+def summarize(path, slowest: int = 5, failures: int = 5) -> dict[str, Any]:
+    """What ``gearloss dataset info`` shows: counts by status, time spent, slowest points, failures, configuration.
+
+    Times: ``solver_time_s`` sums the solvers' own wall times of the recorded results, ``worker_time_s`` the
+    worker-side times (retries included), ``session_wall_time_s`` the coordinator's wall time over all sessions.
+    """
+    with DatasetStore.open(path, "r") as store:
+        meta = store.metadata()
+        table = store.table(None)
+    done = table[table["status"] != "pending"]
+    ok = table[table["status"] == "ok"]
+    top = ok.nlargest(max(int(slowest), 0), "wall_time")
+    failed = table[table["status"] == "failed"].head(max(int(failures), 0))
+    sessions = meta["sessions"]
+    return {
+        "path": meta["path"],
+        "format_version": meta["format_version"],
+        "package_version": meta["package_version"],
+        "created": meta["created"],
+        "git_revision": meta["git_revision"],
+        "n_points": meta["n_points"],
+        "counts": meta["counts"],
+        "non_converged": int((~ok["converged"]).sum()),
+        "max_attempts": int(table["attempts"].max()) if len(table) else 0,
+        "solver_time_s": float(np.nansum(ok["wall_time"])),
+        "median_solver_time_s": float(np.nanmedian(ok["wall_time"])) if len(ok) else math.nan,
+        "worker_time_s": float(np.nansum(done["worker_time"])),
+        "session_wall_time_s": float(sum(s.get("wall_time_s", 0.0) or 0.0 for s in sessions)),
+        "n_sessions": len(sessions),
+        "sessions": sessions,
+        "slowest": [
+            {"point": int(row.point), "wall_time_s": float(row.wall_time), "level": row.level,
+             **{key: float(getattr(row, name)) for name, key in _INPUT_KEYS.items()}}
+            for row in top.itertuples()
+        ],
+        "failures": [{"point": int(row.point), "error": row.error} for row in failed.itertuples()],
+        "factorial": meta["factorial"],
+        "solver": meta["solver"],
+        "lubricant_name": meta["lubricant"].get("name", ""),
+        "lubricant": meta["lubricant"],
+    }

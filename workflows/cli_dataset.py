@@ -1,0 +1,141 @@
+"""``gearloss dataset run|resume|info``: a factorial of EHL contacts into one HDF5 file (DESIGN §4, §8).
+
+Exit status: 0 when the session ends with no pending rows (failed rows are reported, not an error), 2 for bad
+input, 130 / 143 when interrupted by SIGINT / SIGTERM (finished points are on disk; ``resume`` continues).
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+
+_EXIT_SIGNAL = {"SIGINT": 130, "SIGTERM": 143}
+
+
+def register(subparsers) -> None:
+    parser = subparsers.add_parser("dataset", help="run a factorial of EHL contacts into HDF5, resume, inspect")
+    commands = parser.add_subparsers(dest="dataset_command", metavar="COMMAND")
+    parser.set_defaults(handler=lambda args: parser.print_help() or 2)
+
+    run = commands.add_parser("run", help="compute a factorial into a new HDF5 file (or continue the same run)")
+    run.add_argument("--factorial", required=True, help="shipped name (paper2009, quick, smoke) or TOML file")
+    run.add_argument("--out", required=True, help="HDF5 file to write")
+    run.add_argument("--lubricant", help="lubricant NAME or FILE (default: the factorial's)")
+    run.add_argument("--level", help="solver accuracy level (default: the factorial's)")
+    run.add_argument("--effects", choices=("auto", "full"), help="effect plan (default: the factorial's)")
+    run.add_argument("--overwrite", action="store_true", help="replace an existing file instead of continuing it")
+    _execution_options(run)
+    run.set_defaults(handler=_run)
+
+    resume = commands.add_parser("resume", help="continue a run: compute every row that is not ok")
+    resume.add_argument("file", help="HDF5 file of the run")
+    resume.add_argument("--factorial", help="refuse unless the file records this factorial")
+    resume.add_argument("--lubricant", help="refuse unless the file records this lubricant")
+    resume.add_argument("--level", help="refuse unless the file records this level")
+    resume.add_argument("--effects", choices=("auto", "full"), help="refuse unless the file records this plan")
+    _execution_options(resume, solver_default=None)
+    resume.set_defaults(handler=_resume)
+
+    info = commands.add_parser("info", help="counts by status, time spent, slowest points, configuration")
+    info.add_argument("file", help="HDF5 file of a run")
+    info.add_argument("--slowest", type=int, default=5, help="how many of the slowest points to list")
+    info.add_argument("--json", action="store_true", help="print one JSON object")
+    info.set_defaults(handler=_info)
+
+
+def _execution_options(parser: argparse.ArgumentParser, solver_default: str | None = "default") -> None:
+    parser.add_argument("--workers", type=int, default=os.cpu_count() or 1,
+                        help="local worker processes (0: in this process; default: CPU count)")
+    parser.add_argument("--scheduler", help="Dask scheduler ADDRESS (tcp://host:8786) or 'dask-local'")
+    parser.add_argument("--window", type=int, help="tasks in flight (default: 4 per worker)")
+    parser.add_argument("--max-attempts", type=int, default=3, help="computations of a point whose task fails")
+    parser.add_argument("--flush-interval", type=float, default=5.0, help="seconds between writes to disk")
+    parser.add_argument("--progress", choices=("auto", "bar", "log", "none"), default="auto")
+    parser.add_argument("--log-every", type=float, default=30.0, help="seconds between progress log lines")
+    parser.add_argument("--no-warm-up", action="store_true",
+                        help="do not compute the first point in the coordinator before the workers start")
+    parser.add_argument("--solver", default=None,
+                        help="MODULE:FUNCTION with the signature of ehl_dataset.solver.solve_contact "
+                             + ("(default: ehl_dataset.solver:solve_contact)" if solver_default
+                                else "(default: the one recorded in the file)"))
+    parser.add_argument("--json", action="store_true", help="print one JSON object")
+
+
+def _options(args) -> dict:
+    return {"window": args.window, "max_attempts": args.max_attempts, "flush_interval_s": args.flush_interval,
+            "progress": args.progress, "log_every_s": args.log_every, "warm_up": not args.no_warm_up}
+
+
+def _finish(summary, as_json: bool) -> int:
+    from workflows.cli import emit
+
+    payload = summary.to_dict()
+    emit(payload, as_json, _human_summary)
+    if summary.interrupted:
+        return _EXIT_SIGNAL.get(summary.interrupted, 1)
+    return 0 if summary.pending == 0 else 1
+
+
+def _human_summary(p: dict) -> str:
+    lines = [f"{p['path']}: {p['computed']} points computed in {p['wall_time_s']:.1f} s "
+             f"({p['points_per_s']:.3g} points/s, store {p['store_time_per_point_s'] * 1e3:.2f} ms/point)",
+             f"  rows: ok {p['ok']}, failed {p['failed']}, pending {p['pending']} of {p['n_points']}; "
+             f"not converged {p['non_converged']}"]
+    if p["interrupted"]:
+        lines.append(f"  interrupted by {p['interrupted']}: finished points are on disk; continue with "
+                     f"'gearloss dataset resume {p['path']}'")
+    return "\n".join(lines)
+
+
+def _run(args) -> int:
+    from ehl_dataset.runner import DEFAULT_SOLVER, run_factorial
+
+    summary = run_factorial(args.out, args.factorial, lubricant=args.lubricant, level=args.level,
+                            effects=args.effects, workers=args.workers, scheduler=args.scheduler,
+                            solver=args.solver or DEFAULT_SOLVER, overwrite=args.overwrite, **_options(args))
+    return _finish(summary, args.json)
+
+
+def _resume(args) -> int:
+    from ehl_dataset.runner import resume_run
+
+    summary = resume_run(args.file, workers=args.workers, scheduler=args.scheduler, solver=args.solver,
+                         factorial=args.factorial, lubricant=args.lubricant, level=args.level,
+                         effects=args.effects, **_options(args))
+    return _finish(summary, args.json)
+
+
+def _info(args) -> int:
+    from ehl_dataset.store import summarize
+    from workflows.cli import emit
+
+    emit(summarize(args.file, slowest=args.slowest), args.json, _human_info)
+    return 0
+
+
+def _human_info(p: dict) -> str:
+    fac, sol, counts = p["factorial"], p["solver"], p["counts"]
+    from ehl_dataset.factorial import AXIS_KEYS
+
+    axes = fac.get("axes", {})
+    shape = " x ".join(f"{len(axes[k])} {k}" for k in AXIS_KEYS if k in axes)
+    lines = [
+        f"{p['path']}  (format v{p['format_version']}, gearloss {p['package_version']}, created {p['created']}, "
+        f"git {p['git_revision'] or 'unknown'})",
+        f"factorial  {fac.get('name')}: {p['n_points']} points = {shape}",
+        f"solver     {sol.get('function')} version {sol.get('version')}, level {sol.get('level')}, "
+        f"effects {sol.get('effects')}",
+        f"lubricant  {p['lubricant_name']}",
+        f"status     ok {counts['ok']}, failed {counts['failed']}, pending {counts['pending']}; "
+        f"not converged {p['non_converged']}; most computations of one point {p['max_attempts']}",
+        f"time       solver {p['solver_time_s']:.1f} s in total (median {p['median_solver_time_s']:.3g} s/point), "
+        f"workers {p['worker_time_s']:.1f} s, {p['n_sessions']} session(s) {p['session_wall_time_s']:.1f} s wall",
+    ]
+    for row in p["slowest"]:
+        lines.append(
+            f"slowest    point {row['point']}: {row['wall_time_s']:.3g} s  p_h {row['p_h_pa'] / 1e9:g} GPa, "
+            f"r_eq {row['r_eq_m'] * 1e3:g} mm, u_r {row['u_r_m_s']:g} m/s, SR {row['sr']:g}, "
+            f"T {row['temperature_k'] - 273.15:g} C, Rq {row['rq1_m'] * 1e6:g}/{row['rq2_m'] * 1e6:g} um")
+    for row in p["failures"]:
+        lines.append(f"failed     point {row['point']}: {row['error']}")
+    return "\n".join(lines)
