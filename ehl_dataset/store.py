@@ -198,7 +198,12 @@ def _open_h5(path, mode: str):
         raise FileNotFoundError(2, "No such file", str(path))
     try:
         if mode == "r":
-            return h5py.File(path, "r", locking=False)
+            try:
+                return h5py.File(path, "r", locking=False)
+            except OSError as err:
+                if "locking flag values don't match" not in str(err):
+                    raise
+                return h5py.File(path, "r")  # already open for writing in this process: share that handle
         return h5py.File(path, mode)
     except OSError as err:
         text = str(err)
