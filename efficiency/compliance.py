@@ -19,9 +19,15 @@ load per unit face width), is the sum of
   u_f the distance from the root circle to where the load line crosses the tooth centreline, S_f the tooth
   thickness at the root circle, r_int the bore (hub) radius.
 
-The Hertzian contact compliance is the load-independent line-contact value of Yang & Lin (1987),
-``c_H = 4 / (π E')`` per unit length of contact line (E' = 2/[(1 − ν1²)/E1 + (1 − ν2²)/E2]), i.e. a contact
-stiffness π E' L / 4 for a contact of length L.
+The Hertzian contact compliance (normal approach per load per unit length of contact line) is either
+- Weber's (1949) line-contact approach between the tooth centre lines (default; the half-plane solution under a
+  Hertz pressure, Johnson, *Contact Mechanics* (1985) §5.6): for each body the surface point moves towards a point
+  at depth d by (w (1 − ν²)/(π E)) [2 ln(2d/a) − ν/(1 − ν)], with a = √(8 w R/(π E')) the Hertz half width and d
+  the distance from the contact point to the tooth centre line along the load line. It depends (logarithmically)
+  on the local load, so the load distribution iterates on it (secant compliance);
+- or the load-independent value of Yang & Lin (1987), ``c_H = 4 / (π E')`` (a contact stiffness π E' L / 4 for
+  a contact of length L), which is stiffer by a factor of about 2–3 for gear teeth.
+E' = 2/[(1 − ν1²)/E1 + (1 − ν2²)/E2].
 
 Coupling along the face: a load on one slice also deflects its neighbours. The influence function is the
 exponential kernel κ(d) = exp(−|d|/ℓ)/(2ℓ) (the Green's function of (1 − ℓ² d²/dz²), the form used for
@@ -125,8 +131,34 @@ def root_bending_arm(pair, gear: int, rho):
     return np.cos(alpha1) * (x_c - rf) - y_c * np.sin(alpha1)
 
 
+def centreline_depth(pair, gear: int, rho):
+    """Distance from the contact point at roll ``rho`` of ``gear`` to its tooth centre line along the load line,
+    y_c / cos α1 [m] (the depth d of Weber's contact approach)."""
+    _, y_c, alpha1, _ = _load_point(pair, gear, rho)
+    return y_c / np.cos(alpha1)
+
+
+def weber_contact_compliance(load_per_length, r_eq, depth1, depth2, material1: Material = STEEL,
+                             material2: Material = STEEL):
+    """Secant Hertzian contact compliance δ/w [m²/N] of a line contact (Weber 1949; Johnson 1985 §5.6).
+
+    δ = Σ_i (w (1 − ν_i²)/(π E_i)) [2 ln(2 d_i/a) − ν_i/(1 − ν_i)], a = √(8 w R/(π E')); ``load_per_length`` w
+    [N/m] > 0, ``r_eq`` R [m], depths d_i [m]. The logarithm's argument is limited below by e (a ≤ 2d/e), where
+    the half-plane assumption fails anyway.
+    """
+    e_red = reduced_modulus(material1, material2)
+    a = np.sqrt(8.0 * np.asarray(load_per_length, float) * r_eq / (math.pi * e_red))
+    out = 0.0
+    for mat, d in ((material1, depth1), (material2, depth2)):
+        nu = mat.poisson_ratio
+        log_term = np.log(np.maximum(2.0 * d / a, math.e))
+        out = out + (1.0 - nu**2) / (math.pi * mat.youngs_modulus) * (2.0 * log_term - nu / (1.0 - nu))
+    return out
+
+
 def contact_compliance(material1: Material = STEEL, material2: Material = STEEL) -> float:
-    """Linearised Hertzian line-contact compliance per unit contact length, 4/(π E') [m²/N] (Yang & Lin 1987)."""
+    """Load-independent Hertzian line-contact compliance per unit contact length, 4/(π E') [m²/N] (Yang & Lin
+    1987)."""
     return 4.0 / (math.pi * reduced_modulus(material1, material2))
 
 

@@ -21,7 +21,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.linalg import cho_factor, cho_solve, LinAlgError
+from numba import njit
 
 from ehl_dataset.validation import SolverError, check_range
 
@@ -83,57 +83,11 @@ def solve_contact(compliance: np.ndarray, separation: np.ndarray, total_load: fl
         loads *= total_load / loads.sum()
     else:
         loads[int(np.argmin(eps))] = total_load
-    active = loads > 0.0
-
-    approach = float("nan")
-    stiffness = float("nan")
-    converged = False
-    iteration = 0
-    last_added = -1
-    for iteration in range(1, max_iterations + 1):
-        idx = np.flatnonzero(active)
-        try:
-            factor = cho_factor(c[np.ix_(idx, idx)], lower=True, check_finite=False)
-        except LinAlgError as err:
-            raise SolverError(f"compliance matrix not positive definite on the active set: {err}") from None
-        u = cho_solve(factor, np.ones(idx.size), check_finite=False)
-        v = cho_solve(factor, eps[idx], check_finite=False)
-        stiffness = float(u.sum())
-        approach = (total_load + float(v.sum())) / stiffness
-        trial = approach * u - v
-        if np.all(trial > 0.0):
-            loads[:] = 0.0
-            loads[idx] = trial
-            gaps = c @ loads + eps - approach
-            gaps[idx] = 0.0
-            j = int(np.argmin(gaps))
-            if gaps[j] >= -gap_tolerance:
-                converged = True
-                break
-            if iteration <= bulk_iterations:
-                # Early iterations add every penetrating point at once (the step back below keeps feasibility);
-                # later ones add only the worst, which is the finitely terminating Lawson-Hanson rule.
-                violated = np.flatnonzero(gaps < -gap_tolerance)
-                active[violated] = True
-                last_added = -1 if violated.size > 1 else j
-            else:
-                active[j] = True
-                last_added = j
-            continue
-        # Step from the current feasible loads towards the trial solution until the first load reaches zero.
-        current = loads[idx]
-        negative = trial <= 0.0
-        ratios = current[negative] / (current[negative] - trial[negative])
-        first = int(np.argmin(ratios))
-        alpha = float(ratios[first])
-        if alpha == 0.0 and idx[negative][first] == last_added:
-            break  # degenerate (the new point cannot take load): stop and let the residual check decide
-        loads[idx] = current + alpha * (trial - current)
-        drop = idx[loads[idx] <= 1e-13 * total_load]
-        drop = np.union1d(drop, [idx[negative][first]])
-        loads[drop] = 0.0
-        active[drop] = False
-        last_added = -1
+    status, approach, stiffness, iteration = _active_set(c, eps, total_load, loads, gap_tolerance, max_iterations,
+                                                         bulk_iterations)
+    if status == _NOT_POSITIVE_DEFINITE:
+        raise SolverError("compliance matrix not positive definite on the active set")
+    converged = status == _CONVERGED
 
     gaps = c @ loads + eps - approach
     penetration = float(max(-gaps.min(), 0.0))
@@ -142,3 +96,110 @@ def solve_contact(compliance: np.ndarray, separation: np.ndarray, total_load: fl
     return ContactSolution(loads=loads, approach=float(approach), gaps=gaps, stiffness=stiffness,
                            iterations=iteration, converged=bool(converged), equilibrium_residual=float(equilibrium),
                            max_penetration=penetration, min_load=float(loads.min()))
+
+
+_CONVERGED, _NOT_CONVERGED, _NOT_POSITIVE_DEFINITE = 0, 1, 2
+
+
+@njit(cache=True)
+def _cholesky_solve_two(a, rhs1, rhs2):
+    """Solve A x = rhs1 and A y = rhs2 by Cholesky (in numba); returns (x, y, ok)."""
+    n = a.shape[0]
+    low = np.zeros((n, n))
+    for i in range(n):
+        for j in range(i + 1):
+            acc = a[i, j]
+            for k in range(j):
+                acc -= low[i, k] * low[j, k]
+            if i == j:
+                if acc <= 0.0:
+                    return rhs1, rhs2, False
+                low[i, i] = np.sqrt(acc)
+            else:
+                low[i, j] = acc / low[j, j]
+    x = rhs1.copy()
+    y = rhs2.copy()
+    for i in range(n):
+        for k in range(i):
+            x[i] -= low[i, k] * x[k]
+            y[i] -= low[i, k] * y[k]
+        x[i] /= low[i, i]
+        y[i] /= low[i, i]
+    for i in range(n - 1, -1, -1):
+        for k in range(i + 1, n):
+            x[i] -= low[k, i] * x[k]
+            y[i] -= low[k, i] * y[k]
+        x[i] /= low[i, i]
+        y[i] /= low[i, i]
+    return x, y, True
+
+
+@njit(cache=True)
+def _active_set(c, eps, total_load, loads, gap_tolerance, max_iterations, bulk_iterations):
+    """Primal active-set iterations (see the module docstring); ``loads`` (feasible) is updated in place.
+
+    Returns (status, approach, stiffness, iterations).
+    """
+    q = eps.size
+    active = loads > 0.0
+    approach = np.nan
+    stiffness = np.nan
+    last_added = -1
+    iteration = 0
+    status = 1
+    while iteration < max_iterations:
+        iteration += 1
+        idx = np.flatnonzero(active)
+        n = idx.size
+        sub = np.empty((n, n))
+        for i in range(n):
+            for j in range(n):
+                sub[i, j] = c[idx[i], idx[j]]
+        u, v, ok = _cholesky_solve_two(sub, np.ones(n), eps[idx])
+        if not ok:
+            return 2, approach, stiffness, iteration
+        stiffness = u.sum()
+        approach = (total_load + v.sum()) / stiffness
+        trial = approach * u - v
+        if np.all(trial > 0.0):
+            loads[:] = 0.0
+            loads[idx] = trial
+            gaps = c @ loads + eps - approach
+            gaps[idx] = 0.0
+            j = int(np.argmin(gaps))
+            if gaps[j] >= -gap_tolerance:
+                status = 0
+                break
+            if iteration <= bulk_iterations:
+                # Early iterations add every penetrating point at once (the step back keeps feasibility);
+                # later ones add only the worst, the finitely terminating Lawson-Hanson rule.
+                count = 0
+                for i in range(q):
+                    if gaps[i] < -gap_tolerance:
+                        active[i] = True
+                        count += 1
+                last_added = j if count == 1 else -1
+            else:
+                active[j] = True
+                last_added = j
+            continue
+        # Step from the current feasible loads towards the trial solution until the first load reaches zero.
+        alpha = np.inf
+        first = -1
+        for i in range(n):
+            if trial[i] <= 0.0:
+                current = loads[idx[i]]
+                ratio = current / (current - trial[i])
+                if ratio < alpha:
+                    alpha = ratio
+                    first = idx[i]
+        if alpha == 0.0 and first == last_added:
+            break  # degenerate: the new point cannot take load; the residual check decides
+        for i in range(n):
+            k = idx[i]
+            loads[k] = loads[k] + alpha * (trial[i] - loads[k])
+            if loads[k] <= 1e-13 * total_load or k == first:
+                loads[k] = 0.0
+                active[k] = False
+        last_added = -1
+    return status, approach, stiffness, iteration

@@ -32,8 +32,8 @@ import numpy as np
 from ehl_dataset.materials import STEEL, Material, reduced_modulus
 from ehl_dataset.validation import InputError, check_range
 
-from .compliance import (DEFAULT_HUB_RATIO, contact_compliance, face_coupling, root_bending_arm, tooth_compliance,
-                         whole_depth)
+from .compliance import (DEFAULT_HUB_RATIO, centreline_depth, contact_compliance, face_coupling, root_bending_arm,
+                         tooth_compliance, weber_contact_compliance, whole_depth)
 from .kinematics import MeshKinematics, mesh_kinematics
 from .load_distribution import solve_contact
 from .modifications import Modifications, normal_separation
@@ -51,6 +51,8 @@ class MeshOptions:
     hub_ratio : r_f / r_int for the foundation compliance (default 2)
     material1, material2 : gear materials (default steel, E = 206 GPa, ν = 0.3)
     root_stress_factors : (Y_F Y_S Y_β of gear 1, of gear 2); None → from :mod:`efficiency.iso6336`
+    contact_model : "weber" (load-dependent Hertz approach, iterated) or "linear" (Yang & Lin constant)
+    contact_tolerance : relative change of the secant contact compliance at which the "weber" iteration stops
     """
 
     positions: int = 24
@@ -61,8 +63,13 @@ class MeshOptions:
     material1: Material = STEEL
     material2: Material = STEEL
     root_stress_factors: tuple[float, float] | None = None
+    contact_model: str = "weber"
+    contact_tolerance: float = 1e-4
 
     def __post_init__(self):
+        if self.contact_model not in ("weber", "linear"):
+            raise InputError("contact_model", self.contact_model, "'weber' or 'linear'")
+        check_range("contact_tolerance", self.contact_tolerance, 0.0, 0.1, low_inclusive=False)
         check_range("positions", self.positions, 1, 10000)
         check_range("slices", self.slices, 1, 2000)
         unknown = set(self.outputs) - OUTPUTS
@@ -158,7 +165,22 @@ def evaluate_mesh(pair, torque: float, speed_rad_s: float = 1.0, modifications: 
     root1 = np.sqrt(c1) * cos_b
     root2 = np.sqrt(c2) * cos_b
     coupling = face_coupling(kin.z, width, options.coupling_length_factor * whole_depth(pair, 1)) / dz
-    hertz = contact_compliance(options.material1, options.material2) * cos_b / dz
+    # Contact compliance per point [m/N] = c_H(w) cos ψ_b / Δz (per unit contact-line length → per slice load).
+    nominal_w = normal_load * cos_b / (float(pair.contact_ratio) * width)
+    if options.contact_model == "weber":
+        depth1 = np.zeros(kin.shape)
+        depth2 = np.zeros(kin.shape)
+        depth1[inside] = centreline_depth(pair, 1, kin.rho1[inside])
+        depth2[inside] = centreline_depth(pair, 2, kin.rho2[inside])
+
+        def hertz(w, where):
+            return weber_contact_compliance(w, kin.r_eq_normal[where], depth1[where], depth2[where],
+                                            options.material1, options.material2) * cos_b / dz
+    else:
+        constant = contact_compliance(options.material1, options.material2) * cos_b / dz
+
+        def hertz(w, where):
+            return np.full(np.shape(w), constant)
 
     line = np.broadcast_to(np.arange(n_lines)[:, None], (n_lines, n_slices))
     slc = np.broadcast_to(np.arange(n_slices)[None, :], (n_lines, n_slices))
@@ -172,28 +194,52 @@ def evaluate_mesh(pair, torque: float, speed_rad_s: float = 1.0, modifications: 
     converged = True
     equilibrium = 0.0
     penetration = 0.0
+    contact_residual = 0.0
     previous = None
+    previous_w = np.full(n_lines * n_slices, nominal_w)
     for m in range(n_pos):
         flat = np.flatnonzero(inside[m].ravel())
+        where = (m,) + np.unravel_index(flat, (n_lines, n_slices))
         k_idx = line.ravel()[flat]
         j_idx = slc.ravel()[flat]
         a = root1[m].ravel()[flat]
         b = root2[m].ravel()[flat]
         same_line = k_idx[:, None] == k_idx[None, :]
-        compliance = (np.outer(a, a) + np.outer(b, b)) * coupling[np.ix_(j_idx, j_idx)] * same_line
-        compliance[np.diag_indices_from(compliance)] += hertz
+        tooth = (np.outer(a, a) + np.outer(b, b)) * coupling[np.ix_(j_idx, j_idx)] * same_line
+        eps = separation[m].ravel()[flat]
+        w = previous_w[flat]
+        c_contact = hertz(w, where)
         warm = None if previous is None else previous.ravel()[flat]
-        sol = solve_contact(compliance, separation[m].ravel()[flat], normal_load, initial_loads=warm)
+        total_iterations = 0
+        for _ in range(50):
+            compliance = tooth.copy()
+            compliance[np.diag_indices_from(compliance)] += c_contact
+            sol = solve_contact(compliance, eps, normal_load, initial_loads=warm)
+            total_iterations += sol.iterations
+            if options.contact_model == "linear":
+                change = 0.0
+                break
+            loaded = sol.loads > 0.0
+            w = np.where(loaded, sol.loads * cos_b / dz, w)
+            updated = hertz(w, where)
+            change = float(np.max(np.abs(updated[loaded] - c_contact[loaded]) / c_contact[loaded]))
+            c_contact = updated
+            warm = sol.loads
+            if change <= options.contact_tolerance:
+                break
         out = np.zeros(n_lines * n_slices)
         out[flat] = sol.loads
         loads[m] = out.reshape(n_lines, n_slices)
         previous = loads[m]
+        previous_w = np.full(n_lines * n_slices, nominal_w)
+        previous_w[flat] = w
         approach[m] = sol.approach
         stiffness[m] = sol.stiffness * cos_b**2
-        iterations[m] = sol.iterations
-        converged &= sol.converged
+        iterations[m] = total_iterations
+        converged &= sol.converged and change <= options.contact_tolerance
         equilibrium = max(equilibrium, sol.equilibrium_residual)
         penetration = max(penetration, sol.max_penetration)
+        contact_residual = max(contact_residual, change)
 
     load_per_length = loads * cos_b / dz
     result = dict(
@@ -201,6 +247,7 @@ def evaluate_mesh(pair, torque: float, speed_rad_s: float = 1.0, modifications: 
         approach=approach, mesh_stiffness=stiffness, mesh_stiffness_per_width=float(stiffness.mean() / width),
         converged=bool(converged), iterations=iterations, equilibrium_residual=float(equilibrium),
         max_penetration=float(penetration), min_load=float(loads.min()),
+        extra={"contact_compliance_residual": contact_residual},
     )
     if "te" in options.outputs:
         te = approach / cos_b
@@ -249,10 +296,13 @@ def root_stress(pair, kin: MeshKinematics, loads: np.ndarray, factors: tuple[flo
 
 
 def iso_root_stress_factors(pair) -> tuple[float, float]:
-    """Y_F Y_S Y_β of gears 1 and 2 from ISO 6336-3 method B (:mod:`efficiency.iso6336`)."""
-    try:
-        from . import iso6336
-    except ImportError as err:  # pragma: no cover - depends on the parallel work
-        raise InputError("root_stress_factors", None, "explicit (Y_F Y_S Y_β) per gear: efficiency.iso6336 is "
-                         "not available") from err
-    return iso6336.root_stress_factor_products(pair)
+    """Y_F Y_S Y_β of gears 1 and 2, ISO 6336-3:2006 method B (:mod:`efficiency.iso6336`)."""
+    from . import iso6336
+
+    y_beta = float(iso6336.helix_angle_factor_bending(pair.overlap_ratio, pair.helix_angle))
+    out = []
+    for gear in (1, 2):
+        section = iso6336.root_section(pair, gear)
+        out.append(iso6336.tooth_form_factor(pair, gear, section)
+                   * iso6336.stress_correction_factor(pair, gear, section) * y_beta)
+    return out[0], out[1]
