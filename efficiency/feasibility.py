@@ -112,7 +112,8 @@ def _backlash(pair: GearPair, limits: FeasibilityLimits):
 def feasibility_masks(pair: GearPair, limits: FeasibilityLimits = FeasibilityLimits()) -> dict[str, np.ndarray]:
     """Boolean arrays ``True`` where each criterion is satisfied (both gears), plus ``"feasible"`` (all of them).
 
-    Works for scalar and vectorised pairs.
+    Works for scalar and vectorised pairs. A pointed tooth fails both ``pointed_tooth`` and ``tip_thickness``
+    here (:func:`check_design` reports it once, as ``pointed_tooth``).
     """
     m = np.asarray(pair.normal_module, dtype=float)
     tips = pair.tip_normal_thicknesses
