@@ -1,0 +1,205 @@
+"""Public entry of the EHL line-contact solver: :func:`solve_contact`.
+
+    result = solve_contact(case, lubricant, level="standard", effects="auto")
+
+* ``case`` — :class:`~ehl_dataset.contact.ContactCase` (SI).
+* ``lubricant`` — :class:`~ehl_dataset.lubricant.Lubricant` (or a shipped name / TOML path).
+* ``level`` — accuracy level name (:mod:`ehl_dataset.levels`).
+* ``effects`` — ``"auto"`` (ask :func:`ehl_dataset.planner.plan_effects`), ``"full"`` or an
+  :class:`~ehl_dataset.effects.Effects` used as given.
+
+Steady smooth solves (no roughness effect, or S_c = 0) use the full-system Newton of :mod:`ehl_dataset.ehl_newton`
+on a clustered grid, with a viscosity-exponent continuation when the direct solve fails. A smooth contact under
+constant load and speed has a steady solution, which is what a transient run would settle to, so the ``transient``
+flag changes nothing for smooth surfaces. Rough surfaces with the ``roughness`` effect go to the transient mixed
+solver (:mod:`ehl_dataset.ehl_transient`).
+
+The returned :class:`~ehl_dataset.result.ContactResult` always says whether the solve converged; a non-converged
+result carries its residuals and a message.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass
+
+import numpy as np
+from threadpoolctl import threadpool_limits
+
+from .contact import ContactCase
+from .deflection import influence_matrix
+from .effects import Effects
+from .ehl_grid import clustered_grid
+from .ehl_newton import NewtonOutcome, ReynoldsProblem, newton_solve
+from .film_formulas import dowson_higginson_min_film, moes_central_film
+from .levels import AccuracyLevel, get_level
+from .lubricant import Lubricant, LubricantState, load_lubricant
+from .result import ContactResult
+from .traction import friction_components
+from .validation import InputError, SolverError
+
+__all__ = ["solve_contact", "resolve_effects", "solve_steady", "dowson_higginson_lambda", "ContactScales"]
+
+
+@dataclass(frozen=True)
+class ContactScales:
+    """Hertzian scales and dimensionless numbers of a case (SI): ``a`` [m], ``p_h`` [Pa], ``r_eq`` [m],
+    ``load`` W' [N/m], ``e_reduced`` [Pa]; ``lam`` λ̄ = 12 η0 u_r r_eq²/(a³ p_h); ``shear`` S = η0|u_s| r_eq/(τ0 a²);
+    ``film_scale`` a²/r_eq [m] (h = H a²/r_eq)."""
+
+    a: float
+    p_h: float
+    r_eq: float
+    load: float
+    e_reduced: float
+    lam: float
+    shear: float
+
+    @property
+    def film_scale(self) -> float:
+        return self.a**2 / self.r_eq
+
+    @classmethod
+    def of(cls, case: ContactCase, state: LubricantState, shear_thinning: bool = True) -> "ContactScales":
+        a = case.half_width
+        lam = 12.0 * state.eta0 * case.u_r * case.r_eq**2 / (a**3 * case.p_h)
+        shear = state.eta0 * abs(case.u_s) * case.r_eq / (state.tau0 * a**2) if shear_thinning else 0.0
+        return cls(a, case.p_h, case.r_eq, case.load_per_length, case.e_reduced, lam, shear)
+
+
+def dowson_higginson_lambda(case: ContactCase, state: LubricantState) -> tuple[float, float]:
+    """(h_min from Dowson–Higginson [m], λ̄ = h_min,DH / S_c) as the paper defines λ̄ (inf for smooth surfaces)."""
+    h_dh = float(dowson_higginson_min_film(state.eta0, case.u_r, state.alpha1, case.e_reduced, case.r_eq,
+                                           case.load_per_length))
+    s_c = case.s_c
+    return h_dh, (h_dh / s_c if s_c > 0.0 else math.inf)
+
+
+def resolve_effects(case: ContactCase, lubricant: Lubricant, level: str, effects) -> Effects:
+    """The effect plan: an :class:`Effects` as given, ``"full"``, or ``"auto"`` (the planner, with a fallback)."""
+    if isinstance(effects, Effects):
+        return effects
+    if effects == "full":
+        return Effects.full()
+    if effects == "auto":
+        try:
+            from .planner import plan_effects
+        except ImportError:
+            plan_effects = None
+        if plan_effects is not None:
+            return plan_effects(case, lubricant, level)
+        if case.s_c == 0.0:
+            return Effects.smooth_steady(fallback="planner unavailable; smooth surfaces")
+        return Effects.full()
+    raise InputError("effects", effects, "'auto', 'full' or an Effects instance")
+
+
+def solve_contact(case: ContactCase, lubricant: Lubricant | str, level: str | AccuracyLevel = "standard",
+                  effects: str | Effects = "auto") -> ContactResult:
+    """Solve one line contact; see the module docstring. Bad input raises :class:`InputError`."""
+    if not isinstance(case, ContactCase):
+        raise InputError("case", type(case).__name__, "a ContactCase")
+    if isinstance(lubricant, str):
+        lubricant = load_lubricant(lubricant)
+    if not isinstance(lubricant, Lubricant):
+        raise InputError("lubricant", type(lubricant).__name__, "a Lubricant, a shipped name or a TOML path")
+    state = lubricant.state(case.temperature)
+    lvl = get_level(level)
+    plan = resolve_effects(case, lubricant, lvl.name, effects)
+    # one BLAS thread per solve: the dense solves are small, and workers run one case per core
+    with threadpool_limits(limits=1):
+        if plan.roughness and case.s_c > 0.0:
+            from .ehl_transient import solve_transient
+
+            return solve_transient(case, state, lvl, plan)
+        return solve_steady(case, state, lvl, plan)
+
+
+def _initial_guess(x: np.ndarray, problem: ReynoldsProblem, case: ContactCase, state: LubricantState,
+                   scales: ContactScales) -> tuple[np.ndarray, float]:
+    """Hertz pressure and the film constant that puts the central film at Moes' estimate."""
+    p = np.sqrt(np.clip(1.0 - x**2, 0.0, None))
+    p[0] = p[-1] = 0.0
+    h_c = float(moes_central_film(state.eta0, case.u_r, state.alpha1, case.e_reduced, case.r_eq,
+                                  case.load_per_length)) / scales.film_scale
+    h_rigid = problem.film(p, 0.0)
+    centre = int(np.argmin(np.abs(x)))
+    h0 = h_c - h_rigid[centre]
+    h0 = max(h0, -float(np.min(h_rigid)) + 0.5 * h_c)
+    return p, h0
+
+
+def solve_steady_problem(problem: ReynoldsProblem, p0: np.ndarray, h00: float, lvl: AccuracyLevel,
+                         ) -> tuple[NewtonOutcome, int, list[float]]:
+    """Newton from (p0, h00); on failure, a continuation in the viscosity exponent c·ln(η/η0), c: 0 → 1.
+
+    Returns the outcome at c = 1, the total number of Newton iterations and the list of c values solved.
+    """
+    tolerances = dict(tol_residual=lvl.tol_residual, tol_load=lvl.tol_load, tol_step=lvl.tol_step,
+                      max_iterations=lvl.max_iterations)
+    outcome = newton_solve(problem, p0, h00, **tolerances)
+    total = outcome.iterations
+    stages = [1.0]
+    if outcome.converged:
+        return outcome, total, stages
+    # continuation in the piezoviscous exponent from a soft (nearly isoviscous) problem
+    stages = []
+    c, step = 0.0, 0.25
+    p, h0 = p0, h00
+    while c < 1.0:
+        trial = min(1.0, c + step)
+        out = newton_solve(problem, p, h0, homotopy=trial, **tolerances)
+        total += out.iterations
+        if out.converged:
+            c, p, h0 = trial, out.p, out.h0
+            stages.append(trial)
+            outcome = out
+            step = min(step * 1.5, 0.5)
+        else:
+            step *= 0.5
+            if step < 1e-3:
+                out.message = f"continuation stalled at viscosity exponent factor {c:.3f}: {out.message}"
+                return out, total, stages
+    return outcome, total, stages
+
+
+def solve_steady(case: ContactCase, state: LubricantState, lvl: AccuracyLevel, plan: Effects) -> ContactResult:
+    """Steady, isothermal, smooth line contact (paper Eq. 1, 3–6 without the time term and roughness)."""
+    start = time.perf_counter()
+    scales = ContactScales.of(case, state, plan.shear_thinning)
+    x = clustered_grid(lvl.x_start, lvl.x_end, lvl.dx_fine, lvl.dx_coarse, (lvl.inlet_band, lvl.outlet_band),
+                       lvl.transition)
+    problem = ReynoldsProblem(x=x, kmat=influence_matrix(x), gap=0.5 * x**2, lam=scales.lam, p_h=case.p_h,
+                              state=state, compressible=plan.compressibility and state.compressible,
+                              shear=scales.shear)
+    p0, h00 = _initial_guess(x, problem, case, state, scales)
+    outcome, iterations, stages = solve_steady_problem(problem, p0, h00, lvl)
+    result = _result_from_steady(case, state, lvl, plan, scales, x, outcome, iterations)
+    result.extra["continuation"] = stages
+    result.wall_time = time.perf_counter() - start
+    return result
+
+
+def _result_from_steady(case, state, lvl, plan, scales: ContactScales, x, outcome: NewtonOutcome,
+                        iterations: int) -> ContactResult:
+    x_m = x * scales.a
+    p_pa = outcome.p * scales.p_h
+    h_m = outcome.h * scales.film_scale
+    if not np.all(np.isfinite(p_pa)) or not np.all(np.isfinite(h_m)):
+        raise SolverError(f"non-finite pressure or film for case {case.to_dict()}")
+    eta = state.viscosity(p_pa)
+    parts = friction_components(x_m, p_pa, h_m, eta, case.u_s, state.tau0, case.load_per_length)
+    h_dh, lambda_bar = dowson_higginson_lambda(case, state)
+    residuals = {"reynolds": outcome.residual, "load": outcome.load, "step": outcome.step,
+                 "complementarity": outcome.complementarity}
+    message = outcome.message if outcome.converged else f"not converged: {outcome.message}"
+    return ContactResult(
+        mu=parts["mu"], h_min=float(np.min(h_m)), h_central=float(np.interp(0.0, x_m, h_m)),
+        p_max=float(np.max(p_pa)), converged=bool(outcome.converged), iterations=int(iterations),
+        wall_time=0.0, level=lvl.name, effects=plan.to_dict(), mu_std=0.0, lambda_bar=lambda_bar,
+        asperity_load_share=0.0, residuals=residuals, message=message, x=x_m, pressure=p_pa, film=h_m,
+        extra={"mu_poiseuille": parts["mu_poiseuille"], "mu_couette": parts["mu_couette"], "n_nodes": int(x.size),
+               "h0_m": outcome.h0 * scales.film_scale, "h_min_dowson_higginson_m": h_dh,
+               "domain_a": (lvl.x_start, lvl.x_end)},
+    )
