@@ -47,8 +47,8 @@ FORMAT_VERSION = 1
 STATUS_NAMES: tuple[str, ...] = ("pending", "ok", "failed")
 PENDING, OK, FAILED = 0, 1, 2
 
-EFFECTS_WIDTH = 1024
-"""Bytes reserved per row for the effect plan (compact JSON)."""
+EFFECTS_WIDTH = 1536
+"""Bytes reserved per row for the effect plan (compact JSON; the planner's plans with reasons are ~0.9 kB)."""
 ERROR_WIDTH = 512
 """Bytes reserved per row for the error text (longer text is cut, keeping its start and end)."""
 
@@ -169,20 +169,30 @@ def _fit_utf8(text: str, width: int) -> bytes:
     return (raw[:head].decode("utf-8", "ignore") + " ... " + raw[-tail:].decode("utf-8", "ignore")).encode()[:width]
 
 
+def _round_floats(value, digits: int = 4):
+    if isinstance(value, float):
+        return float(f"{value:.{digits}g}") if math.isfinite(value) else value
+    if isinstance(value, dict):
+        return {k: _round_floats(v, digits) for k, v in value.items()}
+    if isinstance(value, list):
+        return [_round_floats(v, digits) for v in value]
+    return value
+
+
 def encode_effects(effects: str | dict) -> bytes:
     """Compact JSON of an effect plan within :data:`EFFECTS_WIDTH` bytes.
 
-    If the plan's ``reasons`` make it too long, they are replaced by a note saying so (the flags are always kept).
+    The flags are always kept. If the plan is too long, the numbers in its ``reasons`` are rounded to 4
+    significant digits; if still too long, the ``reasons`` are replaced by a note saying so.
     """
     plan = json.loads(effects) if isinstance(effects, str) else dict(effects)
-    raw = json.dumps(plan, sort_keys=True, separators=(",", ":")).encode()
-    if len(raw) <= EFFECTS_WIDTH:
-        return raw
-    plan["reasons"] = {"omitted": f"plan longer than {EFFECTS_WIDTH} bytes"}
-    raw = json.dumps(plan, sort_keys=True, separators=(",", ":")).encode()
-    if len(raw) > EFFECTS_WIDTH:
-        raise ValueError(f"effect plan does not fit in {EFFECTS_WIDTH} bytes even without reasons: {raw[:80]!r}...")
-    return raw
+    candidates = [plan, {**plan, "reasons": _round_floats(plan.get("reasons", {}))},
+                  {**plan, "reasons": {"omitted": f"plan longer than {EFFECTS_WIDTH} bytes"}}]
+    for candidate in candidates:
+        raw = json.dumps(candidate, sort_keys=True, separators=(",", ":")).encode()
+        if len(raw) <= EFFECTS_WIDTH:
+            return raw
+    raise ValueError(f"effect plan does not fit in {EFFECTS_WIDTH} bytes even without reasons: {raw[:80]!r}...")
 
 
 def _bad_file(path, detail: str) -> InputError:

@@ -201,8 +201,13 @@ def test_damaged_files_name_what_is_wrong(tmp_path, plan, lubricant, damage, mes
 
 
 def test_long_texts_fit_their_columns(tmp_path, plan, lubricant):
+    n = EFFECTS_WIDTH // 40  # ~40 bytes per reason at full precision, ~22 rounded
     plan_json = {"roughness": True, "transient": True, "mode": "auto",
-                 "reasons": {f"criterion_{i}": 1.0 / 3.0 for i in range(100)}}
+                 "reasons": {f"criterion_{i:03d}": 1.0 / 3.0 for i in range(n)}}
+    assert len(json.dumps(plan_json)) > EFFECTS_WIDTH
+    rounded = json.loads(encode_effects(plan_json))
+    assert rounded["reasons"]["criterion_000"] == 0.3333 and len(rounded["reasons"]) == n
+    plan_json["reasons"] = {f"criterion_{i:03d}": 1.0 / 3.0 for i in range(3 * n)}
     raw = encode_effects(plan_json)
     assert len(raw) <= EFFECTS_WIDTH
     decoded = json.loads(raw)

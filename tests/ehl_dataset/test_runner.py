@@ -1,0 +1,311 @@
+"""The factorial runner: local processes, failures recorded, worker deaths retried, SIGKILL + resume, Dask.
+
+Where the physics is not the point, an analytic stand-in solver is injected (Dowson–Higginson film, a monotone
+μ(λ̄)): deterministic, cheap and picklable. One test runs the real EHL solver end to end.
+"""
+
+import io
+import json
+import math
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from ehl_dataset.factorial import factorial_from_dict
+from ehl_dataset.film_formulas import dowson_higginson_min_film
+from ehl_dataset.result import ContactResult
+from ehl_dataset.runner import resume_run, run_factorial
+from ehl_dataset.store import DatasetStore, read_metadata, read_table
+from ehl_dataset.validation import InputError, SolverError
+
+REPO = Path(__file__).resolve().parents[2]
+PHYSICS = ["mu", "mu_std", "h_min", "h_central", "lambda_bar", "asperity_load_share", "p_max", "iterations",
+           "converged", "effects", "level"]
+
+
+# --------------------------------------------------------------------------------------------------------------
+# Stand-in solvers (top-level, so workers can unpickle them)
+# --------------------------------------------------------------------------------------------------------------
+def analytic_solve(case, lubricant, level="fast", effects="auto"):
+    """Dowson–Higginson minimum film, λ̄ = h_min/S_c, μ = μ_d/(1 + λ̄) + Eyring-like 0.01·asinh(SR): a cheap,
+    deterministic stand-in with the solver's signature."""
+    state = lubricant.state(case.temperature)
+    h = float(dowson_higginson_min_film(state.eta0, case.u_r, state.alpha1, case.e_reduced, case.r_eq,
+                                        case.load_per_length))
+    lam = h / case.s_c if case.s_c > 0 else math.inf
+    mu = state.mu_d / (1.0 + lam) + 0.01 * math.asinh(case.sr)
+    return ContactResult(mu=mu, h_min=h, h_central=4.0 / 3.0 * h, p_max=case.p_h, converged=True, iterations=1,
+                         wall_time=1e-3, level=level, effects={"mode": effects, "reasons": {"lambda_bar": lam}},
+                         lambda_bar=lam, asperity_load_share=max(0.0, 1.0 - lam) / 2)
+
+
+def slow_solve(case, lubricant, level="fast", effects="auto"):
+    """The stand-in, taking 0.2 s (long enough to kill a run part-way)."""
+    time.sleep(0.2)
+    return analytic_solve(case, lubricant, level, effects)
+
+
+def raising_solve(case, lubricant, level="fast", effects="auto"):
+    """Raises for the heavily loaded, fast-sliding points."""
+    if case.p_h > 1e9 and case.sr > 0.5:
+        raise SolverError(f"deliberate failure at p_h={case.p_h:g} Pa")
+    return analytic_solve(case, lubricant, level, effects)
+
+
+def dying_solve(case, lubricant, level="fast", effects="auto"):
+    """Kills its worker process (like a segfault in compiled code) at one point."""
+    if case.p_h > 1e9 and case.u_r > 10 and case.sr > 0.5 and case.rq1 > 1e-7:
+        os._exit(13)
+    time.sleep(0.02)
+    return analytic_solve(case, lubricant, level, effects)
+
+
+def flaky_outputs_solve(case, lubricant, level="fast", effects="auto"):
+    """NaN with converged=True at p_h > 1 GPa and SR > 0.5; converged=False at u_r > 10 (with a message)."""
+    result = analytic_solve(case, lubricant, level, effects)
+    if case.p_h > 1e9 and case.sr > 0.5:
+        result.mu = math.nan
+    elif case.u_r > 10:
+        result.converged = False
+        result.message = "residual 3e-3 above tolerance 1e-4 after 50 iterations"
+    return result
+
+
+def plan_dict(**axes):
+    base = {"p_h_gpa": [0.5, 1.5], "r_eq_mm": [20.0], "u_r_m_s": [5.0, 20.0], "sr": [0.1, 0.7], "temp_c": [75.0],
+            "roughness_um": [[0.05, 0.05], [0.4, 0.4]]}
+    base.update(axes)
+    return {"name": "test", "level": "fast", "effects": "auto", "axes": base}
+
+
+@pytest.fixture()
+def plan():
+    return factorial_from_dict(plan_dict())
+
+
+def physics(path):
+    return read_table(path, status=None)[["point", *PHYSICS]]
+
+
+# --------------------------------------------------------------------------------------------------------------
+def test_local_processes_give_the_same_rows_as_in_process(tmp_path, plan):
+    serial = run_factorial(tmp_path / "serial.h5", plan, workers=0, solver=analytic_solve, progress="none")
+    pool = run_factorial(tmp_path / "pool.h5", plan, workers=2, solver=analytic_solve, progress="none")
+    assert serial.ok == pool.ok == plan.size == 16 and pool.pending == pool.failed == 0
+    assert pool.executor["executor"] == "local" and pool.executor["workers"] == 2
+    a, b = physics(tmp_path / "serial.h5"), physics(tmp_path / "pool.h5")
+    assert a.equals(b)
+    table = read_table(tmp_path / "pool.h5")
+    assert (table["attempts"] == 1).all() and table["worker"].str.contains(":").all()
+    assert len({w for w in table["worker"]}) >= 2  # the coordinator's warm-up point plus pool workers
+    # the stored μ is exactly what the solve function returned for that point
+    row = table.iloc[5]
+    case_values = [row[c] for c in ("p_h", "r_eq", "u_r", "sr", "temperature", "rq1", "rq2")]
+    from ehl_dataset.contact import ContactCase
+    from ehl_dataset.lubricant import load_lubricant
+    assert row["mu"] == analytic_solve(ContactCase(*case_values), load_lubricant("atf")).mu
+    sessions = read_metadata(tmp_path / "pool.h5")["sessions"]
+    assert len(sessions) == 1 and sessions[0]["computed"] == 16 and sessions[0]["interrupted"] is None
+
+
+def test_a_point_that_raises_is_recorded_failed_and_the_rest_complete(tmp_path, plan):
+    summary = run_factorial(tmp_path / "r.h5", plan, workers=2, solver=raising_solve, progress="none")
+    table = read_table(tmp_path / "r.h5", status=None)
+    expected_failed = (table["p_h"] > 1e9) & (table["sr"] > 0.5)
+    assert summary.failed == int(expected_failed.sum()) == 4 and summary.ok == 12 and summary.pending == 0
+    failed = table[table["status"] == "failed"]
+    assert (failed.index == table[expected_failed].index).all()
+    assert failed["error"].str.match(r"SolverError: deliberate failure at p_h=1\.5e\+09 Pa \(at test_runner\.py").all()
+    assert failed["mu"].isna().all() and (failed["attempts"] == 1).all()  # deterministic errors: no retry
+
+
+def test_nan_outputs_fail_and_non_converged_results_are_kept_flagged(tmp_path, plan):
+    run_factorial(tmp_path / "r.h5", plan, workers=0, solver=flaky_outputs_solve, progress="none")
+    table = read_table(tmp_path / "r.h5", status=None)
+    nan_rows = (table["p_h"] > 1e9) & (table["sr"] > 0.5)
+    assert (table.loc[nan_rows, "status"] == "failed").all()
+    assert table.loc[nan_rows, "error"].str.contains("non-finite outputs: mu=nan").all()
+    slow_rows = ~nan_rows & (table["u_r"] > 10)
+    assert (table.loc[slow_rows, "status"] == "ok").all() and not table.loc[slow_rows, "converged"].any()
+    assert table.loc[slow_rows, "error"].str.startswith("not converged: residual 3e-3").all()
+    assert table.loc[~nan_rows & ~slow_rows, "converged"].all()
+
+
+def test_a_worker_death_is_retried_alone_and_only_its_point_fails(tmp_path, plan):
+    summary = run_factorial(tmp_path / "r.h5", plan, workers=2, solver=dying_solve, max_attempts=2,
+                            progress="none", warm_up=False)
+    table = read_table(tmp_path / "r.h5", status=None)
+    killer = (table["p_h"] > 1e9) & (table["u_r"] > 10) & (table["sr"] > 0.5) & (table["rq1"] > 1e-7)
+    assert killer.sum() == 1 and summary.failed == 1 and summary.ok == 15
+    bad = table[killer].iloc[0]
+    assert bad["status"] == "failed" and bad["attempts"] == 2 and "BrokenProcessPool" in bad["error"]
+    assert (table.loc[~killer, "attempts"] == 1).all()  # innocent neighbours are not charged
+
+
+def test_progress_log_lines_report_rate_and_eta(tmp_path, plan):
+    stream = io.StringIO()
+    run_factorial(tmp_path / "r.h5", plan, workers=0, solver=analytic_solve, progress="log", stream=stream,
+                  log_every_s=0.0)
+    lines = stream.getvalue().splitlines()
+    assert len(lines) == 17  # one per point, and the final line
+    assert "test: 16/16 points (ok 16, failed 0" in lines[-1] and "points/s" in lines[-1] and "ETA" in lines[0]
+
+
+def test_resume_is_refused_for_another_factorial_solver_version_or_lubricant(tmp_path, plan, monkeypatch):
+    path = tmp_path / "r.h5"
+    run_factorial(path, plan, workers=0, solver=analytic_solve, progress="none")
+    with pytest.raises(InputError, match="factorial"):
+        resume_run(path, factorial=factorial_from_dict(plan_dict(temp_c=[80.0])), workers=0)
+    with pytest.raises(InputError, match="lubricant"):
+        resume_run(path, lubricant="gear_oil_75w90", workers=0)
+    with pytest.raises(InputError, match=r"solver\.level"):
+        resume_run(path, level="standard", workers=0)
+    with pytest.raises(InputError, match="lubricant"):
+        run_factorial(path, plan, lubricant="gear_oil_75w90", solver=analytic_solve, workers=0)
+    monkeypatch.setattr(analytic_solve, "solver_version", "9.9", raising=False)
+    with pytest.raises(InputError, match=r"solver\.version='9\.9'"):
+        resume_run(path, workers=0)
+
+
+def test_modified_input_columns_are_detected(tmp_path, plan):
+    import h5py
+
+    path = tmp_path / "r.h5"
+    run_factorial(path, plan, workers=0, solver=analytic_solve, progress="none")
+    with h5py.File(path, "r+") as h5:
+        h5["points/p_h"][3] = 1.6e9
+    with pytest.raises(InputError, match="input columns"):
+        resume_run(path, workers=0)
+
+
+def test_sigkill_part_way_then_resume_completes_without_recomputing(tmp_path):
+    """Acceptance (issue 4): a real ``gearloss dataset run`` killed with SIGKILL, then resumed: the file is
+    complete, no finished point is computed again, and the rows equal an uninterrupted run's."""
+    plan_file = tmp_path / "plan.toml"
+    plan_file.write_text(
+        'name = "killme"\nlevel = "fast"\n[axes]\np_h_gpa = [0.5, 1.0, 1.5, 2.0]\nr_eq_mm = [10, 20]\n'
+        'u_r_m_s = [2, 5, 10]\nsr = [0.2, 0.5]\ntemp_c = [60]\nroughness_um = [[0.1, 0.1]]\n')
+    path = tmp_path / "run.h5"
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join([str(REPO), os.environ.get("PYTHONPATH", "")])}
+    command = [sys.executable, "-m", "workflows.cli", "dataset", "run", "--factorial", str(plan_file), "--out",
+               str(path), "--workers", "2", "--solver", f"{__name__}:slow_solve", "--flush-interval", "0.1",
+               "--progress", "none"]
+    process = subprocess.Popen(command, cwd=REPO, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    deadline = time.monotonic() + 60
+    done_before = None
+    try:
+        while time.monotonic() < deadline and process.poll() is None:
+            time.sleep(0.05)
+            if path.exists():
+                try:
+                    counts = read_metadata(path)["counts"]
+                except InputError:
+                    continue
+                if counts["ok"] >= 8:
+                    process.send_signal(signal.SIGKILL)
+                    break
+        process.wait(timeout=30)
+    finally:
+        if process.poll() is None:
+            process.kill()
+    assert process.returncode == -signal.SIGKILL, process.stderr.read().decode()[-2000:]
+    before = read_table(path, status=None)
+    ok_before = before[before["status"] == "ok"]
+    assert 8 <= len(ok_before) < 48, "the run must be killed part-way"
+    assert read_metadata(path)["sessions"][0].get("ended") is None  # the killed session never closed
+
+    summary = resume_run(path, workers=2, progress="none")  # the file is not locked: the workers died too
+    assert summary.ok == 48 and summary.pending == 0 and summary.computed == 48 - len(ok_before)
+    after = read_table(path, status=None)
+    assert (after["attempts"] == 1).all()  # no point computed twice
+    kept = after.loc[ok_before.index]
+    assert (kept["finished_at"] == ok_before["finished_at"]).all() and (kept["worker"] == ok_before["worker"]).all()
+
+    reference = tmp_path / "reference.h5"
+    run_factorial(reference, plan_file, workers=0, solver=analytic_solve, progress="none")
+    assert physics(path).equals(physics(reference))
+
+
+def test_sigterm_stops_the_run_with_finished_points_on_disk(tmp_path):
+    plan_file = tmp_path / "plan.toml"
+    plan_file.write_text(
+        'name = "stopme"\nlevel = "fast"\n[axes]\np_h_gpa = [0.5, 1.0, 1.5, 2.0]\nr_eq_mm = [10, 20]\n'
+        'u_r_m_s = [2, 5, 10]\nsr = [0.2, 0.5]\ntemp_c = [60]\nroughness_um = [[0.1, 0.1]]\n')
+    path = tmp_path / "run.h5"
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join([str(REPO), os.environ.get("PYTHONPATH", "")])}
+    command = [sys.executable, "-m", "workflows.cli", "dataset", "run", "--factorial", str(plan_file), "--out",
+               str(path), "--workers", "2", "--solver", f"{__name__}:slow_solve", "--flush-interval", "60",
+               "--progress", "none", "--json"]
+    process = subprocess.Popen(command, cwd=REPO, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    try:
+        time.sleep(0.5)
+        deadline = time.monotonic() + 60
+        while time.monotonic() < deadline and process.poll() is None:
+            time.sleep(0.05)
+            if path.exists():
+                try:
+                    read_metadata(path)
+                except InputError:
+                    continue
+                time.sleep(1.5)  # some results buffered in memory (flush interval 60 s)
+                process.send_signal(signal.SIGTERM)
+                break
+        out, err = process.communicate(timeout=30)
+    finally:
+        if process.poll() is None:
+            process.kill()
+    assert process.returncode == 143, err.decode()[-2000:]
+    summary = json.loads(out)
+    meta = read_metadata(path)
+    assert summary["interrupted"] == "SIGTERM" and 0 < summary["ok"] < 48
+    assert meta["counts"]["ok"] == summary["ok"]  # everything received was written before exiting
+    assert meta["sessions"][0]["interrupted"] == "SIGTERM" and meta["sessions"][0]["ended"]
+
+
+@pytest.mark.slow
+def test_dask_local_cluster_gives_the_same_rows_as_local_processes(tmp_path, plan, monkeypatch):
+    """Acceptance (issue 4): a run through a Dask LocalCluster (2 worker processes) equals the local default."""
+    pytest.importorskip("distributed")
+    monkeypatch.setenv("PYTHONPATH", os.pathsep.join([str(REPO), os.environ.get("PYTHONPATH", "")]))
+    local = run_factorial(tmp_path / "local.h5", plan, workers=2, solver=analytic_solve, progress="none")
+    dask = run_factorial(tmp_path / "dask.h5", plan, workers=2, scheduler="dask-local", solver=analytic_solve,
+                         progress="none")
+    assert dask.executor["executor"] == "dask" and dask.executor["workers"] == 2
+    assert local.ok == dask.ok == 16
+    assert physics(tmp_path / "local.h5").equals(physics(tmp_path / "dask.h5"))
+    workers = set(read_table(tmp_path / "dask.h5")["worker"])
+    assert len(workers) == 2 and not any(w.endswith(f":{os.getpid()}") for w in workers)
+
+
+@pytest.mark.slow
+def test_real_solver_end_to_end(tmp_path):
+    """The real EHL solver (fast level) through worker processes: every row ok, the stored values are exactly
+    those of a direct solve, and λ̄ is the Dowson–Higginson film over S_c (paper Sect. 2.1)."""
+    from ehl_dataset.contact import ContactCase
+    from ehl_dataset.lubricant import load_lubricant
+    from ehl_dataset.solver import solve_contact
+
+    plan = factorial_from_dict(plan_dict(p_h_gpa=[0.5, 1.0], u_r_m_s=[20.0], sr=[0.3], temp_c=[50.0, 75.0],
+                                         roughness_um=[[0.05, 0.05]]))
+    summary = run_factorial(tmp_path / "real.h5", plan, workers=2, progress="none")
+    table = read_table(tmp_path / "real.h5", status=None)
+    assert summary.ok == 4 and (table["status"] == "ok").all() and table["converged"].all(), table["error"]
+    meta = read_metadata(tmp_path / "real.h5")
+    assert meta["solver"]["function"] == "ehl_dataset.solver:solve_contact" and meta["solver"]["level"] == "fast"
+    lub = load_lubricant("atf")
+    row = table.iloc[-1]
+    case = ContactCase(*[float(row[c]) for c in ("p_h", "r_eq", "u_r", "sr", "temperature", "rq1", "rq2")])
+    direct = solve_contact(case, lub, level="fast").to_record()
+    for name in ("mu", "h_min", "h_central", "p_max", "lambda_bar", "iterations"):
+        assert row[name] == direct[name], name
+    state = lub.state(case.temperature)
+    h_dh = dowson_higginson_min_film(state.eta0, case.u_r, state.alpha1, case.e_reduced, case.r_eq,
+                                     case.load_per_length)
+    assert row["lambda_bar"] == pytest.approx(h_dh / case.s_c, rel=1e-9)
+    assert (table["mu"] > 0).all() and (table["mu"] < lub.mu_d).all() and (table["h_min"] > 0).all()
