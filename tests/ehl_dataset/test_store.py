@@ -201,7 +201,7 @@ def test_damaged_files_name_what_is_wrong(tmp_path, plan, lubricant, damage, mes
 
 
 def test_long_texts_fit_their_columns(tmp_path, plan, lubricant):
-    n = EFFECTS_WIDTH // 40  # ~40 bytes per reason at full precision, ~22 rounded
+    n = EFFECTS_WIDTH // 30  # ~37 bytes per reason at full precision, ~23 rounded
     plan_json = {"roughness": True, "transient": True, "mode": "auto",
                  "reasons": {f"criterion_{i:03d}": 1.0 / 3.0 for i in range(n)}}
     assert len(json.dumps(plan_json)) > EFFECTS_WIDTH
