@@ -1,0 +1,92 @@
+"""``gearloss accuracy``: each EHL accuracy level's error against the reference level versus wall time.
+
+Writes ``accuracy.md`` (tables), ``accuracy.png`` (error vs time, log axes) and ``accuracy.json`` (raw runs) into
+``--out-dir`` (default ``docs``). See :mod:`workflows.accuracy`.
+"""
+
+from __future__ import annotations
+
+import sys
+
+CONVERGENCE_CASES = ("gear-typical", "full-film-9")
+"""Cases of the convergence study: one the planner solves rough and transient, one smooth and steady."""
+
+
+def register(subparsers) -> None:
+    parser = subparsers.add_parser("accuracy", help="EHL accuracy levels: error against the reference vs time",
+                                   description=__doc__.splitlines()[0])
+    parser.add_argument("--cases", type=int, default=None, metavar="N",
+                        help="use the first N cases of the fixed set (default: all 16)")
+    parser.add_argument("--only", nargs="+", default=None, metavar="NAME",
+                        help="use only the named cases of the fixed set (see workflows/accuracy.py)")
+    parser.add_argument("--levels", nargs="+", default=None, metavar="LEVEL",
+                        help="levels to measure (default: fast standard)")
+    parser.add_argument("--reference", default="reference", metavar="LEVEL", help="reference level")
+    parser.add_argument("--effects", choices=("auto", "full"), default="auto",
+                        help="effects of the measured levels (default auto: the planner's savings are measured)")
+    parser.add_argument("--reference-effects", choices=("auto", "full"), default="full",
+                        help="effects of the reference solves (default full)")
+    parser.add_argument("--lubricant", default="atf", metavar="NAME|FILE")
+    parser.add_argument("--convergence", action="store_true",
+                        help="also refine grid, time step and averaging window on two cases (slow)")
+    parser.add_argument("--out-dir", default="docs", metavar="DIR")
+    parser.add_argument("--json", action="store_true", help="print one JSON object")
+    parser.set_defaults(handler=run_accuracy)
+
+
+def run_accuracy(args) -> int:
+    from ehl_dataset.levels import get_level
+    from ehl_dataset.validation import InputError
+    from workflows import accuracy
+    from workflows.cli import emit
+
+    cases = accuracy.ACCURACY_CASES
+    if args.cases is not None:
+        if not 1 <= args.cases <= len(cases):
+            raise InputError("--cases", args.cases, f"an integer in [1, {len(cases)}]")
+        cases = cases[: args.cases]
+    if args.only:
+        names = [spec[0] for spec in accuracy.ACCURACY_CASES]
+        for name in args.only:
+            if name not in names:
+                raise InputError("--only", name, f"one of {names}")
+        cases = tuple(spec for spec in cases if spec[0] in args.only)
+    levels = tuple(args.levels) if args.levels else accuracy.DEFAULT_LEVELS
+    for name in (*levels, args.reference):
+        get_level(name)
+
+    def progress(text: str) -> None:
+        print(f"[accuracy] {text}", file=sys.stderr, flush=True)
+
+    study = accuracy.run_study(cases, levels, args.reference, args.lubricant, args.reference_effects, args.effects,
+                               progress=progress)
+    convergence = []
+    if args.convergence:
+        by_name = {spec[0]: spec for spec in accuracy.ACCURACY_CASES}
+        for name in CONVERGENCE_CASES:
+            for kind in ("grid", "time_step", "window"):
+                result = accuracy.convergence_study(by_name[name], kind, lubricant=args.lubricant)
+                if kind != "grid" and not any(row["roughness"] for row in result["rows"]):
+                    continue  # steady smooth solve: no time step or averaging window to refine
+                convergence.append(result)
+                progress(f"convergence {name} {kind}: order mu {result['order_mu']:.2f}")
+    paths = accuracy.write_report(study, args.out_dir, convergence)
+    payload = {
+        "reference_level": study.reference_level,
+        "levels": list(study.levels),
+        "n_cases": len(study.cases),
+        "summary": study.summary(),
+        "markdown_path": str(paths["markdown"]),
+        "plot_path": str(paths["plot"]),
+        "json_path": str(paths["json"]),
+        "git_commit": study.provenance.get("git_commit"),
+    }
+
+    def human(data):
+        rows = [f"{level}: median err mu {row['mu_error_median']:.3g}, max {row['mu_error_max']:.3g}; "
+                f"mean time {row['wall_time_mean_s']:.3g} s/case ({row['converged']}/{row['n_cases']} converged)"
+                for level, row in data["summary"].items()]
+        return "\n".join(rows + [f"wrote {data['markdown_path']}, {data['plot_path']}"])
+
+    emit(payload, args.json, human)
+    return 0
