@@ -315,6 +315,7 @@ def run_factorial(out, factorial: Factorial | str | os.PathLike, *, lubricant=No
     """
     from .lubricant import Lubricant, load_lubricant
 
+    _check_options(workers, options)
     plan = factorial if isinstance(factorial, Factorial) else load_factorial(factorial)
     lub = lubricant if isinstance(lubricant, Lubricant) else load_lubricant(lubricant or plan.lubricant)
     config = solver_config(solver, level or plan.level, effects or plan.effects)
@@ -349,6 +350,7 @@ def resume_run(path, *, workers: int = 1, scheduler: str | None = None, solver: 
     """
     from .lubricant import Lubricant, load_lubricant
 
+    _check_options(workers, options)
     with DatasetStore.open(path, "r+") as store:
         recorded = store.solver
         solver_used = solver if solver is not None else recorded.get("function", DEFAULT_SOLVER)
@@ -365,6 +367,22 @@ def resume_run(path, *, workers: int = 1, scheduler: str | None = None, solver: 
         return execute(store, solver=solver_used, workers=workers, scheduler=scheduler, kind="resume", **options)
 
 
+def _check_options(workers: int, options: dict) -> None:
+    if isinstance(workers, bool) or not isinstance(workers, int) or workers < 0:
+        raise InputError("workers", workers, "an integer >= 0 (0: compute in this process)")
+    attempts = options.get("max_attempts", 1)
+    if not isinstance(attempts, int) or attempts < 1:
+        raise InputError("max_attempts", attempts, "an integer >= 1")
+    window = options.get("window")
+    if window is not None and (not isinstance(window, int) or window < 1):
+        raise InputError("window", window, "an integer >= 1")
+    if options.get("progress", "auto") not in ("auto", "bar", "log", "none"):
+        raise InputError("progress", options["progress"], "'auto', 'bar', 'log' or 'none'")
+    interval = options.get("flush_interval_s", 5.0)
+    if not (isinstance(interval, (int, float)) and math.isfinite(interval) and interval >= 0):
+        raise InputError("flush_interval_s", interval, "a finite number of seconds >= 0")
+
+
 def execute(store: DatasetStore, *, solver: str | Callable = DEFAULT_SOLVER, workers: int = 1,
             scheduler: str | None = None, kind: str = "run", window: int | None = None, max_attempts: int = 3,
             flush_interval_s: float = 5.0, flush_rows: int = 2000, progress: str = "auto",
@@ -379,10 +397,8 @@ def execute(store: DatasetStore, *, solver: str | Callable = DEFAULT_SOLVER, wor
     """
     from .executors import make_executor
 
-    if max_attempts < 1:
-        raise InputError("max_attempts", max_attempts, ">= 1")
-    if workers < 0:
-        raise InputError("workers", workers, ">= 0")
+    _check_options(workers, {"max_attempts": max_attempts, "window": window, "progress": progress,
+                             "flush_interval_s": flush_interval_s})
     recorded = store.solver
     points = store.points()
     if _points_sha256(points) != store.metadata()["factorial_sha256"]:
