@@ -166,7 +166,7 @@ def face_coupling(z, face_width: float, length: float) -> np.ndarray:
     """Slice-to-slice influence matrix G (S × S, dimensionless, symmetric positive definite).
 
     G_ij = ∫_{cell j} κ_N(z_i, z') dz' with κ the exponential kernel exp(−|d|/ℓ)/(2ℓ) and its images reflected at
-    z = 0 and z = b (two image generations, error < exp(−4b/ℓ)). A slice load F_j [N] spread over its cell gives
+    z = 0 and z = b (n image generations with exp(−2nb/ℓ) < 1e−17, i.e. the exact Neumann Green's function). A slice load F_j [N] spread over its cell gives
     the deflection w_i = c Σ_j G_ij F_j / Δz for a slice compliance c per unit face width; Σ_j G_ij = 1.
     """
     z = np.asarray(z, dtype=float)
@@ -181,7 +181,8 @@ def face_coupling(z, face_width: float, length: float) -> np.ndarray:
 
     g = np.zeros((slices, slices))
     zi = z[:, None]
-    for n in range(-2, 3):
+    generations = int(math.ceil(20.0 * length / face_width)) + 1
+    for n in range(-generations, generations + 1):
         shift = 2.0 * n * face_width
         # direct images z' + 2nb over [lo, hi] + shift
         g += primitive(hi[None, :] + shift - zi) - primitive(lo[None, :] + shift - zi)
