@@ -107,11 +107,11 @@ class ReynoldsProblem:
         return eps, eps_p, eps_h, m, rho_p * h, rho
 
     def residual(self, p, h, homotopy=1.0):
-        """Reynolds residual R (N), banded ∂R/∂P, ∂R/∂H, and m = ρ̄H."""
+        """Reynolds residual R (N), banded ∂R/∂P, ∂R/∂H, and m = ρ̄H with ∂m/∂P, ∂m/∂H."""
         eps, eps_p, eps_h, m, m_p, m_h = self.fluid(p, h, homotopy)
         res, dp, dh = assemble(self.x, p, eps, eps_p, eps_h, m, m_p, m_h, self.squeeze, self.m_old,
                                self.second_order)
-        return res, dp, dh, m
+        return res, dp, dh, (m, m_p, m_h)
 
 
 @dataclass
@@ -152,25 +152,30 @@ def _complementarity(problem: ReynoldsProblem, p, res, kappa):
     return phi, d_a, d_b * kappa
 
 
-def _norms(problem, p, res, m_ref):
-    """(max relative Reynolds residual on pressurised nodes, max complementarity violation on the others)."""
-    scaled = res[1:-1] / m_ref
-    kappa_b = -res[1:-1] / (m_ref * problem.weights[1:-1])
-    free = p[1:-1] > 0.0
-    r_free = float(np.max(np.abs(scaled[free]))) if free.any() else 0.0
-    r_cav = float(np.max(np.maximum(-kappa_b[~free], 0.0) * problem.weights[1:-1][~free])) if (~free).any() else 0.0
+def _norms(p, res, m_ref, phi, kappa):
+    """(max |R|/m_ref on pressurised nodes, max |φ| on cavitated nodes), pressurised meaning P_i > −κ_i R_i."""
+    a = p[1:-1]
+    b = -res[1:-1] * kappa
+    pressurised = a > b
+    r_free = float(np.max(np.abs(res[1:-1][pressurised]))) / m_ref if pressurised.any() else 0.0
+    r_cav = float(np.max(np.abs(phi[~pressurised]))) if (~pressurised).any() else 0.0
     return r_free, r_cav
 
 
 def newton_solve(problem: ReynoldsProblem, p0: np.ndarray, h00: float, *, homotopy: float = 1.0,
                  tol_residual: float = 1e-6, tol_load: float = 1e-6, tol_step: float = 1e-6,
-                 max_iterations: int = 60, max_pressure_step: float = 0.5) -> NewtonOutcome:
+                 max_iterations: int = 60, max_pressure_step: float = 0.5,
+                 pseudo_dt: float = 0.0) -> NewtonOutcome:
     """Solve the discrete problem from the initial guess (``p0``, ``h00``).
 
     Converged when the Reynolds residual on pressurised nodes (relative to the Couette flux ρ̄H at the contact
     centre), the complementarity violation on the other nodes, the load error and the last pressure step are all
     below tolerance. Steps are limited to ``max_pressure_step`` (in p_h), backtracked on the Fischer–Burmeister
-    merit and kept where the film stays open. Never raises for non-convergence: the outcome says
+    merit and kept where the film stays open. With ``pseudo_dt`` > 0 the Newton iteration is globalised by
+    pseudo-transient continuation (Kelley & Keyes 1998): the squeeze term w_i ∂m_i/∂T of the transient Reynolds
+    equation with time step ΔT_k = pseudo_dt·r_0/r_k (switched evolution relaxation) is added to the Jacobian only,
+    so the iterates follow a damped, physical squeeze-film evolution early on and become pure Newton steps
+    (quadratic convergence) as the residual falls; the converged solution is the steady one. Never raises for non-convergence: the outcome says
     ``converged=False`` with the norms.
     """
     n = problem.x.size
@@ -181,22 +186,33 @@ def newton_solve(problem: ReynoldsProblem, p0: np.ndarray, h00: float, *, homoto
     h = problem.film(p, h0)
     if problem.h_closed == 0.0 and np.any(h <= 0.0):
         return NewtonOutcome(p, h0, h, False, 0, math.inf, math.inf, math.inf, math.inf, "initial film not open")
-    res, dp, dh, m = problem.residual(p, h, homotopy)
-    m_ref = max(abs(float(m[centre])), 1e-300)
+    res, dp, dh, mm = problem.residual(p, h, homotopy)
+    m_ref = max(abs(float(mm[0][centre])), 1e-300)
+    r_start = None
     step_norm = math.inf
     message = "iteration limit reached"
     load_row = np.zeros(n - 1)
     load_row[:-1] = problem.weights[1:-1] / (0.5 * math.pi)
     for iteration in range(1, max_iterations + 1):
         load_err = problem.load(p)
-        r_free, r_cav = _norms(problem, p, res, m_ref)
-        if (r_free <= tol_residual and r_cav <= tol_residual and abs(load_err) <= tol_load
-                and step_norm <= tol_step):
-            return NewtonOutcome(p, h0, h, True, iteration - 1, r_free, load_err, step_norm, r_cav, "converged")
         jac = full_jacobian(dp, dh, problem.kmat, problem.rows)
         diag = np.abs(jac[np.arange(n - 2), np.arange(n - 2)])
         kappa = 1.0 / np.maximum(diag, 1e-12 * max(float(diag.max()), 1e-300))
         phi, d_a, d_b = _complementarity(problem, p, res, kappa)
+        r_free, r_cav = _norms(p, res, m_ref, phi, kappa)
+        if (r_free <= tol_residual and r_cav <= tol_residual and abs(load_err) <= tol_load
+                and step_norm <= tol_step):
+            return NewtonOutcome(p, h0, h, True, iteration - 1, r_free, load_err, step_norm, r_cav, "converged")
+        if pseudo_dt > 0.0:
+            r_now = max(r_free, r_cav, abs(load_err), 1e-300)
+            r_start = r_now if r_start is None else r_start
+            dt = min(pseudo_dt * r_start / r_now, 1e12)
+            sq = problem.weights / dt
+            dp = dp.copy()
+            dh = dh.copy()
+            dp[:, 2] -= sq * mm[1]
+            dh[:, 2] -= sq * mm[2]
+            jac = full_jacobian(dp, dh, problem.kmat, problem.rows)
         # dφ/dx = d_a e_i − d_b J_i  (b = −κ R)
         system = -jac * d_b[:, None]
         system[np.arange(n - 2), np.arange(n - 2)] += d_a
@@ -220,6 +236,9 @@ def newton_solve(problem: ReynoldsProblem, p0: np.ndarray, h00: float, *, homoto
             h_new = problem.film(p_new, h0_new)
             if problem.h_closed > 0.0 or np.all(h_new > 0.0):
                 res_new, dp_new, dh_new, m_new = problem.residual(p_new, h_new, homotopy)
+                if pseudo_dt > 0.0 and np.all(np.isfinite(res_new)):
+                    accepted = True
+                    break
                 if np.all(np.isfinite(res_new)):
                     phi_new = _complementarity(problem, p_new, res_new, kappa)[0]
                     merit1 = float(phi_new @ phi_new) + problem.load(p_new) ** 2
@@ -233,6 +252,7 @@ def newton_solve(problem: ReynoldsProblem, p0: np.ndarray, h00: float, *, homoto
         step_norm = float(np.max(np.abs(p_new - p)))
         if TRACE:
             print(f"it {iteration}: merit {merit0:.3e} omega {omega:.3g} step {step_norm:.3e} load {load_err:.1e}")
-        p, h0, h, res, dp, dh, m = p_new, h0_new, h_new, res_new, dp_new, dh_new, m_new
-    r_free, r_cav = _norms(problem, p, res, m_ref)
+        p, h0, h, res, dp, dh, mm = p_new, h0_new, h_new, res_new, dp_new, dh_new, m_new
+    phi = _complementarity(problem, p, res, kappa)[0]
+    r_free, r_cav = _norms(p, res, m_ref, phi, kappa)
     return NewtonOutcome(p, h0, h, False, max_iterations, r_free, problem.load(p), step_norm, r_cav, message)

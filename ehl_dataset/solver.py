@@ -39,6 +39,18 @@ from .result import ContactResult
 from .traction import friction_components
 from .validation import InputError, SolverError
 
+PSEUDO_DT = 0.3
+"""Initial pseudo time step [a/u_r] of the pseudo-transient Newton globalisation."""
+
+M_EASY = 30.0
+"""Moes load parameter above which the Hertz pressure is a good enough Newton start."""
+LAMBDA_FACTOR = 4.0
+"""Growth factor of λ̄ between the stages of the light-load continuation."""
+
+FINE_PSEUDO_DT = 0.0
+COARSENING = 3.0
+"""Spacing ratio of the continuation grid to the level's grid in :func:`solve_steady`."""
+
 __all__ = ["solve_contact", "resolve_effects", "solve_steady", "dowson_higginson_lambda", "ContactScales"]
 
 
@@ -130,26 +142,18 @@ def _initial_guess(x: np.ndarray, problem: ReynoldsProblem, case: ContactCase, s
     return p, h0
 
 
-def solve_steady_problem(problem: ReynoldsProblem, p0: np.ndarray, h00: float, lvl: AccuracyLevel,
-                         ) -> tuple[NewtonOutcome, int, list[float]]:
-    """Newton from (p0, h00); on failure, a continuation in the viscosity exponent c·ln(η/η0), c: 0 → 1.
-
-    Returns the outcome at c = 1, the total number of Newton iterations and the list of c values solved.
-    """
-    tolerances = dict(tol_residual=lvl.tol_residual, tol_load=lvl.tol_load, tol_step=lvl.tol_step,
-                      max_iterations=lvl.max_iterations)
-    outcome = newton_solve(problem, p0, h00, **tolerances)
+def _newton_with_homotopy(problem: ReynoldsProblem, p0, h00, tolerances) -> tuple[NewtonOutcome, int, list[float]]:
+    """Newton from (p0, h00); on failure a continuation in the viscosity exponent c·ln(η/η0), c: 0 → 1."""
+    outcome = newton_solve(problem, p0, h00, pseudo_dt=PSEUDO_DT, **tolerances)
     total = outcome.iterations
-    stages = [1.0]
     if outcome.converged:
-        return outcome, total, stages
-    # continuation in the piezoviscous exponent from a soft (nearly isoviscous) problem
-    stages = []
+        return outcome, total, [1.0]
+    stages: list[float] = []
     c, step = 0.0, 0.25
     p, h0 = p0, h00
     while c < 1.0:
         trial = min(1.0, c + step)
-        out = newton_solve(problem, p, h0, homotopy=trial, **tolerances)
+        out = newton_solve(problem, p, h0, homotopy=trial, pseudo_dt=PSEUDO_DT, **tolerances)
         total += out.iterations
         if out.converged:
             c, p, h0 = trial, out.p, out.h0
@@ -158,25 +162,100 @@ def solve_steady_problem(problem: ReynoldsProblem, p0: np.ndarray, h00: float, l
             step = min(step * 1.5, 0.5)
         else:
             step *= 0.5
-            if step < 1e-3:
+            if step < 1e-2:
                 out.message = f"continuation stalled at viscosity exponent factor {c:.3f}: {out.message}"
                 return out, total, stages
     return outcome, total, stages
 
 
+def solve_steady_problem(problem: ReynoldsProblem, p0: np.ndarray, h00: float, lvl: AccuracyLevel,
+                         ) -> tuple[NewtonOutcome, int, list]:
+    """Solve the steady problem, with continuation where a direct Newton solve is not robust.
+
+    Light loads (Moes M = √(3.70/λ̄) below :data:`M_EASY`) start from the Hertz guess at the heavier load
+    λ̄ = 3.70/M_EASY² and raise λ̄ (a speed/load continuation, λ̄ ∝ U/W²) by factors of :data:`LAMBDA_FACTOR`; each
+    stage falls back to the viscosity-exponent continuation if needed. Returns the final outcome, the total
+    number of Newton iterations and the continuation record [(λ̄, [c values]), ...].
+    """
+    tolerances = dict(tol_residual=lvl.tol_residual, tol_load=lvl.tol_load, tol_step=lvl.tol_step,
+                      max_iterations=lvl.max_iterations)
+    target = problem.lam
+    lam_easy = 3.70 / M_EASY**2
+    lams = [target]
+    if target > lam_easy:
+        n_stages = int(np.ceil(np.log(target / lam_easy) / np.log(LAMBDA_FACTOR)))
+        lams = list(lam_easy * (target / lam_easy) ** (np.arange(n_stages + 1) / n_stages))
+    record = []
+    total = 0
+    p, h0 = p0, h00
+    centre = int(np.argmin(np.abs(problem.x)))
+    for k, lam in enumerate(lams):
+        problem.lam = float(lam)
+        if k > 0:  # scale the film for the new speed: H_c ∝ λ̄^0.5 roughly at light load
+            h_prev = problem.film(p, h0)[centre]
+            h0 = h0 + h_prev * ((lams[k] / lams[k - 1]) ** 0.5 - 1.0)
+        outcome, its, stages = _newton_with_homotopy(problem, p, h0, tolerances)
+        total += its
+        record.append((float(lam), stages))
+        if not outcome.converged:
+            problem.lam = target
+            if k < len(lams) - 1:
+                outcome.message = f"load continuation failed at lambda={lam:.3g} (target {target:.3g}): " \
+                                  f"{outcome.message}"
+            return outcome, total, record
+        p, h0 = outcome.p, outcome.h0
+    problem.lam = target
+    return outcome, total, record
+
+
+def _problem_on(x: np.ndarray, case: ContactCase, state: LubricantState, plan: Effects,
+                scales: ContactScales) -> ReynoldsProblem:
+    return ReynoldsProblem(x=x, kmat=influence_matrix(x), gap=0.5 * x**2, lam=scales.lam, p_h=case.p_h,
+                           state=state, compressible=plan.compressibility and state.compressible,
+                           shear=scales.shear)
+
+
+def steady_grid(lvl: AccuracyLevel, coarsening: float = 1.0) -> np.ndarray:
+    """The clustered steady grid of a level (``coarsening`` > 1 multiplies both spacings)."""
+    return clustered_grid(lvl.x_start, lvl.x_end, lvl.dx_fine * coarsening, lvl.dx_coarse * coarsening,
+                          (lvl.inlet_band, lvl.outlet_band), lvl.transition)
+
+
 def solve_steady(case: ContactCase, state: LubricantState, lvl: AccuracyLevel, plan: Effects) -> ContactResult:
-    """Steady, isothermal, smooth line contact (paper Eq. 1, 3–6 without the time term and roughness)."""
+    """Steady, isothermal, smooth line contact (paper Eq. 1, 3–6 without the time term and roughness).
+
+    Two grids: the continuation (which may take tens of Newton iterations) runs on a grid
+    :data:`COARSENING` times coarser, and its interpolated solution starts the Newton iteration on the level's
+    grid, which then needs only a few iterations. If the coarse stage fails, the fine grid is solved from scratch.
+    """
     start = time.perf_counter()
     scales = ContactScales.of(case, state, plan.shear_thinning)
-    x = clustered_grid(lvl.x_start, lvl.x_end, lvl.dx_fine, lvl.dx_coarse, (lvl.inlet_band, lvl.outlet_band),
-                       lvl.transition)
-    problem = ReynoldsProblem(x=x, kmat=influence_matrix(x), gap=0.5 * x**2, lam=scales.lam, p_h=case.p_h,
-                              state=state, compressible=plan.compressibility and state.compressible,
-                              shear=scales.shear)
-    p0, h00 = _initial_guess(x, problem, case, state, scales)
-    outcome, iterations, stages = solve_steady_problem(problem, p0, h00, lvl)
+    x = steady_grid(lvl)
+    problem = _problem_on(x, case, state, plan, scales)
+    record: dict = {}
+    iterations = 0
+    outcome = None
+    x_coarse = steady_grid(lvl, COARSENING)
+    if x_coarse.size < 0.6 * x.size:
+        coarse = _problem_on(x_coarse, case, state, plan, scales)
+        p0, h00 = _initial_guess(x_coarse, coarse, case, state, scales)
+        coarse_out, its, stages = solve_steady_problem(coarse, p0, h00, lvl)
+        iterations += its
+        record["coarse"] = {"nodes": int(x_coarse.size), "stages": stages, "converged": coarse_out.converged}
+        if coarse_out.converged:
+            p_fine = np.interp(x, x_coarse, coarse_out.p)
+            outcome = newton_solve(problem, p_fine, coarse_out.h0, pseudo_dt=FINE_PSEUDO_DT,
+                                   tol_residual=lvl.tol_residual, tol_load=lvl.tol_load, tol_step=lvl.tol_step,
+                                   max_iterations=lvl.max_iterations)
+            iterations += outcome.iterations
+            record["fine"] = {"nodes": int(x.size), "iterations": outcome.iterations}
+    if outcome is None or not outcome.converged:
+        p0, h00 = _initial_guess(x, problem, case, state, scales)
+        outcome, its, stages = solve_steady_problem(problem, p0, h00, lvl)
+        iterations += its
+        record["fine_from_scratch"] = {"nodes": int(x.size), "stages": stages}
     result = _result_from_steady(case, state, lvl, plan, scales, x, outcome, iterations)
-    result.extra["continuation"] = stages
+    result.extra["continuation"] = record
     result.wall_time = time.perf_counter() - start
     return result
 

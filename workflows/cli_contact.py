@@ -1,0 +1,86 @@
+"""``gearloss contact solve``: one EHL line contact from the command line (engineering units in, SI JSON out)."""
+
+from __future__ import annotations
+
+import math
+
+
+def register(subparsers) -> None:
+    parser = subparsers.add_parser("contact", help="one EHL line contact")
+    contact_sub = parser.add_subparsers(dest="contact_command", metavar="COMMAND")
+    parser.set_defaults(handler=lambda args: parser.print_help() or 2)
+    solve = contact_sub.add_parser(
+        "solve", help="solve one line contact (smooth steady or transient mixed, as the effect plan says)",
+        description="Solve one EHL line contact. Inputs in engineering units; --json prints SI units.")
+    solve.add_argument("--p-h-gpa", type=float, required=True, help="maximum Hertz pressure [GPa]")
+    solve.add_argument("--r-eq-mm", type=float, required=True, help="equivalent radius of curvature [mm]")
+    solve.add_argument("--u-r", type=float, required=True, help="rolling (entrainment) velocity [m/s]")
+    solve.add_argument("--sr", type=float, default=0.0, help="slide-to-roll ratio (u1 - u2)/u_r [-] (default 0)")
+    solve.add_argument("--temp-c", type=float, default=90.0, help="oil inlet temperature [°C] (default 90)")
+    solve.add_argument("--rq1-um", type=float, default=0.0, help="RMS roughness of surface 1 [µm] (default 0)")
+    solve.add_argument("--rq2-um", type=float, default=0.0, help="RMS roughness of surface 2 [µm] (default 0)")
+    solve.add_argument("--lubricant", default="atf",
+                       help="shipped lubricant name (atf, gear_oil_75w90, validation_barus, "
+                            "validation_barus_incompressible, validation_roelands_huang) or a TOML file")
+    solve.add_argument("--level", default="standard", help="accuracy level: fast, standard, reference")
+    solve.add_argument("--effects", default="auto", choices=["auto", "full", "smooth"],
+                       help="effect plan: auto (planner), full (everything), smooth (steady smooth solve)")
+    solve.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
+    solve.set_defaults(handler=_solve)
+
+
+def _solve(args) -> int:
+    from ehl_dataset.contact import ContactCase
+    from ehl_dataset.effects import Effects
+    from ehl_dataset.levels import get_level
+    from ehl_dataset.lubricant import load_lubricant
+    from ehl_dataset.solver import solve_contact
+    from ehl_dataset.validation import check_finite
+
+    for name in ("p_h_gpa", "r_eq_mm", "u_r", "sr", "temp_c", "rq1_um", "rq2_um"):
+        check_finite(name, getattr(args, name))
+    level = get_level(args.level)
+    lubricant = load_lubricant(args.lubricant)
+    case = ContactCase.from_engineering(args.p_h_gpa, args.r_eq_mm, args.u_r, args.sr, args.temp_c,
+                                        args.rq1_um, args.rq2_um)
+    lubricant.check_temperature(case.temperature)
+    effects = Effects.smooth_steady(forced="effects=smooth") if args.effects == "smooth" else args.effects
+    result = solve_contact(case, lubricant, level.name, effects)
+    payload = {
+        "mu": result.mu,
+        "mu_std": result.mu_std,
+        "h_min_m": result.h_min,
+        "h_central_m": result.h_central,
+        "p_max_pa": result.p_max,
+        "lambda_bar": result.lambda_bar if math.isfinite(result.lambda_bar) else None,
+        "asperity_load_share": result.asperity_load_share,
+        "converged": result.converged,
+        "iterations": result.iterations,
+        "wall_time_s": result.wall_time,
+        "level": result.level,
+        "effects": result.effects,
+        "residuals": result.residuals,
+        "message": result.message,
+        "load_per_length_n_m": case.load_per_length,
+        "half_width_m": case.half_width,
+        "lubricant": lubricant.name,
+    }
+    from workflows.cli import emit
+
+    emit(payload, args.json, _human)
+    return 0 if result.converged else 1
+
+
+def _human(d: dict) -> str:
+    lam = "inf (smooth)" if d["lambda_bar"] is None else f"{d['lambda_bar']:.3f}"
+    status = "converged" if d["converged"] else f"NOT CONVERGED ({d['message']})"
+    lines = [
+        f"mu            {d['mu']:.5f}" + (f"  (std {d['mu_std']:.5f})" if d["mu_std"] else ""),
+        f"h_min         {d['h_min_m'] * 1e9:.2f} nm",
+        f"h_central     {d['h_central_m'] * 1e9:.2f} nm",
+        f"p_max         {d['p_max_pa'] / 1e9:.4f} GPa",
+        f"lambda_bar    {lam}",
+        f"status        {status} after {d['iterations']} iterations, {d['wall_time_s'] * 1e3:.1f} ms",
+        f"level         {d['level']}; effects {', '.join(k for k in ('roughness', 'transient', 'shear_thinning', 'compressibility') if d['effects'].get(k))}",
+    ]
+    return "\n".join(lines)
