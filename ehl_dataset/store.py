@@ -341,6 +341,10 @@ class DatasetStore:
                 raise _bad_file(self.path, f"column 'points/{name}' is missing")
             if group[name].shape != (n,):
                 raise _bad_file(self.path, f"column 'points/{name}' has shape {group[name].shape}, expected ({n},)")
+            if self.writable and group[name].chunks is not None:
+                raise InputError("dataset file", str(self.path), "a file written by gearloss (contiguous layout)",
+                                 f"column {name!r} is chunked: a repacked/compressed copy is read-only, "
+                                 "resume the original")
 
     # -- metadata ------------------------------------------------------------------------------------------------
     @property

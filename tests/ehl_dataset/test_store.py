@@ -217,3 +217,19 @@ def test_long_texts_fit_their_columns(tmp_path, plan, lubricant):
         store.record(0, status=FAILED, error="start " + "é" * 1000 + " end")
     error = read_table(path, status="failed")["error"][0]
     assert len(error.encode()) <= ERROR_WIDTH and error.startswith("start") and error.endswith("end")
+
+
+def test_a_compressed_copy_is_readable_but_not_resumable(tmp_path, plan, lubricant):
+    """Archiving with gzip (as h5repack would) keeps the file readable; the writer refuses chunked layouts."""
+    path, packed = tmp_path / "run.h5", tmp_path / "packed.h5"
+    with make_store(path, plan, lubricant) as store:
+        store.record(2, status=OK, record=record_of(2))
+    with h5py.File(path, "r") as src, h5py.File(packed, "w") as dst:
+        for key, value in src.attrs.items():
+            dst.attrs[key] = value
+        group = dst.create_group("points")
+        for name, data in src["points"].items():
+            group.create_dataset(name, data=data[...], dtype=data.dtype, compression="gzip", shuffle=True)
+    assert read_table(packed).equals(read_table(path))
+    with pytest.raises(InputError, match="chunked"):
+        DatasetStore.open(packed, "r+")
