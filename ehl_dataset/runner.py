@@ -447,6 +447,7 @@ def execute(store: DatasetStore, *, solver: str | Callable = DEFAULT_SOLVER, wor
         else:
             pending.appendleft(index)
 
+    crash = ""
     with _StopFlag() as stop:
         try:
             if warm_up and pending and not scheduler and workers > 0:
@@ -498,6 +499,9 @@ def execute(store: DatasetStore, *, solver: str | Callable = DEFAULT_SOLVER, wor
             for future, index in list(in_flight.items()):
                 if future.done() and future.exception() is None:
                     record(future.result(), failures.get(index, 0))
+        except BaseException as err:
+            crash = describe_exception(err)
+            raise
         finally:
             if executor is not None:
                 executor.shutdown(cancel=True)
@@ -506,7 +510,8 @@ def execute(store: DatasetStore, *, solver: str | Callable = DEFAULT_SOLVER, wor
             store_time += time.perf_counter() - t0
             wall = time.perf_counter() - started
             store.end_session(session, computed=computed, wall_time_s=round(wall, 3),
-                              interrupted=stop.signal_name, **(executor.describe() if executor else {}))
+                              interrupted=stop.signal_name or ("exception" if crash else None), error=crash,
+                              **(executor.describe() if executor else {}))
             reporter.close()
     counts = store.counts()
     status = store.status()
