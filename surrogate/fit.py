@@ -393,6 +393,8 @@ class SurrogateFit:
     stable: bool
     lambda_column_max_rel_diff: float | None = None
     prepared: PreparedTable | None = field(default=None, repr=False)
+    cv_predictions: np.ndarray | None = field(default=None, repr=False)
+    """Out-of-fold ln μ predictions for the rows of ``prepared`` (diagnostics)."""
 
     @property
     def params(self) -> dict[str, np.ndarray]:
@@ -446,7 +448,7 @@ def fit_surrogate(table: pd.DataFrame, lubricant, e_reduced: float, *, formula: 
     fit_time = time.perf_counter() - start
     params = {b: f.params for b, f in branches.items()}
     cv = cross_validate(formula, feats, ln_mu, k_folds=k_folds, seed=seed, blend_half_width=blend_half_width)
-    cv.pop("_predictions")
+    cv_predictions = cv.pop("_predictions")
     jump = branch_jump(formula, params, feats)
     used = prepared.table
     ranges = {}
@@ -460,4 +462,5 @@ def fit_surrogate(table: pd.DataFrame, lubricant, e_reduced: float, *, formula: 
         blend_half_width=float(blend_half_width), cv=cv, jump=jump, fit_time_s=fit_time, e_reduced=float(e_reduced),
         lubricant=lubricant.to_json_dict(), stable=stable,
         lambda_column_max_rel_diff=prepared.lambda_column_max_rel_diff, prepared=prepared,
+        cv_predictions=cv_predictions,
     )

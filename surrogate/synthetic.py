@@ -95,15 +95,42 @@ def eq9_table(inputs: pd.DataFrame, params: dict[str, np.ndarray], lubricant, e_
               noise_sd: float = 0.05, seed: int = 0, formula: Formula = LI_KAHRAMAN_2009) -> pd.DataFrame:
     """Table with ln μ = Eq. 9a (λ̄ ≤ 1) or Eq. 9b (λ̄ > 1) with ``params`` + N(0, noise_sd²), hard switch.
 
-    Rows with SR = 0 (outside Eq. 9) get μ = NaN and status ``ok``: the fit must exclude and count them.
+    Rows with SR = 0 (outside Eq. 9, ln SR = −∞) get the value at the smallest positive SR of the table, like a
+    solver that returns a finite rolling friction; the fit must exclude and count them.
     """
-    f = compute_features(*(inputs[c].to_numpy() for c in ("p_h", "r_eq", "u_r", "sr", "temperature", "rq1", "rq2")),
-                         lubricant, e_reduced)
+    sr = np.abs(inputs["sr"].to_numpy(dtype=float))
+    sr_min = sr[sr > 0].min()
+    f = compute_features(*(inputs[c].to_numpy() for c in ("p_h", "r_eq", "u_r")), np.maximum(sr, sr_min),
+                         *(inputs[c].to_numpy() for c in ("temperature", "rq1", "rq2")), lubricant, e_reduced)
     mixed = f["lam"] <= formula.lambda_threshold
     with np.errstate(divide="ignore", invalid="ignore"):
         ln_mu = np.where(mixed, branch_ln_mu(formula.terms["mixed"], params["mixed"], f),
                          branch_ln_mu(formula.terms["full_film"], params["full_film"], f))
     rng = np.random.default_rng(seed)
     ln_mu = ln_mu + rng.normal(0.0, noise_sd, size=ln_mu.shape)
-    mu = np.where(f["SR"] > 0, np.exp(ln_mu), np.nan)
-    return _with_outputs(inputs, mu, f)
+    return _with_outputs(inputs, np.exp(ln_mu), f)
+
+
+def write_hdf5(table: pd.DataFrame, path, lubricant, *, name: str = "synthetic", level: str = "synthetic"):
+    """Write a synthetic table into a stage-1 HDF5 store (:mod:`ehl_dataset.store`); rows with non-finite μ are
+    recorded as failed. For tests and demos of the dataset → coefficient-file path."""
+    import math
+
+    from ehl_dataset.factorial import POINT_DTYPE, POINT_FIELDS
+    from ehl_dataset.store import FAILED, OK, DatasetStore
+
+    points = np.empty(len(table), dtype=POINT_DTYPE)
+    for field in POINT_FIELDS:
+        points[field] = table[field].to_numpy(dtype=float)
+    factorial = {"name": name, "points_sha256": "", "source": "surrogate.synthetic"}
+    solver = {"function": "surrogate.synthetic", "version": "1", "level": level, "effects": "none"}
+    with DatasetStore.create(path, points, factorial=factorial, solver=solver, lubricant=lubricant.to_json_dict(),
+                             overwrite=True) as store:
+        for i, row in enumerate(table.itertuples(index=False)):
+            if math.isfinite(row.mu):
+                record = {"mu": row.mu, "mu_std": 0.0, "lambda_bar": row.lambda_bar, "converged": bool(row.converged),
+                          "iterations": 1, "level": level, "effects": {"synthetic": True}}
+                store.record(i, status=OK, record=record)
+            else:
+                store.record(i, status=FAILED, error="synthetic: no mu")
+    return path

@@ -1,0 +1,68 @@
+"""Reading a friction dataset for fitting: the HDF5 store of stage 1, or a CSV table with the same columns.
+
+This is the only IO of the surrogate stage besides coefficient files. HDF5 files carry their lubricant and solver
+configuration (:func:`ehl_dataset.store.read_metadata`); a CSV table needs the lubricant from the caller. The
+contacts of stage 1 use the default materials (steel on steel, E = 206 GPa, ν = 0.3) unless the solver
+configuration records ``e_reduced_pa``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import pandas as pd
+
+from ehl_dataset.lubricant import Lubricant, load_lubricant, lubricant_from_dict
+from ehl_dataset.materials import STEEL, reduced_modulus
+from ehl_dataset.validation import InputError
+
+from .coefficients import file_sha256
+
+HDF5_SUFFIXES = (".h5", ".hdf5")
+
+
+@dataclass
+class Dataset:
+    """A table of contact results (SI columns of the store), its lubricant, E' [Pa] and provenance."""
+
+    table: pd.DataFrame
+    lubricant: Lubricant
+    e_reduced: float
+    source: dict[str, Any]
+
+
+def load_dataset(path: str | Path, lubricant: str | Path | Lubricant | None = None) -> Dataset:
+    """Load every row (all statuses: the fit counts what it excludes) of an HDF5 dataset or a CSV table."""
+    path = Path(path)
+    if not path.is_file():
+        raise InputError("dataset", str(path), "an existing HDF5 (.h5) dataset file or a CSV table")
+    source: dict[str, Any] = {"path": str(path), "sha256": file_sha256(path)}
+    if path.suffix.lower() in HDF5_SUFFIXES:
+        from ehl_dataset.store import read_metadata, read_table
+
+        meta = read_metadata(path)
+        table = read_table(path, status=None)
+        lub = lubricant_from_dict(meta["lubricant"], origin=f"{path} [lubricant]")
+        if lubricant is not None:
+            raise InputError("lubricant", str(lubricant), "no --lubricant for an HDF5 dataset (it records its own)")
+        solver = meta.get("solver") or {}
+        e_reduced = float(solver.get("e_reduced_pa", reduced_modulus(STEEL, STEEL)))
+        source.update(format="hdf5", n_points=int(meta["n_points"]), counts=meta.get("counts"),
+                      accuracy_level=solver.get("level"), effects=solver.get("effects"),
+                      solver_version=solver.get("version"),
+                      factorial=(meta.get("factorial") or {}).get("name"), created=meta.get("created"),
+                      git_revision=meta.get("git_revision"), dataset_package_version=meta.get("package_version"))
+    elif path.suffix.lower() == ".csv":
+        try:
+            table = pd.read_csv(path)
+        except (pd.errors.ParserError, UnicodeDecodeError) as err:
+            raise InputError("dataset", str(path), "a readable CSV table", str(err)) from None
+        lub = lubricant if isinstance(lubricant, Lubricant) else load_lubricant(lubricant or "atf")
+        e_reduced = reduced_modulus(STEEL, STEEL)
+        levels = sorted(set(table["level"].astype(str))) if "level" in table.columns else []
+        source.update(format="csv", n_points=int(len(table)), accuracy_level=",".join(levels) or None)
+    else:
+        raise InputError("dataset", str(path), f"a file ending in {HDF5_SUFFIXES} or .csv")
+    return Dataset(table, lub, e_reduced, source)

@@ -1,0 +1,185 @@
+"""``gearloss surrogate fit|predict|compare``: lubricant friction surrogates (stage 2, docs/surrogate.md)."""
+
+from __future__ import annotations
+
+import sys
+
+
+def register(subparsers) -> None:
+    parser = subparsers.add_parser("surrogate", help="fit, evaluate and compare friction surrogates (paper Eq. 9)")
+    sub = parser.add_subparsers(dest="surrogate_command", metavar="COMMAND")
+    parser.set_defaults(handler=lambda args: parser.print_help() or 2)
+
+    fit = sub.add_parser("fit", help="fit the two-branch ln mu regression to a dataset and write a coefficient file")
+    fit.add_argument("dataset", help="HDF5 dataset (gearloss dataset run) or CSV table with the same columns")
+    fit.add_argument("--out", required=True, help="coefficient file to write (NAME.json; NAME.summary.txt beside)")
+    fit.add_argument("--lubricant", default=None, help="lubricant name or TOML file (CSV tables only)")
+    fit.add_argument("--k-folds", type=int, default=5, help="cross-validation folds (default 5)")
+    fit.add_argument("--seed", type=int, default=0, help="seed of the CV shuffle (default 0)")
+    fit.add_argument("--blend", type=float, default=0.1,
+                     help="half width of the lambda band where the branches are blended (0 = hard switch; 0.1)")
+    fit.add_argument("--allow-unstable", action="store_true", help="write the file even if the fit is unstable")
+    fit.add_argument("--figures", default=None, metavar="DIR", help="also write diagnostic figures into DIR")
+    fit.add_argument("--json", action="store_true", help="print one JSON object")
+    fit.set_defaults(handler=_fit)
+
+    pred = sub.add_parser("predict", help="friction coefficient of one contact from a coefficient file")
+    pred.add_argument("coefficients", help="coefficient file (path or shipped name)")
+    pred.add_argument("--p-h-gpa", type=float, required=True, help="maximum Hertz pressure [GPa]")
+    pred.add_argument("--r-eq-mm", type=float, required=True, help="equivalent radius [mm]")
+    pred.add_argument("--u-r", type=float, required=True, help="rolling velocity (u1 + u2)/2 [m/s]")
+    pred.add_argument("--sr", type=float, required=True, help="slide-to-roll ratio [-]")
+    pred.add_argument("--temp-c", type=float, required=True, help="oil inlet temperature [°C]")
+    pred.add_argument("--rq1-um", type=float, required=True, help="RMS roughness of surface 1 [µm]")
+    pred.add_argument("--rq2-um", type=float, required=True, help="RMS roughness of surface 2 [µm]")
+    pred.add_argument("--json", action="store_true", help="print one JSON object")
+    pred.set_defaults(handler=_predict)
+
+    cmp_ = sub.add_parser("compare", help="Eq. 9 vs scikit-learn vs published formulas: CV error and speed")
+    cmp_.add_argument("dataset", help="HDF5 dataset or CSV table")
+    cmp_.add_argument("--lubricant", default=None, help="lubricant name or TOML file (CSV tables only)")
+    cmp_.add_argument("--k-folds", type=int, default=5, help="cross-validation folds (default 5)")
+    cmp_.add_argument("--seed", type=int, default=0, help="seed of the CV shuffle (default 0)")
+    cmp_.add_argument("--blend", type=float, default=0.1, help="blend half width for Eq. 9 (default 0.1)")
+    cmp_.add_argument("--json", action="store_true", help="print one JSON object")
+    cmp_.set_defaults(handler=_compare)
+
+
+def _check_folds(k: int) -> None:
+    from ehl_dataset.validation import InputError
+
+    if k < 2:
+        raise InputError("k_folds", k, "an integer >= 2")
+
+
+def _fit(args) -> int:
+    import warnings
+
+    from surrogate.coefficients import summary_path, write_coefficients
+    from surrogate.dataset_io import load_dataset
+    from surrogate.fit import fit_surrogate
+    from workflows.cli import emit
+
+    _check_folds(args.k_folds)
+    data = load_dataset(args.dataset, args.lubricant)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        fit = fit_surrogate(data.table, data.lubricant, data.e_reduced, k_folds=args.k_folds, seed=args.seed,
+                            blend_half_width=args.blend, allow_unstable=args.allow_unstable)
+    path = write_coefficients(fit, args.out, source=data.source)
+    figures = []
+    if args.figures:
+        from surrogate.diagnostics import plot_figures
+
+        figures = [str(p) for p in plot_figures(fit, args.figures, title=f"{data.source['path']}")]
+    notes = [str(w.message) for w in caught]
+    for note in notes:
+        print(f"gearloss: warning: {note}", file=sys.stderr)
+    payload = {
+        "coefficients_path": str(path),
+        "summary_path": str(summary_path(path)),
+        "n_input_rows": fit.n_input_rows,
+        "n_used": fit.n_used,
+        "exclusions": fit.exclusions,
+        "stable": fit.stable,
+        "branches": {b: {"n_obs": f.n_obs, "adj_r2": f.adj_r2, "resid_std_error": f.resid_std_error,
+                         "condition_number_standardized": f.condition_number_standardized,
+                         "max_vif": max(f.vif.values()) if f.vif else None, "messages": f.messages}
+                     for b, f in fit.branches.items()},
+        "cv_rmse_ln_mu": fit.cv["overall"]["rmse_ln_mu"],
+        "cv_mean_rel_err_mu": fit.cv["overall"]["mean_rel_err_mu"],
+        "jump_at_lambda_1": fit.jump,
+        "accuracy_level": data.source.get("accuracy_level"),
+        "figures": figures,
+        "warnings": notes,
+        "wall_time_s": fit.fit_time_s,
+    }
+    emit(payload, args.json, _fit_text)
+    return 0
+
+
+def _fit_text(p) -> str:
+    lines = [f"wrote {p['coefficients_path']} (+ {p['summary_path']})",
+             f"rows: {p['n_input_rows']} in, {p['n_used']} used; excluded "
+             + ", ".join(f"{k} {v}" for k, v in p["exclusions"].items() if v)]
+    for branch, b in p["branches"].items():
+        lines.append(f"{branch:9s}: n = {b['n_obs']}, adjusted R² = {b['adj_r2']:.4f} (paper: ≈ 0.92), "
+                     f"residual SE ln mu = {b['resid_std_error']:.4f}, cond(standardised) = "
+                     f"{b['condition_number_standardized']:.3g}, max VIF = {b['max_vif']:.3g}")
+    lines.append(f"CV: RMSE ln mu = {p['cv_rmse_ln_mu']:.4f}, mean |rel err mu| = {p['cv_mean_rel_err_mu']:.2%}")
+    jump = p["jump_at_lambda_1"]
+    if jump.get("n"):
+        lines.append(f"jump of the unblended branches at lambda = 1: median |d ln mu| = "
+                     f"{jump['median_abs_delta_ln_mu']:.3f}, p95 = {jump['p95_abs_delta_ln_mu']:.3f}")
+    lines.append(f"stable: {p['stable']}")
+    lines.extend(f"figure: {f}" for f in p["figures"])
+    return "\n".join(lines)
+
+
+def _predict(args) -> int:
+    import time
+    import warnings
+
+    import numpy as np
+
+    from ehl_dataset.validation import check_range
+    from surrogate.evaluate import FrictionSurrogate
+    from workflows.cli import emit
+
+    start = time.perf_counter()
+    check_range("p_h_gpa", args.p_h_gpa, 0.0, 10.0, low_inclusive=False, unit="GPa")
+    check_range("r_eq_mm", args.r_eq_mm, 0.0, 1e4, low_inclusive=False, unit="mm")
+    check_range("u_r", args.u_r, 0.0, 200.0, low_inclusive=False, unit="m/s")
+    check_range("sr", args.sr, -2.0, 2.0)
+    check_range("temp_c", args.temp_c, -273.15, 726.0, low_inclusive=False, unit="C")
+    check_range("rq1_um", args.rq1_um, 0.0, 100.0, low_inclusive=False, unit="um")
+    check_range("rq2_um", args.rq2_um, 0.0, 100.0, low_inclusive=False, unit="um")
+    surrogate = FrictionSurrogate.load(args.coefficients)
+    inputs = (args.p_h_gpa * 1e9, args.r_eq_mm * 1e-3, args.u_r, args.sr, args.temp_c + 273.15,
+              args.rq1_um * 1e-6, args.rq2_um * 1e-6)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        feats = surrogate.features(*inputs)
+        mu = float(np.ravel(surrogate.mu(*inputs, warn=False))[0])
+    notes = [str(w.message) for w in caught]
+    for note in notes:
+        print(f"gearloss: warning: {note}", file=sys.stderr)
+    doc = surrogate.coefficients.document
+    lam = float(np.ravel(feats["lam"])[0])
+    payload = {
+        "mu": mu,
+        "lambda_bar": lam,
+        "branch": "mixed" if lam <= surrogate.formula.lambda_threshold else "full_film",
+        "h_min_dh_m": float(np.ravel(feats["h_min_dh"])[0]),
+        "extrapolated": bool(notes),
+        "warnings": notes,
+        "formula": doc["formula"]["name"],
+        "lubricant": surrogate.lubricant.name,
+        "coefficients": surrogate.coefficients.path,
+        "wall_time_s": time.perf_counter() - start,
+    }
+    emit(payload, args.json, lambda p: (f"mu = {p['mu']:.5f}  (lambda_bar = {p['lambda_bar']:.3f}, branch "
+                                        f"{p['branch']}, {p['formula']}, lubricant {p['lubricant']})"
+                                        + ("  [extrapolated]" if p["extrapolated"] else "")))
+    return 0
+
+
+def _compare(args) -> int:
+    import time
+    import warnings
+
+    from surrogate.compare import compare_models, format_table
+    from surrogate.dataset_io import load_dataset
+    from workflows.cli import emit
+
+    _check_folds(args.k_folds)
+    start = time.perf_counter()
+    data = load_dataset(args.dataset, args.lubricant)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        result = compare_models(data.table, data.lubricant, data.e_reduced, k_folds=args.k_folds, seed=args.seed,
+                                blend_half_width=args.blend)
+    result["dataset"] = data.source
+    result["wall_time_s"] = time.perf_counter() - start
+    emit(result, args.json, format_table)
+    return 0
