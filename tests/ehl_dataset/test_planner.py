@@ -157,3 +157,31 @@ def test_shear_thinning_skip_agrees_with_full_model(level):
         if factor <= 1:
             assert d_mu <= limits.tolerance and d_h <= limits.tolerance
     assert changes[-1] > changes[0]
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("level", ["fast", "standard"])
+def test_roughness_skip_agrees_with_full_model(level):
+    """Roughness skip (the planner's big saving): a contact (1 GPa, 20 mm, 10 m/s, SR 0.3, 50 °C) with Rq1 = Rq2 set
+    for λ̄ = 2, 3 and 5 around the threshold λ̄ = 3. Where the planner solves it steady and smooth (λ̄ ≥ 3), μ agrees
+    with the transient rough solve (effects=full) within the level's tolerance; below the threshold it is allowed
+    to differ (roughness and asperity contact matter there: paper Fig. 2, the steep branch ends near λ̄ = 1)."""
+    solve = _solver()
+    pytest.importorskip("ehl_dataset.ehl_transient")
+    limits = THRESHOLDS[level]
+    smooth_case = case(1.0, 20, 10, 0.3, 50, 0, 0)
+    h_dh = dimensionless_numbers(smooth_case, ATF)["h_min_dh_m"]
+    smooth = solve(smooth_case, ATF, level, "auto")
+    assert smooth.converged and not smooth.effects["roughness"]
+    for lam in (2.0, limits.lambda_smooth, 5.0):
+        rq = h_dh / lam / math.sqrt(2)
+        rough_case = ContactCase(smooth_case.p_h, smooth_case.r_eq, smooth_case.u_r, smooth_case.sr,
+                                 smooth_case.temperature, rq, rq)
+        planned = solve(rough_case, ATF, level, "auto")
+        assert planned.effects["roughness"] is (lam < limits.lambda_smooth)
+        if lam < limits.lambda_smooth:
+            continue
+        assert planned.mu == pytest.approx(smooth.mu, rel=1e-12)
+        full = solve(rough_case, ATF, level, "full")
+        assert full.converged, full.message
+        assert abs(planned.mu - full.mu) / full.mu <= limits.tolerance
