@@ -1,0 +1,175 @@
+"""``gearloss gear evaluate``: loaded tooth contact of one gear pair over a mesh cycle.
+
+The design is given exactly as for ``gearloss gear geometry`` (``--design FILE.toml``, the paper's parametrisation
+``--teeth --pressure-angle-deg --helix-angle-deg --working-depth [--center-distance-mm --face-width-mm]`` or a
+general pair ``--teeth1 --teeth2 --module-mm ...``); the operating point by ``--torque-nm --speed-rpm``; the flank
+modifications by ``--profile-crown-um --lead-crown-um --lead-slope-um --tip-relief-um --tip-relief-length-mm``
+(per gear, default none); the resolution by ``--slices --positions``. Prints peak-to-peak transmission error,
+maximum contact pressure and root stress with the mesh positions where they occur, the mesh stiffness, and the
+ISO 6336 nominal values alongside; ``--json`` prints one JSON object in SI units.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+
+from .cli import emit
+
+
+def _add_design_options(parser: argparse.ArgumentParser) -> None:
+    """The design options of ``gear geometry`` (read by ``workflows.cli_gear_geometry.build_pair``)."""
+    source = parser.add_argument_group("design source (one of)")
+    source.add_argument("--design", metavar="FILE", help="design TOML file with a [design] table")
+    paper = parser.add_argument_group("paper parametrisation (identical gears, 1:1, standard centre distance)")
+    paper.add_argument("--teeth", type=int, help="number of teeth N of each gear")
+    paper.add_argument("--working-depth", type=float, help="working depth ratio Λ_wd (whole depth / m_n)")
+    general = parser.add_argument_group("general pair")
+    general.add_argument("--teeth1", type=int, help="teeth of gear 1 (pinion, driving)")
+    general.add_argument("--teeth2", type=int, help="teeth of gear 2")
+    general.add_argument("--module-mm", type=float, help="normal module m_n [mm]")
+    general.add_argument("--shift1", type=float, default=0.0, help="profile shift coefficient x1 (default 0)")
+    general.add_argument("--shift2", type=float, default=0.0, help="profile shift coefficient x2 (default 0)")
+    general.add_argument("--addendum-coefficient", type=float, default=1.0, help="basic rack h_aP/m_n (1.0)")
+    general.add_argument("--dedendum-coefficient", type=float, default=1.25, help="basic rack h_fP/m_n (1.25)")
+    general.add_argument("--no-tip-reduction", action="store_true",
+                         help="keep the full addendum of shifted gears (no k·m_n tip reduction)")
+    common = parser.add_argument_group("common")
+    common.add_argument("--pressure-angle-deg", type=float, help="normal pressure angle [deg]")
+    common.add_argument("--helix-angle-deg", type=float, help="helix angle [deg] (0 = spur)")
+    common.add_argument("--face-width-mm", type=float, help="face width [mm] (paper: 25)")
+    common.add_argument("--center-distance-mm", type=float,
+                        help="operating centre distance [mm] (paper: 91.5; general: zero backlash if omitted)")
+    common.add_argument("--root-fillet-coefficient", type=float,
+                        help="generating rack tip radius ρ_fP/m_n (paper default 0.25, general 0.38)")
+    common.add_argument("--thickness-allowance-mm", type=float,
+                        help="normal tooth thinning A_sn of each gear [mm]")
+
+
+def register(gear_subparsers) -> None:
+    parser = gear_subparsers.add_parser(
+        "evaluate", help="load distribution, transmission error and stresses over a mesh cycle",
+        description="Loaded tooth contact of one gear pair (slice model, Conry-Seireg complementarity): "
+                    "peak-to-peak transmission error, max Hertz pressure, max root stress, mesh stiffness.")
+    try:  # share the option definitions with `gear geometry` when it exposes them
+        from .cli_gear_geometry import add_design_options
+    except ImportError:
+        add_design_options = _add_design_options
+    add_design_options(parser)
+    load = parser.add_argument_group("operating point and modifications")
+    load.add_argument("--torque-nm", type=float, default=250.0, help="input torque on gear 1 [N·m] (default 250)")
+    load.add_argument("--speed-rpm", type=float, default=4000.0, help="speed of gear 1 [rpm] (default 4000)")
+    load.add_argument("--profile-crown-um", type=float, default=0.0, help="profile crown M_P per gear [µm]")
+    load.add_argument("--lead-crown-um", type=float, default=0.0, help="lead crown M_L per gear [µm]")
+    load.add_argument("--lead-slope-um", type=float, default=0.0,
+                      help="lead slope / misalignment f_Hβ across the face [µm] (sign: + opens the far end)")
+    load.add_argument("--tip-relief-um", type=float, default=0.0, help="linear tip relief C_a per gear [µm]")
+    load.add_argument("--tip-relief-length-mm", type=float, default=0.0,
+                      help="roll length of the tip relief per gear [mm]")
+    model = parser.add_argument_group("model and resolution")
+    model.add_argument("--slices", type=int, default=30, help="slices across the face (default 30)")
+    model.add_argument("--positions", type=int, default=24, help="mesh positions per cycle (default 24)")
+    model.add_argument("--outputs", default="te,stresses",
+                       help="comma-separated subset of te,stresses to compute (default both; '' for loads only)")
+    model.add_argument("--contact-model", choices=("weber", "linear"), default="weber",
+                       help="Hertzian contact compliance (default weber)")
+    model.add_argument("--coupling-length-factor", type=float, default=1.0,
+                       help="face-coupling length in tooth depths (default 1)")
+    parser.add_argument("--per-position", action="store_true", help="include per-position arrays in the output")
+    parser.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
+    parser.set_defaults(handler=run_evaluate)
+
+
+def _pair_from_args(args):
+    from .cli_gear_geometry import build_pair
+
+    return build_pair(args)
+
+
+def run_evaluate(args: argparse.Namespace) -> int:
+    import time
+
+    import numpy as np
+
+    from ehl_dataset.validation import InputError, check_range
+    from efficiency import iso6336
+    from efficiency.mesh_cycle import MeshOptions, evaluate_mesh
+    from efficiency.modifications import Modifications
+
+    started = time.perf_counter()
+    pair = _pair_from_args(args)
+    torque = check_range("torque-nm", args.torque_nm, 0.0, 1e7, low_inclusive=False, unit="N·m")
+    speed = check_range("speed-rpm", args.speed_rpm, 0.0, 1e6, low_inclusive=False, unit="rpm")
+    outputs = frozenset(o.strip() for o in args.outputs.split(",") if o.strip())
+    try:
+        mods = Modifications(
+            profile_crown=args.profile_crown_um * 1e-6, lead_crown=args.lead_crown_um * 1e-6,
+            lead_slope=args.lead_slope_um * 1e-6, tip_relief=(args.tip_relief_um * 1e-6,) * 2,
+            tip_relief_length=(args.tip_relief_length_mm * 1e-3,) * 2)
+    except InputError as err:  # name the CLI option, not the field
+        raise InputError(err.parameter.replace("_", "-") + "(SI)", err.value, err.accepted) from None
+    options = MeshOptions(positions=args.positions, slices=args.slices, outputs=outputs,
+                          contact_model=args.contact_model, coupling_length_factor=args.coupling_length_factor)
+    result = evaluate_mesh(pair, torque, speed_rad_s=speed * math.pi / 30.0, modifications=mods, options=options)
+
+    kin = result.kinematics
+    payload = {
+        "torque_nm": torque, "speed_rpm": speed,
+        "profile_crown_m": mods.profile_crown, "lead_crown_m": mods.lead_crown, "lead_slope_m": mods.lead_slope,
+        "positions": int(kin.shape[0]), "slices": int(kin.shape[2]), "contact_model": options.contact_model,
+        "normal_load_n": result.normal_load,
+        "mesh_stiffness_mean_n_per_m": float(np.mean(result.mesh_stiffness)),
+        "mesh_stiffness_per_width_n_per_m2": result.mesh_stiffness_per_width,
+        "max_load_per_length_n_per_m": float(result.load_per_length.max()),
+        "converged": result.converged, "active_set_iterations": int(result.iterations.sum()),
+        "equilibrium_residual": result.equilibrium_residual, "max_penetration_m": result.max_penetration,
+    }
+    if result.te_peak_to_peak is not None:
+        payload["te_pp_m"] = result.te_peak_to_peak
+        payload["te_mean_m"] = float(result.transmission_error.mean())
+    if result.sigma_c_max is not None:
+        payload.update(
+            sigma_c_max_pa=result.sigma_c_max,
+            sigma_c_position_rad=float(kin.mesh_angle[result.sigma_c_position]),
+            sigma_b_max_pa=result.sigma_b_max, sigma_b_gear=result.sigma_b_position[0],
+            sigma_b_position_rad=float(kin.mesh_angle[result.sigma_b_position[1]]))
+    try:
+        ref = iso6336.reference_values(pair, torque)
+        payload["iso6336"] = {k: ref[k] for k in ("sigma_h0_pa", "sigma_f0_1_pa", "sigma_f0_2_pa",
+                                                  "c_single_n_per_m2", "c_gamma_alpha_n_per_m2")}
+    except InputError as err:
+        payload["iso6336"] = {"error": str(err)}
+    if args.per_position:
+        payload["mesh_angle_rad"] = kin.mesh_angle
+        payload["mesh_stiffness_n_per_m"] = result.mesh_stiffness
+        if result.transmission_error is not None:
+            payload["transmission_error_m"] = result.transmission_error
+        payload["loaded_points"] = (result.loads > 0).sum(axis=(1, 2))
+    payload["model_time_s"] = result.wall_time_s
+    payload["wall_time_s"] = time.perf_counter() - started
+    emit(payload, args.json, _human)
+    return 0 if result.converged else 3
+
+
+def _human(p: dict) -> str:
+    lines = [
+        f"torque {p['torque_nm']:.4g} N·m at {p['speed_rpm']:.5g} rpm; M_P {p['profile_crown_m'] * 1e6:.3g} µm, "
+        f"M_L {p['lead_crown_m'] * 1e6:.3g} µm, lead slope {p['lead_slope_m'] * 1e6:.3g} µm; "
+        f"{p['positions']} positions × {p['slices']} slices, contact model {p['contact_model']}",
+        f"normal load W = {p['normal_load_n']:.1f} N, max line load {p['max_load_per_length_n_per_m'] / 1e3:.1f} N/mm",
+        f"mesh stiffness (cycle mean) {p['mesh_stiffness_per_width_n_per_m2'] / 1e9:.2f} N/(mm·µm)",
+    ]
+    if "te_pp_m" in p:
+        lines.append(f"transmission error peak-to-peak {p['te_pp_m'] * 1e6:.3f} µm (mean {p['te_mean_m'] * 1e6:.2f} µm)")
+    if "sigma_c_max_pa" in p:
+        lines.append(f"max contact pressure σ_c {p['sigma_c_max_pa'] / 1e6:.0f} MPa at φ = "
+                     f"{p['sigma_c_position_rad'] * 1e3:.2f} mrad")
+        lines.append(f"max root stress σ_b {p['sigma_b_max_pa'] / 1e6:.0f} MPa (gear {p['sigma_b_gear']}) at φ = "
+                     f"{p['sigma_b_position_rad'] * 1e3:.2f} mrad")
+    iso = p.get("iso6336", {})
+    if "sigma_h0_pa" in iso:
+        lines.append(f"ISO 6336 nominal: σ_H0 {iso['sigma_h0_pa'] / 1e6:.0f} MPa, σ_F0 {iso['sigma_f0_1_pa'] / 1e6:.0f}"
+                     f"/{iso['sigma_f0_2_pa'] / 1e6:.0f} MPa, c_γα {iso['c_gamma_alpha_n_per_m2'] / 1e9:.2f} N/(mm·µm)")
+    lines.append(f"converged {p['converged']} (equilibrium residual {p['equilibrium_residual']:.1e}, "
+                 f"{p['active_set_iterations']} active-set iterations), {p['wall_time_s'] * 1e3:.0f} ms")
+    return "\n".join(lines)
