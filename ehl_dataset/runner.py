@@ -367,6 +367,33 @@ def resume_run(path, *, workers: int = 1, scheduler: str | None = None, solver: 
         return execute(store, solver=solver_used, workers=workers, scheduler=scheduler, kind="resume", **options)
 
 
+def warm_up_indices(points: np.ndarray, candidates: list[int], lubricant: dict, level: str, effects: str,
+                    solver) -> list[int]:
+    """Points the coordinator computes before the workers start, so each compiled code path is built once.
+
+    For the default solver with ``effects="auto"``: the first candidate of each distinct plan (roughness,
+    transient, shear thinning) the planner makes among ``candidates``; otherwise just the first candidate.
+    """
+    if not candidates:
+        return []
+    if solver_reference(solver) != DEFAULT_SOLVER or effects != "auto":
+        return candidates[:1]
+    try:
+        from .contact import ContactCase
+        from .planner import plan_effects
+    except ImportError:
+        return candidates[:1]
+    lub = _lubricant(canonical_json(lubricant))
+    chosen: dict[tuple, int] = {}
+    for index in candidates:
+        try:
+            plan = plan_effects(ContactCase(*(float(v) for v in points[index])), lub, level)
+        except Exception:  # noqa: BLE001 - the point will report its own error when computed
+            continue
+        chosen.setdefault((plan.roughness, plan.transient, plan.shear_thinning), index)
+    return sorted(chosen.values()) or candidates[:1]
+
+
 def _check_options(workers: int, options: dict) -> None:
     if isinstance(workers, bool) or not isinstance(workers, int) or workers < 0:
         raise InputError("workers", workers, "an integer >= 0 (0: compute in this process)")
@@ -392,8 +419,9 @@ def execute(store: DatasetStore, *, solver: str | Callable = DEFAULT_SOLVER, wor
     ``workers``: local processes (0: in this process); ``scheduler``: a Dask scheduler address or
     ``"dask-local"`` (then ``workers`` sizes the LocalCluster). ``window``: tasks in flight (default 4 per worker).
     ``max_attempts``: computations of a point whose *task* fails (worker death) before it is recorded failed.
-    ``warm_up``: with local execution, compute the first pending point in this process before the workers start,
-    so numba-compiled code is in the cache (and, with fork, in memory) for every worker.
+    ``warm_up``: with local execution, compute in this process, before the workers start, one pending point of
+    each distinct effect plan (:func:`warm_up_indices`), so numba-compiled code is in the cache (and, with fork,
+    in memory) for every worker.
     """
     from .executors import make_executor
 
@@ -451,8 +479,12 @@ def execute(store: DatasetStore, *, solver: str | Callable = DEFAULT_SOLVER, wor
     with _StopFlag() as stop:
         try:
             if warm_up and pending and not scheduler and workers > 0:
-                index = pending.popleft()
-                record(compute_point(task(index)))
+                for index in warm_up_indices(points, list(pending)[:500], store.lubricant, level, effects,
+                                             solver):
+                    pending.remove(index)
+                    record(compute_point(task(index)))
+                    if stop.signal_name is not None:
+                        break
             if pending and stop.signal_name is None:
                 executor = make_executor(workers, scheduler)
             window = window or 4 * (executor.n_workers if executor else 1)

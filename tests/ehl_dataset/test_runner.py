@@ -309,3 +309,28 @@ def test_real_solver_end_to_end(tmp_path):
                                      case.load_per_length)
     assert row["lambda_bar"] == pytest.approx(h_dh / case.s_c, rel=1e-9)
     assert (table["mu"] > 0).all() and (table["mu"] < lub.mu_d).all() and (table["h_min"] > 0).all()
+
+
+def test_warm_up_covers_each_distinct_effect_plan_once():
+    """The coordinator pre-computes one point per distinct plan of the planner (so each compiled path is built
+    once before the workers fork); injected solvers get just the first point."""
+    from ehl_dataset.contact import ContactCase
+    from ehl_dataset.factorial import load_factorial
+    from ehl_dataset.lubricant import load_lubricant
+    from ehl_dataset.planner import plan_effects
+    from ehl_dataset.runner import DEFAULT_SOLVER, warm_up_indices
+
+    plan, lub = load_factorial("quick"), load_lubricant("atf")
+    points = plan.points()
+    candidates = list(range(plan.size))
+    chosen = warm_up_indices(points, candidates, lub.to_json_dict(), "fast", "auto", DEFAULT_SOLVER)
+
+    def key(i):
+        e = plan_effects(ContactCase(*(float(v) for v in points[i])), lub, "fast")
+        return e.roughness, e.transient, e.shear_thinning
+
+    all_keys = {key(i) for i in candidates}
+    assert len(all_keys) >= 2 and sorted(key(i) for i in chosen) == sorted(all_keys)
+    assert all(key(i) != key(j) for i in chosen for j in chosen if i < j)
+    assert warm_up_indices(points, candidates, lub.to_json_dict(), "fast", "auto", analytic_solve) == [0]
+    assert warm_up_indices(points, candidates, lub.to_json_dict(), "fast", "full", DEFAULT_SOLVER) == [0]
