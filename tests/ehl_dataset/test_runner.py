@@ -334,3 +334,10 @@ def test_warm_up_covers_each_distinct_effect_plan_once():
     assert all(key(i) != key(j) for i in chosen for j in chosen if i < j)
     assert warm_up_indices(points, candidates, lub.to_json_dict(), "fast", "auto", analytic_solve) == [0]
     assert warm_up_indices(points, candidates, lub.to_json_dict(), "fast", "full", DEFAULT_SOLVER) == [0]
+
+
+def test_progress_bar_shows_rate_and_counts(tmp_path, plan):
+    stream = io.StringIO()
+    run_factorial(tmp_path / "r.h5", plan, workers=0, solver=raising_solve, progress="bar", stream=stream)
+    text = stream.getvalue()
+    assert "16/16" in text and "pt/s" in text and "failed=4" in text
