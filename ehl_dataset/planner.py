@@ -14,7 +14,7 @@ threshold says it does not change the result beyond the level's tolerance (the c
   flow shapes the film: in the Hertz zone the Poiseuille flow is negligible whatever its factor. Measured on 40
   random factorial points (docs/planner.md): switching the factor off changes h_min by ≤ 0.25 % and μ by ≤ 0.03 %
   at X_in ≤ 0.004, by up to 1.2 % at X_in ≈ 0.014 and 14 % at X_in ≈ 0.055, while the Eyring number at the Hertz
-  pressure, X_h = η(p_h)·|u_s|/(τ0·h_min,DH), does not predict the change (0.003 % at X_h = 1e5, 1.7 % at
+  pressure, X_h = η(p_h)·|u_s|/(τ0·h_min,DH), does not predict it (h_min: 0.0015 % at X_h = 1.9e5, 12 % at
   X_h = 274); X_h is recorded (it says how deep in the Eyring plateau the traction is), X_in decides.
   SR = 0 gives X = 0 (exact).
 * **compressibility** — Dowson–Higginson density change ρ(p_h)/ρ0 − 1 (paper Eq. 6) is recorded; compressibility
