@@ -449,7 +449,7 @@ def execute(store: DatasetStore, *, solver: str | Callable = DEFAULT_SOLVER, wor
     started = time.perf_counter()
     executor = None
     session = store.begin_session(kind=kind, workers=workers, scheduler=scheduler or "",
-                                  solver=solver_reference(solver), pid_host=socket.gethostname())
+                                  solver=solver_reference(solver))
     last_flush = time.monotonic()
 
     def record(result: dict, extra_attempts: int = 0) -> None:
