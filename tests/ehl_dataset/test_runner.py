@@ -14,14 +14,13 @@ import sys
 import time
 from pathlib import Path
 
-import numpy as np
 import pytest
 
 from ehl_dataset.factorial import factorial_from_dict
 from ehl_dataset.film_formulas import dowson_higginson_min_film
 from ehl_dataset.result import ContactResult
 from ehl_dataset.runner import resume_run, run_factorial
-from ehl_dataset.store import DatasetStore, read_metadata, read_table
+from ehl_dataset.store import read_metadata, read_table
 from ehl_dataset.validation import InputError, SolverError
 
 REPO = Path(__file__).resolve().parents[2]
