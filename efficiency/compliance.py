@@ -42,6 +42,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from numba import njit
 
 from ehl_dataset.materials import STEEL, Material, reduced_modulus
 from ehl_dataset.validation import check_range
@@ -153,6 +154,33 @@ def weber_contact_compliance(load_per_length, r_eq, depth1, depth2, material1: M
         nu = mat.poisson_ratio
         log_term = np.log(np.maximum(2.0 * d / a, math.e))
         out = out + (1.0 - nu**2) / (math.pi * mat.youngs_modulus) * (2.0 * log_term - nu / (1.0 - nu))
+    return out
+
+
+def weber_log_terms(r_eq, depth1, depth2, material1: Material = STEEL, material2: Material = STEEL):
+    """Load-independent parts of Weber's compliance for :func:`weber_secant`: (L1, L2, k1, k2, q1, q2).
+
+    ln(2 d_i / a) = L_i − ½ ln w with L_i = ln(2 d_i) − ½ ln(8 R/(π E')); k_i = (1 − ν_i²)/(π E_i);
+    q_i = ν_i/(1 − ν_i).
+    """
+    e_red = reduced_modulus(material1, material2)
+    half_log = 0.5 * np.log(8.0 * np.asarray(r_eq, float) / (math.pi * e_red))
+    terms = []
+    for d in (depth1, depth2):
+        terms.append(np.log(2.0 * np.asarray(d, float)) - half_log)
+    ks = [(1.0 - m.poisson_ratio**2) / (math.pi * m.youngs_modulus) for m in (material1, material2)]
+    qs = [m.poisson_ratio / (1.0 - m.poisson_ratio) for m in (material1, material2)]
+    return terms[0], terms[1], ks[0], ks[1], qs[0], qs[1]
+
+
+@njit(cache=True)
+def weber_secant(w, l1, l2, k1, k2, q1, q2):
+    """Weber's secant compliance [m²/N] from the precomputed :func:`weber_log_terms` (same value as
+    :func:`weber_contact_compliance`, cheap enough for the inner iteration)."""
+    out = np.empty(w.size)
+    for i in range(w.size):
+        half = 0.5 * np.log(w[i])
+        out[i] = (k1 * (2.0 * max(l1[i] - half, 1.0) - q1) + k2 * (2.0 * max(l2[i] - half, 1.0) - q2))
     return out
 
 

@@ -25,6 +25,8 @@ from numba import njit
 
 from ehl_dataset.validation import SolverError, check_range
 
+from .compliance import weber_secant
+
 
 @dataclass(frozen=True)
 class ContactSolution:
@@ -96,6 +98,85 @@ def solve_contact(compliance: np.ndarray, separation: np.ndarray, total_load: fl
     return ContactSolution(loads=loads, approach=float(approach), gaps=gaps, stiffness=stiffness,
                            iterations=iteration, converged=bool(converged), equilibrium_residual=float(equilibrium),
                            max_penetration=penetration, min_load=float(loads.min()))
+
+
+def solve_contact_weber(tooth: np.ndarray, separation: np.ndarray, total_load: float, contact_terms, scale: float,
+                        load_per_length: np.ndarray, initial_loads: np.ndarray | None = None,
+                        tolerance: float = 1e-4, max_rounds: int = 50, gap_tolerance: float = 1e-12):
+    """The complementarity problem with Weber's load-dependent contact compliance, by secant iteration.
+
+    The compliance is ``tooth + diag(scale · c_H(w))`` with c_H [m²/N] from
+    :func:`efficiency.compliance.weber_secant` (``contact_terms`` from :func:`efficiency.compliance.weber_log_terms`)
+    and the load per unit contact-line length w = scale · F; ``scale`` = cos ψ_b / Δz [1/m] converts both.
+    ``load_per_length`` holds the starting w of every point [N/m] (e.g. the previous position's). Each round
+    solves the linear problem (warm-started) and updates c_H at the new loads (unloaded points keep theirs) until
+    the largest relative change of c_H at a loaded point is ≤ ``tolerance``; c_H varies like ln w, so this
+    contracts fast (4–6 rounds). Returns (ContactSolution, load_per_length, change).
+    """
+    total_load = check_range("total_load", total_load, 0.0, 1e12, low_inclusive=False, unit="N")
+    eps = np.ascontiguousarray(separation, dtype=float)
+    q = eps.size
+    if q == 0:
+        raise SolverError("no contact point on the active path of contact: the load cannot be carried")
+    loads = np.zeros(q)
+    if initial_loads is not None and np.sum(np.clip(initial_loads, 0, None)) > 0:
+        loads = np.clip(np.asarray(initial_loads, dtype=float), 0.0, None)
+        loads *= total_load / loads.sum()
+    else:
+        loads[int(np.argmin(eps))] = total_load
+    w = np.ascontiguousarray(load_per_length, dtype=float).copy()
+    l1, l2, k1, k2, q1, q2 = contact_terms
+    status, approach, stiffness, iterations, change, used = _weber_rounds(
+        np.ascontiguousarray(tooth), eps, total_load, loads, w, np.ascontiguousarray(l1),
+        np.ascontiguousarray(l2), k1, k2, q1, q2, scale, tolerance, max_rounds, gap_tolerance, 4 * q + 20, 8)
+    if status == _NOT_POSITIVE_DEFINITE:
+        raise SolverError("compliance matrix not positive definite on the active set")
+    compliance = tooth.copy()
+    compliance[np.diag_indices_from(compliance)] += used
+    gaps = compliance @ loads + eps - approach
+    penetration = float(max(-gaps.min(), 0.0))
+    equilibrium = abs(loads.sum() - total_load) / total_load
+    converged = (status == _CONVERGED and penetration <= gap_tolerance and equilibrium <= 1e-9
+                 and change <= tolerance)
+    sol = ContactSolution(loads=loads, approach=float(approach), gaps=gaps, stiffness=float(stiffness),
+                          iterations=int(iterations), converged=bool(converged),
+                          equilibrium_residual=float(equilibrium), max_penetration=penetration,
+                          min_load=float(loads.min()))
+    return sol, w, float(change)
+
+
+@njit(cache=True)
+def _weber_rounds(tooth, eps, total_load, loads, w, l1, l2, k1, k2, q1, q2, scale, tolerance, max_rounds,
+                  gap_tolerance, max_iterations, bulk_iterations):
+    """Secant rounds of :func:`solve_contact_weber`; ``loads`` and ``w`` are updated in place."""
+    n = eps.size
+    c_contact = scale * weber_secant(w, l1, l2, k1, k2, q1, q2)
+    status, approach, stiffness, total = 1, np.nan, np.nan, 0
+    change = np.inf
+    compliance = np.empty_like(tooth)
+    used = c_contact
+    for _ in range(max_rounds):
+        used = c_contact
+        compliance[:, :] = tooth
+        for i in range(n):
+            compliance[i, i] += c_contact[i]
+        status, approach, stiffness, iterations = _active_set(compliance, eps, total_load, loads, gap_tolerance,
+                                                              max_iterations, bulk_iterations)
+        total += iterations
+        if status == 2:
+            break
+        for i in range(n):
+            if loads[i] > 0.0:
+                w[i] = loads[i] * scale
+        updated = scale * weber_secant(w, l1, l2, k1, k2, q1, q2)
+        change = 0.0
+        for i in range(n):
+            if loads[i] > 0.0:
+                change = max(change, abs(updated[i] - c_contact[i]) / c_contact[i])
+        c_contact = updated
+        if change <= tolerance:
+            break
+    return status, approach, stiffness, total, change, used
 
 
 _CONVERGED, _NOT_CONVERGED, _NOT_POSITIVE_DEFINITE = 0, 1, 2

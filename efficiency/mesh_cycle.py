@@ -33,9 +33,9 @@ from ehl_dataset.materials import STEEL, Material, reduced_modulus
 from ehl_dataset.validation import InputError, check_range
 
 from .compliance import (DEFAULT_HUB_RATIO, centreline_depth, contact_compliance, face_coupling, root_bending_arm,
-                         tooth_compliance, weber_contact_compliance, whole_depth)
+                         tooth_compliance, weber_log_terms, whole_depth)
 from .kinematics import MeshKinematics, mesh_kinematics
-from .load_distribution import solve_contact
+from .load_distribution import solve_contact, solve_contact_weber
 from .modifications import Modifications, normal_separation
 
 OUTPUTS = frozenset({"te", "stresses"})
@@ -167,20 +167,17 @@ def evaluate_mesh(pair, torque: float, speed_rad_s: float = 1.0, modifications: 
     coupling = face_coupling(kin.z, width, options.coupling_length_factor * whole_depth(pair, 1)) / dz
     # Contact compliance per point [m/N] = c_H(w) cos ψ_b / Δz (per unit contact-line length → per slice load).
     nominal_w = normal_load * cos_b / (float(pair.contact_ratio) * width)
+    scale = cos_b / dz  # load per contact-line length = scale · F; point contact compliance = scale · c_H
     if options.contact_model == "weber":
         depth1 = np.zeros(kin.shape)
         depth2 = np.zeros(kin.shape)
         depth1[inside] = centreline_depth(pair, 1, kin.rho1[inside])
         depth2[inside] = centreline_depth(pair, 2, kin.rho2[inside])
-
-        def hertz(w, where):
-            return weber_contact_compliance(w, kin.r_eq_normal[where], depth1[where], depth2[where],
-                                            options.material1, options.material2) * cos_b / dz
+        log1, log2, k1, k2, q1, q2 = weber_log_terms(np.where(inside, kin.r_eq_normal, 1.0),
+                                                     np.where(inside, depth1, 1.0), np.where(inside, depth2, 1.0),
+                                                     options.material1, options.material2)
     else:
-        constant = contact_compliance(options.material1, options.material2) * cos_b / dz
-
-        def hertz(w, where):
-            return np.full(np.shape(w), constant)
+        constant = contact_compliance(options.material1, options.material2) * scale
 
     line = np.broadcast_to(np.arange(n_lines)[:, None], (n_lines, n_slices))
     slc = np.broadcast_to(np.arange(n_slices)[None, :], (n_lines, n_slices))
@@ -199,44 +196,32 @@ def evaluate_mesh(pair, torque: float, speed_rad_s: float = 1.0, modifications: 
     previous_w = np.full(n_lines * n_slices, nominal_w)
     for m in range(n_pos):
         flat = np.flatnonzero(inside[m].ravel())
-        where = (m,) + np.unravel_index(flat, (n_lines, n_slices))
         k_idx = line.ravel()[flat]
         j_idx = slc.ravel()[flat]
         a = root1[m].ravel()[flat]
         b = root2[m].ravel()[flat]
-        same_line = k_idx[:, None] == k_idx[None, :]
-        tooth = (np.outer(a, a) + np.outer(b, b)) * coupling[np.ix_(j_idx, j_idx)] * same_line
+        tooth = (np.outer(a, a) + np.outer(b, b)) * coupling[np.ix_(j_idx, j_idx)]
+        tooth *= k_idx[:, None] == k_idx[None, :]
         eps = separation[m].ravel()[flat]
-        w = previous_w[flat]
-        c_contact = hertz(w, where)
         warm = None if previous is None else previous.ravel()[flat]
-        total_iterations = 0
-        for _ in range(50):
-            compliance = tooth.copy()
-            compliance[np.diag_indices_from(compliance)] += c_contact
-            sol = solve_contact(compliance, eps, normal_load, initial_loads=warm)
-            total_iterations += sol.iterations
-            if options.contact_model == "linear":
-                change = 0.0
-                break
-            loaded = sol.loads > 0.0
-            w = np.where(loaded, sol.loads * cos_b / dz, w)
-            updated = hertz(w, where)
-            change = float(np.max(np.abs(updated[loaded] - c_contact[loaded]) / c_contact[loaded]))
-            c_contact = updated
-            warm = sol.loads
-            if change <= options.contact_tolerance:
-                break
+        if options.contact_model == "weber":
+            terms = (log1[m].ravel()[flat], log2[m].ravel()[flat], k1, k2, q1, q2)
+            sol, w, change = solve_contact_weber(tooth, eps, normal_load, terms, scale, previous_w[flat],
+                                                 initial_loads=warm, tolerance=options.contact_tolerance)
+            previous_w = np.full(n_lines * n_slices, nominal_w)
+            previous_w[flat] = w
+        else:
+            tooth[np.diag_indices_from(tooth)] += constant
+            sol = solve_contact(tooth, eps, normal_load, initial_loads=warm)
+            change = 0.0
         out = np.zeros(n_lines * n_slices)
         out[flat] = sol.loads
         loads[m] = out.reshape(n_lines, n_slices)
         previous = loads[m]
-        previous_w = np.full(n_lines * n_slices, nominal_w)
-        previous_w[flat] = w
         approach[m] = sol.approach
         stiffness[m] = sol.stiffness * cos_b**2
-        iterations[m] = total_iterations
-        converged &= sol.converged and change <= options.contact_tolerance
+        iterations[m] = sol.iterations
+        converged &= sol.converged
         equilibrium = max(equilibrium, sol.equilibrium_residual)
         penetration = max(penetration, sol.max_penetration)
         contact_residual = max(contact_residual, change)
