@@ -215,10 +215,22 @@ def _problem_on(x: np.ndarray, case: ContactCase, state: LubricantState, plan: E
                            shear=scales.shear)
 
 
-def steady_grid(lvl: AccuracyLevel, coarsening: float = 1.0) -> np.ndarray:
-    """The clustered steady grid of a level (``coarsening`` > 1 multiplies both spacings)."""
-    return clustered_grid(lvl.x_start, lvl.x_end, lvl.dx_fine * coarsening, lvl.dx_coarse * coarsening,
+def steady_grid(lvl: AccuracyLevel, coarsening: float = 1.0, h_c: float = math.inf) -> np.ndarray:
+    """The clustered steady grid of a level (``coarsening`` > 1 multiplies both spacings).
+
+    ``h_c`` is the expected dimensionless central film H_c = h_c r_eq/a²; the fine spacing is capped at
+    ``lvl.inlet_resolution``·H_c^(2/3), the length scale of the inlet zone at heavy load.
+    """
+    dx_fine = min(lvl.dx_fine, lvl.inlet_resolution * h_c ** (2.0 / 3.0))
+    dx_coarse = max(lvl.dx_coarse, dx_fine)
+    return clustered_grid(lvl.x_start, lvl.x_end, dx_fine * coarsening, dx_coarse * coarsening,
                           (lvl.inlet_band, lvl.outlet_band), lvl.transition)
+
+
+def moes_h_c(case: ContactCase, state: LubricantState, scales: ContactScales) -> float:
+    """Moes' central film in units of a²/r_eq (a scale for grids and initial guesses)."""
+    return float(moes_central_film(state.eta0, case.u_r, state.alpha1, case.e_reduced, case.r_eq,
+                                   case.load_per_length)) / scales.film_scale
 
 
 def solve_steady(case: ContactCase, state: LubricantState, lvl: AccuracyLevel, plan: Effects) -> ContactResult:
@@ -230,12 +242,13 @@ def solve_steady(case: ContactCase, state: LubricantState, lvl: AccuracyLevel, p
     """
     start = time.perf_counter()
     scales = ContactScales.of(case, state, plan.shear_thinning)
-    x = steady_grid(lvl)
+    h_c = moes_h_c(case, state, scales)
+    x = steady_grid(lvl, h_c=h_c)
     problem = _problem_on(x, case, state, plan, scales)
     record: dict = {}
     iterations = 0
     outcome = None
-    x_coarse = steady_grid(lvl, COARSENING)
+    x_coarse = steady_grid(lvl, COARSENING, h_c=h_c)
     if x_coarse.size < 0.6 * x.size:
         coarse = _problem_on(x_coarse, case, state, plan, scales)
         p0, h00 = _initial_guess(x_coarse, coarse, case, state, scales)
