@@ -74,6 +74,7 @@ def plot_figures(fit: SurrogateFit, out_dir: str | Path, *, prefix: str = "surro
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    from matplotlib.ticker import FixedLocator, FormatStrFormatter, NullFormatter
 
     from .model import predict_ln_mu
 
@@ -123,6 +124,11 @@ def plot_figures(fit: SurrogateFit, out_dir: str | Path, *, prefix: str = "surro
     ax.set_yscale("log")
     ax.set_xlim(lo, hi)
     ax.set_ylim(lo, hi)
+    ticks = [t for t in (0.002, 0.005, 0.01, 0.02, 0.05, 0.1, 0.2, 0.5) if lo <= t <= hi]
+    for axis in (ax.xaxis, ax.yaxis):
+        axis.set_major_locator(FixedLocator(ticks))
+        axis.set_major_formatter(FormatStrFormatter("%g"))
+        axis.set_minor_formatter(NullFormatter())
     ax.set_xlabel("computed μ (dataset)")
     ax.set_ylabel(f"predicted μ ({fit.cv['k']}-fold cross-validated)")
     cv = fit.cv["overall"]

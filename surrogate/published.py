@@ -112,18 +112,21 @@ def iso_14179_2_mu(w_prime, r_eq, u_r, eta0, rq1, rq2, x_l: float = 1.0):
 
 
 PUBLISHED_MODELS = ("xu_2007", "benedict_kelley_1961", "iso_tr_14179_2")
+ALIASES = {"xu2007": "xu_2007", "benedict_kelley": "benedict_kelley_1961", "iso14179": "iso_tr_14179_2"}
+"""Short names accepted by :func:`published_mu` (used by :mod:`efficiency.power_loss`)."""
 
 
 def published_mu(name: str, p_h, r_eq, u_r, sr, temperature, rq1, rq2, lubricant, e_reduced: float):
     """μ of a published formula for the surrogate's inputs (SI); η0 from ``lubricant`` at ``temperature`` [K]."""
     from .features import load_per_length, lubricant_properties
 
+    name = ALIASES.get(name, name)
+    if name not in PUBLISHED_MODELS:
+        raise InputError("model", name, f"one of {list(PUBLISHED_MODELS) + list(ALIASES)}")
     eta0, _ = lubricant_properties(lubricant, temperature)
     w_prime = load_per_length(p_h, r_eq, e_reduced)
     if name == "xu_2007":
         return xu_2007_mu(p_h, r_eq, u_r, sr, eta0, rq1, rq2)
     if name == "benedict_kelley_1961":
         return benedict_kelley_mu(w_prime, u_r, sr, eta0, rq1, rq2, mu_cap=lubricant.mu_d)
-    if name == "iso_tr_14179_2":
-        return iso_14179_2_mu(w_prime, r_eq, u_r, eta0, rq1, rq2)
-    raise InputError("model", name, f"one of {list(PUBLISHED_MODELS)}")
+    return iso_14179_2_mu(w_prime, r_eq, u_r, eta0, rq1, rq2)

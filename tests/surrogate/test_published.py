@@ -62,3 +62,20 @@ def test_iso_14179_2_in_published_units():
     rq = 0.5e-6 / RA_PER_RQ
     mu = iso_14179_2_mu(w_prime=3.0e5, r_eq=0.010, u_r=5.0, eta0=0.020, rq1=rq, rq2=rq)
     assert mu == pytest.approx(by_hand, rel=1e-12)
+
+
+def test_published_mu_uses_the_lubricant_viscosity_and_accepts_short_names(atf, e_reduced):
+    """published_mu maps the surrogate inputs: η0 = η(T) of the lubricant, W' = 2π r p²/E' (Hertz)."""
+    from surrogate.published import published_mu
+
+    p, r, u, sr, t, rq = 1.1e9, 0.015, 6.0, 0.25, 353.15, 0.3e-6
+    eta0 = float(atf.dynamic_viscosity(t))
+    w = 2 * math.pi * r * p**2 / e_reduced
+    assert published_mu("xu2007", p, r, u, sr, t, rq, rq, atf, e_reduced) == pytest.approx(
+        xu_2007_mu(p, r, u, sr, eta0, rq, rq), rel=1e-12)
+    assert published_mu("benedict_kelley", p, r, u, sr, t, rq, rq, atf, e_reduced) == pytest.approx(
+        benedict_kelley_mu(w, u, sr, eta0, rq, rq, mu_cap=atf.mu_d), rel=1e-12)
+    assert published_mu("iso_tr_14179_2", p, r, u, sr, t, rq, rq, atf, e_reduced) == pytest.approx(
+        iso_14179_2_mu(w, r, u, eta0, rq, rq), rel=1e-12)
+    with pytest.raises(InputError, match="model"):
+        published_mu("unknown", p, r, u, sr, t, rq, rq, atf, e_reduced)
