@@ -1,0 +1,122 @@
+"""Speed of one loaded mesh-cycle evaluation (load distribution + TE + stresses) and its scaling with resolution.
+
+Writes one JSON object (stdout, and ``--out FILE``, default benchmarks/results/gear.json) with medians over
+repeats and the machine noted:
+- time per full mesh-cycle evaluation of the paper's design D (M_P 15 µm, M_L 12 µm, 250 N·m) at the default
+  resolution (30 slices × 24 positions), for the Weber (default) and the linear contact model, and with only the
+  loads (no TE/stresses) requested;
+- the same over a sample of designs from the paper's design space (feasible ones only);
+- scaling with the number of slices S (at M = 24) and positions M (at S = 30), and the change of TE, σ_c, σ_b
+  against a fine 90 × 72 reference (accuracy versus time, DESIGN §1).
+
+Run: ``python benchmarks/bench_gear.py [--repeats 7] [--out benchmarks/results/gear.json]``
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import os
+import platform
+import statistics
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+
+def _median_time(fn, repeats: int) -> float:
+    times = []
+    for _ in range(repeats):
+        start = time.perf_counter()
+        fn()
+        times.append(time.perf_counter() - start)
+    return statistics.median(times)
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--repeats", type=int, default=7)
+    parser.add_argument("--designs", type=int, default=40, help="sampled designs of the paper's space")
+    parser.add_argument("--out", default=str(Path(__file__).parent / "results" / "gear.json"))
+    args = parser.parse_args(argv)
+
+    from efficiency.design_io import paper_design
+    from efficiency.feasibility import check_design
+    from efficiency.geometry import GearPair
+    from efficiency.mesh_cycle import MeshOptions, evaluate_mesh
+    from efficiency.modifications import Modifications
+
+    deg = math.pi / 180
+    design_d = GearPair.from_paper(32, 30 * deg, 19 * deg, 2.068)
+    mods = Modifications.paper()
+    evaluate_mesh(design_d, 250.0, modifications=mods)  # load the numba cache / compile once
+
+    def timed(options, pair=design_d):
+        return _median_time(lambda: evaluate_mesh(pair, 250.0, modifications=mods, options=options), args.repeats)
+
+    default = MeshOptions()
+    results = {
+        "design_d_default_s": timed(default),
+        "design_d_linear_contact_s": timed(MeshOptions(contact_model="linear")),
+        "design_d_loads_only_s": timed(MeshOptions(outputs=frozenset())),
+    }
+
+    # a sample of feasible designs of the paper's space
+    rng = np.random.default_rng(2009)
+    sample_times = []
+    tried = 0
+    while len(sample_times) < args.designs and tried < 20 * args.designs:
+        tried += 1
+        try:
+            pair = paper_design(int(rng.integers(20, 54)), float(rng.choice(np.arange(15, 30.1, 2.5))),
+                                float(rng.integers(15, 31)), float(rng.choice(np.linspace(1.85, 3.376, 8))))
+            if not check_design(pair).feasible:
+                continue
+            start = time.perf_counter()
+            evaluate_mesh(pair, 250.0, modifications=mods)
+            sample_times.append(time.perf_counter() - start)
+        except Exception:  # noqa: BLE001 - a benchmark records, it does not stop
+            continue
+    results["paper_space_sample"] = {"designs": len(sample_times), "median_s": statistics.median(sample_times),
+                                     "max_s": max(sample_times)}
+
+    reference = evaluate_mesh(design_d, 250.0, modifications=mods, options=MeshOptions(slices=90, positions=72))
+
+    def accuracy(options):
+        r = evaluate_mesh(design_d, 250.0, modifications=mods, options=options)
+        return {
+            "te_pp_rel_error": abs(r.te_peak_to_peak / reference.te_peak_to_peak - 1),
+            "sigma_c_rel_error": abs(r.sigma_c_max / reference.sigma_c_max - 1),
+            "sigma_b_rel_error": abs(r.sigma_b_max / reference.sigma_b_max - 1),
+        }
+
+    results["scaling_slices"] = [
+        {"slices": s, "positions": 24, "median_s": timed(MeshOptions(slices=s, positions=24)),
+         **accuracy(MeshOptions(slices=s, positions=24))} for s in (10, 20, 30, 45, 60, 90)]
+    results["scaling_positions"] = [
+        {"slices": 30, "positions": m, "median_s": timed(MeshOptions(slices=30, positions=m)),
+         **accuracy(MeshOptions(slices=30, positions=m))} for m in (8, 16, 24, 36, 48, 72)]
+    results["reference_90x72"] = {"te_pp_m": reference.te_peak_to_peak, "sigma_c_max_pa": reference.sigma_c_max,
+                                  "sigma_b_max_pa": reference.sigma_b_max, "wall_time_s": reference.wall_time_s}
+
+    payload = {
+        "benchmark": "gear mesh cycle (efficiency.mesh_cycle.evaluate_mesh)",
+        "case": "design D (N 32, Φ 30°, Ψ 19°, Λ_wd 2.068, b 25 mm), M_P 15 µm, M_L 12 µm, 250 N·m",
+        "repeats": args.repeats,
+        "machine": {"platform": platform.platform(), "processor": platform.processor(), "cpu_count": os.cpu_count(),
+                    "python": sys.version.split()[0], "numpy": np.__version__},
+        "results": results,
+    }
+    text = json.dumps(payload, indent=2)
+    print(text)
+    if args.out:
+        Path(args.out).parent.mkdir(parents=True, exist_ok=True)
+        Path(args.out).write_text(text + "\n")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
