@@ -1,0 +1,271 @@
+"""The design studies of Li & Kahraman 2009, §3: the design sweep (Fig. 3–5), the search for a design like D, and
+the tooth-modification study (Fig. 6).
+
+Every design of a :class:`~efficiency.feasibility.DesignSpace` that passes the feasibility screen
+(:func:`~efficiency.feasibility.feasibility_masks`) is evaluated over one loaded mesh cycle
+(:func:`~efficiency.mesh_cycle.evaluate_mesh`) at the study's operating point, and its mechanical power loss follows
+from paper Eq. 10–11 (:func:`~efficiency.power_loss.mesh_power_loss`) with any friction model (a coefficient
+file's :class:`surrogate.evaluate.FrictionSurrogate`, a published formula, a constant).
+
+Tables are :class:`pandas.DataFrame` objects in SI units, one row per design (or per modification/torque), with the
+unit in each column name:
+
+``teeth``, ``normal_pressure_angle_deg``, ``helix_angle_deg``, ``working_depth``   the design (paper notation N, Φ,
+                                                   Ψ, Λ_wd; angles in degrees as in the paper's tables)
+``normal_module_m``, ``tip_diameter_m`` (d_o), ``root_diameter_m``, ``thickness_allowance_m``   geometry
+``eps_alpha``, ``eps_beta``, ``eps_gamma``          transverse (profile, ε_p), overlap (face, ε_f), total contact ratio
+``power_loss_w`` (P), ``efficiency`` (η = 1 − P/(T ω)), ``te_pp_m`` (peak-to-peak loaded TE), ``sigma_c_pa`` (max
+Hertz pressure), ``sigma_b_pa`` (max root stress), ``mu_mean`` (load-weighted mean μ), ``converged``, ``error``
+(empty unless the evaluation of this design raised), ``wall_time_s``.
+
+A design whose evaluation raises an :class:`~ehl_dataset.validation.InputError` or
+:class:`~ehl_dataset.validation.SolverError` is kept in the table with NaN outputs and the message in ``error``;
+a design whose load distribution did not converge keeps its numbers with ``converged`` False. Neither is ever
+selected by :func:`find_design_like_d`.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, replace
+from typing import Callable, Iterable, Mapping
+
+import numpy as np
+import pandas as pd
+
+from ehl_dataset.validation import InputError, SolverError, check_range
+
+from .feasibility import DesignSpace, FeasibilityLimits, feasibility_masks, thickness_allowance
+from .geometry import GearPair
+from .mesh_cycle import MeshOptions, evaluate_mesh
+from .modifications import Modifications
+from .power_loss import mesh_power_loss
+
+DESIGN_COLUMNS = ("teeth", "normal_pressure_angle_deg", "helix_angle_deg", "working_depth")
+GEOMETRY_COLUMNS = ("normal_module_m", "tip_diameter_m", "root_diameter_m", "thickness_allowance_m", "eps_alpha",
+                    "eps_beta", "eps_gamma")
+OUTPUT_COLUMNS = ("power_loss_w", "efficiency", "te_pp_m", "sigma_c_pa", "sigma_b_pa", "mu_mean", "converged",
+                  "error", "wall_time_s")
+
+SEARCH_CRITERIA = {
+    "max_power_loss_w": "power_loss_w",
+    "max_root_stress_pa": "sigma_b_pa",
+    "max_contact_stress_pa": "sigma_c_pa",
+    "max_transmission_error_m": "te_pp_m",
+}
+"""Keys of the design-D search limits (``PaperStudy.search_limits``, SI) → the table column each one bounds."""
+
+PAPER_SEARCH_LIMITS = {"max_power_loss_w": 300.0, "max_root_stress_pa": 235e6, "max_contact_stress_pa": 1.175e9,
+                       "max_transmission_error_m": 0.25e-6}
+"""Li & Kahraman 2009 §3: "P < 0.3 kW, σ_b < 235 MPa, σ_c < 1.175 GPa, and the peak-to-peak TE < 0.25 µm"."""
+
+
+@dataclass(frozen=True)
+class StudyPoint:
+    """Operating point of a study (SI): input torque [N·m], input speed [rad/s], oil temperature [K], RMS roughness
+    of both flanks [m] and the flank modifications. :meth:`from_operating_point` converts a
+    :class:`efficiency.design_io.OperatingPoint` (the study file's ``[operating_point]``)."""
+
+    input_torque: float
+    input_speed: float
+    oil_temperature: float
+    rq1: float
+    rq2: float
+    modifications: Modifications = Modifications()
+
+    def __post_init__(self):
+        check_range("input_torque", self.input_torque, 0.0, 1e7, low_inclusive=False, unit="N·m")
+        check_range("input_speed", self.input_speed, 0.0, 1e5, low_inclusive=False, unit="rad/s")
+        check_range("oil_temperature", self.oil_temperature, 200.0, 600.0, unit="K")
+        check_range("rq1", self.rq1, 0.0, 1e-4, unit="m")
+        check_range("rq2", self.rq2, 0.0, 1e-4, unit="m")
+
+    @classmethod
+    def from_operating_point(cls, op) -> "StudyPoint":
+        return cls(op.input_torque, op.input_speed, op.oil_temperature, op.rq1, op.rq2,
+                   Modifications(profile_crown=op.profile_crown, lead_crown=op.lead_crown))
+
+
+# ---------------------------------------------------------------------- the feasible designs of a space
+def feasible_designs(space: DesignSpace, limits: FeasibilityLimits = FeasibilityLimits(), *,
+                     where: Mapping[str, float] | None = None, stride: int = 1, limit: int | None = None
+                     ) -> pd.DataFrame:
+    """The designs of ``space`` that pass the feasibility screen, with their geometry (one row per design).
+
+    ``where`` fixes design columns (e.g. ``{"normal_pressure_angle_deg": 22.5, "helix_angle_deg": 20,
+    "working_depth": 2.286}``, the line of paper Fig. 3a); ``stride`` keeps every stride-th feasible design and
+    ``limit`` the first ``limit`` after that (quick subsets of the full sweep). Order: Φ, Ψ, N, Λ_wd (C order of
+    :meth:`DesignSpace.grid`).
+    """
+    check_range("stride", stride, 1, 10**9)
+    if limit is not None:
+        check_range("limit", limit, 0, 10**9)
+    pairs = space.pairs()
+    feasible = feasibility_masks(pairs, limits)["feasible"]
+    phi, psi, teeth, depth = space.grid()
+    columns = {
+        "teeth": teeth.astype(int), "normal_pressure_angle_deg": np.degrees(phi), "helix_angle_deg": np.degrees(psi),
+        "working_depth": depth, "normal_module_m": np.broadcast_to(pairs.normal_module, phi.shape),
+        "tip_diameter_m": np.broadcast_to(pairs.tip_diameters_m[0], phi.shape),
+        "root_diameter_m": np.broadcast_to(pairs.root_diameters[0], phi.shape),
+        "thickness_allowance_m": np.broadcast_to(pairs.thickness_allowance1, phi.shape),
+        "eps_alpha": np.broadcast_to(pairs.contact_ratio, phi.shape),
+        "eps_beta": np.broadcast_to(pairs.overlap_ratio, phi.shape),
+        "eps_gamma": np.broadcast_to(pairs.total_contact_ratio, phi.shape),
+    }
+    table = pd.DataFrame({k: np.asarray(v)[feasible] for k, v in columns.items()})
+    table["normal_pressure_angle_deg"] = table["normal_pressure_angle_deg"].round(9)
+    table["helix_angle_deg"] = table["helix_angle_deg"].round(9)
+    for key, value in (where or {}).items():
+        if key not in DESIGN_COLUMNS:
+            raise InputError("where", key, f"one of {list(DESIGN_COLUMNS)}")
+        table = table[np.isclose(table[key].to_numpy(dtype=float), float(value), rtol=0.0, atol=1e-6)]
+    table = table.iloc[::stride]
+    if limit is not None:
+        table = table.iloc[:limit]
+    return table.reset_index(drop=True)
+
+
+def design_pair(row: Mapping, space: DesignSpace) -> GearPair:
+    """The scalar :class:`GearPair` of one row of :func:`feasible_designs` (the paper's parametrisation)."""
+    return GearPair.from_paper(int(row["teeth"]), math.radians(float(row["normal_pressure_angle_deg"])),
+                               math.radians(float(row["helix_angle_deg"])), float(row["working_depth"]),
+                               center_distance=space.center_distance, face_width=space.face_width,
+                               root_fillet_coefficient=space.root_fillet_coefficient,
+                               thickness_allowance=float(row["thickness_allowance_m"]))
+
+
+# ---------------------------------------------------------------------- one design
+def evaluate_design(pair: GearPair, friction: Callable, point: StudyPoint,
+                    options: MeshOptions = MeshOptions()) -> dict:
+    """P, η, TE p-p, σ_c, σ_b (SI) of one design at one operating point; the row of a study table.
+
+    ``options.outputs`` is forced to {"te", "stresses"} (the studies need both). Errors are raised, not caught
+    (:func:`design_sweep` records them per design).
+    """
+    started = time.perf_counter()
+    if options.outputs != frozenset({"te", "stresses"}):
+        options = replace(options, outputs=frozenset({"te", "stresses"}))
+    mesh = evaluate_mesh(pair, point.input_torque, point.input_speed, point.modifications, options)
+    loss = mesh_power_loss(mesh, friction, point.oil_temperature, point.rq1, point.rq2,
+                           options.material1, options.material2)
+    loads = mesh.loads
+    mu_mean = float(np.nansum(np.nan_to_num(loss.mu) * loads) / loads.sum()) if loads.sum() > 0 else math.nan
+    return {
+        "power_loss_w": loss.power_loss, "efficiency": loss.efficiency, "te_pp_m": mesh.te_peak_to_peak,
+        "sigma_c_pa": mesh.sigma_c_max, "sigma_b_pa": mesh.sigma_b_max, "mu_mean": mu_mean,
+        "converged": bool(mesh.converged), "error": "", "wall_time_s": time.perf_counter() - started,
+    }
+
+
+def _failed_row(err: Exception, started: float) -> dict:
+    row = {name: math.nan for name in OUTPUT_COLUMNS}
+    row.update(converged=False, error=f"{type(err).__name__}: {err}", wall_time_s=time.perf_counter() - started)
+    return row
+
+
+# ---------------------------------------------------------------------- the sweep (paper Fig. 3–5)
+def design_sweep(space: DesignSpace, friction: Callable, point: StudyPoint,
+                 limits: FeasibilityLimits = FeasibilityLimits(), options: MeshOptions = MeshOptions(), *,
+                 where: Mapping[str, float] | None = None, stride: int = 1, limit: int | None = None,
+                 progress: Callable[[int, int], None] | None = None) -> pd.DataFrame:
+    """Evaluate every feasible design of ``space`` (or the subset chosen by ``where``/``stride``/``limit``, see
+    :func:`feasible_designs`) at ``point`` with ``friction``: the table behind the paper's Fig. 3–5.
+
+    ``progress(done, total)`` is called after each design. One design's error does not stop the sweep: it is
+    recorded in the row's ``error`` column (see the module docstring).
+    """
+    designs = feasible_designs(space, limits, where=where, stride=stride, limit=limit)
+    rows = []
+    total = len(designs)
+    for i, record in enumerate(designs.to_dict("records")):
+        started = time.perf_counter()
+        try:
+            rows.append(evaluate_design(design_pair(record, space), friction, point, options))
+        except (InputError, SolverError) as err:
+            rows.append(_failed_row(err, started))
+        if progress is not None:
+            progress(i + 1, total)
+    outputs = pd.DataFrame(rows, columns=list(OUTPUT_COLUMNS)) if rows else pd.DataFrame(
+        {c: pd.Series(dtype=bool if c == "converged" else object if c == "error" else float)
+         for c in OUTPUT_COLUMNS})
+    return pd.concat([designs, outputs], axis=1)
+
+
+def _check_table(table: pd.DataFrame, columns: Iterable[str]) -> None:
+    missing = [c for c in columns if c not in table.columns]
+    if missing:
+        raise InputError("table", f"columns {list(table.columns)}", f"a study table with the columns {missing}")
+
+
+def find_design_like_d(table: pd.DataFrame, limits: Mapping[str, float] = PAPER_SEARCH_LIMITS) -> pd.DataFrame:
+    """The designs of a sweep table that meet every limit of the paper's design-D search (§3: P < 0.3 kW,
+    σ_b < 235 MPa, σ_c < 1.175 GPa, TE p-p < 0.25 µm; keys of :data:`SEARCH_CRITERIA`, SI), sorted by P.
+
+    Only converged rows without error count. The returned rows carry ``worst_ratio``: the largest value/limit over
+    the criteria (< 1 for every match). :func:`rank_by_limits` gives the same ratio for every row, which shows how
+    near the closest designs come when nothing matches.
+    """
+    ranked = rank_by_limits(table, limits)
+    return ranked[ranked["worst_ratio"] < 1.0].sort_values("power_loss_w").reset_index(drop=True)
+
+
+def rank_by_limits(table: pd.DataFrame, limits: Mapping[str, float] = PAPER_SEARCH_LIMITS) -> pd.DataFrame:
+    """Every valid (converged, no error) row with ``ratio_<column>`` = value / limit for each criterion and
+    ``worst_ratio`` = their maximum, sorted by ``worst_ratio`` (the designs nearest to meeting all limits first)."""
+    unknown = set(limits) - set(SEARCH_CRITERIA)
+    if unknown:
+        key = sorted(unknown)[0]
+        raise InputError("limits", key, f"keys among {sorted(SEARCH_CRITERIA)}")
+    if not limits:
+        raise InputError("limits", dict(limits), "at least one of " + ", ".join(sorted(SEARCH_CRITERIA)))
+    _check_table(table, [SEARCH_CRITERIA[k] for k in limits] + ["converged", "error"])
+    valid = table[table["converged"].astype(bool) & (table["error"].fillna("") == "")].copy()
+    ratios = []
+    for key, value in limits.items():
+        check_range(key, value, 0.0, math.inf, low_inclusive=False)
+        name = "ratio_" + SEARCH_CRITERIA[key]
+        valid[name] = valid[SEARCH_CRITERIA[key]].to_numpy(dtype=float) / float(value)
+        ratios.append(name)
+    valid["worst_ratio"] = valid[ratios].max(axis=1)
+    return valid.sort_values("worst_ratio", kind="stable").reset_index(drop=True)
+
+
+def trend_line(table: pd.DataFrame, vary: str, fixed: Mapping[str, float]) -> pd.DataFrame:
+    """The rows of ``table`` with the ``fixed`` design values (e.g. Φ = 22.5°, Ψ = 20°, Λ_wd = 2.286 for paper
+    Fig. 3a), sorted by ``vary``: the paper's "larger symbols" lines."""
+    _check_table(table, list(fixed) + [vary])
+    mask = np.ones(len(table), dtype=bool)
+    for key, value in fixed.items():
+        mask &= np.isclose(table[key].to_numpy(dtype=float), float(value), rtol=0.0, atol=1e-6)
+    return table[mask].sort_values(vary).reset_index(drop=True)
+
+
+# ---------------------------------------------------------------------- the modification study (paper Fig. 6)
+def modification_study(pair: GearPair, friction: Callable, profile_crowns: Iterable[float],
+                       lead_crowns: Iterable[float], torques: Iterable[float], point: StudyPoint,
+                       options: MeshOptions = MeshOptions(), *,
+                       progress: Callable[[int, int], None] | None = None) -> pd.DataFrame:
+    """P, η, TE, σ_c, σ_b of ``pair`` for every profile crown M_P [m] × lead crown M_L [m] × input torque [N·m]
+    (paper Fig. 6: M_P, M_L = 0–30 µm at T_in = 50, 250, 500 N·m on Design D). The other operating conditions
+    (speed, temperature, roughness) come from ``point``; its modifications are replaced.
+
+    Columns: ``torque_nm``, ``profile_crown_m``, ``lead_crown_m`` and the output columns of :func:`design_sweep`.
+    """
+    grid = [(float(t), float(mp), float(ml)) for t in torques for mp in profile_crowns for ml in lead_crowns]
+    if not grid:
+        raise InputError("modification grid", "empty", "at least one torque, profile crown and lead crown")
+    rows = []
+    for i, (torque, mp, ml) in enumerate(grid):
+        here = StudyPoint(torque, point.input_speed, point.oil_temperature, point.rq1, point.rq2,
+                          Modifications(profile_crown=mp, lead_crown=ml))
+        started = time.perf_counter()
+        try:
+            row = evaluate_design(pair, friction, here, options)
+        except (InputError, SolverError) as err:
+            row = _failed_row(err, started)
+        rows.append({"torque_nm": torque, "profile_crown_m": mp, "lead_crown_m": ml, **row})
+        if progress is not None:
+            progress(i + 1, len(grid))
+    return pd.DataFrame(rows)
