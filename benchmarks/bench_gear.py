@@ -41,7 +41,10 @@ def main(argv=None) -> int:
     parser.add_argument("--repeats", type=int, default=7)
     parser.add_argument("--designs", type=int, default=40, help="sampled designs of the paper's space")
     parser.add_argument("--out", default=str(Path(__file__).parent / "results" / "gear.json"))
+    parser.add_argument("--figure", help="also draw the design-D figure of docs/gear_load_distribution.md here")
     args = parser.parse_args(argv)
+    if args.figure:
+        draw_figure(args.figure)
 
     from efficiency.design_io import paper_design
     from efficiency.feasibility import check_design
@@ -116,6 +119,60 @@ def main(argv=None) -> int:
         Path(args.out).parent.mkdir(parents=True, exist_ok=True)
         Path(args.out).write_text(text + "\n")
     return 0
+
+
+def draw_figure(path: str) -> None:
+    """Design D: loads on the plane of action at the σ_c position, TE over a cycle at 50/250/500 N·m, and the mesh
+    stiffness of the unmodified pair against ISO 6336-1's c_γα."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from efficiency import iso6336
+    from efficiency.geometry import GearPair
+    from efficiency.mesh_cycle import MeshOptions, evaluate_mesh
+    from efficiency.modifications import Modifications
+
+    pair = GearPair.from_paper(32, math.radians(30), math.radians(19), 2.068)
+    fig, axes = plt.subplots(1, 3, figsize=(15, 4.4))
+    r = evaluate_mesh(pair, 250.0, modifications=Modifications.paper(), options=MeshOptions(slices=60, positions=48))
+    kin = r.kinematics
+    m = r.sigma_c_position
+    inside = kin.in_contact[m]
+    z = np.broadcast_to(kin.z, inside.shape)[inside] * 1e3
+    s = kin.roll[m][inside] * 1e3
+    sc = axes[0].scatter(z, s, c=r.load_per_length[m][inside] / 1e3, s=12, cmap="viridis")
+    axes[0].axhline(kin.contact_start * 1e3, color="k", lw=0.8)
+    axes[0].axhline(kin.contact_end * 1e3, color="k", lw=0.8)
+    axes[0].axhline(float(pair.pitch_point) * 1e3, color="r", lw=0.8, ls="--", label="pitch point")
+    axes[0].set_xlabel("face z [mm]")
+    axes[0].set_ylabel("roll distance s from T1 [mm]")
+    axes[0].set_title(f"design D, 250 N·m, M_P 15 / M_L 12 µm: load at φ_{m}")
+    axes[0].legend(loc="upper right", fontsize=8)
+    fig.colorbar(sc, ax=axes[0], label="load per length [N/mm]")
+    for torque in (50.0, 250.0, 500.0):
+        rt = evaluate_mesh(pair, torque, modifications=Modifications.paper(),
+                           options=MeshOptions(slices=60, positions=48, outputs=frozenset({"te"})))
+        axes[1].plot(rt.kinematics.mesh_angle * 1e3, rt.transmission_error * 1e6, marker=".",
+                     label=f"{torque:.0f} N·m: TE_pp {rt.te_peak_to_peak * 1e6:.2f} µm")
+    axes[1].set_xlabel("mesh rotation φ of gear 1 [mrad] (one base pitch)")
+    axes[1].set_ylabel("loaded TE at the base circle [µm]")
+    axes[1].set_title("transmission error over a mesh cycle")
+    axes[1].legend(fontsize=8)
+    r0 = evaluate_mesh(pair, 250.0, options=MeshOptions(slices=60, positions=48, outputs=frozenset()))
+    axes[2].plot(r0.kinematics.mesh_angle * 1e3, r0.mesh_stiffness / float(pair.face_width) / 1e9, marker=".",
+                 label=f"model, mean {r0.mesh_stiffness_per_width / 1e9:.1f}")
+    axes[2].axhline(iso6336.mesh_stiffness(pair)[0] / 1e9, color="k", ls="--",
+                    label=f"ISO 6336-1 c_γα {iso6336.mesh_stiffness(pair)[0] / 1e9:.1f}")
+    axes[2].set_xlabel("mesh rotation φ of gear 1 [mrad]")
+    axes[2].set_ylabel("mesh stiffness per face width [N/(mm·µm)]")
+    axes[2].set_title("unmodified design D, 250 N·m")
+    axes[2].legend(fontsize=8)
+    fig.tight_layout()
+    Path(path).parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
 
 
 if __name__ == "__main__":
