@@ -40,7 +40,8 @@ def moes_central_film(eta0, u_r, alpha, e_reduced, r_eq, load_per_length):
 
     A fit to incompressible Newtonian (Barus) numerical solutions covering the rigid/elastic, isoviscous/piezoviscous
     regimes (DESIGN §3: a compressible solution lies 10–20 % below it at M = 7–260). At the point U = 1e−11,
-    G = 5000, W = 1e−4 it agrees with Dowson–Toyoda to 0.1 %, which pins the velocity convention (mean velocity).
+    G = 5000, W = 1e−4 it agrees with Dowson–Toyoda to 2 % (60 % apart with the sum-velocity convention), which
+    pins the velocity convention (mean velocity).
     """
     u, g, w = dimensionless_groups(eta0, u_r, alpha, e_reduced, r_eq, load_per_length)
     two_u = 2.0 * u
