@@ -91,9 +91,10 @@ def plot_figures(fit: SurrogateFit, out_dir: str | Path, *, prefix: str = "surro
 
     fig, axes = plt.subplots(1, 2, figsize=(11, 4.4))
     for ax, log in zip(axes, (False, True)):
-        ax.scatter(lam, mu, s=6, c="0.6", alpha=0.5, lw=0, label="computed (dataset)")
+        alpha = float(np.clip(300.0 / max(lam.size, 1), 0.08, 0.6))
         for branch, mask in masks.items():
-            ax.scatter(lam[mask], fitted[mask], s=5, c=colours[branch], alpha=0.6, lw=0, label=labels[branch])
+            ax.scatter(lam[mask], fitted[mask], s=4, c=colours[branch], alpha=alpha, lw=0, label=labels[branch])
+        ax.scatter(lam, mu, s=2, c="k", alpha=alpha, lw=0, label="computed (dataset)")
         ax.axvline(fit.formula.lambda_threshold, c="k", lw=0.8, ls="--")
         ax.set_xlabel("λ̄ = h_min,DH / S_c")
         ax.set_ylabel("μ")
@@ -104,7 +105,9 @@ def plot_figures(fit: SurrogateFit, out_dir: str | Path, *, prefix: str = "surro
             ax.set_xlim(0, 3)
             ax.set_title("linear scales, λ̄ ≤ 3 (paper Fig. 2)")
         ax.set_ylim(0, max(0.12, float(np.percentile(mu, 99.5)) * 1.1))
-    axes[0].legend(loc="upper right", fontsize=8, markerscale=3)
+    legend = axes[0].legend(loc="upper right", fontsize=8, markerscale=3)
+    for handle in legend.legend_handles:
+        handle.set_alpha(1.0)
     if title:
         fig.suptitle(title, fontsize=10)
     fig.tight_layout()
