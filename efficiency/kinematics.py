@@ -109,6 +109,8 @@ def mesh_kinematics(pair, positions: int = 24, slices: int = 30, speed_rad_s: fl
     slices : S slices across the face width (≥ 1)
     speed_rad_s : angular speed ω1 of gear 1 [rad/s] (> 0)
     """
+    if np.ndim(pair.normal_module) or np.ndim(pair.z1) or np.ndim(pair.helix_angle):
+        raise InputError("pair", "vectorised GearPair", "a single design")
     positions = int(check_range("positions", positions, 1, 100000))
     slices = int(check_range("slices", slices, 1, 100000))
     omega1 = check_range("speed_rad_s", speed_rad_s, 0.0, 1e6, low_inclusive=False, unit="rad/s")

@@ -148,6 +148,9 @@ def evaluate_mesh(pair, torque: float, speed_rad_s: float = 1.0, modifications: 
     started = time.perf_counter()
     torque = check_range("torque", torque, 0.0, 1e7, low_inclusive=False, unit="N·m")
     kin = mesh_kinematics(pair, options.positions, options.slices, speed_rad_s)
+    if float(pair.total_contact_ratio) < 1.0:
+        raise InputError("total_contact_ratio", round(float(pair.total_contact_ratio), 6),
+                         ">= 1 (below 1 there are mesh positions without any tooth pair in contact)")
     n_pos, n_lines, n_slices = kin.shape
     psi_b = kin.base_helix_angle
     cos_b = math.cos(psi_b)

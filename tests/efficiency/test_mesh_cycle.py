@@ -145,3 +145,15 @@ def test_design_d_meets_the_papers_limits():
     assert result.sigma_c_max < 1.175e9
     assert result.sigma_b_max < 235e6
     assert result.te_peak_to_peak < 0.25e-6
+
+
+def test_bad_designs_are_reported_by_name():
+    """A pair whose total contact ratio is below 1 cannot carry the load at every position; a vectorised pair is
+    not a single design."""
+    short = GearPair(30, 30, 3e-3, 20 * DEG, 0.0, 0.02, addendum_coefficient=0.4)
+    with pytest.raises(InputError, match="total_contact_ratio"):
+        evaluate_mesh(short, 100.0)
+    with pytest.raises(InputError, match="pair"):
+        evaluate_mesh(GearPair(np.array([30, 31]), 30, 3e-3, 20 * DEG, 0.0, 0.02), 100.0)
+    with pytest.raises(InputError, match="torque"):
+        evaluate_mesh(design_d(), float("nan"))
