@@ -96,6 +96,22 @@ def test_te_of_a_crowned_pair_grows_with_the_crown_at_fixed_torque():
     assert np.all(np.diff(lead) > 0)
 
 
+@pytest.mark.parametrize("torque", [50.0, 250.0, 500.0])
+def test_stresses_grow_with_the_crowns(torque):
+    """The paper's Fig. 6(c, d): at 50, 250 and 500 N·m, σ_c and σ_b of design D increase with M_P (15 → 30 µm at
+    M_L = 12 µm) and with M_L (12 → 30 µm at M_P = 15 µm): crowning shrinks the loaded area."""
+    pair = design_d()
+
+    def stresses(mp, ml):
+        r = evaluate_mesh(pair, torque, modifications=Modifications(mp * 1e-6, ml * 1e-6))
+        return r.sigma_c_max, r.sigma_b_max
+
+    for series in ([stresses(mp, 12) for mp in (15, 20, 25, 30)], [stresses(15, ml) for ml in (12, 20, 30)]):
+        sigma_c, sigma_b = np.array(series).T
+        assert np.all(np.diff(sigma_c) > 0)
+        assert np.all(np.diff(sigma_b) > 0)
+
+
 def test_results_converge_with_resolution():
     """Design D with the paper's crowns: TE, σ_c and σ_b at the default resolution (30 slices, 24 positions) agree
     with a 60 × 48 resolution within 1 % (measured: 0.2 %, 0.1 %, 0.1 %)."""
