@@ -5,7 +5,8 @@ least squares fits it. The reading of the (typeset-garbled) paper equations adop
 
 Eq. 9a, λ̄ ≤ 1 ("mixed")::
 
-    μ = exp[a0 + a1 λ̄ S̄c + a2 W̄ r̄ + a3 λ̄ W̄ + a4 S̄eq^λ̄] · SR^(a5 λ̄) · S̄eq^(a6 λ̄) · S̄c^(a7 SR + a8 V̄ + a9 ln λ̄)
+    μ = exp[a0 + a1 λ̄ S̄c + a2 W̄ r̄ + a3 λ̄ W̄ + a4 S̄eq^λ̄]
+        · SR^(a5 λ̄) · S̄eq^(a6 λ̄) · S̄c^(a7 SR + a8 V̄ + a9 ln λ̄)
     ln μ = a0 + a1 λ̄S̄c + a2 W̄r̄ + a3 λ̄W̄ + a4 S̄eq^λ̄ + a5 λ̄ ln SR + a6 λ̄ ln S̄eq
            + a7 SR ln S̄c + a8 V̄ ln S̄c + a9 ln λ̄ ln S̄c
 
@@ -98,7 +99,8 @@ LI_KAHRAMAN_2009 = Formula(
     version=1,
     terms={"mixed": MIXED_TERMS, "full_film": FULL_FILM_TERMS},
     lambda_threshold=1.0,
-    reference="Li & Kahraman, J. Adv. Mech. Des. Syst. Manuf. 3 (2009) 146, Eq. 9a/9b (term reading: surrogate/forms.py)",
+    reference="Li & Kahraman, J. Adv. Mech. Des. Syst. Manuf. 3 (2009) 146, Eq. 9a/9b "
+              "(term reading: surrogate/forms.py)",
 )
 
 FORMULAS: dict[tuple[str, int], Formula] = {(LI_KAHRAMAN_2009.name, LI_KAHRAMAN_2009.version): LI_KAHRAMAN_2009}
