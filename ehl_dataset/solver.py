@@ -122,8 +122,11 @@ def solve_contact(case: ContactCase, lubricant: Lubricant | str, level: str | Ac
     # one BLAS thread per solve: the dense solves are small, and workers run one case per core
     with threadpool_limits(limits=1):
         if plan.roughness and case.s_c > 0.0:
-            from .ehl_transient import solve_transient
-
+            try:
+                from .ehl_transient import solve_transient
+            except ImportError:
+                raise SolverError("the transient mixed-EHL solver (rough surfaces) is not available yet; "
+                                  "use smooth effects (S_c = 0, or an Effects plan without roughness)") from None
             return solve_transient(case, state, lvl, plan)
         return solve_steady(case, state, lvl, plan)
 

@@ -1,0 +1,77 @@
+"""The solve_contact contract that the dataset store, the planner and the gear model rely on."""
+
+import math
+from dataclasses import replace
+
+import pytest
+
+from ehl_dataset.contact import ContactCase
+from ehl_dataset.effects import Effects
+from ehl_dataset.levels import LEVELS, get_level
+from ehl_dataset.lubricant import load_lubricant
+from ehl_dataset.result import RECORD_UNITS, ContactResult
+from ehl_dataset.solver import solve_contact
+from ehl_dataset.validation import InputError
+
+CASE = ContactCase.from_engineering(1.2, 20, 5, 0.3, 90)
+
+
+def test_result_fields_and_record():
+    """Every ContactResult field is filled; to_record() has exactly the stored columns; plan and level recorded."""
+    lub = load_lubricant("atf")
+    plan = Effects.smooth_steady(reason="test")
+    res = solve_contact(CASE, lub, "fast", plan)
+    assert isinstance(res, ContactResult) and res.converged
+    record = res.to_record()
+    assert set(record) == set(RECORD_UNITS)
+    assert record["level"] == "fast" and res.effects == plan.to_dict()
+    assert all(math.isfinite(record[k]) for k in ("mu", "h_min", "h_central", "p_max", "wall_time"))
+    assert record["lambda_bar"] == math.inf and record["asperity_load_share"] == 0.0 and record["mu_std"] == 0.0
+    assert res.h_min <= res.h_central and res.p_max > CASE.p_h * 0.9
+    assert res.x.shape == res.pressure.shape == res.film.shape
+    assert set(res.residuals) >= {"reynolds", "load"}
+
+
+def test_lambda_bar_uses_dowson_higginson():
+    """λ̄ = h_min,DH / S_c (paper Sect. 2.1) for a rough case, even when the solve itself is smooth."""
+    lub = load_lubricant("atf")
+    rough = ContactCase.from_engineering(1.2, 20, 5, 0.3, 90, 0.2, 0.2)
+    res = solve_contact(rough, lub, "fast", Effects.smooth_steady())
+    assert res.lambda_bar == pytest.approx(res.extra["h_min_dowson_higginson_m"] / rough.s_c)
+
+
+def test_effects_auto_records_a_plan():
+    res = solve_contact(CASE, load_lubricant("atf"), "fast", "auto")
+    assert res.converged and isinstance(res.effects, dict) and "roughness" in res.effects
+
+
+def test_levels_are_named_and_ordered():
+    """fast < standard < reference in resolution; unknown names are an InputError naming the parameter."""
+    assert {"fast", "standard", "reference"} <= set(LEVELS)
+    assert LEVELS["fast"].dx_fine > LEVELS["standard"].dx_fine > LEVELS["reference"].dx_fine
+    with pytest.raises(InputError, match="level"):
+        get_level("ultra")
+
+
+@pytest.mark.parametrize("kwargs, parameter", [
+    (dict(effects="bogus"), "effects"),
+    (dict(level="nope"), "level"),
+])
+def test_bad_arguments(kwargs, parameter):
+    with pytest.raises(InputError, match=parameter):
+        solve_contact(CASE, load_lubricant("atf"), **kwargs)
+
+
+def test_temperature_outside_lubricant_data():
+    hot = ContactCase.from_engineering(1.2, 20, 5, 0.3, 200)
+    with pytest.raises(InputError, match="temperature"):
+        solve_contact(hot, load_lubricant("atf"), "fast")
+
+
+def test_non_convergence_is_reported_not_hidden():
+    """With an iteration cap of 1 the solve cannot converge: converged=False, residuals and a message."""
+    level = replace(get_level("fast"), name="capped", max_iterations=1)
+    res = solve_contact(CASE, load_lubricant("atf"), level, Effects.smooth_steady())
+    assert res.converged is False
+    assert res.message.startswith("not converged")
+    assert res.residuals["reynolds"] > level.tol_residual or res.residuals["step"] > level.tol_step

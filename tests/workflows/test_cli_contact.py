@@ -1,0 +1,65 @@
+"""``gearloss contact solve``: JSON output in SI units and one-line errors for bad input."""
+
+import json
+import subprocess
+import sys
+
+import pytest
+
+from workflows.cli import main
+
+BASE = ["contact", "solve", "--p-h-gpa", "1.2", "--r-eq-mm", "20", "--u-r", "5", "--sr", "0.3", "--temp-c", "90",
+        "--level", "fast"]
+
+
+def test_json_output_keys_and_units(capsys):
+    assert main(BASE + ["--effects", "smooth", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    for key in ("mu", "h_min_m", "h_central_m", "p_max_pa", "converged", "wall_time_s", "effects", "level",
+                "iterations", "lambda_bar"):
+        assert key in out
+    assert out["converged"] is True and out["level"] == "fast"
+    # SI units: a film of tens of nm to µm in metres, a pressure near p_h = 1.2e9 Pa
+    assert 1e-8 < out["h_central_m"] < 1e-5 and 1.0e9 < out["p_max_pa"] < 1.4e9
+    assert out["lambda_bar"] is None  # smooth surfaces: λ̄ infinite, JSON null
+
+
+def test_validation_fluid_by_name_and_by_file(capsys, tmp_path):
+    """A Newtonian Barus fluid can be chosen by shipped name or by a TOML file path (issue 2, deliverable 5)."""
+    from ehl_dataset.data_files import data_path
+
+    assert main(BASE + ["--lubricant", "validation_barus", "--json"]) == 0
+    by_name = json.loads(capsys.readouterr().out)
+    copy = tmp_path / "my_fluid.toml"
+    copy.write_text(data_path("lubricants", "validation_barus.toml").read_text())
+    assert main(BASE + ["--lubricant", str(copy), "--json"]) == 0
+    by_file = json.loads(capsys.readouterr().out)
+    assert by_file["h_min_m"] == pytest.approx(by_name["h_min_m"], rel=1e-12)
+
+
+@pytest.mark.parametrize("args, parameter", [
+    (["--p-h-gpa", "nan"], "p_h_gpa"),
+    (["--p-h-gpa", "-1"], "p_h_gpa"),
+    (["--p-h-gpa", "0"], "p_h_gpa"),
+    (["--temp-c", "200"], "temperature"),
+    (["--lubricant", "no_such_oil"], "lubricant"),
+    (["--level", "ultra"], "level"),
+])
+def test_bad_input_one_line_nonzero_exit(capsys, args, parameter):
+    argv = list(BASE)
+    for flag, value in zip(args[::2], args[1::2]):
+        if flag in argv:
+            argv[argv.index(flag) + 1] = value
+        else:
+            argv += [flag, value]
+    assert main(argv) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and parameter in err
+
+
+def test_console_script_subprocess():
+    """One real process: the installed module entry point prints a single JSON object."""
+    proc = subprocess.run([sys.executable, "-m", "workflows.cli"] + BASE + ["--effects", "smooth", "--json"],
+                          capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 0, proc.stderr
+    assert json.loads(proc.stdout)["converged"] is True
