@@ -30,7 +30,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ehl_dataset.materials import STEEL, Material, reduced_modulus
-from ehl_dataset.validation import InputError, check_range
+from ehl_dataset.validation import InputError, SolverError, check_range
 
 from .compliance import (DEFAULT_HUB_RATIO, centreline_depth, contact_compliance, face_coupling, root_bending_arm,
                          tooth_compliance, weber_log_terms, whole_depth)
@@ -277,6 +277,9 @@ def root_stress(pair, kin: MeshKinematics, loads: np.ndarray, factors: tuple[flo
     inside = kin.in_contact
     for i, (rho, rho_d) in enumerate(zip((kin.rho1, kin.rho2), single_pair_outer_points(pair))):
         arm_d = float(root_bending_arm(pair, i + 1, rho_d))
+        if not arm_d > 0.0:
+            raise SolverError(f"gear {i + 1}: the load at the outer point of single pair contact has no bending "
+                              f"lever arm about the root section ({arm_d:.3g} m); root stress undefined")
         ratio = np.zeros(loads.shape)
         ratio[inside] = np.clip(root_bending_arm(pair, i + 1, rho[inside]), 0.0, None) / arm_d
         out[i] = f_t / m_n * factors[i] * ratio

@@ -108,3 +108,40 @@ def _linear_relief(amount: float, length: float, depth_into_zone):
     if amount == 0.0 or length == 0.0:
         return 0.0
     return amount * np.clip(depth_into_zone / length, 0.0, None)
+
+
+_MAPPING_KEYS = {
+    "profile_crown_um": ("profile_crown", 1e-6, False),
+    "lead_crown_um": ("lead_crown", 1e-6, False),
+    "lead_slope_um": ("lead_slope", 1e-6, False),
+    "tip_relief_um": ("tip_relief", 1e-6, True),
+    "tip_relief_length_mm": ("tip_relief_length", 1e-3, True),
+    "root_relief_um": ("root_relief", 1e-6, True),
+    "root_relief_length_mm": ("root_relief_length", 1e-3, True),
+    "spacing_errors_um": ("spacing_errors", 1e-6, None),
+}
+
+
+def modifications_from_mapping(mapping: dict) -> Modifications:
+    """Build :class:`Modifications` from a ``[modifications]`` TOML table in engineering units.
+
+    Keys: profile_crown_um, lead_crown_um, lead_slope_um (numbers); tip_relief_um, tip_relief_length_mm,
+    root_relief_um, root_relief_length_mm (a number for both gears or a pair [gear 1, gear 2]);
+    spacing_errors_um (a list, one per contact line). Unknown keys are an error.
+    """
+    kwargs = {}
+    for key, value in mapping.items():
+        if key not in _MAPPING_KEYS:
+            raise InputError(f"modifications.{key}", value, f"one of {sorted(_MAPPING_KEYS)}")
+        field_name, factor, paired = _MAPPING_KEYS[key]
+        try:
+            if paired is None:
+                kwargs[field_name] = tuple(float(v) * factor for v in value)
+            elif paired:
+                values = value if isinstance(value, (list, tuple)) else (value, value)
+                kwargs[field_name] = tuple(float(v) * factor for v in values)
+            else:
+                kwargs[field_name] = float(value) * factor
+        except (TypeError, ValueError):
+            raise InputError(f"modifications.{key}", value, "numbers (a pair where per gear)") from None
+    return Modifications(**kwargs)

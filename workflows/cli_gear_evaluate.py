@@ -59,13 +59,12 @@ def register(gear_subparsers) -> None:
     load = parser.add_argument_group("operating point and modifications")
     load.add_argument("--torque-nm", type=float, default=250.0, help="input torque on gear 1 [N·m] (default 250)")
     load.add_argument("--speed-rpm", type=float, default=4000.0, help="speed of gear 1 [rpm] (default 4000)")
-    load.add_argument("--profile-crown-um", type=float, default=0.0, help="profile crown M_P per gear [µm]")
-    load.add_argument("--lead-crown-um", type=float, default=0.0, help="lead crown M_L per gear [µm]")
-    load.add_argument("--lead-slope-um", type=float, default=0.0,
+    load.add_argument("--profile-crown-um", type=float, help="profile crown M_P per gear [µm] (default 0)")
+    load.add_argument("--lead-crown-um", type=float, help="lead crown M_L per gear [µm] (default 0)")
+    load.add_argument("--lead-slope-um", type=float,
                       help="lead slope / misalignment f_Hβ across the face [µm] (sign: + opens the far end)")
-    load.add_argument("--tip-relief-um", type=float, default=0.0, help="linear tip relief C_a per gear [µm]")
-    load.add_argument("--tip-relief-length-mm", type=float, default=0.0,
-                      help="roll length of the tip relief per gear [mm]")
+    load.add_argument("--tip-relief-um", type=float, help="linear tip relief C_a per gear [µm]")
+    load.add_argument("--tip-relief-length-mm", type=float, help="roll length of the tip relief per gear [mm]")
     model = parser.add_argument_group("model and resolution")
     model.add_argument("--slices", type=int, default=30, help="slices across the face (default 30)")
     model.add_argument("--positions", type=int, default=24, help="mesh positions per cycle (default 24)")
@@ -78,6 +77,27 @@ def register(gear_subparsers) -> None:
     parser.add_argument("--per-position", action="store_true", help="include per-position arrays in the output")
     parser.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
     parser.set_defaults(handler=run_evaluate)
+
+
+def _modifications(args):
+    """Modifications from the design file's optional ``[modifications]`` table, overridden by the options."""
+    from ehl_dataset.validation import InputError
+    from efficiency.modifications import modifications_from_mapping
+
+    table = {}
+    if getattr(args, "design", None):
+        from efficiency.design_io import read_toml
+
+        table = dict(read_toml(args.design).get("modifications", {}))
+    for option in ("profile_crown_um", "lead_crown_um", "lead_slope_um", "tip_relief_um", "tip_relief_length_mm"):
+        value = getattr(args, option)
+        if value is not None:
+            table[option] = value
+    try:
+        return modifications_from_mapping(table)
+    except InputError as err:  # name the option in engineering units
+        raise InputError(err.parameter.replace("modifications.", "").replace("_", "-"), err.value,
+                         err.accepted) from None
 
 
 def _pair_from_args(args):
@@ -94,20 +114,13 @@ def run_evaluate(args: argparse.Namespace) -> int:
     from ehl_dataset.validation import InputError, check_range
     from efficiency import iso6336
     from efficiency.mesh_cycle import MeshOptions, evaluate_mesh
-    from efficiency.modifications import Modifications
 
     started = time.perf_counter()
     pair = _pair_from_args(args)
     torque = check_range("torque-nm", args.torque_nm, 0.0, 1e7, low_inclusive=False, unit="N·m")
     speed = check_range("speed-rpm", args.speed_rpm, 0.0, 1e6, low_inclusive=False, unit="rpm")
     outputs = frozenset(o.strip() for o in args.outputs.split(",") if o.strip())
-    try:
-        mods = Modifications(
-            profile_crown=args.profile_crown_um * 1e-6, lead_crown=args.lead_crown_um * 1e-6,
-            lead_slope=args.lead_slope_um * 1e-6, tip_relief=(args.tip_relief_um * 1e-6,) * 2,
-            tip_relief_length=(args.tip_relief_length_mm * 1e-3,) * 2)
-    except InputError as err:  # name the CLI option, not the field
-        raise InputError(err.parameter.replace("_", "-") + "(SI)", err.value, err.accepted) from None
+    mods = _modifications(args)
     options = MeshOptions(positions=args.positions, slices=args.slices, outputs=outputs,
                           contact_model=args.contact_model, coupling_length_factor=args.coupling_length_factor)
     result = evaluate_mesh(pair, torque, speed_rad_s=speed * math.pi / 30.0, modifications=mods, options=options)

@@ -65,3 +65,26 @@ def test_human_output_and_console_script():
                          capture_output=True, text=True, timeout=120)
     assert out.returncode == 0, out.stderr
     assert "transmission error peak-to-peak" in out.stdout and "σ_c" in out.stdout
+
+
+def test_design_file_with_modifications_table(capsys, tmp_path):
+    """``--design FILE.toml`` (efficiency.design_io format) with an optional [modifications] table in µm/mm; an
+    explicit option overrides the table. The result equals the in-process model for the same inputs."""
+    from efficiency.design_io import design_to_toml
+    from efficiency.mesh_cycle import MeshOptions, evaluate_mesh
+    from efficiency.modifications import Modifications
+
+    pair = GearPair.from_paper(32, math.radians(30), math.radians(19), 2.068)
+    path = tmp_path / "design_d.toml"
+    path.write_text(design_to_toml(pair, "D") + "\n[modifications]\nprofile_crown_um = 15\nlead_crown_um = 30\n")
+    code, payload = run_json(capsys, ["--design", str(path), "--lead-crown-um", "12", "--slices", "20",
+                                      "--positions", "12"])
+    assert code == 0
+    assert payload["profile_crown_m"] == pytest.approx(15e-6) and payload["lead_crown_m"] == pytest.approx(12e-6)
+    direct = evaluate_mesh(pair, 250.0, speed_rad_s=4000 * math.pi / 30, modifications=Modifications.paper(),
+                           options=MeshOptions(slices=20, positions=12))
+    assert payload["te_pp_m"] == pytest.approx(direct.te_peak_to_peak, rel=1e-9)
+    assert payload["sigma_c_max_pa"] == pytest.approx(direct.sigma_c_max, rel=1e-9)
+    path.write_text(design_to_toml(pair) + "\n[modifications]\ncrown = 3\n")
+    assert main(["gear", "evaluate", "--design", str(path)]) == 2
+    assert "crown" in capsys.readouterr().err
