@@ -48,6 +48,11 @@ class FrictionSurrogate:
         self.formula = coefficients.formula
         self.lubricant = coefficients.lubricant
         self.e_reduced = coefficients.e_reduced
+        if coefficients.document.get("stable") is False:
+            from .fit import UnstableFitWarning
+
+            warnings.warn(f"coefficient file {coefficients.path} was written from a fit flagged numerically unstable "
+                          f"(see its branches.*.messages)", UnstableFitWarning, stacklevel=2)
 
     @classmethod
     def load(cls, name_or_path: str | Path) -> "FrictionSurrogate":

@@ -27,6 +27,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 import scipy.linalg
+from threadpoolctl import threadpool_limits
 
 from ehl_dataset.validation import InputError, SolverError
 
@@ -40,6 +41,9 @@ HIGH_VIF = 1000.0
 """Variance inflation above this is reported as severe multicollinearity (a warning, not a failure)."""
 RAW_AGREEMENT_SE = 1e-2
 """Raw-design and standardised solutions must agree within this many standard errors."""
+
+LAMBDA_COLUMN_RTOL = 1e-3
+"""Recomputed and stored λ̄ (same Dowson–Higginson formula) must agree to this relative tolerance, else warn."""
 
 INPUT_COLUMNS = ("p_h", "r_eq", "u_r", "sr", "temperature", "rq1", "rq2")
 RANGE_KEYS = {"p_h": "p_h_pa", "r_eq": "r_eq_m", "u_r": "u_r_m_s", "sr_abs": "sr_abs", "temperature": "temperature_k",
@@ -226,7 +230,16 @@ def _intercept_column(x: np.ndarray) -> int | None:
 
 
 def fit_branch(x: np.ndarray, y: np.ndarray, names: list[str], branch: str, lam: np.ndarray | None = None) -> BranchFit:
-    """OLS fit of ln μ on one branch's design matrix with statsmodels (see module docstring for the checks)."""
+    """OLS fit of ln μ on one branch's design matrix with statsmodels (see module docstring for the checks).
+
+    BLAS runs single-threaded here: the matrices are thin (n × 10–14) and multi-threaded SVDs were measured 10×
+    slower on a loaded 2-core machine.
+    """
+    with threadpool_limits(1):
+        return _fit_branch(x, y, names, branch, lam)
+
+
+def _fit_branch(x, y, names, branch, lam) -> BranchFit:
     import statsmodels.api as sm
 
     n, k = x.shape
@@ -312,6 +325,11 @@ def branch_masks(lam: np.ndarray, threshold: float) -> dict[str, np.ndarray]:
 
 def fit_params(formula: Formula, features: dict[str, np.ndarray], ln_mu: np.ndarray) -> dict[str, np.ndarray]:
     """Least-squares coefficients of both branches (fast path without statistics; used inside CV)."""
+    with threadpool_limits(1):
+        return _fit_params(formula, features, ln_mu)
+
+
+def _fit_params(formula, features, ln_mu):
     masks = branch_masks(features["lam"], formula.lambda_threshold)
     out = {}
     for branch, mask in masks.items():
@@ -439,6 +457,10 @@ def fit_surrogate(table: pd.DataFrame, lubricant, e_reduced: float, *, formula: 
         x = design_matrix(formula.terms[branch], sub)
         branches[branch] = fit_branch(x, ln_mu[mask], formula.term_names(branch), branch, sub["lam"])
     stable = all(f.stable for f in branches.values())
+    if prepared.lambda_column_max_rel_diff is not None and prepared.lambda_column_max_rel_diff > LAMBDA_COLUMN_RTOL:
+        warnings.warn(f"lambda_bar recomputed from the inputs differs from the dataset's lambda_bar column by up to "
+                      f"{prepared.lambda_column_max_rel_diff:.2%}: is the lubricant or E' the one the dataset was "
+                      f"computed with?", UserWarning, stacklevel=2)
     for f in branches.values():
         if f.messages:
             warnings.warn(f"branch {f.branch}: " + "; ".join(f.messages), UnstableFitWarning, stacklevel=2)
