@@ -21,6 +21,7 @@ Resuming computes every row that is not ``ok`` (pending and failed).
 
 from __future__ import annotations
 
+import contextlib
 import dataclasses
 import hashlib
 import importlib
@@ -128,6 +129,17 @@ def judge_record(record: dict, message: str = "") -> tuple[int, str]:
     return OK, ""
 
 
+def _one_blas_thread():
+    """One BLAS/OpenMP thread during a solve (DESIGN §9: one core per case). Without it every worker's LAPACK
+    would start one thread per core (oversubscription), and a point's last bits would depend on where it ran
+    (threaded reductions), so a resumed or distributed run could differ from an uninterrupted local one."""
+    try:
+        from threadpoolctl import threadpool_limits
+    except ImportError:  # pragma: no cover - threadpoolctl comes with scikit-learn
+        return contextlib.nullcontext()
+    return threadpool_limits(limits=1)
+
+
 def compute_point(task: PointTask) -> dict[str, Any]:
     """Solve one point (runs in a worker). Never raises for a solver error: the error is returned as text."""
     from .contact import ContactCase
@@ -137,7 +149,8 @@ def compute_point(task: PointTask) -> dict[str, Any]:
     try:
         solve = resolve_solver(task.solver)
         case = ContactCase(*task.point)
-        result = solve(case, _lubricant(task.lubricant_json), level=task.level, effects=task.effects)
+        with _one_blas_thread():
+            result = solve(case, _lubricant(task.lubricant_json), level=task.level, effects=task.effects)
         record = result.to_record()
         status, error = judge_record(record, getattr(result, "message", ""))
     except Exception as err:  # noqa: BLE001 - any solver failure is recorded, the run goes on

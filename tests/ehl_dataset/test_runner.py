@@ -76,6 +76,15 @@ def flaky_outputs_solve(case, lubricant, level="fast", effects="auto"):
     return result
 
 
+def blas_threads_solve(case, lubricant, level="fast", effects="auto"):
+    """Reports, as ``iterations``, the most threads any loaded BLAS/OpenMP library would use during the solve."""
+    from threadpoolctl import threadpool_info
+
+    result = analytic_solve(case, lubricant, level, effects)
+    result.iterations = max([info["num_threads"] for info in threadpool_info()] or [1])
+    return result
+
+
 def plan_dict(**axes):
     base = {"p_h_gpa": [0.5, 1.5], "r_eq_mm": [20.0], "u_r_m_s": [5.0, 20.0], "sr": [0.1, 0.7], "temp_c": [75.0],
             "roughness_um": [[0.05, 0.05], [0.4, 0.4]]}
@@ -340,3 +349,12 @@ def test_progress_bar_shows_rate_and_counts(tmp_path, plan):
     run_factorial(tmp_path / "r.h5", plan, workers=0, solver=raising_solve, progress="bar", stream=stream)
     text = stream.getvalue()
     assert "16/16" in text and "pt/s" in text and "failed=4" in text
+
+
+def test_each_solve_runs_on_one_blas_thread(tmp_path, plan):
+    """DESIGN §9, one core per case: LAPACK inside a solve is single-threaded wherever the point runs, which also
+    makes a point's result independent of where it ran."""
+    for workers in (0, 2):
+        run_factorial(tmp_path / f"w{workers}.h5", plan, workers=workers, solver=blas_threads_solve,
+                      progress="none")
+        assert (read_table(tmp_path / f"w{workers}.h5")["iterations"] == 1).all()
