@@ -433,6 +433,10 @@ class SurrogateFit:
         parts.append(f"\n{self.cv['k']}-fold CV: RMSE ln mu {cv['rmse_ln_mu']:.4g}, mean |rel err mu| "
                      f"{cv['mean_rel_err_mu']:.4g}, p95 {cv['p95_rel_err_mu']:.4g}")
         parts.append(f"jump at lambda = 1: {self.jump}")
+        if self.prepared is not None and self.cv_predictions is not None:
+            from .diagnostics import format_residuals, residuals_by_factor
+
+            parts.append("\n" + format_residuals(residuals_by_factor(self)))
         return "\n".join(parts)
 
 
