@@ -193,6 +193,12 @@ def design_sweep(space: DesignSpace, friction: Callable, point: StudyPoint,
     return pd.concat([designs, outputs], axis=1)
 
 
+def no_error(table: pd.DataFrame) -> pd.Series:
+    """True for rows whose ``error`` is empty (also when read back from CSV, where empty cells become NaN)."""
+    errors = table["error"]
+    return errors.isna() | (errors.astype(str) == "")
+
+
 def _check_table(table: pd.DataFrame, columns: Iterable[str]) -> None:
     missing = [c for c in columns if c not in table.columns]
     if missing:
@@ -221,7 +227,7 @@ def rank_by_limits(table: pd.DataFrame, limits: Mapping[str, float] = PAPER_SEAR
     if not limits:
         raise InputError("limits", dict(limits), "at least one of " + ", ".join(sorted(SEARCH_CRITERIA)))
     _check_table(table, [SEARCH_CRITERIA[k] for k in limits] + ["converged", "error"])
-    valid = table[table["converged"].astype(bool) & (table["error"].fillna("") == "")].copy()
+    valid = table[table["converged"].astype(bool) & no_error(table)].copy()
     ratios = []
     for key, value in limits.items():
         check_range(key, value, 0.0, math.inf, low_inclusive=False)

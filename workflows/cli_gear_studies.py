@@ -150,7 +150,7 @@ def run_sweep(args: argparse.Namespace) -> int:
 
     import numpy as np
 
-    from efficiency.studies import describe_friction, design_sweep, find_design_like_d, rank_by_limits
+    from efficiency.studies import describe_friction, design_sweep, find_design_like_d, no_error, rank_by_limits
 
     started = time.perf_counter()
     study, friction, point, options = _setup(args)
@@ -163,7 +163,7 @@ def run_sweep(args: argparse.Namespace) -> int:
     n = len(table)
     if n == 0:
         raise InputError("fix/limit", args.fix or args.limit, "a selection containing at least one feasible design")
-    valid = table["converged"].astype(bool) & (table["error"].fillna("") == "")
+    valid = table["converged"].astype(bool) & no_error(table)
     limits = study.search_limits or {}
     matches = find_design_like_d(table, limits)
     nearest = rank_by_limits(table, limits)
@@ -233,7 +233,7 @@ def run_modifications(args: argparse.Namespace) -> int:
     import time
 
     from ehl_dataset.validation import check_range
-    from efficiency.studies import describe_friction, modification_study
+    from efficiency.studies import describe_friction, modification_study, no_error
 
     started = time.perf_counter()
     study, friction, point, options = _setup(args)
@@ -248,7 +248,7 @@ def run_modifications(args: argparse.Namespace) -> int:
     name, pair = _study_pair(args, study)
     table = modification_study(pair, friction, [v * 1e-6 for v in profile], [v * 1e-6 for v in lead], torques,
                                point, options)
-    ok = table["converged"].astype(bool) & (table["error"].fillna("") == "")
+    ok = table["converged"].astype(bool) & no_error(table)
     rows = [{k: (bool(r[k]) if k == "converged" else str(r[k]) if k == "error" else float(r[k]))
              for k in ("torque_nm", "profile_crown_m", "lead_crown_m", "power_loss_w", "efficiency", "te_pp_m",
                        "sigma_c_pa", "sigma_b_pa", "converged", "error")} for _, r in table.iterrows()]

@@ -228,3 +228,43 @@ def test_bad_input_is_named(study, point):
         modification_study(study.design("D"), MU, [-1e-6], [0.0], [250.0], point)
     with pytest.raises(InputError, match="input_torque"):
         StudyPoint(-1.0, 400.0, 363.15, 4e-7, 4e-7)
+
+
+# ---------------------------------------------------------------------- CLI
+def test_cli_sweep_json_and_csv(tmp_path, capsys):
+    """`gearloss gear sweep` on the Fig. 4a line: one JSON object, the CSV holds every evaluated design, and the
+    numbers equal the library's."""
+    import json
+
+    from workflows.cli import main
+
+    out = tmp_path / "sweep.csv"
+    code = main(["gear", "sweep", "--friction", "constant:0.05", "--fix", "teeth=30", "--fix", "helix_angle_deg=20",
+                 "--fix", "working_depth=2.286", "--out", str(out), "--json"])
+    payload = json.loads(capsys.readouterr().out)
+    assert code == 0
+    table = pd.read_csv(out)
+    assert payload["designs_evaluated"] == len(table) == 7
+    assert payload["friction_model"] == "constant mu=0.05"
+    assert payload["power_loss_w_range"] == pytest.approx([table["power_loss_w"].min(), table["power_loss_w"].max()])
+    assert payload["matches"] == len(find_design_like_d(table, PAPER_SEARCH_LIMITS))
+    assert len(payload["nearest"]) == 5
+
+
+def test_cli_modifications_and_bad_input(capsys):
+    import json
+
+    from workflows.cli import main
+
+    code = main(["gear", "modifications", "--design", "D", "--friction", "constant:0.05", "--torques-nm", "50",
+                 "--profile-crowns-um", "0,30", "--lead-crowns-um", "0", "--json"])
+    payload = json.loads(capsys.readouterr().out)
+    assert code == 0 and payload["design"] == "D" and payload["cases"] == 2
+    te = [r["te_pp_m"] for r in payload["rows"]]
+    assert te[1] > te[0]  # Fig. 6b at light load
+    assert main(["gear", "modifications", "--torques-nm", "50,-1"]) == 2
+    assert "torques-nm" in capsys.readouterr().err
+    assert main(["gear", "sweep", "--fix", "module=2"]) == 2
+    assert "fix" in capsys.readouterr().err
+    assert main(["gear", "sweep", "--friction", "constant:1.5", "--limit", "1"]) == 2
+    assert main(["gear", "sweep", "--limit", "0"]) == 2
