@@ -1,6 +1,7 @@
 """Alternative friction models on the same data: cross-validated error and evaluation speed in one table.
 
-Models: the paper's two-branch Eq. 9 (``li_kahraman_2009_eq9``, with the coefficient file's blend), the
+Models: the paper's two-branch Eq. 9 (``li_kahraman_2009_eq9``, with the coefficient file's blend, and
+``li_kahraman_2009_eq9_hard_switch``, the paper's switch at λ̄ = 1 without blend), the
 gradient-boosted trees of :mod:`surrogate.learned` (``hist_gradient_boosting``), and the published formulas of
 :mod:`surrogate.published` (not fitted: their "CV" error is simply their error on every usable row).
 Both fitted models use the same shuffled k folds. Evaluation rate: points per second of a vectorised evaluation
@@ -47,20 +48,24 @@ def compare_models(table, lubricant, e_reduced: float, *, k_folds: int = 5, seed
     folds = list(KFold(k_folds, shuffle=True, random_state=seed).split(np.arange(n)))
     rows = []
 
-    # --- paper Eq. 9 ---------------------------------------------------------------------------------------
-    pred = np.empty(n)
+    # --- paper Eq. 9, with the blend and with the paper's hard switch at λ̄ = 1 ------------------------------
+    pred = {blend_half_width: np.empty(n), 0.0: np.empty(n)}
     start = time.perf_counter()
     for train, test in folds:
         params = fit_params(LI_KAHRAMAN_2009, {k: v[train] for k, v in feats.items()}, ln_mu[train])
-        pred[test] = predict_ln_mu(LI_KAHRAMAN_2009, params, {k: v[test] for k, v in feats.items()},
-                                   blend_half_width)
+        for delta, out in pred.items():
+            out[test] = predict_ln_mu(LI_KAHRAMAN_2009, params, {k: v[test] for k, v in feats.items()}, delta)
     fit_time = (time.perf_counter() - start) / k_folds
     params = fit_params(LI_KAHRAMAN_2009, feats, ln_mu)
-    eval_time = _median_time(lambda: predict_ln_mu(LI_KAHRAMAN_2009, params, compute_features(
-        *inputs, lubricant, e_reduced), blend_half_width), repeats)
-    rows.append({"model": "li_kahraman_2009_eq9", "kind": "regression (OLS, 24 coefficients)",
-                 "metrics": error_metrics(ln_mu, pred), "fit_time_s": fit_time,
-                 "eval_points_per_s": n / eval_time})
+    for delta, out in pred.items():
+        eval_time = _median_time(lambda: predict_ln_mu(LI_KAHRAMAN_2009, params, compute_features(
+            *inputs, lubricant, e_reduced), delta), repeats)
+        name = "li_kahraman_2009_eq9" if delta == blend_half_width else "li_kahraman_2009_eq9_hard_switch"
+        rows.append({"model": name, "kind": f"regression (OLS, 24 coefficients), blend half width {delta:g}",
+                     "metrics": error_metrics(ln_mu, out), "fit_time_s": fit_time,
+                     "eval_points_per_s": n / eval_time})
+        if blend_half_width == 0.0:
+            break
 
     # --- gradient-boosted trees ------------------------------------------------------------------------------
     pred = np.empty(n)
@@ -95,14 +100,14 @@ def compare_models(table, lubricant, e_reduced: float, *, k_folds: int = 5, seed
 
 def format_table(result: dict[str, Any]) -> str:
     """Plain-text table of :func:`compare_models`."""
-    head = (f"{'model':24s} {'CV RMSE ln mu':>13s} {'mean|rel err|':>13s} {'p95|rel err|':>12s} "
+    head = (f"{'model':33s} {'CV RMSE ln mu':>13s} {'mean|rel err|':>13s} {'p95|rel err|':>12s} "
             f"{'bias ln mu':>10s} {'points/s':>11s}")
     lines = [f"{result['n_rows']} rows, {result['k_folds']}-fold CV (published formulas: not fitted)", head]
     for row in result["models"]:
         if "error" in row:
-            lines.append(f"{row['model']:24s} not applicable: {row['error']}")
+            lines.append(f"{row['model']:33s} not applicable: {row['error']}")
             continue
         m = row["metrics"]
-        lines.append(f"{row['model']:24s} {m['rmse_ln_mu']:13.4f} {m['mean_rel_err_mu']:13.2%} "
+        lines.append(f"{row['model']:33s} {m['rmse_ln_mu']:13.4f} {m['mean_rel_err_mu']:13.2%} "
                      f"{m['p95_rel_err_mu']:12.2%} {m['bias_ln_mu']:10.3f} {row['eval_points_per_s']:11.3g}")
     return "\n".join(lines)

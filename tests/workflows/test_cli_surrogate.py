@@ -87,9 +87,10 @@ def test_compare_table_has_every_model(dataset, capsys):
     assert main(["surrogate", "compare", str(dataset[0]), "--k-folds", "3", "--json"]) == 0
     out = _json(capsys)
     models = {row["model"]: row for row in out["models"]}
-    assert set(models) == {"li_kahraman_2009_eq9", "hist_gradient_boosting", "xu_2007", "benedict_kelley_1961",
+    assert set(models) == {"li_kahraman_2009_eq9", "li_kahraman_2009_eq9_hard_switch", "hist_gradient_boosting", "xu_2007", "benedict_kelley_1961",
                            "iso_tr_14179_2"}
     # the data follow Eq. 9 exactly with σ = 0.05 noise: its CV error must be the noise level
+    assert models["li_kahraman_2009_eq9_hard_switch"]["metrics"]["rmse_ln_mu"] == pytest.approx(0.05, rel=0.15)
     assert models["li_kahraman_2009_eq9"]["metrics"]["rmse_ln_mu"] == pytest.approx(0.05, rel=0.15)
 
 
