@@ -95,3 +95,16 @@ def test_outside_the_band_each_branch_is_used_unblended(surrogate):
     full = branch_ln_mu(surrogate.formula.terms["full_film"], p["full_film"], feats)
     np.testing.assert_allclose(ln_mu[:2], mixed[:2], rtol=1e-12)
     np.testing.assert_allclose(ln_mu[2:], full[2:], rtol=1e-12)
+
+
+def test_factorial_corners_are_finite(surrogate):
+    """DESIGN hard cases: every corner of the paper's factorial (0.5/2.5 GPa, 5/80 mm, 1/20 m/s, SR 0/1,
+    25/100 °C, Rq 0.05/1.0 µm) evaluates to a finite μ in (0, 1) without warnings (all inside the fitted ranges)."""
+    import itertools
+
+    corners = np.array(list(itertools.product([0.5e9, 2.5e9], [0.005, 0.08], [1.0, 20.0], [0.0, 1.0],
+                                              [298.15, 373.15], [0.05e-6, 1.0e-6], [0.05e-6, 1.0e-6])))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", SurrogateExtrapolationWarning)
+        mu = surrogate.mu(*corners.T)
+    assert np.all(np.isfinite(mu)) and np.all((mu > 0) & (mu < 1))
