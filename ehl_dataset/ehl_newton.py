@@ -88,7 +88,7 @@ class ReynoldsProblem:
         else:
             rho = np.ones_like(p)
             rho_p = np.zeros_like(p)
-        hp = np.maximum(h, 1e-300)
+        hp = np.maximum(h, 1e-12)  # closed films (rough runs): the Poiseuille terms fade out there anyway
         inv_eta2 = np.exp(-2.0 * phi)
         shear2 = (self.shear / hp) ** 2
         g2 = inv_eta2 + shear2  # (cosh(τ_m/τ0)/η̄)², the Eyring flow factor over viscosity
@@ -99,10 +99,14 @@ class ReynoldsProblem:
         eps_p = eps * (rho_p / rho + dlng_dp)
         eps_h = eps * (3.0 / hp + dlng_dh)
         if self.h_closed > 0.0:
-            closed = h <= self.h_closed
-            eps = np.where(closed, 0.0, eps)
-            eps_p = np.where(closed, 0.0, eps_p)
-            eps_h = np.where(closed, 0.0, eps_h)
+            # unified Reynolds: the Poiseuille coefficient fades out with a C¹ smoothstep between 2 h_closed and
+            # h_closed (zero below), so the residual stays continuously differentiable for Newton
+            z = np.clip(h / self.h_closed - 1.0, 0.0, 1.0)
+            fade = z * z * (3.0 - 2.0 * z)
+            fade_h = 6.0 * z * (1.0 - z) / self.h_closed
+            eps_h = eps_h * fade + eps * fade_h
+            eps = eps * fade
+            eps_p = eps_p * fade
         m = rho * h
         return eps, eps_p, eps_h, m, rho_p * h, rho
 
@@ -165,13 +169,15 @@ def _norms(p, res, m_ref, phi, kappa):
 def newton_solve(problem: ReynoldsProblem, p0: np.ndarray, h00: float, *, homotopy: float = 1.0,
                  tol_residual: float = 1e-6, tol_load: float = 1e-6, tol_step: float = 1e-6,
                  max_iterations: int = 60, max_pressure_step: float = 0.5,
-                 pseudo_dt: float = 0.0) -> NewtonOutcome:
+                 pseudo_dt: float = 0.0, m_ref: float | None = None, monotone: bool = True) -> NewtonOutcome:
     """Solve the discrete problem from the initial guess (``p0``, ``h00``).
 
     Converged when the Reynolds residual on pressurised nodes (relative to the Couette flux ρ̄H at the contact
     centre), the complementarity violation on the other nodes, the load error and the last pressure step are all
     below tolerance. Steps are limited to ``max_pressure_step`` (in p_h), backtracked on the Fischer–Burmeister
-    merit and kept where the film stays open. With ``pseudo_dt`` > 0 the Newton iteration is globalised by
+    merit and kept where the film stays open (smooth runs). ``m_ref`` overrides the flux scale (rough runs,
+    where the film at the centre may be closed); ``monotone=False`` accepts a damped step (ω < 0.3) even without
+    a decrease of the merit, which lets the iteration leave the kinks of the complementarity function. With ``pseudo_dt`` > 0 the Newton iteration is globalised by
     pseudo-transient continuation (Kelley & Keyes 1998): the squeeze term w_i ∂m_i/∂T of the transient Reynolds
     equation with time step ΔT_k = pseudo_dt·r_0/r_k (switched evolution relaxation) is added to the Jacobian only,
     so the iterates follow a damped, physical squeeze-film evolution early on and become pure Newton steps
@@ -187,7 +193,7 @@ def newton_solve(problem: ReynoldsProblem, p0: np.ndarray, h00: float, *, homoto
     if problem.h_closed == 0.0 and np.any(h <= 0.0):
         return NewtonOutcome(p, h0, h, False, 0, math.inf, math.inf, math.inf, math.inf, "initial film not open")
     res, dp, dh, mm = problem.residual(p, h, homotopy)
-    m_ref = max(abs(float(mm[0][centre])), 1e-300)
+    m_ref = max(abs(float(mm[0][centre])), 1e-300) if m_ref is None else float(m_ref)
     r_start = None
     step_norm = math.inf
     message = "iteration limit reached"
@@ -242,7 +248,7 @@ def newton_solve(problem: ReynoldsProblem, p0: np.ndarray, h00: float, *, homoto
                 if np.all(np.isfinite(res_new)):
                     phi_new = _complementarity(problem, p_new, res_new, kappa)[0]
                     merit1 = float(phi_new @ phi_new) + problem.load(p_new) ** 2
-                    if merit1 <= (1.0 - 1e-4 * omega) * merit0 or not LINE_SEARCH:
+                    if merit1 <= (1.0 - 1e-4 * omega) * merit0 or not LINE_SEARCH or (not monotone and omega < 0.3):
                         accepted = True
                         break
             omega *= 0.5
@@ -251,7 +257,10 @@ def newton_solve(problem: ReynoldsProblem, p0: np.ndarray, h00: float, *, homoto
             break
         step_norm = float(np.max(np.abs(p_new - p)))
         if TRACE:
-            print(f"it {iteration}: merit {merit0:.3e} omega {omega:.3g} step {step_norm:.3e} load {load_err:.1e}")
+            j = int(np.argmax(np.abs(p_new - p)))
+            print(f"it {iteration}: merit {merit0:.3e} omega {omega:.3g} step {step_norm:.3e} load {load_err:.1e} "
+                  f"at x={problem.x[j]:.4f} p={p[j]:.4g}->{p_new[j]:.4g} h={h[j]:.3e} phi_max_at="
+                  f"{problem.x[1 + int(np.argmax(np.abs(phi)))]:.4f}")
         p, h0, h, res, dp, dh, mm = p_new, h0_new, h_new, res_new, dp_new, dh_new, m_new
     phi = _complementarity(problem, p, res, kappa)[0]
     r_free, r_cav = _norms(p, res, m_ref, phi, kappa)

@@ -1,0 +1,190 @@
+"""Transient mixed-EHL line contact with moving roughness (paper Eq. 1–8; issue 3, deliverable 2).
+
+The same discretisation and Newton solver as the steady smooth solve (:mod:`ehl_dataset.reynolds`,
+:mod:`ehl_dataset.ehl_newton`), on a uniform grid that resolves the roughness, with
+
+* the squeeze term ∂(ρh)/∂t by backward Euler (the previous step is the initial guess of the next),
+* the film of paper Eq. 3, H = H0(t) + X²/2 + K P − R1(X − U1 T) − R2(X − U2 T); the two profiles come from
+  :func:`ehl_dataset.roughness.plan_surfaces` (independent stretches of the shipped baseline profile scaled to Rq1,
+  Rq2) and move with their surface speeds,
+* the unified Reynolds equation (Hu & Zhu 2000): where the film is below :data:`H_CLOSED_M` the Poiseuille term is
+  dropped and the equation reduces to ∂x(u_r ρh) + ∂t(ρh) = 0 (paper Eq. 2); those nodes are asperity contacts,
+  whose traction is q = μ_d p (paper after Eq. 7),
+* the load balance ∫p dx = W' at every step (H0(t) the unknown).
+
+The run starts from the steady smooth solution, lasts ``n_passes`` × the domain length / u_r (the start-up
+transient is the time the disturbance needs to be carried through the domain), and μ, μ_std, the asperity load
+share, the film and the pressure are averaged over the last ``average_fraction`` of the steps.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+
+import numpy as np
+
+from .contact import ContactCase
+from .deflection import influence_matrix
+from .effects import Effects
+from .ehl_grid import uniform_grid
+from .ehl_newton import ReynoldsProblem, newton_solve
+from .levels import AccuracyLevel
+from .lubricant import LubricantState
+from .result import ContactResult
+from .traction import friction_components
+from .validation import SolverError
+
+H_CLOSED_M = 1e-9
+"""Film [m] below which the Poiseuille term is dropped (unified Reynolds, Hu & Zhu 2000: a vanishing film)."""
+MAX_STEP_RETRIES = 3
+"""Times a non-converged time step is retried with half the time step before the run is marked not converged."""
+
+
+def roughness_grid(case: ContactCase, lvl: AccuracyLevel, correlation_length_m: float) -> tuple[np.ndarray, bool]:
+    """Uniform grid [a] with spacing ``dx_rough`` correlation lengths (at most ``dx_rough_max`` a), capped at
+    ``max_nodes_rough`` nodes. Returns the nodes and whether the cap coarsened the roughness resolution."""
+    a = case.half_width
+    dx = min(lvl.dx_rough * correlation_length_m / a, lvl.dx_rough_max)
+    length = lvl.x_end - lvl.x_start
+    capped = length / dx + 1 > lvl.max_nodes_rough
+    if capped:
+        dx = length / (lvl.max_nodes_rough - 1)
+    return uniform_grid(lvl.x_start, lvl.x_end, dx), bool(capped)
+
+
+def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel, plan: Effects) -> ContactResult:
+    """Transient mixed solve of one rough contact; see the module docstring."""
+    from .roughness import baseline_profile, plan_surfaces
+    from .solver import ContactScales, dowson_higginson_lambda, solve_steady
+
+    start = time.perf_counter()
+    scales = ContactScales.of(case, state, plan.shear_thinning)
+    a, film_scale = scales.a, scales.film_scale
+    profile = baseline_profile()
+    x, capped = roughness_grid(case, lvl, profile.correlation_length)
+    dx = x[1] - x[0]
+    kmat = influence_matrix(x)
+    problem = ReynoldsProblem(x=x, kmat=kmat, gap=0.5 * x**2, lam=scales.lam, p_h=case.p_h, state=state,
+                              compressible=plan.compressibility and state.compressible, shear=scales.shear)
+    tolerances = dict(tol_residual=lvl.tol_residual, tol_load=lvl.tol_load, tol_step=lvl.tol_step,
+                      max_iterations=lvl.max_iterations)
+
+    # 1. the steady smooth solution, moved onto the uniform grid
+    smooth_plan = Effects(False, False, plan.shear_thinning, plan.compressibility, plan.mode, {})
+    smooth = solve_steady(case, state, lvl, smooth_plan)
+    if not smooth.converged:
+        return _failed(case, state, lvl, plan, smooth.iterations, start, f"smooth start: {smooth.message}",
+                       smooth.residuals)
+    p0 = np.interp(x * a, smooth.x, smooth.pressure) / case.p_h
+    h0 = smooth.extra["h0_m"] / film_scale
+    first = newton_solve(problem, p0, h0, **tolerances)
+    iterations = smooth.iterations + first.iterations
+    if not first.converged:
+        return _failed(case, state, lvl, plan, iterations, start, f"smooth start on the rough grid: {first.message}",
+                       _residuals(first))
+    m_ref = float(np.interp(0.0, x, problem.fluid(first.p, first.h)[3]))
+
+    # 2. time stepping with the roughness switched on
+    d_t = lvl.courant * dx  # [a/u_r]
+    t_end = lvl.n_passes * (lvl.x_end - lvl.x_start)
+    n_steps = max(int(math.ceil(t_end / d_t)), 8)
+    d_t = t_end / n_steps
+    time_scale = a / case.u_r
+    surfaces = plan_surfaces(case, x * a, t_end * time_scale, profile)
+    problem.h_closed = H_CLOSED_M / film_scale
+    p, h0 = first.p, first.h0
+    m_prev = problem.fluid(p, first.h)[3]
+    t = 0.0
+    history = {k: [] for k in ("t", "mu", "share", "h_min", "h_c", "p_max", "load")}
+    worst = {"reynolds": 0.0, "load": 0.0, "step": 0.0, "complementarity": 0.0}
+    failure = ""
+    for _ in range(n_steps):
+        outcome, d_sub = None, d_t
+        for attempt in range(MAX_STEP_RETRIES + 1):
+            n_sub = 2**attempt
+            d_sub = d_t / n_sub
+            ok, p_try, h0_try, m_try, its = True, p, h0, m_prev, 0
+            for k in range(n_sub):
+                r1, r2 = surfaces.at((t + (k + 1) * d_sub) * time_scale)
+                problem.gap = 0.5 * x**2 - (r1 + r2) / film_scale
+                problem.squeeze = problem.weights / d_sub
+                problem.m_old = m_try
+                outcome = newton_solve(problem, p_try, h0_try, m_ref=m_ref, monotone=False, **tolerances)
+                its += outcome.iterations
+                if not outcome.converged:
+                    ok = False
+                    break
+                p_try, h0_try = outcome.p, outcome.h0
+                m_try = problem.fluid(p_try, outcome.h)[3]
+            iterations += its
+            if ok:
+                break
+        if not ok:
+            failure = f"time step at t = {t * time_scale:.3e} s did not converge ({outcome.message})"
+            break
+        t += d_t
+        p, h0, m_prev = p_try, h0_try, m_try
+        for key, value in _residuals(outcome).items():
+            worst[key] = max(worst[key], abs(value))
+        _record(history, t, case, state, x * a, p * case.p_h, outcome.h * film_scale, H_CLOSED_M)
+
+    converged = not failure
+    steps = len(history["t"])
+    if steps == 0:
+        return _failed(case, state, lvl, plan, iterations, start, failure, worst)
+    first_avg = int(steps * (1.0 - lvl.average_fraction)) if converged else max(steps // 2, 0)
+    window = slice(first_avg, steps)
+    mu = np.asarray(history["mu"][window])
+    h_dh, lambda_bar = dowson_higginson_lambda(case, state)
+    film = outcome.h * film_scale
+    result = ContactResult(
+        mu=float(mu.mean()), mu_std=float(mu.std()),
+        h_min=float(max(np.min(history["h_min"][window]), 0.0)),
+        h_central=float(np.mean(history["h_c"][window])),
+        p_max=float(np.max(history["p_max"][window])), converged=converged, iterations=int(iterations),
+        wall_time=time.perf_counter() - start, level=lvl.name, effects=plan.to_dict(), lambda_bar=lambda_bar,
+        asperity_load_share=float(np.mean(history["share"][window])), residuals=worst,
+        message="converged" if converged else f"not converged: {failure}",
+        x=x * a, pressure=p * case.p_h, film=film,
+        extra={"n_nodes": int(x.size), "dx_m": float(dx * a), "dt_s": float(d_t * time_scale),
+               "n_steps": int(steps), "n_steps_planned": int(n_steps), "average_from_step": int(first_avg),
+               "roughness_resolution_capped": capped, "surfaces_independent": bool(surfaces.independent),
+               "h_min_dowson_higginson_m": h_dh, "h_closed_m": H_CLOSED_M,
+               "max_load_error": float(np.max(np.abs(history["load"]))),
+               "mu_series": np.asarray(history["mu"]), "t_series_s": np.asarray(history["t"]) * time_scale},
+    )
+    if not all(np.isfinite([result.mu, result.h_central, result.p_max])):
+        raise SolverError(f"non-finite transient result for case {case.to_dict()}")
+    return result
+
+
+def _residuals(outcome) -> dict[str, float]:
+    return {"reynolds": outcome.residual, "load": outcome.load, "step": outcome.step,
+            "complementarity": outcome.complementarity}
+
+
+def _record(history, t, case, state, x_m, p_pa, h_m, h_closed_m):
+    contact = h_m <= h_closed_m
+    eta = state.viscosity(p_pa)
+    parts = friction_components(x_m, p_pa, np.maximum(h_m, h_closed_m), eta, case.u_s, state.tau0,
+                                case.load_per_length, state.mu_d, contact)
+    load = float(np.sum(0.5 * (p_pa[1:] + p_pa[:-1]) * np.diff(x_m)))
+    contact_load = float(np.sum(0.5 * ((p_pa * contact)[1:] + (p_pa * contact)[:-1]) * np.diff(x_m)))
+    history["t"].append(t)
+    history["mu"].append(parts["mu"])
+    history["share"].append(contact_load / load if load > 0 else 0.0)
+    history["h_min"].append(float(np.min(h_m)))
+    history["h_c"].append(float(np.interp(0.0, x_m, h_m)))
+    history["p_max"].append(float(np.max(p_pa)))
+    history["load"].append(load / case.load_per_length - 1.0)
+
+
+def _failed(case, state, lvl, plan, iterations, start, message, residuals) -> ContactResult:
+    from .solver import dowson_higginson_lambda
+
+    _, lambda_bar = dowson_higginson_lambda(case, state)
+    nan = float("nan")
+    return ContactResult(mu=nan, h_min=nan, h_central=nan, p_max=nan, converged=False, iterations=int(iterations),
+                         wall_time=time.perf_counter() - start, level=lvl.name, effects=plan.to_dict(),
+                         lambda_bar=lambda_bar, residuals=dict(residuals), message=f"not converged: {message}")
