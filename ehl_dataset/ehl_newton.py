@@ -80,11 +80,20 @@ class ReynoldsProblem:
         """ε, ∂ε/∂P, ∂ε/∂H, m = ρ̄H, ∂m/∂P, ∂m/∂H at the nodes (viscosity exponent scaled by ``homotopy``)."""
         pa = p * self.p_h
         law = self.state.law
-        phi = np.minimum(homotopy * law.exponent(pa), EXPONENT_CAP)
-        phi_p = homotopy * law.exponent_derivative(pa) * self.p_h
+        # Below p = 0 (only in Newton iterates; the solution has p ≥ 0) the laws are continued linearly from p = 0
+        # so that η and ρ stay C¹ there: a kink at p = 0 makes Newton cycle in closed-film (mixed) regions.
+        negative = pa < 0.0
+        slope_phi0 = float(law.exponent_derivative(np.array([0.0]))[0]) if negative.any() else 0.0
+        phi = homotopy * np.where(negative, slope_phi0 * pa, law.exponent(pa))
+        phi = np.minimum(phi, EXPONENT_CAP)
+        phi_p = homotopy * np.where(negative, slope_phi0, law.exponent_derivative(pa)) * self.p_h
         if self.compressible:
             rho = self.state.density(pa) / self.state.rho0
             rho_p = self.state.density_derivative(pa) * self.p_h / self.state.rho0
+            if negative.any():
+                slope_rho0 = float(self.state.density_derivative(np.array([0.0]))[0]) * self.p_h / self.state.rho0
+                rho = np.where(negative, 1.0 + slope_rho0 * p, rho)
+                rho_p = np.where(negative, slope_rho0, rho_p)
         else:
             rho = np.ones_like(p)
             rho_p = np.zeros_like(p)

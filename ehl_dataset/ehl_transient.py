@@ -12,7 +12,8 @@ The same discretisation and Newton solver as the steady smooth solve (:mod:`ehl_
   whose traction is q = μ_d p (paper after Eq. 7),
 * the load balance ∫p dx = W' at every step (H0(t) the unknown).
 
-The run starts from the steady smooth solution, lasts ``n_passes`` × the domain length / u_r (the start-up
+The run starts from the steady smooth solution, ramps the roughness amplitude in over the first part of the
+start-up phase, lasts ``n_passes`` × the domain length / u_r (the start-up
 transient is the time the disturbance needs to be carried through the domain), and μ, μ_std, the asperity load
 share, the film and the pressure are averaged over the last ``average_fraction`` of the steps.
 """
@@ -37,7 +38,11 @@ from .validation import SolverError
 
 H_CLOSED_M = 1e-9
 """Film [m] below which the Poiseuille term is dropped (unified Reynolds, Hu & Zhu 2000: a vanishing film)."""
-MAX_STEP_RETRIES = 3
+RAMP_FRACTION = 0.5
+"""Fraction of the start-up (non-averaged) part of a run over which the roughness amplitude grows from 0 to 1."""
+STEP_ITERATIONS = 25
+"""Newton iterations allowed per time step before it is retried with sub-steps."""
+MAX_STEP_RETRIES = 4
 """Times a non-converged time step is retried with half the time step before the run is marked not converged."""
 
 
@@ -56,7 +61,7 @@ def roughness_grid(case: ContactCase, lvl: AccuracyLevel, correlation_length_m: 
 def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel, plan: Effects) -> ContactResult:
     """Transient mixed solve of one rough contact; see the module docstring."""
     from .roughness import baseline_profile, plan_surfaces
-    from .solver import ContactScales, dowson_higginson_lambda, solve_steady
+    from .solver import ContactScales, dowson_higginson_lambda, solve_steady, solve_steady_problem
 
     start = time.perf_counter()
     scales = ContactScales.of(case, state, plan.shear_thinning)
@@ -80,6 +85,9 @@ def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel
     h0 = smooth.extra["h0_m"] / film_scale
     first = newton_solve(problem, p0, h0, **tolerances)
     iterations = smooth.iterations + first.iterations
+    if not first.converged:  # e.g. a coarse uniform grid at heavy load: globalised solve with continuation
+        first, its, _ = solve_steady_problem(problem, p0, h0, lvl)
+        iterations += its
     if not first.converged:
         return _failed(case, state, lvl, plan, iterations, start, f"smooth start on the rough grid: {first.message}",
                        _residuals(first))
@@ -91,8 +99,13 @@ def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel
     n_steps = max(int(math.ceil(t_end / d_t)), 8)
     d_t = t_end / n_steps
     time_scale = a / case.u_r
+    # the roughness amplitude is ramped in over the first RAMP_FRACTION of the start-up phase (excluded from the
+    # averages anyway): switching it on at once is a shock the first Newton steps cannot absorb at low λ̄
+    t_ramp = RAMP_FRACTION * (1.0 - lvl.average_fraction) * t_end
     surfaces = plan_surfaces(case, x * a, t_end * time_scale, profile)
     problem.h_closed = H_CLOSED_M / film_scale
+    # a time step that needs many iterations is cheaper to redo with sub-steps than to iterate on
+    step_tolerances = dict(tolerances, max_iterations=min(lvl.max_iterations, STEP_ITERATIONS))
     p, h0 = first.p, first.h0
     m_prev = problem.fluid(p, first.h)[3]
     t = 0.0
@@ -106,11 +119,13 @@ def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel
             d_sub = d_t / n_sub
             ok, p_try, h0_try, m_try, its = True, p, h0, m_prev, 0
             for k in range(n_sub):
-                r1, r2 = surfaces.at((t + (k + 1) * d_sub) * time_scale)
-                problem.gap = 0.5 * x**2 - (r1 + r2) / film_scale
+                t_k = t + (k + 1) * d_sub
+                r1, r2 = surfaces.at(t_k * time_scale)
+                ramp = min(1.0, t_k / t_ramp) if t_ramp > 0 else 1.0
+                problem.gap = 0.5 * x**2 - ramp * (r1 + r2) / film_scale
                 problem.squeeze = problem.weights / d_sub
                 problem.m_old = m_try
-                outcome = newton_solve(problem, p_try, h0_try, m_ref=m_ref, monotone=False, **tolerances)
+                outcome = newton_solve(problem, p_try, h0_try, m_ref=m_ref, monotone=False, **step_tolerances)
                 its += outcome.iterations
                 if not outcome.converged:
                     ok = False
