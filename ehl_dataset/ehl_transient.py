@@ -1,7 +1,8 @@
 """Transient mixed-EHL line contact with moving roughness (paper Eq. 1–8; issue 3, deliverable 2).
 
 The same discretisation and Newton solver as the steady smooth solve (:mod:`ehl_dataset.reynolds`,
-:mod:`ehl_dataset.ehl_newton`), on a uniform grid that resolves the roughness, with
+:mod:`ehl_dataset.ehl_newton`), on a grid that is uniform over the contact at the roughness resolution
+(:func:`roughness_grid`), with
 
 * the squeeze term ∂(ρh)/∂t by backward Euler (the previous step is the initial guess of the next),
 * the film of paper Eq. 3, H = H0(t) + X²/2 + K P − R1(X − U1 T) − R2(X − U2 T); the two profiles come from
@@ -28,7 +29,7 @@ import numpy as np
 from .contact import ContactCase
 from .deflection import influence_matrix
 from .effects import Effects
-from .ehl_grid import uniform_grid
+from .ehl_grid import banded_grid
 from .ehl_newton import ReynoldsProblem, newton_solve
 from .levels import AccuracyLevel
 from .lubricant import LubricantState
@@ -46,29 +47,37 @@ MAX_STEP_RETRIES = 4
 """Times a non-converged time step is retried with half the time step before the run is marked not converged."""
 
 
-def roughness_grid(case: ContactCase, lvl: AccuracyLevel, correlation_length_m: float) -> tuple[np.ndarray, bool]:
-    """Uniform grid [a] with spacing ``dx_rough`` correlation lengths (at most ``dx_rough_max`` a), capped at
-    ``max_nodes_rough`` nodes. Returns the nodes and whether the cap coarsened the roughness resolution."""
+def roughness_grid(case: ContactCase, lvl: AccuracyLevel, correlation_length_m: float,
+                   h_c: float = math.inf) -> tuple[np.ndarray, bool]:
+    """Grid [a] for a rough run: spacing ``dx_rough`` correlation lengths (at most ``dx_rough_max``·a) over the
+    contact band −1.15a…1.06a, in the inlet band also at most ``inlet_resolution``·H_c^(2/3) (the heavy-load inlet
+    scale, as in the steady grid), growing to ``dx_coarse`` outside. If that exceeds ``max_nodes_rough`` nodes
+    the roughness spacing is coarsened until it fits; the flag says so.
+    """
     a = case.half_width
-    dx = min(lvl.dx_rough * correlation_length_m / a, lvl.dx_rough_max)
-    length = lvl.x_end - lvl.x_start
-    capped = length / dx + 1 > lvl.max_nodes_rough
-    if capped:
-        dx = length / (lvl.max_nodes_rough - 1)
-    return uniform_grid(lvl.x_start, lvl.x_end, dx), bool(capped)
+    dx_r = min(lvl.dx_rough * correlation_length_m / a, lvl.dx_rough_max)
+    capped = False
+    while True:
+        dx_in = min(dx_r, lvl.inlet_resolution * h_c ** (2.0 / 3.0), lvl.dx_fine * 4.0)
+        bands = ((lvl.inlet_band[0], lvl.outlet_band[1], dx_r), (lvl.inlet_band[0], lvl.inlet_band[1], dx_in))
+        x = banded_grid(lvl.x_start, lvl.x_end, bands, max(lvl.dx_coarse, dx_r), lvl.transition)
+        if x.size <= lvl.max_nodes_rough:
+            return x, capped
+        capped = True
+        dx_r *= 1.25
 
 
 def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel, plan: Effects) -> ContactResult:
     """Transient mixed solve of one rough contact; see the module docstring."""
     from .roughness import baseline_profile, plan_surfaces
-    from .solver import ContactScales, dowson_higginson_lambda, solve_steady, solve_steady_problem
+    from .solver import ContactScales, dowson_higginson_lambda, moes_h_c, solve_steady, solve_steady_problem
 
     start = time.perf_counter()
     scales = ContactScales.of(case, state, plan.shear_thinning)
     a, film_scale = scales.a, scales.film_scale
     profile = baseline_profile()
-    x, capped = roughness_grid(case, lvl, profile.correlation_length)
-    dx = x[1] - x[0]
+    x, capped = roughness_grid(case, lvl, profile.correlation_length, moes_h_c(case, state, scales))
+    dx = float(np.min(np.diff(x[(x > lvl.inlet_band[1]) & (x < lvl.outlet_band[1])])))  # roughness spacing
     kmat = influence_matrix(x)
     problem = ReynoldsProblem(x=x, kmat=kmat, gap=0.5 * x**2, lam=scales.lam, p_h=case.p_h, state=state,
                               compressible=plan.compressibility and state.compressible, shear=scales.shear)
@@ -96,7 +105,7 @@ def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel
     # 2. time stepping with the roughness switched on
     d_t = lvl.courant * dx  # [a/u_r]
     t_end = lvl.n_passes * (lvl.x_end - lvl.x_start)
-    n_steps = max(int(math.ceil(t_end / d_t)), 8)
+    n_steps = min(max(int(math.ceil(t_end / d_t)), 8), lvl.max_steps_rough)
     d_t = t_end / n_steps
     time_scale = a / case.u_r
     # the roughness amplitude is ramped in over the first RAMP_FRACTION of the start-up phase (excluded from the
@@ -163,7 +172,8 @@ def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel
         message="converged" if converged else f"not converged: {failure}",
         x=x * a, pressure=p * case.p_h, film=film,
         extra={"n_nodes": int(x.size), "dx_m": float(dx * a), "dt_s": float(d_t * time_scale),
-               "n_steps": int(steps), "n_steps_planned": int(n_steps), "average_from_step": int(first_avg),
+               "n_steps": int(steps), "n_steps_planned": int(n_steps),
+               "courant_effective": float(d_t / dx), "average_from_step": int(first_avg),
                "roughness_resolution_capped": capped, "surfaces_independent": bool(surfaces.independent),
                "h_min_dowson_higginson_m": h_dh, "h_closed_m": H_CLOSED_M,
                "max_load_error": float(np.max(np.abs(history["load"]))),

@@ -31,7 +31,8 @@ class AccuracyLevel:
     Transient (phase 2): ``dx_rough`` spacing [roughness correlation length], ``dx_rough_max`` cap [a];
     ``courant`` time step as a fraction of dx/u_r; ``n_passes`` how many times the rolling speed carries the
     surfaces through the contact width 2a (start-up transient); ``average_fraction`` fraction of the steps used for
-    the time average (the last ones); ``max_nodes_rough`` upper bound on the uniform grid size.
+    the time average (the last ones); ``max_nodes_rough`` upper bound on the grid size; ``max_steps_rough`` upper
+    bound on the number of time steps (the time step grows beyond ``courant``·dx when needed; recorded).
     """
 
     name: str
@@ -53,6 +54,7 @@ class AccuracyLevel:
     n_passes: float = 2.0
     average_fraction: float = 0.5
     max_nodes_rough: int = 1024
+    max_steps_rough: int = 600
 
     def with_domain(self, x_start: float, x_end: float) -> "AccuracyLevel":
         """Copy with another domain [x_start, x_end] (in units of a), e.g. −2b…1.5b for the Huang case."""
@@ -64,11 +66,11 @@ class AccuracyLevel:
 LEVELS: dict[str, AccuracyLevel] = {
     "fast": AccuracyLevel("fast", dx_fine=6e-3, dx_coarse=4e-2, inlet_resolution=0.25, tol_residual=1e-5, tol_load=1e-5, tol_step=1e-5,
                           max_iterations=50, dx_rough=1.0, dx_rough_max=0.02, courant=2.0, n_passes=1.5,
-                          max_nodes_rough=512),
+                          max_nodes_rough=512, max_steps_rough=300),
     "standard": AccuracyLevel("standard"),
     "reference": AccuracyLevel("reference", dx_fine=6e-4, dx_coarse=8e-3, transition=0.2, inlet_resolution=0.03,
                                tol_residual=1e-7, tol_load=1e-9, tol_step=1e-7, max_iterations=80, dx_rough=0.25, dx_rough_max=0.005,
-                               courant=0.5, n_passes=3.0, max_nodes_rough=4096),
+                               courant=0.5, n_passes=3.0, max_nodes_rough=4096, max_steps_rough=4000),
 }
 """The named levels. ``standard`` is the default of :func:`ehl_dataset.solver.solve_contact`."""
 

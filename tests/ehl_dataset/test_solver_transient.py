@@ -14,7 +14,7 @@ LUB = load_lubricant("atf")
 
 
 def test_vanishing_roughness_reproduces_the_smooth_solution():
-    """Limit (issue 3): Rq → 0 (1e−4 µm) gives the steady smooth result. The transient run uses a uniform grid and
+    """Limit (issue 3): Rq → 0 (1e−4 µm) gives the steady smooth result. The transient run uses the banded roughness grid and
     the steady one a clustered grid, so they differ by the fast level's grid error: measured μ 0.02 %, h_c 0.2 %,
     h_min 0.3 %; asserted 0.5 %, 1 %, 1 %. The time fluctuation of μ vanishes (μ_std < 1e−3 μ)."""
     case = ContactCase.from_engineering(1.0, 20, 10, 0.5, 50, 1e-4, 1e-4)
