@@ -21,6 +21,7 @@ share, the film and the pressure are averaged over the last ``average_fraction``
 
 from __future__ import annotations
 
+import functools
 import math
 import time
 
@@ -69,13 +70,13 @@ def roughness_grid(case: ContactCase, lvl: AccuracyLevel, correlation_length_m: 
 
 def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel, plan: Effects) -> ContactResult:
     """Transient mixed solve of one rough contact; see the module docstring."""
-    from .roughness import baseline_profile, plan_surfaces
+    from .roughness import plan_surfaces
     from .solver import ContactScales, dowson_higginson_lambda, moes_h_c, solve_steady, solve_steady_problem
 
     start = time.perf_counter()
     scales = ContactScales.of(case, state, plan.shear_thinning)
     a, film_scale = scales.a, scales.film_scale
-    profile = baseline_profile()
+    profile = _baseline_profile()
     x, capped = roughness_grid(case, lvl, profile.correlation_length, moes_h_c(case, state, scales))
     dx = float(np.min(np.diff(x[(x > lvl.inlet_band[1]) & (x < lvl.outlet_band[1])])))  # roughness spacing
     kmat = influence_matrix(x)
@@ -182,6 +183,14 @@ def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel
     if not all(np.isfinite([result.mu, result.h_central, result.p_max])):
         raise SolverError(f"non-finite transient result for case {case.to_dict()}")
     return result
+
+
+@functools.lru_cache(maxsize=1)
+def _baseline_profile():
+    """The shipped baseline roughness profile, read once per process (reading the text file costs ~1 s)."""
+    from .roughness import baseline_profile
+
+    return baseline_profile()
 
 
 def _residuals(outcome) -> dict[str, float]:
