@@ -62,30 +62,48 @@ class PublishedFriction:
 
 @dataclass(frozen=True)
 class EhlFriction:
-    """The EHL solver itself at every contact point (slow: one solve per loaded point; for accuracy checks).
+    """The EHL solver itself at every contact point (slow: one solve per distinct loaded point; for accuracy checks).
 
-    Points whose solve does not converge raise :class:`ehl_dataset.validation.SolverError` (no silent numbers).
+    Points with identical inputs (e.g. the slices of a spur gear with a uniform load across the face) are solved
+    once. Points whose solve does not converge raise :class:`ehl_dataset.validation.SolverError` (no silent
+    numbers); so does a rough point that needs the transient mixed solver while it is unavailable.
+    After a call, ``last_stats()`` gives the number of solves and their time.
     """
 
     lubricant: Any
     level: str = "fast"
     effects: str = "auto"
+    _stats: dict = field(default_factory=dict, compare=False, repr=False)
 
     def __call__(self, p_h, r_eq, u_r, sr, temperature, rq1, rq2):
         from ehl_dataset.contact import ContactCase
         from ehl_dataset.solver import solve_contact
         from ehl_dataset.validation import SolverError
 
+        started = time.perf_counter()
         arrays = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (p_h, r_eq, u_r, sr, temperature,
                                                                               rq1, rq2)))
-        out = np.empty(arrays[0].shape)
-        for index in np.ndindex(out.shape):
-            values = [float(a[index]) for a in arrays]
-            result = solve_contact(ContactCase(*values), self.lubricant, self.level, self.effects)
+        shape = arrays[0].shape
+        rows = np.stack([a.reshape(-1) for a in arrays], axis=1)
+        unique, inverse = np.unique(rows, axis=0, return_inverse=True) if rows.size else (rows, np.zeros(0, int))
+        mu_unique = np.empty(len(unique))
+        iterations = 0
+        for k, values in enumerate(unique):
+            result = solve_contact(ContactCase(*(float(v) for v in values)), self.lubricant, self.level, self.effects)
             if not result.converged:
+                index = np.unravel_index(int(np.flatnonzero(inverse.reshape(-1) == k)[0]), shape) if shape else ()
                 raise SolverError(f"EHL solve did not converge at contact point {index}: {result.message}")
-            out[index] = result.mu
-        return out
+            mu_unique[k] = result.mu
+            iterations += int(getattr(result, "iterations", 0) or 0)
+        self._stats.clear()
+        self._stats.update(ehl_solves=len(unique), ehl_points=int(rows.shape[0]), ehl_iterations=iterations,
+                           ehl_time_s=time.perf_counter() - started)
+        return mu_unique[inverse.reshape(-1)].reshape(shape)
+
+    def last_stats(self) -> dict:
+        """``ehl_solves`` (distinct points solved), ``ehl_points``, ``ehl_iterations``, ``ehl_time_s`` of the last
+        call."""
+        return dict(self._stats)
 
 
 @dataclass(frozen=True)
@@ -144,6 +162,8 @@ def mesh_power_loss(mesh, friction: FrictionModel | Callable, temperature: float
         raise InputError("speed", kin.omega1, "> 0 rad/s for a power loss")
     cond = contact_conditions(mesh, material1, material2)
     loaded = cond["loaded"]
+    if hasattr(friction, "for_mesh"):  # mesh-aware models (e.g. EHL on a grid in roll distance) bind to the mesh
+        friction = friction.for_mesh(mesh, loaded, material1, material2)
     mu = np.full(mesh.loads.shape, np.nan)
     n = int(loaded.sum())
     mu_loaded = np.asarray(friction(cond["p_h"][loaded], cond["r_eq"][loaded], cond["u_r"][loaded],
@@ -160,6 +180,7 @@ def mesh_power_loss(mesh, friction: FrictionModel | Callable, temperature: float
         power_loss=power, power_loss_instant=instant, efficiency=1.0 - power / input_power,
         efficiency_instant=1.0 - instant / input_power, input_power=input_power, mu=mu, p_h=cond["p_h"],
         sr=cond["sr"], friction_model=_describe(friction), wall_time_s=time.perf_counter() - started,
+        extra=dict(friction.last_stats()) if hasattr(friction, "last_stats") else {},
     )
 
 
@@ -169,5 +190,7 @@ def _describe(friction) -> str:
     if isinstance(friction, PublishedFriction):
         return f"published {friction.name}"
     if isinstance(friction, EhlFriction):
-        return f"EHL solver level={friction.level}"
+        return f"EHL solver level={friction.level} effects={friction.effects}"
+    if hasattr(friction, "describe"):
+        return str(friction.describe())
     return type(friction).__name__
