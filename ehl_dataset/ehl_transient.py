@@ -42,6 +42,8 @@ H_CLOSED_M = 1e-9
 """Film [m] below which the Poiseuille term is dropped (unified Reynolds, Hu & Zhu 2000: a vanishing film)."""
 RAMP_FRACTION = 0.5
 """Fraction of the start-up (non-averaged) part of a run over which the roughness amplitude grows from 0 to 1."""
+MAX_PRESSURE_STEP = 3.0
+"""Largest pressure change per Newton iteration in a time step [p_h]: asperity contacts need pressures of several p_h."""
 STEP_ITERATIONS = 25
 """Newton iterations allowed per time step before it is retried with sub-steps."""
 MAX_STEP_RETRIES = 4
@@ -115,7 +117,8 @@ def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel
     surfaces = plan_surfaces(case, x * a, t_end * time_scale, profile)
     problem.h_closed = H_CLOSED_M / film_scale
     # a time step that needs many iterations is cheaper to redo with sub-steps than to iterate on
-    step_tolerances = dict(tolerances, max_iterations=min(lvl.max_iterations, STEP_ITERATIONS))
+    step_tolerances = dict(tolerances, max_iterations=min(lvl.max_iterations, STEP_ITERATIONS),
+                           max_pressure_step=MAX_PRESSURE_STEP)
     p, h0 = first.p, first.h0
     m_prev = problem.fluid(p, first.h)[3]
     t = 0.0
