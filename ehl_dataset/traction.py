@@ -4,13 +4,15 @@ Sign convention: ``mu`` is the friction force that resists the motion of surface
 load. It is ≥ 0 for u1 > u2 (SR > 0). In the paper's notation the traction on surface 1 is
 q = −(h/2) ∂p/∂x − τ with τ the Couette shear stress in the direction of sliding, and μ = −∫q dx / W'. Hence
 
-    μ = (1/W') [ ∫_film (h/2) ∂p/∂x dx + ∫_film τ dx + μ_d ∫_contact p dx ],
+    μ = (1/W') [ ∫_film (h/2) ∂p/∂x dx + ∫_film τ dx + sign(u_s) μ_d ∫_contact p dx ],
 
     τ = τ0 asinh(η u_s / (τ0 h))     (exact Eyring shear; Newtonian η u_s/h when τ0 → ∞),
 
 where "film" is the full-film region (the flooded inlet up to the cavitation boundary behind the outlet
 constriction; the cavitated region carries no liquid shear) minus the asperity-contact nodes, and "contact" the
-nodes where asperities touch (q = μ_d p there, paper after Eq. 7).
+nodes where asperities touch (q = μ_d p there, paper after Eq. 7, in the direction opposing sliding: the asperity
+friction has the sign of u_s, and vanishes in pure rolling). In pure rolling only the Poiseuille (rolling) part
+remains, which rough films can make slightly negative.
 """
 
 from __future__ import annotations
@@ -57,7 +59,7 @@ def friction_components(x, pressure, film, eta, u_s: float, tau0: float, load_pe
     safe_h = np.where(liquid, np.maximum(h, 1e-300), 1.0)
     poiseuille = np.where(liquid, 0.5 * h * dpdx, 0.0)
     couette = np.where(liquid, eyring_shear_stress(eta, u_s, safe_h, tau0), 0.0)
-    asperity = np.where(contact, mu_d * p, 0.0)
+    asperity = np.where(contact, mu_d * np.sign(u_s) * p, 0.0)
     parts = {
         "mu_poiseuille": _integrate(x, poiseuille) / load_per_length,
         "mu_couette": _integrate(x, couette) / load_per_length,
