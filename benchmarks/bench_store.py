@@ -6,14 +6,15 @@ Measures
 2. the runner's overhead: points/s with a near-zero-cost stand-in solver (workers 0, 1, 2) — the ceiling the
    pipeline itself imposes;
 3. points/s on the quick factorial with the real EHL solver at its level (``fast``) with 1 and 2 workers, and the
-   ok/failed counts (``--skip-solver`` leaves this out).
+   ok/failed counts (``--skip-solver`` leaves this out; ``--sample N`` times a seeded random sample of N points).
 
-Usage: ``python benchmarks/bench_store.py [--repeats 5] [--skip-solver] [--out benchmarks/results/store.json]``
+Usage: ``python benchmarks/bench_store.py [--repeats 5] [--skip-solver | --sample N] [--out FILE.json]``
 """
 
 from __future__ import annotations
 
 import argparse
+import hashlib
 import json
 import math
 import os
@@ -26,10 +27,10 @@ from pathlib import Path
 
 import numpy as np
 
-from ehl_dataset.factorial import load_factorial
+from ehl_dataset.factorial import canonical_json, load_factorial
 from ehl_dataset.lubricant import load_lubricant
 from ehl_dataset.result import ContactResult
-from ehl_dataset.runner import run_factorial
+from ehl_dataset.runner import execute, run_factorial, solver_config
 from ehl_dataset.store import OK, DatasetStore, read_table
 
 
@@ -90,19 +91,36 @@ def paper_file(tmp: Path) -> dict:
             "rows_read": len(table)}
 
 
-def pipeline(tmp: Path, solver, workers_list, repeats: int, label: str) -> list[dict]:
+def sampled_store(path: Path, sample: int, solver) -> DatasetStore:
+    """A store holding a seeded random sample of the quick factorial's points (same sample every time)."""
+    plan = load_factorial("quick")
+    lub = load_lubricant(plan.lubricant)
+    rows = np.sort(np.random.default_rng(2009).choice(plan.size, size=sample, replace=False))
+    points = plan.points()[rows]
+    factorial = {**plan.to_dict(), "name": f"quick-sample{sample}", "sample_rows": rows.tolist(),
+                 "points_sha256": hashlib.sha256(np.ascontiguousarray(points).tobytes()).hexdigest()}
+    return DatasetStore.create(path, points, factorial=factorial, solver=solver_config(solver, plan.level, "auto"),
+                               lubricant=json.loads(canonical_json(lub.to_json_dict())), overwrite=True)
+
+
+def pipeline(tmp: Path, solver, workers_list, repeats: int, label: str, sample: int | None = None) -> list[dict]:
     out = []
     for workers in workers_list:
         rates, ok, failed, summaries = [], None, None, []
         for r in range(repeats):
-            summary = run_factorial(tmp / f"{label}_{workers}_{r}.h5", "quick", workers=workers, solver=solver,
-                                    overwrite=True, progress="none")
+            if sample:
+                with sampled_store(tmp / f"{label}_{workers}_{r}.h5", sample, solver) as store:
+                    summary = execute(store, solver=solver, workers=workers, progress="none")
+            else:
+                summary = run_factorial(tmp / f"{label}_{workers}_{r}.h5", "quick", workers=workers,
+                                        solver=solver, overwrite=True, progress="none")
             rates.append(summary.points_per_s)
             ok, failed = summary.ok, summary.failed
             summaries.append(summary.to_dict())
         table = read_table(tmp / f"{label}_{workers}_{repeats - 1}.h5", status=None)
         solver_times = table.loc[table["status"] == "ok", "wall_time"]
         out.append({"solver": label, "workers": workers, "repeats": repeats,
+                    "points": summaries[-1]["n_points"], "sample_of_quick": sample,
                     "median_points_per_s": statistics.median(rates), "all_points_per_s": rates,
                     "ok": ok, "failed": failed,
                     "median_solver_wall_time_s": float(np.median(solver_times)) if len(solver_times) else math.nan,
@@ -124,6 +142,8 @@ def main() -> None:
     parser.add_argument("--repeats", type=int, default=5)
     parser.add_argument("--solver-repeats", type=int, default=1)
     parser.add_argument("--skip-solver", action="store_true")
+    parser.add_argument("--sample", type=int, default=0,
+                        help="with the real solver, time a seeded random sample of N quick points (0: all 324)")
     parser.add_argument("--out", default=str(Path(__file__).parent / "results" / "store.json"))
     args = parser.parse_args()
     result = {"benchmark": "bench_store", "machine": machine(), "started": time.strftime("%Y-%m-%dT%H:%M:%SZ",
@@ -137,7 +157,7 @@ def main() -> None:
         result["pipeline_instant_solver"] = pipeline(tmp, instant_solve, [0, 1, 2], args.repeats, "instant")
         if not args.skip_solver:
             result["quick_real_solver"] = pipeline(tmp, "ehl_dataset.solver:solve_contact", [1, 2],
-                                                   args.solver_repeats, "solve_contact")
+                                                   args.solver_repeats, "solve_contact", args.sample or None)
     result["machine"]["load_average_end"] = list(os.getloadavg())
     Path(args.out).parent.mkdir(parents=True, exist_ok=True)
     Path(args.out).write_text(json.dumps(result, indent=1) + "\n")
