@@ -92,7 +92,9 @@ class EhlFriction:
             result = solve_contact(ContactCase(*(float(v) for v in values)), self.lubricant, self.level, self.effects)
             if not result.converged:
                 index = np.unravel_index(int(np.flatnonzero(inverse.reshape(-1) == k)[0]), shape) if shape else ()
-                raise SolverError(f"EHL solve did not converge at contact point {index}: {result.message}")
+                raise SolverError(f"EHL solve did not converge at contact point {tuple(int(i) for i in index)} "
+                                  f"(p_h {values[0] / 1e9:.3g} GPa, r_eq {values[1] * 1e3:.3g} mm, u_r "
+                                  f"{values[2]:.3g} m/s, SR {values[3]:.3g}, level {self.level}): {result.message}")
             mu_unique[k] = result.mu
             iterations += int(getattr(result, "iterations", 0) or 0)
         self._stats.clear()

@@ -7,6 +7,10 @@ modifications by ``--profile-crown-um --lead-crown-um --lead-slope-um --tip-reli
 (per gear, default none); the resolution by ``--slices --positions``. Prints peak-to-peak transmission error,
 maximum contact pressure and root stress with the mesh positions where they occur, the mesh stiffness, and the
 ISO 6336 nominal values alongside; ``--json`` prints one JSON object in SI units.
+
+With ``--friction MODEL`` (and ``--oil-temp-c --rq-um --lubricant``) it also computes the mechanical power loss of
+Li & Kahraman 2009, Eq. 10–11: the cycle mean P (``power_loss_w``), the efficiency η (``efficiency``) and P(φ_m) at
+every mesh position (``power_loss_instant_w``). Without ``--friction`` no power loss is computed.
 """
 
 from __future__ import annotations
@@ -48,9 +52,10 @@ def _add_design_options(parser: argparse.ArgumentParser) -> None:
 
 def register(gear_subparsers) -> None:
     parser = gear_subparsers.add_parser(
-        "evaluate", help="load distribution, transmission error and stresses over a mesh cycle",
+        "evaluate", help="load distribution, transmission error, stresses and (with --friction) power loss",
         description="Loaded tooth contact of one gear pair (slice model, Conry-Seireg complementarity): "
-                    "peak-to-peak transmission error, max Hertz pressure, max root stress, mesh stiffness.")
+                    "peak-to-peak transmission error, max Hertz pressure, max root stress, mesh stiffness; with "
+                    "--friction the sliding friction power loss and efficiency (Li & Kahraman 2009, Eq. 10-11).")
     try:  # share the option definitions with `gear geometry` when it exposes them
         from .cli_gear_geometry import add_design_options
     except ImportError:
@@ -74,6 +79,17 @@ def register(gear_subparsers) -> None:
                        help="Hertzian contact compliance (default weber)")
     model.add_argument("--coupling-length-factor", type=float, default=1.0,
                        help="face-coupling length in tooth depths (default 1)")
+    friction = parser.add_argument_group("friction power loss (computed only with --friction)")
+    friction.add_argument("--friction", metavar="MODEL",
+                          help="friction model: a coefficient file (surrogate), xu2007, benedict_kelley, iso14179, "
+                               "constant:MU, ehl:LEVEL[:auto|full] (EHL solver at every point, slow) or "
+                               "ehl-grid:LEVEL[:auto|full][:NSxNP] (EHL on a small grid, interpolated)")
+    friction.add_argument("--oil-temp-c", type=float, default=90.0, help="oil inlet temperature [°C] (default 90)")
+    friction.add_argument("--rq-um", type=float, nargs="+", default=[0.4], metavar="RQ",
+                          help="RMS roughness of the flanks [µm]: one value for both or RQ1 RQ2 (default 0.4)")
+    friction.add_argument("--lubricant", default="atf",
+                          help="lubricant name or TOML file for the EHL and published models (default atf; a "
+                               "coefficient file carries its own)")
     parser.add_argument("--per-position", action="store_true", help="include per-position arrays in the output")
     parser.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
     parser.set_defaults(handler=run_evaluate)
@@ -159,9 +175,55 @@ def run_evaluate(args: argparse.Namespace) -> int:
             payload["transmission_error_m"] = result.transmission_error
         payload["loaded_points"] = (result.loads > 0).sum(axis=(1, 2))
     payload["model_time_s"] = result.wall_time_s
+    if args.friction is not None:
+        payload.update(_power_loss(result, args))
     payload["wall_time_s"] = time.perf_counter() - started
     emit(payload, args.json, _human)
     return 0 if result.converged else 3
+
+
+def _friction_inputs(args) -> tuple[float, float, float]:
+    """Oil temperature [K] and the two RMS roughnesses [m] from the options (checked)."""
+    from ehl_dataset.validation import InputError, check_range
+
+    temp_c = check_range("oil-temp-c", args.oil_temp_c, -50.0, 350.0, unit="°C")
+    rq = list(args.rq_um)
+    if len(rq) not in (1, 2):
+        raise InputError("rq-um", rq, "one value (both flanks) or two values RQ1 RQ2 [µm]")
+    rq1 = check_range("rq-um", rq[0], 0.0, 100.0, unit="µm")
+    rq2 = check_range("rq-um", rq[-1], 0.0, 100.0, unit="µm")
+    return temp_c + 273.15, rq1 * 1e-6, rq2 * 1e-6
+
+
+def _power_loss(mesh, args) -> dict:
+    """Mean and instantaneous friction power loss (Li & Kahraman 2009, Eq. 10-11) with the chosen model."""
+    import warnings
+
+    import numpy as np
+
+    from efficiency.friction_accuracy import friction_from_name, load_weighted_mu, pitch_region_share
+    from efficiency.power_loss import mesh_power_loss
+
+    temperature, rq1, rq2 = _friction_inputs(args)
+    friction = friction_from_name(args.friction, args.lubricant)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        loss = mesh_power_loss(mesh, friction, temperature, rq1, rq2)
+    instant = loss.power_loss_instant
+    out = {
+        "friction_model": loss.friction_model, "oil_temperature_k": temperature, "rq1_m": rq1, "rq2_m": rq2,
+        "input_power_w": loss.input_power, "power_loss_w": loss.power_loss, "efficiency": loss.efficiency,
+        "power_loss_instant_w": instant, "power_loss_instant_min_w": float(instant.min()),
+        "power_loss_instant_max_w": float(instant.max()), "mu_mean": load_weighted_mu(loss, mesh),
+        "pitch_region_power_share": pitch_region_share(loss, mesh), "power_loss_time_s": loss.wall_time_s,
+    }
+    if "ehl_solves" in loss.extra:
+        out["ehl_solves"] = int(loss.extra["ehl_solves"])
+        out["ehl_points"] = int(loss.extra["ehl_points"])
+    messages = sorted({str(w.message) for w in caught})
+    if messages:
+        out["friction_warnings"] = messages
+    return out
 
 
 def _human(p: dict) -> str:
@@ -183,6 +245,18 @@ def _human(p: dict) -> str:
     if "sigma_h0_pa" in iso:
         lines.append(f"ISO 6336 nominal: σ_H0 {iso['sigma_h0_pa'] / 1e6:.0f} MPa, σ_F0 {iso['sigma_f0_1_pa'] / 1e6:.0f}"
                      f"/{iso['sigma_f0_2_pa'] / 1e6:.0f} MPa, c_γα {iso['c_gamma_alpha_n_per_m2'] / 1e9:.2f} N/(mm·µm)")
+    if "power_loss_w" in p:
+        lines.append(f"friction: {p['friction_model']}; oil {p['oil_temperature_k'] - 273.15:.4g} °C, Rq "
+                     f"{p['rq1_m'] * 1e6:.3g}/{p['rq2_m'] * 1e6:.3g} µm"
+                     + (f"; {p['ehl_solves']} EHL solves for {p['ehl_points']} loaded points" if "ehl_solves" in p
+                        else ""))
+        lines.append(f"power loss P = {p['power_loss_w'] / 1e3:.4g} kW of {p['input_power_w'] / 1e3:.4g} kW, "
+                     f"efficiency η = {p['efficiency'] * 100:.3f} %, load-weighted μ = {p['mu_mean']:.4f}")
+        lines.append(f"instantaneous P(φ) {p['power_loss_instant_min_w'] / 1e3:.4g} to "
+                     f"{p['power_loss_instant_max_w'] / 1e3:.4g} kW over the cycle "
+                     f"({p['power_loss_time_s'] * 1e3:.0f} ms)")
+        for message in p.get("friction_warnings", []):
+            lines.append(f"warning: {message}")
     lines.append(f"converged {p['converged']} (equilibrium residual {p['equilibrium_residual']:.1e}, "
                  f"{p['active_set_iterations']} active-set iterations), {p['wall_time_s'] * 1e3:.0f} ms")
     return "\n".join(lines)
