@@ -100,7 +100,7 @@ class ReynoldsProblem:
         hp = np.maximum(h, 1e-12)  # closed films (rough runs): the Poiseuille terms fade out there anyway
         inv_eta2 = np.exp(-2.0 * phi)
         shear2 = (self.shear / hp) ** 2
-        g2 = inv_eta2 + shear2  # (cosh(τ_m/τ0)/η̄)², the Eyring flow factor over viscosity
+        g2 = np.maximum(inv_eta2 + shear2, 1e-300)  # (cosh(τ_m/τ0)/η̄)², Eyring flow factor over viscosity
         g = np.sqrt(g2)
         eps = rho * hp**3 * g / self.lam
         dlng_dp = -phi_p * inv_eta2 / g2
