@@ -156,7 +156,9 @@ class _BoundGrid:
             sr_lo = max(float(sr[side].min()), SR_FLOOR)
             sr_hi = max(float(sr[side].max()), sr_lo)
             n = self.model.roll_nodes if sr_hi > sr_lo else 1
-            sr_nodes.append(np.exp(lobatto_nodes(math.log(sr_lo), math.log(sr_hi), n)))
+            nodes = np.exp(lobatto_nodes(math.log(sr_lo), math.log(sr_hi), n))
+            nodes[0], nodes[-1] = sr_lo, sr_hi  # exact ends (exp∘log rounds)
+            sr_nodes.append(nodes)
         # all nodes in one solver call (duplicates, e.g. the pitch column, are solved once)
         node_s, node_p = [], []
         for side, nodes in zip(sides, sr_nodes):
@@ -180,11 +182,11 @@ class _BoundGrid:
             q = np.log(np.maximum(sr[side], nodes[0]))
             values = np.einsum("qi,ij,qj->q", barycentric_matrix(np.log(nodes), q), table,
                                barycentric_matrix(p_nodes, p_h[side]))
-            low = sr[side] < nodes[0]
+            low = sr[side] < SR_FLOOR
             if low.any():  # linear in SR between the pitch point and the first column
                 b_p = barycentric_matrix(p_nodes, p_h[side][low])
                 at_pitch, at_first = b_p @ pitch_column, b_p @ table[0]
-                frac = sr[side][low] / nodes[0]
+                frac = sr[side][low] / SR_FLOOR
                 values[low] = at_pitch + frac * (at_first - at_pitch)
             mu[side] = values
             grids.append({"sr": nodes, "p_h_pa": p_nodes, "mu": table})
