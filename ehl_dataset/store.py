@@ -611,7 +611,8 @@ def summarize(path, slowest: int = 5, failures: int = 5) -> dict[str, Any]:
     """What ``gearloss dataset info`` shows: counts by status, time spent, slowest points, failures, configuration.
 
     Times: ``solver_time_s`` sums the solvers' own wall times of the recorded results, ``worker_time_s`` the
-    worker-side times (retries included), ``session_wall_time_s`` the coordinator's wall time over all sessions.
+    worker-side times (retries included), ``session_wall_time_s`` the coordinator's wall time over the sessions
+    that ended; ``open_sessions`` counts sessions without an end (still running, or killed).
     """
     with DatasetStore.open(path, "r") as store:
         meta = store.metadata()
@@ -636,6 +637,7 @@ def summarize(path, slowest: int = 5, failures: int = 5) -> dict[str, Any]:
         "worker_time_s": float(np.nansum(done["worker_time"])),
         "session_wall_time_s": float(sum(s.get("wall_time_s", 0.0) or 0.0 for s in sessions)),
         "n_sessions": len(sessions),
+        "open_sessions": sum(1 for s in sessions if not s.get("ended")),
         "sessions": sessions,
         "slowest": [
             {"point": int(row.point), "wall_time_s": float(row.wall_time), "level": row.level,

@@ -129,7 +129,8 @@ def _human_info(p: dict) -> str:
         f"status     ok {counts['ok']}, failed {counts['failed']}, pending {counts['pending']}; "
         f"not converged {p['non_converged']}; most computations of one point {p['max_attempts']}",
         f"time       solver {p['solver_time_s']:.1f} s in total (median {p['median_solver_time_s']:.3g} s/point), "
-        f"workers {p['worker_time_s']:.1f} s, {p['n_sessions']} session(s) {p['session_wall_time_s']:.1f} s wall",
+        f"workers {p['worker_time_s']:.1f} s, {p['n_sessions']} session(s) {p['session_wall_time_s']:.1f} s wall"
+        + (f" ({p['open_sessions']} not closed: still running, or killed)" if p["open_sessions"] else ""),
     ]
     for row in p["slowest"]:
         lines.append(
