@@ -95,7 +95,15 @@ def compare_models(table, lubricant, e_reduced: float, *, k_folds: int = 5, seed
         metrics["n_nonpositive"] = int((~ok).sum())
         rows.append({"model": name, "kind": "published formula (not fitted; error on all rows)",
                      "metrics": metrics, "fit_time_s": 0.0, "eval_points_per_s": n / eval_time})
-    return {"n_rows": n, "k_folds": k_folds, "seed": seed, "exclusions": prepared.exclusions, "models": rows}
+    solver = {}
+    if "wall_time" in prepared.table.columns:
+        wall = prepared.table["wall_time"].to_numpy(dtype=float)
+        wall = wall[np.isfinite(wall) & (wall > 0)]
+        if wall.size:
+            solver = {"median_wall_time_s": float(np.median(wall)), "points_per_s": float(1.0 / np.median(wall)),
+                      "level": ",".join(sorted(set(prepared.table.get("level", ["?"]).astype(str))))}
+    return {"n_rows": n, "k_folds": k_folds, "seed": seed, "exclusions": prepared.exclusions, "models": rows,
+            "ehl_solver": solver}
 
 
 def format_table(result: dict[str, Any]) -> str:
@@ -110,4 +118,8 @@ def format_table(result: dict[str, Any]) -> str:
         m = row["metrics"]
         lines.append(f"{row['model']:33s} {m['rmse_ln_mu']:13.4f} {m['mean_rel_err_mu']:13.2%} "
                      f"{m['p95_rel_err_mu']:12.2%} {m['bias_ln_mu']:10.3f} {row['eval_points_per_s']:11.3g}")
+    solver = result.get("ehl_solver") or {}
+    if solver:
+        lines.append(f"{'EHL solver (the data, level ' + solver['level'] + ')':33s} {'reference':>13s} "
+                     f"{'':>13s} {'':>12s} {'':>10s} {solver['points_per_s']:11.3g}")
     return "\n".join(lines)
