@@ -54,8 +54,8 @@ class PlannerThresholds:
 
 
 THRESHOLDS: dict[str, PlannerThresholds] = {
-    "fast": PlannerThresholds(lambda_smooth=3.0, eyring_newtonian=0.01, tolerance=0.05),
-    "standard": PlannerThresholds(lambda_smooth=3.0, eyring_newtonian=0.003, tolerance=0.02),
+    "fast": PlannerThresholds(lambda_smooth=3.5, eyring_newtonian=0.01, tolerance=0.05),
+    "standard": PlannerThresholds(lambda_smooth=5.0, eyring_newtonian=0.003, tolerance=0.02),
     "reference": PlannerThresholds(lambda_smooth=math.inf, eyring_newtonian=0.0, tolerance=0.0),
 }
 """Thresholds per level (levels not listed use ``standard``). Justification and measurements: docs/planner.md."""

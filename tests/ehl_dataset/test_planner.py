@@ -3,6 +3,8 @@
 import json
 import math
 
+import numpy as np
+
 import pytest
 
 from ehl_dataset.contact import ContactCase
@@ -160,12 +162,14 @@ def test_shear_thinning_skip_agrees_with_full_model(level):
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("level", ["fast", "standard"])
-def test_roughness_skip_agrees_with_full_model(level):
+@pytest.mark.parametrize("level, factors", [("fast", (0.8, 1.0, 1.5)), ("standard", (1.0,))])
+def test_roughness_skip_agrees_with_full_model(level, factors):
     """Roughness skip (the planner's big saving): a contact (1 GPa, 20 mm, 10 m/s, SR 0.3, 50 °C) with Rq1 = Rq2 set
-    for λ̄ = 2, 3 and 5 around the threshold λ̄ = 3. Where the planner solves it steady and smooth (λ̄ ≥ 3), μ agrees
-    with the transient rough solve (effects=full) within the level's tolerance; below the threshold it is allowed
-    to differ (roughness and asperity contact matter there: paper Fig. 2, the steep branch ends near λ̄ = 1)."""
+    for λ̄ = factor × the level's threshold (fast 3.5, standard 5). Where the planner solves it steady and smooth
+    (λ̄ ≥ threshold), μ agrees with the transient rough solve (effects=full, same level) within the level's
+    tolerance (5 %, 2 %) plus three standard errors of the rough run's time average (batch means over 8 batches:
+    the rough μ is itself a sample mean). Below the threshold the planner keeps roughness. The calibration over
+    more cases, including the worst ones found (low SR, light load), is in docs/planner.md."""
     solve = _solver()
     pytest.importorskip("ehl_dataset.ehl_transient")
     limits = THRESHOLDS[level]
@@ -173,15 +177,19 @@ def test_roughness_skip_agrees_with_full_model(level):
     h_dh = dimensionless_numbers(smooth_case, ATF)["h_min_dh_m"]
     smooth = solve(smooth_case, ATF, level, "auto")
     assert smooth.converged and not smooth.effects["roughness"]
-    for lam in (2.0, limits.lambda_smooth, 5.0):
+    for factor in factors:
+        lam = factor * limits.lambda_smooth
         rq = h_dh / lam / math.sqrt(2)
         rough_case = ContactCase(smooth_case.p_h, smooth_case.r_eq, smooth_case.u_r, smooth_case.sr,
                                  smooth_case.temperature, rq, rq)
         planned = solve(rough_case, ATF, level, "auto")
-        assert planned.effects["roughness"] is (lam < limits.lambda_smooth)
-        if lam < limits.lambda_smooth:
+        assert planned.effects["roughness"] is (factor < 1)
+        if factor < 1:
             continue
         assert planned.mu == pytest.approx(smooth.mu, rel=1e-12)
         full = solve(rough_case, ATF, level, "full")
         assert full.converged, full.message
-        assert abs(planned.mu - full.mu) / full.mu <= limits.tolerance
+        series = np.asarray(full.extra["mu_series"])[full.extra["average_from_step"]:]
+        batches = series[: series.size // 8 * 8].reshape(8, -1).mean(axis=1)
+        standard_error = batches.std(ddof=1) / math.sqrt(8)
+        assert abs(planned.mu - full.mu) <= limits.tolerance * full.mu + 3 * standard_error
