@@ -219,12 +219,14 @@ def run_study(cases: Sequence[CaseSpec] = ACCURACY_CASES, levels: Sequence[str] 
 # Convergence under refinement
 # ---------------------------------------------------------------------------------------------------------------
 REFINEMENTS: dict[str, tuple[str, ...]] = {
-    "grid": ("dx_fine", "dx_coarse", "dx_rough", "dx_rough_max"),
+    "grid": ("dx_fine", "dx_coarse", "dx_rough", "dx_rough_max", "inlet_resolution"),
     "time_step": ("courant",),
     "window": ("n_passes",),
 }
 """Which :class:`~ehl_dataset.levels.AccuracyLevel` fields each refinement scales (grid and time step are divided
-by the factor; the averaging window, ``n_passes``, is multiplied by it)."""
+by the factor; the averaging window, ``n_passes``, is multiplied by it). The caps ``max_nodes_rough`` (grid) and
+``max_steps_rough`` (every kind: the number of steps grows with each) are multiplied by the factor so that the
+refinement is not silently capped."""
 
 
 def refined_level(base, kind: str, factor: float):
@@ -241,6 +243,8 @@ def refined_level(base, kind: str, factor: float):
             changes[name] = value * factor if kind == "window" else value / factor
     if kind == "grid" and hasattr(lvl, "max_nodes_rough"):
         changes["max_nodes_rough"] = int(math.ceil(lvl.max_nodes_rough * factor))
+    if hasattr(lvl, "max_steps_rough"):
+        changes["max_steps_rough"] = int(math.ceil(lvl.max_steps_rough * factor))
     return dataclasses.replace(lvl, **changes)
 
 

@@ -29,6 +29,8 @@ def register(subparsers) -> None:
     parser.add_argument("--lubricant", default="atf", metavar="NAME|FILE")
     parser.add_argument("--convergence", action="store_true",
                         help="also refine grid, time step and averaging window on two cases (slow)")
+    parser.add_argument("--convergence-base", default="fast", metavar="LEVEL",
+                        help="level refined by factors 0.5, 1, 2, 4 in the convergence study (default fast)")
     parser.add_argument("--out-dir", default="docs", metavar="DIR")
     parser.add_argument("--json", action="store_true", help="print one JSON object")
     parser.set_defaults(handler=run_accuracy)
@@ -52,7 +54,7 @@ def run_accuracy(args) -> int:
                 raise InputError("--only", name, f"one of {names}")
         cases = tuple(spec for spec in cases if spec[0] in args.only)
     levels = tuple(args.levels) if args.levels else accuracy.DEFAULT_LEVELS
-    for name in (*levels, args.reference):
+    for name in (*levels, args.reference, args.convergence_base):
         get_level(name)
 
     def progress(text: str) -> None:
@@ -65,7 +67,8 @@ def run_accuracy(args) -> int:
         by_name = {spec[0]: spec for spec in accuracy.ACCURACY_CASES}
         for name in CONVERGENCE_CASES:
             for kind in ("grid", "time_step", "window"):
-                result = accuracy.convergence_study(by_name[name], kind, lubricant=args.lubricant)
+                result = accuracy.convergence_study(by_name[name], kind, base_level=args.convergence_base,
+                                                    lubricant=args.lubricant)
                 if kind != "grid" and not any(row["roughness"] for row in result["rows"]):
                     continue  # steady smooth solve: no time step or averaging window to refine
                 convergence.append(result)

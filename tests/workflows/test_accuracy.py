@@ -44,6 +44,9 @@ def test_refined_level_scales_the_right_fields():
     assert finer.dx_rough == base.dx_rough / 2
     assert accuracy.refined_level("standard", "time_step", 2.0).courant == base.courant / 2
     assert accuracy.refined_level("standard", "window", 2.0).n_passes == base.n_passes * 2
+    # the caps grow with the refinement so that it is not silently capped
+    assert finer.max_nodes_rough == 2 * base.max_nodes_rough
+    assert accuracy.refined_level("standard", "time_step", 4.0).max_steps_rough == 4 * base.max_steps_rough
 
 
 def test_study_against_itself_has_zero_error(tmp_path):
