@@ -60,12 +60,19 @@ class PublishedFriction:
         return published_mu(self.name, p_h, r_eq, u_r, sr, temperature, rq1, rq2, self.lubricant, self.e_reduced)
 
 
+def _significant(values: np.ndarray, digits: int) -> np.ndarray:
+    """``values`` rounded to ``digits`` significant digits (zeros stay zero)."""
+    magnitude = np.where(values != 0.0, np.floor(np.log10(np.abs(np.where(values != 0.0, values, 1.0)))), 0.0)
+    scale = 10.0 ** (digits - 1 - magnitude)
+    return np.round(values * scale) / scale
+
+
 @dataclass(frozen=True)
 class EhlFriction:
     """The EHL solver itself at every contact point (slow: one solve per distinct loaded point; for accuracy checks).
 
-    Points with identical inputs (e.g. the slices of a spur gear with a uniform load across the face) are solved
-    once. Points whose solve does not converge raise :class:`ehl_dataset.validation.SolverError` (no silent
+    Points whose inputs agree to 10 significant digits (e.g. the slices of a spur gear with a uniform load across
+    the face, equal up to round-off) are solved once, at the first of them. Points whose solve does not converge raise :class:`ehl_dataset.validation.SolverError` (no silent
     numbers); so does a rough point that needs the transient mixed solver while it is unavailable.
     After a call, ``last_stats()`` gives the number of solves and their time.
     """
@@ -85,7 +92,11 @@ class EhlFriction:
                                                                               rq1, rq2)))
         shape = arrays[0].shape
         rows = np.stack([a.reshape(-1) for a in arrays], axis=1)
-        unique, inverse = np.unique(rows, axis=0, return_inverse=True) if rows.size else (rows, np.zeros(0, int))
+        if rows.size:  # group points equal to 10 significant digits (round-off of the load distribution)
+            _, first, inverse = np.unique(_significant(rows, 10), axis=0, return_index=True, return_inverse=True)
+            unique = rows[first]
+        else:
+            unique, inverse = rows, np.zeros(0, int)
         mu_unique = np.empty(len(unique))
         iterations = 0
         for k, values in enumerate(unique):
