@@ -22,10 +22,12 @@ def register(subparsers) -> None:
     parser.add_argument("--levels", nargs="+", default=None, metavar="LEVEL",
                         help="levels to measure (default: fast standard)")
     parser.add_argument("--reference", default="reference", metavar="LEVEL", help="reference level")
-    parser.add_argument("--effects", choices=("auto", "full"), default="auto",
-                        help="effects of the measured levels (default auto: the planner's savings are measured)")
-    parser.add_argument("--reference-effects", choices=("auto", "full"), default="full",
+    parser.add_argument("--effects", choices=("auto", "full", "smooth"), default="auto",
+                        help="effects of the measured levels (default auto: the planner's savings are measured; "
+                             "smooth: steady smooth physics for every case)")
+    parser.add_argument("--reference-effects", choices=("auto", "full", "smooth"), default="full",
                         help="effects of the reference solves (default full)")
+    parser.add_argument("--stem", default="accuracy", help="file name stem of the report (default accuracy)")
     parser.add_argument("--lubricant", default="atf", metavar="NAME|FILE")
     parser.add_argument("--convergence", action="store_true",
                         help="also refine grid, time step and averaging window on two cases (slow)")
@@ -73,7 +75,17 @@ def run_accuracy(args) -> int:
                     continue  # steady smooth solve: no time step or averaging window to refine
                 convergence.append(result)
                 progress(f"convergence {name} {kind}: order mu {result['order_mu']:.2f}")
-    paths = accuracy.write_report(study, args.out_dir, convergence)
+    command = (f"gearloss accuracy --levels {' '.join(levels)} --reference {args.reference} --effects {args.effects}"
+               f" --reference-effects {args.reference_effects} --lubricant {args.lubricant} --stem {args.stem}"
+               f" --out-dir {args.out_dir}")
+    if args.cases is not None:
+        command += f" --cases {args.cases}"
+    if args.only:
+        command += f" --only {' '.join(args.only)}"
+    if args.convergence:
+        command += f" --convergence --convergence-base {args.convergence_base}"
+    study.provenance["command"] = command
+    paths = accuracy.write_report(study, args.out_dir, convergence, stem=args.stem)
     payload = {
         "reference_level": study.reference_level,
         "levels": list(study.levels),
