@@ -17,7 +17,9 @@ Kahraman 2009, Eq. 11) of one loaded mesh cycle (default 24 positions × 30 slic
 with the wall time of each (friction evaluation included, mesh excluded). Writes one JSON object to ``--out``
 (default benchmarks/results/gear_friction.json) and prints a Markdown table.
 
-Run: ``python benchmarks/bench_gear_friction.py [--cases design_D,fzg_C] [--rough-per-point]``
+Run: ``python benchmarks/bench_gear_friction.py [--cases design_D,fzg_C] [--rough-per-point]``; rough rows only, added
+to the existing file: ``--rough-only --rough-models ehl-grid:standard:auto:3x3``; the figure of
+docs/gear_friction_accuracy.md from the file: ``--figure docs/figures/gear_friction_accuracy.png``.
 """
 
 from __future__ import annotations
@@ -194,6 +196,45 @@ def markdown(report) -> str:
     return "\n".join(lines)
 
 
+def draw_figure(report, path) -> None:
+    """|error in P| against the EHL standard per-point reference versus wall time, per case (log-log)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, axes = plt.subplots(1, len(report["cases"]), figsize=(5.5 * len(report["cases"]), 4.2), squeeze=False)
+    styles = {"smooth EHL per point": ("s", "C0"), "smooth EHL grid": ("o", "C1"), "published": ("^", "C2"),
+              "surrogate": ("D", "C3")}
+    for ax, case in zip(axes[0], report["cases"]):
+        for row in case["rows"]:
+            err = row.get("rel_error_vs_reference")
+            if row["group"] not in styles or err is None or row["label"] == "ehl:standard":
+                continue
+            marker, color = styles[row["group"]]
+            ax.loglog(row["wall_time_s"], max(abs(err), 1e-5) * 100, marker, color=color)
+            ax.annotate(row["label"].replace("ehl-grid:", "grid ").replace("ehl:", "per point "),
+                        (row["wall_time_s"], max(abs(err), 1e-5) * 100), fontsize=7, xytext=(4, 2),
+                        textcoords="offset points")
+        ref = next((r for r in case["rows"] if r["label"] == "ehl:standard"), None)
+        if ref is not None:
+            ax.axvline(ref["wall_time_s"], color="C0", ls=":", lw=1)
+            ax.text(ref["wall_time_s"], ax.get_ylim()[1], " reference\n (EHL standard\n per point)", fontsize=7,
+                    va="top", color="C0")
+        present = {row["group"] for row in case["rows"] if row.get("rel_error_vs_reference") is not None}
+        for group, (marker, color) in styles.items():
+            if group in present:
+                ax.plot([], [], marker, color=color, label=group)
+        ax.set_xlabel("wall time of the loss evaluation [s] (2-core shared machine)")
+        ax.set_ylabel("|P / P_ref − 1| [%]")
+        ax.set_title(f"{case['case']}: P_ref = {ref['power_loss_w']:.0f} W" if ref else case["case"], fontsize=9)
+        ax.grid(True, which="both", lw=0.3)
+        ax.legend(fontsize=7, loc="center right")
+    fig.tight_layout()
+    fig.savefig(path, dpi=130)
+    plt.close(fig)
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--cases", default="design_D,fzg_C")
@@ -208,15 +249,22 @@ def main(argv=None) -> int:
     parser.add_argument("--rough-only", action="store_true",
                         help="run only the rough models and add their rows to the existing --out file")
     parser.add_argument("--out", default=str(RESULTS))
+    parser.add_argument("--figure", help="draw error versus wall time from --out into this PNG and exit")
     args = parser.parse_args(argv)
+    if args.figure:
+        report = json.loads(Path(args.out).read_text())
+        draw_figure(report, args.figure)
+        print(markdown(report))
+        return 0
 
     started = time.perf_counter()
     all_cases = cases()
     report = {"benchmark": "gear_friction", "cases": []}
     previous = {}
-    if args.rough_only and Path(args.out).exists():
+    if Path(args.out).exists():  # keep the other cases of an earlier run (and, with --rough-only, its rows)
         old = json.loads(Path(args.out).read_text())
-        previous = {c["case"]: c for c in old["cases"]}
+        if args.rough_only:
+            previous = {c["case"]: c for c in old["cases"]}
         report["cases"] = [c for c in old["cases"] if c["case"] not in args.cases.split(",")]
     for name in args.cases.split(","):
         report["cases"].append(evaluate_case(name, all_cases[name], args.positions, args.slices,
