@@ -214,7 +214,8 @@ def draw_figure(report, path) -> None:
             marker, color = styles[row["group"]]
             ax.loglog(row["wall_time_s"], max(abs(err), 1e-5) * 100, marker, color=color)
             ax.annotate(row["label"].replace("ehl-grid:", "grid ").replace("ehl:", "per point "),
-                        (row["wall_time_s"], max(abs(err), 1e-5) * 100), fontsize=7, xytext=(4, 2),
+                        (row["wall_time_s"], max(abs(err), 1e-5) * 100), fontsize=7,
+                        xytext=(4, -10) if row["group"] == "smooth EHL per point" else (4, 2),
                         textcoords="offset points")
         ref = next((r for r in case["rows"] if r["label"] == "ehl:standard"), None)
         if ref is not None:
