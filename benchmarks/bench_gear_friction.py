@@ -270,7 +270,7 @@ def main(argv=None) -> int:
     for name in args.cases.split(","):
         report["cases"].append(evaluate_case(name, all_cases[name], args.positions, args.slices,
                                              args.rough_per_point, args.rough_positions, args.rough_slices,
-                                             tuple(args.rough_models.split(",")), args.rough_only,
+                                             tuple(m for m in args.rough_models.split(",") if m), args.rough_only,
                                              previous.get(name)))
         Path(args.out).parent.mkdir(parents=True, exist_ok=True)
         _write(report, args.out, started)

@@ -171,8 +171,11 @@ class _BoundGrid:
             node_p.append(p_nodes)
         ss, pp = np.concatenate(node_s), np.concatenate(node_p)
         solver = EhlFriction(self.model.lubricant, self.model.level, self.model.effects)
-        mu_all = solver(pp, path.r_eq(ss), path.u_r(ss), path.sr(ss), scalars["temperature"], scalars["rq1"],
-                        scalars["rq2"])
+        try:
+            mu_all = solver(pp, path.r_eq(ss), path.u_r(ss), path.sr(ss), scalars["temperature"], scalars["rq1"],
+                            scalars["rq2"])
+        except SolverError as err:  # the "contact point" index there is a grid node, not a mesh point
+            raise SolverError(f"EHL grid node of {self.model.describe()}: {err}") from None
         mu = np.empty(s.shape)
         grids, start = [], 0
         pitch_column = mu_all[-p_nodes.size:] if need_pitch else None
