@@ -174,7 +174,8 @@ def markdown(report) -> str:
     lines = []
     for case in report["cases"]:
         lines.append(f"\n### {case['case']}: {case['source']}\n")
-        lines.append(f"{case['positions']} positions × {case['slices']} slices, {case['loaded_points']} loaded points, "
+        lines.append(f"{case['positions']} positions × {case['slices']} slices, {case['loaded_points']} loaded "
+                     f"points, "
                      f"input power {case['input_power_w'] / 1e3:.1f} kW\n")
         lines.append("| model | Rq [µm] | P [W] | η [%] | μ̄ | error vs EHL standard | interp. error (same level) "
                      "| EHL solves | wall time [s] |")

@@ -282,7 +282,8 @@ def friction_from_name(spec: str, lubricant="atf") -> Callable:
         try:
             ns, np_ = (int(v) for v in parts.pop(0).lower().split("x"))
         except ValueError:
-            raise InputError("friction", spec, "ehl-grid:LEVEL[:EFFECTS][:NSxNP] with integers NS ≥ 2, NP ≥ 1") from None
+            raise InputError("friction", spec,
+                             "ehl-grid:LEVEL[:EFFECTS][:NSxNP] with integers NS ≥ 2, NP ≥ 1") from None
         nodes = {"roll_nodes": ns, "load_nodes": np_}
     if parts:
         raise InputError("friction", spec, accepted)

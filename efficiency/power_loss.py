@@ -72,8 +72,9 @@ class EhlFriction:
     """The EHL solver itself at every contact point (slow: one solve per distinct loaded point; for accuracy checks).
 
     Points whose inputs agree to 10 significant digits (e.g. the slices of a spur gear with a uniform load across
-    the face, equal up to round-off) are solved once, at the first of them. Points whose solve does not converge raise :class:`ehl_dataset.validation.SolverError` (no silent
-    numbers); so does a rough point that needs the transient mixed solver while it is unavailable.
+    the face, equal up to round-off) are solved once, at the first of them. Points whose solve does not converge
+    raise :class:`ehl_dataset.validation.SolverError` (no silent numbers); so does a rough point that needs the
+    transient mixed solver while it is unavailable.
     After a call, ``last_stats()`` gives the number of solves and their time.
     """
 

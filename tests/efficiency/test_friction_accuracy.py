@@ -159,8 +159,8 @@ def illustrative_surrogate(atf, tmp_path_factory):
 def test_every_friction_model_is_finite_at_the_pitch_point_and_dissipates_nothing_there(name, atf,
                                                                                          illustrative_surrogate):
     """SR → 0 (pitch point): μ finite and ≥ 0 for every model (the surrogate floors SR, Benedict & Kelley is capped
-    at μ_d, Xu's |SR|^1.04 → 0), and the friction power per unit load μ |u_s| = μ SR u_r vanishes with SR (exactly 0
-    at SR = 0, and ≤ 1 % of its SR = 0.05 value at SR = 1e-4)."""
+    at μ_d, Xu's |SR|^1.04 → 0), and the friction power per unit load μ |u_s| = μ SR u_r vanishes with SR
+    (exactly 0 at SR = 0, and ≤ 1 % of its SR = 0.05 value at SR = 1e-4)."""
     models = {"constant": ConstantFriction(0.05), "xu2007": PublishedFriction("xu2007", atf),
               "benedict_kelley": PublishedFriction("benedict_kelley", atf),
               "iso14179": PublishedFriction("iso14179", atf), "surrogate": illustrative_surrogate,
