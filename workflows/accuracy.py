@@ -330,6 +330,8 @@ def markdown_report(study: AccuracyStudy, convergence: Sequence[dict] = (), png_
         + f", gearloss {prov.get('gearloss')}, {prov.get('date_utc')}; machine: {prov.get('platform')},"
           f" {prov.get('cpu_count')} CPUs, Python {prov.get('python')}, NumPy {prov.get('numpy')}.",
         "",
+        *[f"- {note}" for note in prov.get("notes", [])],
+        *([""] if prov.get("notes") else []),
         "## Summary",
         "",
         "| level | cases | converged | median err μ | max err μ | median err h_min | max err h_min |"

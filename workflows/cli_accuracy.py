@@ -33,6 +33,8 @@ def register(subparsers) -> None:
                         help="also refine grid, time step and averaging window on two cases (slow)")
     parser.add_argument("--convergence-base", default="fast", metavar="LEVEL",
                         help="level refined by factors 0.5, 1, 2, 4 in the convergence study (default fast)")
+    parser.add_argument("--note", action="append", default=[], metavar="TEXT",
+                        help="a remark printed under the report's header (repeatable)")
     parser.add_argument("--out-dir", default="docs", metavar="DIR")
     parser.add_argument("--json", action="store_true", help="print one JSON object")
     parser.set_defaults(handler=run_accuracy)
@@ -85,6 +87,8 @@ def run_accuracy(args) -> int:
     if args.convergence:
         command += f" --convergence --convergence-base {args.convergence_base}"
     study.provenance["command"] = command
+    if args.note:
+        study.provenance["notes"] = list(args.note)
     paths = accuracy.write_report(study, args.out_dir, convergence, stem=args.stem)
     payload = {
         "reference_level": study.reference_level,
