@@ -34,7 +34,8 @@ import sys
 import threading
 import time
 import traceback
-from collections import deque
+import warnings
+from collections import Counter, deque
 from concurrent.futures.process import BrokenProcessPool
 from dataclasses import dataclass
 from pathlib import Path
@@ -140,16 +141,29 @@ def _one_blas_thread():
     return threadpool_limits(limits=1)
 
 
+def summarize_warnings(counts: Counter) -> str:
+    """``LinAlgWarning x12 (ehl_newton.py:237); RuntimeWarning x2 (ehl_newton.py:106)`` — most frequent first."""
+    return "; ".join(f"{name} x{n} ({filename}:{lineno})" for (name, filename, lineno), n in counts.most_common())
+
+
 def compute_point(task: PointTask) -> dict[str, Any]:
-    """Solve one point (runs in a worker). Never raises for a solver error: the error is returned as text."""
+    """Solve one point (runs in a worker). Never raises for a solver error: the error is returned as text.
+
+    Python warnings raised during the solve are counted (by category and location) and returned as one line
+    instead of being printed: a 42,000-point run would otherwise flood the log with them.
+    """
     from .contact import ContactCase
 
     start = time.perf_counter()
     record = None
+    caught: Counter = Counter()
     try:
         solve = resolve_solver(task.solver)
         case = ContactCase(*task.point)
-        with _one_blas_thread():
+        with warnings.catch_warnings(), _one_blas_thread():
+            warnings.simplefilter("always")
+            warnings.showwarning = lambda message, category, filename, lineno, *rest: caught.update(
+                [(category.__name__, os.path.basename(filename), lineno)])
             result = solve(case, _lubricant(task.lubricant_json), level=task.level, effects=task.effects)
         record = result.to_record()
         status, error = judge_record(record, getattr(result, "message", ""))
@@ -160,6 +174,7 @@ def compute_point(task: PointTask) -> dict[str, Any]:
         "status": status,
         "record": record,
         "error": error,
+        "warnings": summarize_warnings(caught),
         "worker_time": time.perf_counter() - start,
         "worker": f"{socket.gethostname()}:{os.getpid()}",
     }
@@ -469,7 +484,8 @@ def execute(store: DatasetStore, *, solver: str | Callable = DEFAULT_SOLVER, wor
         nonlocal computed, store_time
         t0 = time.perf_counter()
         store.record(result["index"], status=result["status"], record=result["record"], error=result["error"],
-                     attempts=1 + extra_attempts, worker_time=result["worker_time"], worker=result["worker"])
+                     attempts=1 + extra_attempts, worker_time=result["worker_time"], worker=result["worker"],
+                     warnings=result.get("warnings", ""))
         store_time += time.perf_counter() - t0
         computed += 1
         converged = bool(result["record"] and result["record"].get("converged"))

@@ -11,8 +11,8 @@ Layout (format ``gearloss-ehl-dataset``, version :data:`FORMAT_VERSION`)::
 Columns: the inputs (:data:`ehl_dataset.factorial.POINT_FIELDS`, SI), the solver outputs
 (:data:`ehl_dataset.result.RECORD_UNITS`), ``status`` (enum pending/ok/failed), ``error`` (failure text, or the
 solver's message for a non-converged result), ``attempts`` (how many computations of the point were recorded, over
-all sessions), ``worker_time`` [s] (worker-side time including retries), ``finished_at`` [s since the Unix epoch]
-and ``worker`` (host:pid).
+all sessions), ``worker_time`` [s] (worker-side time including retries), ``finished_at`` [s since the Unix epoch],
+``worker`` (host:pid) and ``warnings`` (Python warnings raised during the solve, counted by category and place).
 
 Crash safety. Every dataset is contiguous, fixed-size and written in full when the file is created (strings are
 fixed-length UTF-8), and the file is built under a temporary name and renamed into place. After creation a run
@@ -52,6 +52,9 @@ EFFECTS_WIDTH = 1536
 ERROR_WIDTH = 512
 """Bytes reserved per row for the error text (longer text is cut, keeping its start and end)."""
 
+WARNINGS_WIDTH = 256
+"""Bytes reserved per row for the summary of Python warnings raised during the solve."""
+
 _FLOAT_OUTPUTS = ("mu", "mu_std", "h_min", "h_central", "lambda_bar", "asperity_load_share", "p_max", "wall_time")
 
 _DESCRIPTIONS: dict[str, str] = {
@@ -80,6 +83,7 @@ _DESCRIPTIONS: dict[str, str] = {
     "worker_time": "worker-side time of the last computation, retries included",
     "finished_at": "time the result was received, seconds since the Unix epoch (UTC)",
     "worker": "host:pid of the worker process",
+    "warnings": "Python warnings raised during the solve: category x count (file:line); ...",
 }
 
 
@@ -117,6 +121,7 @@ def _columns() -> tuple[Column, ...]:
         Column("worker_time", "<f8", math.nan, "s"),
         Column("finished_at", "<f8", math.nan, "s since 1970-01-01T00:00:00Z"),
         Column("worker", _str_dtype(64), b"", "host:pid"),
+        Column("warnings", _str_dtype(WARNINGS_WIDTH), b"", "text"),
     ]
     return tuple(cols)
 
@@ -124,7 +129,7 @@ def _columns() -> tuple[Column, ...]:
 TABLE_COLUMNS: tuple[str, ...] = (
     "point", *POINT_FIELDS, "mu", "mu_std", "h_min", "h_central", "lambda_bar", "asperity_load_share", "p_max",
     "iterations", "converged", "wall_time", "effects", "level", "status", "error",
-    "attempts", "worker_time", "finished_at", "worker",
+    "attempts", "worker_time", "finished_at", "worker", "warnings",
 )
 """Column order of :func:`read_table` (the first 22 are the contract used by the surrogate stage)."""
 
@@ -475,7 +480,7 @@ class DatasetStore:
 
     def record(self, index: int, *, status: int, record: dict | None = None, error: str = "",
                attempts: int = 1, worker_time: float = math.nan, worker: str = "",
-               finished_at: float | None = None) -> None:
+               finished_at: float | None = None, warnings: str = "") -> None:
         """Buffer the result of one point; written at the next :meth:`flush`.
 
         ``record`` is ``ContactResult.to_record()`` (may be None for a failed point); ``attempts`` computations
@@ -503,6 +508,7 @@ class DatasetStore:
         row["worker_time"] = float(worker_time)
         row["finished_at"] = time.time() if finished_at is None else float(finished_at)
         row["worker"] = _fit_utf8(worker, 64)
+        row["warnings"] = _fit_utf8(warnings, WARNINGS_WIDTH)
         self._buffer[index] = row
         self._status[index] = status
 
@@ -583,7 +589,7 @@ def read_table(path, status: str | None = "ok"):
     ``rq1``, ``rq2`` [m], ``mu``, ``mu_std``, ``h_min`` [m], ``h_central`` [m], ``lambda_bar``,
     ``asperity_load_share``, ``p_max`` [Pa], ``iterations``, ``converged``, ``wall_time`` [s], ``effects`` (JSON
     str), ``level``, ``status`` (pending/ok/failed), ``error``; then ``attempts``, ``worker_time`` [s],
-    ``finished_at`` [s since the epoch], ``worker``. ``status=None`` returns every row.
+    ``finished_at`` [s since the epoch], ``worker``, ``warnings``. ``status=None`` returns every row.
     A corrupt, truncated or foreign file raises :class:`InputError` naming the file and the problem.
     """
     with DatasetStore.open(path, "r") as store:

@@ -85,6 +85,16 @@ def blas_threads_solve(case, lubricant, level="fast", effects="auto"):
     return result
 
 
+def warning_solve(case, lubricant, level="fast", effects="auto"):
+    """Warns three times from one line and once from another (like an ill-conditioned Newton step)."""
+    import warnings
+
+    for _ in range(3):
+        warnings.warn("ill-conditioned matrix", RuntimeWarning)
+    warnings.warn("slow convergence", UserWarning)
+    return analytic_solve(case, lubricant, level, effects)
+
+
 def plan_dict(**axes):
     base = {"p_h_gpa": [0.5, 1.5], "r_eq_mm": [20.0], "u_r_m_s": [5.0, 20.0], "sr": [0.1, 0.7], "temp_c": [75.0],
             "roughness_um": [[0.05, 0.05], [0.4, 0.4]]}
@@ -358,3 +368,13 @@ def test_each_solve_runs_on_one_blas_thread(tmp_path, plan):
         run_factorial(tmp_path / f"w{workers}.h5", plan, workers=workers, solver=blas_threads_solve,
                       progress="none")
         assert (read_table(tmp_path / f"w{workers}.h5")["iterations"] == 1).all()
+
+
+def test_solver_warnings_are_counted_into_the_row_not_printed(tmp_path, plan, capfd):
+    run_factorial(tmp_path / "r.h5", plan, workers=2, solver=warning_solve, progress="none")
+    table = read_table(tmp_path / "r.h5")
+    assert len(table) == 16
+    assert table["warnings"].str.fullmatch(
+        r"RuntimeWarning x3 \(test_runner\.py:\d+\); UserWarning x1 \(test_runner\.py:\d+\)").all()
+    assert "ill-conditioned" not in capfd.readouterr().err
+    assert (read_table(tmp_path / "r.h5", status=None)["warnings"] != "").all()
