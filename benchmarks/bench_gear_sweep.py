@@ -34,7 +34,8 @@ FIG4_LINES = {
 
 def machine() -> dict:
     return {"platform": platform.platform(), "processor": platform.processor(), "cpu_count": os.cpu_count(),
-            "python": platform.python_version(), "numpy": np.__version__}
+            "python": platform.python_version(), "numpy": np.__version__,
+            "load_average_1min_at_start": os.getloadavg()[0]}
 
 
 def _scatter(ax, table, x, scale, label, line=None, line_x=None):
@@ -160,9 +161,10 @@ def main(argv=None) -> int:
     options = MeshOptions(positions=args.positions, slices=args.slices)
     n_feasible = len(feasible_designs(study.space, study.limits))
 
-    started = time.perf_counter()
+    host = machine()
+    started, cpu_started = time.perf_counter(), time.process_time()
     table = design_sweep(study.space, friction, point, study.limits, options, stride=args.stride, limit=args.limit)
-    total = time.perf_counter() - started
+    total, cpu_total = time.perf_counter() - started, time.process_time() - cpu_started
     times = table["wall_time_s"].to_numpy()[1:]
     matches = find_design_like_d(table, study.search_limits)
     nearest = rank_by_limits(table, study.search_limits).head(5)
@@ -174,7 +176,9 @@ def main(argv=None) -> int:
             "sigma_c_pa", "sigma_b_pa", "worst_ratio")}
 
     result = {
-        "benchmark": "gear_sweep", **machine(),
+        "benchmark": "gear_sweep", **host, "load_average_1min_at_end": os.getloadavg()[0],
+        "note": "wall times include waiting for the CPU when the machine is shared (see the load averages); "
+                "cpu_time_per_design_s is this process's CPU time per design (single-threaded)",
         "friction_model": describe_friction(friction), "positions": options.positions, "slices": options.slices,
         "contact_model": options.contact_model, "stride": args.stride, "designs_feasible": n_feasible,
         "designs_evaluated": int(len(table)), "converged": int(table["converged"].sum()),
@@ -182,7 +186,7 @@ def main(argv=None) -> int:
         "time_per_design_median_s": float(np.median(times)) if times.size else None,
         "time_per_design_p10_s": float(np.percentile(times, 10)) if times.size else None,
         "time_per_design_p90_s": float(np.percentile(times, 90)) if times.size else None,
-        "sweep_wall_time_s": total,
+        "sweep_wall_time_s": total, "cpu_time_per_design_s": cpu_total / max(len(table), 1),
         "projected_full_sweep_s": float(np.median(times)) * n_feasible if times.size else None,
         "power_loss_w_range": [float(table["power_loss_w"].min()), float(table["power_loss_w"].max())],
         "te_pp_m_range": [float(table["te_pp_m"].min()), float(table["te_pp_m"].max())],
