@@ -52,6 +52,9 @@ EFFECTS_WIDTH = 1536
 ERROR_WIDTH = 512
 """Bytes reserved per row for the error text (longer text is cut, keeping its start and end)."""
 
+OPTIONAL_COLUMNS = frozenset({"warnings"})
+"""Columns added within format version 1: files written before them are read (as "") and resumed without them."""
+
 WARNINGS_WIDTH = 256
 """Bytes reserved per row for the summary of Python warnings raised during the solve."""
 
@@ -342,6 +345,8 @@ class DatasetStore:
             raise _bad_file(self.path, "the 'points' group is missing")
         group = self._h5["points"]
         for name in ("point", *self._columns):
+            if name in OPTIONAL_COLUMNS and name not in group:
+                continue
             if name not in group:
                 raise _bad_file(self.path, f"column 'points/{name}' is missing")
             if group[name].shape != (n,):
@@ -425,6 +430,8 @@ class DatasetStore:
         return self._read(name)
 
     def _read(self, name: str) -> np.ndarray:
+        if name in OPTIONAL_COLUMNS and name not in self._h5["points"]:
+            return np.full(self.n_points, self._columns[name].fill, dtype=self._columns[name].dtype)
         try:
             return self._h5["points"][name][...]
         except OSError as err:
@@ -530,6 +537,8 @@ class DatasetStore:
             start, stop = int(run[0]), int(run[-1]) + 1
             rows = [self._buffer[int(i)] for i in run]
             for name in names:
+                if name in OPTIONAL_COLUMNS and name not in group:
+                    continue
                 col = self._columns[name]
                 group[name][start:stop] = np.array([r[name] for r in rows], dtype=col.dtype)
         self._h5.flush()

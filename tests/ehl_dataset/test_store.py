@@ -233,3 +233,15 @@ def test_a_compressed_copy_is_readable_but_not_resumable(tmp_path, plan, lubrica
     assert read_table(packed).equals(read_table(path))
     with pytest.raises(InputError, match="chunked"):
         DatasetStore.open(packed, "r+")
+
+
+def test_files_without_the_later_warnings_column_are_read_and_resumed(tmp_path, plan, lubricant):
+    """'warnings' was added within format version 1: older files read it as "" and take new rows without it."""
+    path = tmp_path / "run.h5"
+    make_store(path, plan, lubricant).close()
+    with h5py.File(path, "r+") as h5:
+        del h5["points/warnings"]
+    with DatasetStore.open(path, "r+") as store:
+        store.record(1, status=OK, record=record_of(1), warnings="RuntimeWarning x1 (a.py:1)")
+    table = read_table(path)
+    assert list(table["point"]) == [1] and table["warnings"][0] == "" and table["mu"][0] == record_of(1)["mu"]
