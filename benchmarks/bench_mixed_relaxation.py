@@ -1,0 +1,93 @@
+"""Benchmark: the semi-system relaxation solver for transient mixed EHL (ehl_dataset.ehl_mixed_relaxation).
+
+    python benchmarks/bench_mixed_relaxation.py --sample compare --level fast   # λ̄ ≈ 1–3 corners, vs the Newton solver
+    python benchmarks/bench_mixed_relaxation.py --sample hard --level fast      # the brief's failing cases
+    python benchmarks/bench_mixed_relaxation.py --sample corners --level fast   # the 64 corners (slow)
+
+Per case: converged, μ, μ_std, h_min, asperity share, λ̄, max load error, sweeps, wall time; for ``compare`` also
+the transient Newton solver's (ehl_dataset.solver.solve_contact, effects=full) result and the relative μ
+difference. Writes benchmarks/results/mixed_relaxation_<sample>_<level>.json with the machine noted.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import platform
+import statistics
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+from ehl_dataset.contact import ContactCase
+from ehl_dataset.effects import Effects
+from ehl_dataset.ehl_mixed_relaxation import solve_mixed_relaxation
+from ehl_dataset.lubricant import load_lubricant
+
+# (p_h GPa, r_eq mm, u_r m/s, SR, T °C, Rq1 µm, Rq2 µm, lubricant)
+COMPARE = [(0.5, 5, 20, 1, 25, 1.0, 1.0, "atf"), (0.5, 80, 20, 1, 25, 1.0, 1.0, "atf"),
+           (2.5, 5, 20, 0, 25, 1.0, 1.0, "atf"), (0.5, 5, 20, 1, 100, 0.05, 0.05, "atf")]
+HARD = [(0.167, 10, 5, 0.327, 90, 0.4, 0.4, "gear_oil_75w90"), (1.2, 10, 3.06, 0.39, 90, 0.4, 0.4, "gear_oil_75w90"),
+        (2.5, 5, 1, 1, 100, 1.0, 1.0, "atf"), (0.5, 5, 1, 1, 100, 1.0, 1.0, "atf")]
+
+
+def corner_cases():
+    import itertools
+
+    return [(p, r, u, s, t, q, q, "atf") for p, r, u, s, t, q in itertools.product(
+        [0.5, 2.5], [5, 80], [1, 20], [0, 1], [25, 100], [0.05, 1.0])]
+
+
+def _row(res, lub_mu_d):
+    return {"converged": bool(res.converged), "mu": res.mu, "mu_std": res.mu_std, "h_min_m": res.h_min,
+            "lambda_bar": res.lambda_bar, "asperity_load_share": res.asperity_load_share,
+            "p_max_pa": res.p_max, "max_load_error": res.extra.get("max_load_error"),
+            "n_nodes": res.extra.get("n_nodes"), "n_steps": res.extra.get("n_steps"),
+            "iterations": res.iterations, "mu_in_0_mu_d": bool(0.0 <= res.mu <= lub_mu_d),
+            "message": res.message[:300], "wall_time_s": res.wall_time}
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--level", default="fast")
+    parser.add_argument("--sample", choices=["compare", "hard", "corners"], default="compare")
+    parser.add_argument("--out", default=None)
+    args = parser.parse_args(argv)
+    cases = {"compare": COMPARE, "hard": HARD, "corners": corner_cases()}[args.sample]
+    rows = []
+    for spec in cases:
+        lub = load_lubricant(spec[7])
+        case = ContactCase.from_engineering(*spec[:7])
+        row = {"case": list(spec)}
+        try:
+            row["relaxation"] = _row(solve_mixed_relaxation(case, lub, args.level), lub.mu_d)
+        except Exception as err:  # recorded, the sweep goes on
+            row["relaxation"] = {"converged": False, "error": f"{type(err).__name__}: {err}"}
+        if args.sample == "compare":
+            from ehl_dataset.solver import solve_contact
+
+            newton = solve_contact(case, lub, args.level, Effects.full())
+            row["newton"] = _row(newton, lub.mu_d)
+            if newton.converged and row["relaxation"].get("converged"):
+                row["mu_relative_difference"] = row["relaxation"]["mu"] / newton.mu - 1.0
+        rows.append(row)
+        print(json.dumps(row, default=float), flush=True)
+    rel = [r["relaxation"] for r in rows]
+    times = [r.get("wall_time_s", 0.0) for r in rel]
+    summary = {"n_cases": len(rows), "converged": sum(bool(r.get("converged")) for r in rel),
+               "median_time_s": statistics.median(times), "mean_time_s": statistics.fmean(times)}
+    report = {"benchmark": "mixed_relaxation", "level": args.level, "sample": args.sample, "summary": summary,
+              "rows": rows, "machine": {"platform": platform.platform(), "cpu_count": os.cpu_count(),
+                                        "python": sys.version.split()[0], "numpy": np.__version__}}
+    out = Path(args.out or Path(__file__).parent / "results" / f"mixed_relaxation_{args.sample}_{args.level}.json")
+    out.parent.mkdir(parents=True, exist_ok=True)
+    out.write_text(json.dumps(report, indent=2, default=float))
+    print(json.dumps(summary, indent=2, default=float))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
