@@ -196,8 +196,9 @@ def relative_error(value: float, reference: float) -> float:
 def run_study(cases: Sequence[CaseSpec] = ACCURACY_CASES, levels: Sequence[str] = DEFAULT_LEVELS,
               reference: str = "reference", lubricant="atf", reference_effects: str = "full",
               level_effects: str = "auto", solve: Callable | None = None,
-              progress: Callable[[str], None] | None = None) -> AccuracyStudy:
-    """Solve every case at the reference and at each level; errors relative to the reference (see module doc)."""
+              progress: Callable[[str], None] | None = None, checkpoint: str | Path | None = None) -> AccuracyStudy:
+    """Solve every case at the reference and at each level; errors relative to the reference (see module doc).
+    With ``checkpoint`` the runs so far are written there as JSON after every case (a long study can be stopped)."""
     from ehl_dataset.lubricant import Lubricant, load_lubricant
 
     if not cases:
@@ -222,6 +223,10 @@ def run_study(cases: Sequence[CaseSpec] = ACCURACY_CASES, levels: Sequence[str] 
             runs.append(run)
             if progress:
                 progress(f"{name}: {level} mu={run.mu:.4g} err={run.mu_error:.2%} in {run.wall_time_s:.2f} s")
+        if checkpoint is not None:
+            Path(checkpoint).write_text(json.dumps({"reference_level": reference, "levels": list(levels),
+                                                    "provenance": {}, "runs": [dataclasses.asdict(r) for r in runs]},
+                                                   default=float), encoding="utf-8")
     prov = provenance()
     prov.update(reference_effects=str(reference_effects), level_effects=str(level_effects))
     return AccuracyStudy(runs, reference, tuple(levels), specs, prov)

@@ -64,8 +64,11 @@ def run_accuracy(args) -> int:
     def progress(text: str) -> None:
         print(f"[accuracy] {text}", file=sys.stderr, flush=True)
 
+    from pathlib import Path
+
+    Path(args.out_dir).mkdir(parents=True, exist_ok=True)
     study = accuracy.run_study(cases, levels, args.reference, args.lubricant, args.reference_effects, args.effects,
-                               progress=progress)
+                               progress=progress, checkpoint=Path(args.out_dir) / f"{args.stem}.partial.json")
     convergence = []
     if args.convergence:
         by_name = {spec[0]: spec for spec in accuracy.ACCURACY_CASES}
@@ -90,6 +93,7 @@ def run_accuracy(args) -> int:
     if args.note:
         study.provenance["notes"] = list(args.note)
     paths = accuracy.write_report(study, args.out_dir, convergence, stem=args.stem)
+    (Path(args.out_dir) / f"{args.stem}.partial.json").unlink(missing_ok=True)
     payload = {
         "reference_level": study.reference_level,
         "levels": list(study.levels),
