@@ -37,6 +37,30 @@ temp_c = [50.0, 100.0]
 roughness_um = [[0.05, 0.05], [0.4, 0.4], [0.2, 0.5]]
 """
 
+# Four light-load, smooth (planner: steady smooth solve) points: cheap stage-1 runs for the resume and error tests.
+TINY_FACTORIAL = """
+name = "tiny"
+description = "4 smooth light-load points of paper2009 levels"
+lubricant = "atf"
+level = "fast"
+effects = "auto"
+
+[axes]
+p_h_gpa = [0.5]
+r_eq_mm = [20.0]
+u_r_m_s = [5.0, 20.0]
+sr = [0.1, 0.7]
+temp_c = [75.0]
+roughness_um = [[0.05, 0.05]]
+"""
+
+
+@pytest.fixture()
+def tiny(tmp_path):
+    path = tmp_path / "tiny.toml"
+    path.write_text(TINY_FACTORIAL)
+    return path
+
 
 def _design_d_direct(coefficients_path):
     """Design D at the study point evaluated without the pipeline (reference for the stage's numbers)."""
@@ -57,31 +81,32 @@ def _design_d_direct(coefficients_path):
     return mesh, loss
 
 
-def test_dataset_stage_writes_the_store_and_resumes(tmp_path):
-    """Stage 1 on the shipped smoke factorial with the real solver: 16 rows, counts as in the file; a second call
-    continues the same file and recomputes only rows that are not ok."""
-    first = dataset_stage(tmp_path, "smoke", progress="none")
+def test_dataset_stage_writes_the_store_and_resumes(tmp_path, tiny):
+    """Stage 1 with the real solver on four smooth points: the counts reported equal the file's, μ is finite; a
+    second call continues the same file and recomputes exactly the rows that were not ok."""
+    first = dataset_stage(tmp_path, tiny, progress="none")
     assert first.artefact == str(tmp_path / DATASET_FILE)
     table = read_table(first.artefact, status=None)
-    assert len(table) == first.details["n_points"] == 16
+    assert len(table) == first.details["n_points"] == 4
     assert first.details["ok"] == int((table["status"] == "ok").sum()) >= 1
-    assert first.details["ok"] + first.details["failed"] + first.details["pending"] == 16
+    assert first.details["ok"] + first.details["failed"] + first.details["pending"] == 4
     ok = table[table["status"] == "ok"]
     assert np.all(np.isfinite(ok["mu"])) and np.all((ok["mu"] > 0) & (ok["mu"] < 0.2))
-    second = dataset_stage(tmp_path, "smoke", progress="none")
+    second = dataset_stage(tmp_path, tiny, progress="none")
     assert second.details["resumed"]
-    assert second.details["computed"] == 16 - first.details["ok"]
+    assert second.details["computed"] == 4 - first.details["ok"]
     assert second.details["ok"] >= first.details["ok"]
 
 
-def test_pipeline_stops_at_the_fit_when_the_factorial_cannot_determine_eq9(tmp_path, capsys):
-    """The smoke factorial has 16 points; Eq. 9 has 10 + 14 = 24 coefficients, so no fit can exist. The pipeline
-    keeps the dataset and raises a SolverError naming the fit stage; the CLI prints it in one line, exit 3."""
+def test_pipeline_stops_at_the_fit_when_the_factorial_cannot_determine_eq9(tmp_path, tiny, capsys):
+    """Four points cannot determine Eq. 9 (10 + 14 = 24 coefficients; the shipped 16-point smoke factorial cannot
+    either). The pipeline keeps the dataset and raises a SolverError naming the fit stage; the CLI (resuming the same
+    directory) prints it in one line, exit 3."""
     with pytest.raises(SolverError, match="fit stage"):
-        run_pipeline(tmp_path / "api", "smoke", progress="none")
-    assert (tmp_path / "api" / DATASET_FILE).is_file()
-    assert not list((tmp_path / "api").glob("*.json"))
-    code = main(["pipeline", "quick", "--out-dir", str(tmp_path / "cli"), "--factorial", "smoke",
+        run_pipeline(tmp_path / "run", tiny, progress="none")
+    assert (tmp_path / "run" / DATASET_FILE).is_file()
+    assert not list((tmp_path / "run").glob("*.json"))
+    code = main(["pipeline", "quick", "--out-dir", str(tmp_path / "run"), "--factorial", str(tiny),
                  "--progress", "none", "--json"])
     err = capsys.readouterr().err
     assert code == 3
