@@ -16,7 +16,8 @@ unit in each column name:
 ``eps_alpha``, ``eps_beta``, ``eps_gamma``          transverse (profile, ε_p), overlap (face, ε_f), total contact ratio
 ``power_loss_w`` (P), ``efficiency`` (η = 1 − P/(T ω)), ``te_pp_m`` (peak-to-peak loaded TE), ``sigma_c_pa`` (max
 Hertz pressure), ``sigma_b_pa`` (max root stress), ``mu_mean`` (load-weighted mean μ), ``converged``, ``error``
-(empty unless the evaluation of this design raised), ``wall_time_s``.
+(empty unless the evaluation of this design raised), ``warning`` (the warnings the evaluation emitted, joined by " | ", e.g. a
+friction surrogate extrapolating outside its fitted ranges; empty if none), ``wall_time_s``.
 
 A design whose evaluation raises an :class:`~ehl_dataset.validation.InputError` or
 :class:`~ehl_dataset.validation.SolverError` is kept in the table with NaN outputs and the message in ``error``;
@@ -28,6 +29,7 @@ from __future__ import annotations
 
 import math
 import time
+import warnings
 from dataclasses import dataclass, replace
 from typing import Callable, Iterable, Mapping
 
@@ -46,7 +48,7 @@ DESIGN_COLUMNS = ("teeth", "normal_pressure_angle_deg", "helix_angle_deg", "work
 GEOMETRY_COLUMNS = ("normal_module_m", "tip_diameter_m", "root_diameter_m", "thickness_allowance_m", "eps_alpha",
                     "eps_beta", "eps_gamma")
 OUTPUT_COLUMNS = ("power_loss_w", "efficiency", "te_pp_m", "sigma_c_pa", "sigma_b_pa", "mu_mean", "converged",
-                  "error", "wall_time_s")
+                  "error", "warning", "wall_time_s")
 
 SEARCH_CRITERIA = {
     "max_power_loss_w": "power_loss_w",
@@ -155,13 +157,27 @@ def evaluate_design(pair: GearPair, friction: Callable, point: StudyPoint,
     return {
         "power_loss_w": loss.power_loss, "efficiency": loss.efficiency, "te_pp_m": mesh.te_peak_to_peak,
         "sigma_c_pa": mesh.sigma_c_max, "sigma_b_pa": mesh.sigma_b_max, "mu_mean": mu_mean,
-        "converged": bool(mesh.converged), "error": "", "wall_time_s": time.perf_counter() - started,
+        "converged": bool(mesh.converged), "error": "", "warning": "", "wall_time_s": time.perf_counter() - started,
     }
 
 
 def _failed_row(err: Exception, started: float) -> dict:
     row = {name: math.nan for name in OUTPUT_COLUMNS}
-    row.update(converged=False, error=f"{type(err).__name__}: {err}", wall_time_s=time.perf_counter() - started)
+    row.update(converged=False, error=f"{type(err).__name__}: {err}", warning="",
+               wall_time_s=time.perf_counter() - started)
+    return row
+
+
+def _evaluate_recording(pair, friction, point, options) -> dict:
+    """:func:`evaluate_design` with its errors and warnings recorded in the row instead of raised / printed."""
+    started = time.perf_counter()
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        try:
+            row = evaluate_design(pair, friction, point, options)
+        except (InputError, SolverError) as err:
+            row = _failed_row(err, started)
+    row["warning"] = " | ".join(dict.fromkeys(f"{w.category.__name__}: {w.message}" for w in caught))
     return row
 
 
@@ -174,21 +190,17 @@ def design_sweep(space: DesignSpace, friction: Callable, point: StudyPoint,
     :func:`feasible_designs`) at ``point`` with ``friction``: the table behind the paper's Fig. 3–5.
 
     ``progress(done, total)`` is called after each design. One design's error does not stop the sweep: it is
-    recorded in the row's ``error`` column (see the module docstring).
+    recorded in the row's ``error`` column, and its warnings in ``warning`` (see the module docstring).
     """
     designs = feasible_designs(space, limits, where=where, stride=stride, limit=limit)
     rows = []
     total = len(designs)
     for i, record in enumerate(designs.to_dict("records")):
-        started = time.perf_counter()
-        try:
-            rows.append(evaluate_design(design_pair(record, space), friction, point, options))
-        except (InputError, SolverError) as err:
-            rows.append(_failed_row(err, started))
+        rows.append(_evaluate_recording(design_pair(record, space), friction, point, options))
         if progress is not None:
             progress(i + 1, total)
     outputs = pd.DataFrame(rows, columns=list(OUTPUT_COLUMNS)) if rows else pd.DataFrame(
-        {c: pd.Series(dtype=bool if c == "converged" else object if c == "error" else float)
+        {c: pd.Series(dtype=bool if c == "converged" else object if c in ("error", "warning") else float)
          for c in OUTPUT_COLUMNS})
     return pd.concat([designs, outputs], axis=1)
 
@@ -266,11 +278,7 @@ def modification_study(pair: GearPair, friction: Callable, profile_crowns: Itera
     for i, (torque, mp, ml) in enumerate(grid):
         here = StudyPoint(torque, point.input_speed, point.oil_temperature, point.rq1, point.rq2,
                           Modifications(profile_crown=mp, lead_crown=ml))
-        started = time.perf_counter()
-        try:
-            row = evaluate_design(pair, friction, here, options)
-        except (InputError, SolverError) as err:
-            row = _failed_row(err, started)
+        row = _evaluate_recording(pair, friction, here, options)
         rows.append({"torque_nm": torque, "profile_crown_m": mp, "lead_crown_m": ml, **row})
         if progress is not None:
             progress(i + 1, len(grid))

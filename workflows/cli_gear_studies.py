@@ -176,6 +176,8 @@ def run_sweep(args: argparse.Namespace) -> int:
         "te_pp_m_range": [float(table["te_pp_m"].min()), float(table["te_pp_m"].max())],
         "sigma_c_pa_range": [float(table["sigma_c_pa"].min()), float(table["sigma_c_pa"].max())],
         "sigma_b_pa_range": [float(table["sigma_b_pa"].min()), float(table["sigma_b_pa"].max())],
+        "designs_with_warnings": int((table["warning"].fillna("").astype(str) != "").sum()),
+        "warnings": _warning_digest(table),
         "search_limits": limits, "matches": int(len(matches)),
         "best_matches": [_design_record(r) for _, r in matches.head(args.show).iterrows()],
         "nearest": [_design_record(r) for _, r in nearest.head(args.show).iterrows()],
@@ -185,6 +187,15 @@ def run_sweep(args: argparse.Namespace) -> int:
     payload["wall_time_s"] = time.perf_counter() - started
     emit(payload, args.json, _human_sweep)
     return 0 if not math.isnan(payload["time_per_design_s"]) and payload["failed"] == 0 else 3
+
+
+def _warning_digest(table, keep: int = 3) -> dict[str, int]:
+    """The most frequent kinds of warning (category and message up to its details) → number of rows; the full
+    messages are in the table's ``warning`` column (``--out``)."""
+    text = table["warning"].fillna("").astype(str)
+    kinds = text[text != ""].str.split(" | ", regex=False).explode().str.split(": ", regex=False).str[:2].str.join(": ")
+    counts = kinds.value_counts()
+    return {str(k): int(v) for k, v in counts.head(keep).items()}
 
 
 def _fmt_design(d: dict) -> str:
@@ -212,6 +223,8 @@ def _human_sweep(p: dict) -> str:
     if not p["matches"]:
         lines.append("nearest designs (largest value/limit first criterion):")
         lines += ["  " + _fmt_design(d) for d in p["nearest"]]
+    for message, count in p["warnings"].items():
+        lines.append(f"warning ({count} designs): {message}")
     if "out" in p:
         lines.append(f"table written to {p['out']}")
     lines.append(f"wall time {p['wall_time_s']:.1f} s")
@@ -254,7 +267,7 @@ def run_modifications(args: argparse.Namespace) -> int:
                        "sigma_c_pa", "sigma_b_pa", "converged", "error")} for _, r in table.iterrows()]
     payload = {"study": study.name, "design": name, "friction_model": describe_friction(friction),
                "speed_rpm": point.input_speed * 30.0 / 3.141592653589793, "cases": len(table),
-               "converged": int(ok.sum()), "rows": rows}
+               "converged": int(ok.sum()), "warnings": _warning_digest(table), "rows": rows}
     if args.out:
         payload["out"] = _write_csv(table, args.out)
     payload["wall_time_s"] = time.perf_counter() - started
@@ -272,6 +285,8 @@ def _human_modifications(p: dict) -> str:
                      f"{r['power_loss_w'] / 1e3:8.3f} {r['efficiency'] * 100:8.3f} {r['te_pp_m'] * 1e6:8.3f} "
                      f"{r['sigma_c_pa'] / 1e9:9.3f} {r['sigma_b_pa'] / 1e6:9.0f}"
                      + ("" if r["converged"] else f"  NOT CONVERGED {r['error']}"))
+    for message, count in p["warnings"].items():
+        lines.append(f"warning ({count} cases): {message}")
     if "out" in p:
         lines.append(f"table written to {p['out']}")
     lines.append(f"wall time {p['wall_time_s']:.1f} s")

@@ -215,6 +215,23 @@ def test_sweep_records_failing_designs_and_never_selects_them(study, point):
     assert len(find_design_like_d(table, PAPER_SEARCH_LIMITS)) == 0
 
 
+def test_sweep_records_warnings_per_design(study, point):
+    """Warnings of a design's evaluation (e.g. a surrogate extrapolating) go into its row, not to the terminal."""
+    import warnings
+
+    def warning_mu(p_h, *rest):
+        warnings.warn("outside the fitted range", UserWarning)
+        return np.full(np.shape(p_h), 0.05)
+
+    with warnings.catch_warnings(record=True) as escaped:
+        warnings.simplefilter("always")
+        table = design_sweep(study.space, warning_mu, point, study.limits, MeshOptions(positions=6, slices=8),
+                             limit=2)
+    assert not escaped
+    assert (table["warning"] == "UserWarning: outside the fitted range").all()
+    assert table["converged"].all()
+
+
 def test_bad_input_is_named(study, point):
     with pytest.raises(InputError, match="stride"):
         feasible_designs(study.space, study.limits, stride=0)
