@@ -27,6 +27,8 @@ TRACE = False
 LINE_SEARCH = True
 EXPONENT_CAP = 600.0
 """Cap on ln(η/η0) so that viscosities stay finite in double precision during wild Newton iterates."""
+EXPONENT_FLOOR = 50.0
+"""Floor −50 on ln(η/η0) for the linear continuation below p = 0 (wild Newton iterates only)."""
 
 
 @dataclass
@@ -37,7 +39,10 @@ class ReynoldsProblem:
     ``lam`` λ̄ = 12 η0 u_r r_eq²/(a³ p_h); ``p_h`` [Pa]; ``state`` the :class:`~ehl_dataset.lubricant.LubricantState`;
     ``compressible``; ``shear`` S = η0 |u_s| r_eq/(τ0 a²) (0 switches the Eyring flow factor off);
     ``second_order`` linear-upwind Couette flux; ``squeeze`` w_i/ΔT and ``m_old`` for transient steps;
-    ``h_closed`` film below which the Poiseuille term is dropped (unified Reynolds; 0 for smooth runs).
+    ``h_closed`` film below which the Poiseuille term is dropped (unified Reynolds; 0 for smooth runs);
+    ``p_cap`` plastic pressure cap P_Y [p_h] (∞: off; :func:`_capped`);
+    ``smoothing`` s [p_h] of the Fischer–Burmeister functions, a number or one per interior node (0: exact
+    complementarity; see :func:`_fb`).
     """
 
     x: np.ndarray
@@ -52,6 +57,8 @@ class ReynoldsProblem:
     squeeze: np.ndarray | None = None
     m_old: np.ndarray | None = None
     h_closed: float = 0.0
+    p_cap: float = math.inf
+    smoothing: float | np.ndarray = 0.0
     weights: np.ndarray = field(init=False, repr=False)
     rows: np.ndarray = field(init=False, repr=False)
 
@@ -86,8 +93,10 @@ class ReynoldsProblem:
         negative = pa < 0.0
         slope_phi0 = float(law.exponent_derivative(np.array([0.0]))[0]) if negative.any() else 0.0
         phi = homotopy * np.where(negative, slope_phi0 * pa, law.exponent(pa))
-        phi = np.minimum(phi, EXPONENT_CAP)
         phi_p = homotopy * np.where(negative, slope_phi0, law.exponent_derivative(pa)) * self.p_h
+        clipped = (phi > EXPONENT_CAP) | (phi < -EXPONENT_FLOOR)
+        phi = np.clip(phi, -EXPONENT_FLOOR, EXPONENT_CAP)
+        phi_p = np.where(clipped, 0.0, phi_p)
         if self.compressible:
             rho = self.state.density(pa) / self.state.rho0
             rho_p = self.state.density_derivative(pa) * self.p_h / self.state.rho0
@@ -155,22 +164,52 @@ def _complementarity(problem: ReynoldsProblem, p, res, kappa):
     (P = 0) and the flow would pull the pressure below zero there. Ψ = ½|φ|² is continuously differentiable, so the
     Armijo line search on it is well defined (semi-smooth Newton; De Luca, Facchinei & Kanzow 1996).
     """
-    a = p[1:-1]
-    b = -res[1:-1] * kappa
-    root = np.sqrt(a * a + b * b)
-    phi = a + b - root
+    phi, d_a, d_b = _fb(p[1:-1], -res[1:-1] * kappa, problem.smoothing)
+    return phi, d_a, d_b * kappa
+
+
+def _fb(a, b, smoothing=0.0):
+    """Fischer–Burmeister φ(a, b) = a + b − √(a² + b² + 2s²) and its partials ∂φ/∂a, ∂φ/∂b (a generalised
+    gradient at a = b = 0 when s = 0). With s > 0 (Kanzow 1996) φ = 0 ⇔ a > 0, b > 0, a·b = s²: a smooth
+    approximation of the complementarity, whose Newton iteration cannot cycle between active sets."""
+    root = np.sqrt(a * a + b * b + 2.0 * smoothing * smoothing)
     degenerate = root < 1e-14
     safe = np.where(degenerate, 1.0, root)
     d_a = np.where(degenerate, 1.0 - 1.0 / math.sqrt(2.0), 1.0 - a / safe)
     d_b = np.where(degenerate, 1.0 - 1.0 / math.sqrt(2.0), 1.0 - b / safe)
-    return phi, d_a, d_b * kappa
+    return a + b - root, d_a, d_b
 
 
-def _norms(p, res, m_ref, phi, kappa):
-    """(max |R|/m_ref on pressurised nodes, max |φ| on cavitated nodes), pressurised meaning P_i > −κ_i R_i."""
+def _capped(problem: ReynoldsProblem, p, res, kappa):
+    """Cavitation and a plastic pressure cap together: the box complementarity 0 ≤ P ≤ P_Y with F = −κR.
+
+    Three node states: cavitated (P = 0, R ≤ 0), film (0 < P < P_Y, R = 0) and yielded (P = P_Y, R ≥ 0: the
+    asperities flatten plastically, the gap the elastic solids would need is lost and the equation is released).
+    Billups' nested Fischer–Burmeister form Φ = φ(P, −ψ), ψ = φ(P_Y − P, κR), is zero exactly in these states.
+    Returns Φ, ∂Φ/∂P_i (diagonal part) and the factor of κ·∂R/∂x (so that dΦ = c_p dP_i − c_r κ dR), and the
+    mask of yielded nodes.
+    """
+    p_in = p[1:-1]
+    b_in = res[1:-1] * kappa
+    psi, dpsi_a, dpsi_b = _fb(problem.p_cap - p_in, b_in, problem.smoothing)
+    big_phi, d_a, d_b = _fb(p_in, -psi, problem.smoothing)
+    # dΦ = d_a dP − d_b dψ,  dψ = −dpsi_a dP + dpsi_b κ dR
+    c_p = d_a + d_b * dpsi_a
+    c_r = d_b * dpsi_b
+    return big_phi, c_p, c_r * kappa, (problem.p_cap - p_in) < b_in
+
+
+def _norms(p, res, m_ref, phi, kappa, contact=None, smoothing=0.0):
+    """(max |R|/m_ref on film nodes, max |φ| on the other nodes), film meaning P_i > −κ_i R_i (and not yielded
+    when the pressure cap is on; ``phi`` is then the nested function Φ). With smoothed
+    complementarity functions (s_i > 0) the node's |Φ| [p_h] counts in the second norm."""
     a = p[1:-1]
     b = -res[1:-1] * kappa
     pressurised = a > b
+    if contact is not None:
+        pressurised &= ~contact
+    # smoothed conditions: R_i = −s²/(κ_i P_i) ≠ 0 at film nodes, so there Φ is the equation and its norm
+    pressurised &= ~(np.broadcast_to(np.asarray(smoothing), a.shape) > 0.0)
     r_free = float(np.max(np.abs(res[1:-1][pressurised]))) / m_ref if pressurised.any() else 0.0
     r_cav = float(np.max(np.abs(phi[~pressurised]))) if (~pressurised).any() else 0.0
     return r_free, r_cav
@@ -179,7 +218,8 @@ def _norms(p, res, m_ref, phi, kappa):
 def newton_solve(problem: ReynoldsProblem, p0: np.ndarray, h00: float, *, homotopy: float = 1.0,
                  tol_residual: float = 1e-6, tol_load: float = 1e-6, tol_step: float = 1e-6,
                  max_iterations: int = 60, max_pressure_step: float = 0.5,
-                 pseudo_dt: float = 0.0, m_ref: float | None = None, monotone: bool = True) -> NewtonOutcome:
+                 pseudo_dt: float = 0.0, m_ref: float | None = None, monotone: bool = True,
+                 freeze_scaling: bool = False) -> NewtonOutcome:
     """Solve the discrete problem from the initial guess (``p0``, ``h00``).
 
     Converged when the Reynolds residual on pressurised nodes (relative to the Couette flux ρ̄H at the contact
@@ -187,7 +227,10 @@ def newton_solve(problem: ReynoldsProblem, p0: np.ndarray, h00: float, *, homoto
     below tolerance. Steps are limited to ``max_pressure_step`` (in p_h), backtracked on the Fischer–Burmeister
     merit and kept where the film stays open (smooth runs). ``m_ref`` overrides the flux scale (rough runs,
     where the film at the centre may be closed); ``monotone=False`` accepts a damped step (ω < 0.3) even without
-    a decrease of the merit, which lets the iteration leave the kinks of the complementarity function. With ``pseudo_dt`` > 0 the Newton iteration is globalised by
+    a decrease of the merit, which lets the iteration leave the kinks of the complementarity function;
+    ``freeze_scaling`` keeps the Jacobi scaling κ of the first iteration, so that the function whose root is sought
+    (and the merit) stays the same from one iteration to the next (a κ that follows the iterate can make the
+    iteration cycle where the local derivative changes a lot, e.g. at closed-film nodes). With ``pseudo_dt`` > 0 the Newton iteration is globalised by
     pseudo-transient continuation (Kelley & Keyes 1998): the squeeze term w_i ∂m_i/∂T of the transient Reynolds
     equation with time step ΔT_k = pseudo_dt·r_0/r_k (switched evolution relaxation) is added to the Jacobian only,
     so the iterates follow a damped, physical squeeze-film evolution early on and become pure Newton steps
@@ -212,10 +255,14 @@ def newton_solve(problem: ReynoldsProblem, p0: np.ndarray, h00: float, *, homoto
     for iteration in range(1, max_iterations + 1):
         load_err = problem.load(p)
         jac = full_jacobian(dp, dh, problem.kmat, problem.rows)
-        diag = np.abs(jac[np.arange(n - 2), np.arange(n - 2)])
-        kappa = 1.0 / np.maximum(diag, 1e-12 * max(float(diag.max()), 1e-300))
+        if iteration == 1 or not freeze_scaling:
+            diag = np.abs(jac[np.arange(n - 2), np.arange(n - 2)])
+            kappa = 1.0 / np.maximum(diag, 1e-12 * max(float(diag.max()), 1e-300))
         phi, d_a, d_b = _complementarity(problem, p, res, kappa)
-        r_free, r_cav = _norms(p, res, m_ref, phi, kappa)
+        contact = None
+        if math.isfinite(problem.p_cap):
+            phi, d_a, d_b, contact = _capped(problem, p, res, kappa)
+        r_free, r_cav = _norms(p, res, m_ref, phi, kappa, contact, problem.smoothing)
         if (r_free <= tol_residual and r_cav <= tol_residual and abs(load_err) <= tol_load
                 and step_norm <= tol_step):
             return NewtonOutcome(p, h0, h, True, iteration - 1, r_free, load_err, step_norm, r_cav, "converged")
@@ -259,6 +306,8 @@ def newton_solve(problem: ReynoldsProblem, p0: np.ndarray, h00: float, *, homoto
                     break
                 if np.all(np.isfinite(res_new)):
                     phi_new = _complementarity(problem, p_new, res_new, kappa)[0]
+                    if math.isfinite(problem.p_cap):
+                        phi_new = _capped(problem, p_new, res_new, kappa)[0]
                     merit1 = float(phi_new @ phi_new) + problem.load(p_new) ** 2
                     if merit1 <= (1.0 - 1e-4 * omega) * merit0 or not LINE_SEARCH or (not monotone and omega < 0.3):
                         accepted = True
@@ -275,5 +324,8 @@ def newton_solve(problem: ReynoldsProblem, p0: np.ndarray, h00: float, *, homoto
                   f"{problem.x[1 + int(np.argmax(np.abs(phi)))]:.4f}")
         p, h0, h, res, dp, dh, mm = p_new, h0_new, h_new, res_new, dp_new, dh_new, m_new
     phi = _complementarity(problem, p, res, kappa)[0]
-    r_free, r_cav = _norms(p, res, m_ref, phi, kappa)
+    contact = None
+    if math.isfinite(problem.p_cap):
+        phi, _, _, contact = _capped(problem, p, res, kappa)
+    r_free, r_cav = _norms(p, res, m_ref, phi, kappa, contact, problem.smoothing)
     return NewtonOutcome(p, h0, h, False, max_iterations, r_free, problem.load(p), step_norm, r_cav, message)
