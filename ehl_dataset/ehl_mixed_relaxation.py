@@ -42,6 +42,7 @@ from .contact import ContactCase
 from .deflection import influence_matrix
 from .effects import Effects
 from .ehl_newton import ReynoldsProblem, newton_solve
+from .reynolds import assemble
 from .levels import AccuracyLevel, get_level
 from .lubricant import Lubricant, load_lubricant
 from .result import ContactResult
@@ -55,6 +56,16 @@ BANDWIDTH = 40
 smooth problems: the lagged far field of the log kernel is too large; 40 converges in 3–8 sweeps, measured)."""
 OMEGA = 1.0
 """Relaxation factor of the pressure correction."""
+CONTACT_MODEL = "gap"
+"""Asperity-contact nodes: "gap" holds the film at h_closed there (H_i = H_closed, P_i ≥ 0 from elasticity: a
+dry-contact complementarity, nodes enter when H_i < H_closed and leave when they would need tension); "transport"
+keeps Hu & Zhu's reduced equation ∂(ρh)/∂x + ∂(ρh)/∂t = 0, which lets negative films persist (measured)."""
+FACE_MEAN = "harmonic"
+"""Face mean of the Poiseuille coefficient: "harmonic" (:func:`assemble_harmonic`) or "arithmetic" (the
+discretisation of :mod:`ehl_dataset.reynolds`, shared with the Newton solver)."""
+LAG_EPSILON = "fade"
+"""Picard (lagged) treatment of ε: "all" nodes, only in and below the "fade" band of the unified Reynolds
+equation, or "none" (exact derivatives); see :func:`_linearised`."""
 ADAPTIVE = True
 """Halve the relaxation factor when a sweep does not lower max residual + load error, grow it by 1.5 when it does."""
 OMEGA_MIN = 0.05
@@ -115,6 +126,101 @@ def semi_system_bands(dp, dh, kmat, lower, upper):
     return ab, col_h0
 
 
+@numba.njit(cache=True)
+def assemble_harmonic(x, p, eps, eps_p, eps_h, m, m_p, m_h, squeeze, m_old, second_order):
+    """Residual and banded derivatives (offsets −2 … +1) of the discrete Reynolds equation of
+    :mod:`ehl_dataset.reynolds`, but with the **harmonic** face mean of the Poiseuille coefficient,
+    ε_face = 2 ε_k ε_{k+1}/(ε_k + ε_{k+1}) (series resistances, as for conduction with a varying conductivity).
+
+    ε varies by many orders of magnitude between neighbours at heavy asperity load (ε ∝ e^{−αp}); with the
+    arithmetic mean a low-pressure node between two high-pressure ones has a face coefficient dominated by its own
+    ε, whose pressure derivative then flips the sign of ∂R_i/∂P_i (the discrete operator loses its M-matrix
+    property and the iteration 2-cycles, measured). The harmonic mean is controlled by the smaller coefficient
+    and is zero next to a closed-film node (ε = 0). Same second-order accuracy for smooth ε.
+    Inputs as :func:`ehl_dataset.reynolds.assemble`.
+    """
+    n = x.size
+    res = np.zeros(n)
+    dp = np.zeros((n, 4))
+    dh = np.zeros((n, 4))
+    for k in range(n - 1):
+        delta = x[k + 1] - x[k]
+        grad = (p[k + 1] - p[k]) / delta
+        ea, eb = eps[k], eps[k + 1]
+        s = ea + eb
+        if s > 0.0:
+            face = 2.0 * ea * eb / s
+            f_a = 2.0 * eb * eb / (s * s)
+            f_b = 2.0 * ea * ea / (s * s)
+        else:
+            face = 0.0
+            f_a = 0.0
+            f_b = 0.0
+        c = 0.0
+        if second_order and k >= 1:
+            c = 0.5 * delta / (x[k] - x[k - 1])
+        couette = m[k] + c * (m[k] - m[k - 1]) if c > 0.0 else m[k]
+        q = face * grad - couette
+        q_p_km1 = c * m_p[k - 1] if c > 0.0 else 0.0
+        q_p_k = f_a * eps_p[k] * grad - face / delta - (1.0 + c) * m_p[k]
+        q_p_kp1 = f_b * eps_p[k + 1] * grad + face / delta
+        q_h_km1 = c * m_h[k - 1] if c > 0.0 else 0.0
+        q_h_k = f_a * eps_h[k] * grad - (1.0 + c) * m_h[k]
+        q_h_kp1 = f_b * eps_h[k + 1] * grad
+        if 1 <= k <= n - 2:
+            res[k] += q
+            dp[k, 1] += q_p_km1
+            dp[k, 2] += q_p_k
+            dp[k, 3] += q_p_kp1
+            dh[k, 1] += q_h_km1
+            dh[k, 2] += q_h_k
+            dh[k, 3] += q_h_kp1
+        i = k + 1
+        if 1 <= i <= n - 2:
+            res[i] -= q
+            dp[i, 0] -= q_p_km1
+            dp[i, 1] -= q_p_k
+            dp[i, 2] -= q_p_kp1
+            dh[i, 0] -= q_h_km1
+            dh[i, 1] -= q_h_k
+            dh[i, 2] -= q_h_kp1
+    for i in range(1, n - 1):
+        if squeeze[i] != 0.0:
+            res[i] -= squeeze[i] * (m[i] - m_old[i])
+            dp[i, 2] -= squeeze[i] * m_p[i]
+            dh[i, 2] -= squeeze[i] * m_h[i]
+    return res, dp, dh
+
+
+def _linearised(problem: ReynoldsProblem, p, h):
+    """Reynolds residual and banded derivatives; with :data:`LAG_FADE` the derivatives of ε are dropped where the
+    film is inside the fade band (h_closed, 2 h_closed) or below it (Picard in ε there, as in Hu & Zhu's
+    Gauss–Seidel, whose coefficients are those of the previous sweep): ∂ε/∂H of the fade is ~1/h_closed and
+    sends a Newton-type step far past the 1 nm band."""
+    eps, eps_p, eps_h, m, m_p, m_h = problem.fluid(p, h)
+    if LAG_EPSILON == "all":
+        eps_h = np.zeros_like(eps_h)
+        eps_p = np.zeros_like(eps_p)
+    elif LAG_EPSILON == "fade" and problem.h_closed > 0.0:
+        band = h < 2.0 * problem.h_closed
+        eps_h = np.where(band, 0.0, eps_h)
+        eps_p = np.where(band, 0.0, eps_p)
+    kernel = assemble_harmonic if FACE_MEAN == "harmonic" else assemble
+    return kernel(problem.x, p, eps, eps_p, eps_h, m, m_p, m_h, problem.squeeze, problem.m_old,
+                  problem.second_order)
+
+
+def _contact_rows(ab, col_h0, kmat, idx, lower, upper):
+    """Replace the interior rows ``idx`` of the banded system by the contact condition H_i = H_closed:
+    ∂H_i/∂P_j = K_ij (within the band), ∂H_i/∂H0 = 1 (residual H_i − H_closed, judged against m_ref)."""
+    n_in = ab.shape[1]
+    for k in range(ab.shape[0]):
+        cols = idx + upper - k
+        ok = (cols >= 0) & (cols < n_in)
+        ab[k, cols[ok]] = kmat[idx[ok] + 1, cols[ok] + 1]
+    col_h0[idx] = 1.0
+
+
 @dataclass
 class StepOutcome:
     """One time step: ``p``, ``h0``, ``h`` (dimensionless), ``converged``, ``sweeps``, final norms."""
@@ -148,15 +254,22 @@ def relax_step(problem: ReynoldsProblem, p0: np.ndarray, h00: float, m_ref: floa
     history = []
     omega_adapt = 1.0
     merit_prev = math.inf
+    gap_model = CONTACT_MODEL == "gap" and problem.h_closed > 0.0
+    contact = np.zeros(n - 2, dtype=bool)
     for sweep in range(max_sweeps + 1):
         h = problem.film(p, h0)
-        res, dp, dh, _ = problem.residual(p, h)
+        res, dp, dh = _linearised(problem, p, h)
         ab, col_h0 = semi_system_bands(dp, dh, problem.kmat, lower, upper)
         r_in = res[1:-1]
+        if gap_model:
+            contact |= h[1:-1] < problem.h_closed
+            if contact.any():
+                _contact_rows(ab, col_h0, problem.kmat, np.nonzero(contact)[0], lower, upper)
+                r_in = np.where(contact, h[1:-1] - problem.h_closed, r_in)
         diag = ab[upper]
         # cavitated nodes (primal-dual active set): the local (Jacobi) update P_i − R_i/J_ii would be ≤ 0
         jacobi = -r_in / np.where(diag != 0.0, diag, 1.0)
-        held = p[1:-1] + jacobi <= 0.0
+        held = (p[1:-1] + jacobi <= 0.0) & ~contact
         free = ~held
         r_free = float(np.max(np.abs(r_in[free]))) / m_ref if free.any() else 0.0
         load_err = problem.load(p)
@@ -195,7 +308,10 @@ def relax_step(problem: ReynoldsProblem, p0: np.ndarray, h00: float, m_ref: floa
         largest = float(np.max(np.abs(delta))) if delta.size else 0.0
         omega = OMEGA * omega_adapt * (min(1.0, MAX_STEP / largest) if largest > 0.0 else 1.0)
         p_new = p.copy()
-        p_new[1:-1] = np.maximum(p[1:-1] + omega * delta, 0.0)
+        trial = p[1:-1] + omega * delta
+        if gap_model:
+            contact &= trial > 0.0  # a contact node that would need tension separates
+        p_new[1:-1] = np.maximum(trial, 0.0)
         h0 += omega * d_h0
         step = float(np.max(np.abs(p_new - p)))
         p = p_new
