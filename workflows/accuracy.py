@@ -455,3 +455,20 @@ def load_study(path: str | Path) -> tuple[AccuracyStudy, list[dict]]:
     cases = tuple(by_name[name] for name in names)
     study = AccuracyStudy(runs, data["reference_level"], tuple(data["levels"]), cases, data["provenance"])
     return study, list(data.get("convergence", []))
+
+
+def merge_studies(studies: Sequence[AccuracyStudy], notes: Sequence[str] = ()) -> AccuracyStudy:
+    """One study from several runs of the same levels and reference on disjoint case subsets (e.g. run in
+    parallel processes); cases in the order of :data:`ACCURACY_CASES`, provenance of the first plus ``notes``."""
+    if not studies:
+        raise InputError("studies", 0, "at least one study")
+    first = studies[0]
+    for other in studies[1:]:
+        if other.levels != first.levels or other.reference_level != first.reference_level:
+            raise InputError("studies", other.levels, f"the same levels {first.levels} and reference")
+    order = {spec[0]: i for i, spec in enumerate(ACCURACY_CASES)}
+    cases = sorted({spec for study in studies for spec in study.cases}, key=lambda spec: order.get(spec[0], 1e9))
+    runs = sorted((run for study in studies for run in study.runs), key=lambda run: order.get(run.case, 1e9))
+    prov = dict(first.provenance)
+    prov["notes"] = list(prov.get("notes", [])) + list(notes)
+    return AccuracyStudy(runs, first.reference_level, first.levels, tuple(cases), prov)
