@@ -54,6 +54,8 @@ RAMP_FRACTION = 0.5
 MAX_PRESSURE_STEP = 3.0
 """Largest pressure change per Newton iteration in a time step [p_h]: asperity contacts need pressures of several p_h."""
 MONOTONE = False
+CLOSED_NODES = True
+CLOSED_MARGIN = 1.01
 STEP_ITERATIONS = 25
 """Newton iterations allowed per time step before it is retried with sub-steps."""
 MAX_STEP_RETRIES = 4
@@ -153,6 +155,10 @@ def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel
                 # exact conditions elsewhere (the inlet build-up sets the film and is sensitive to any smoothing)
                 film_start = problem.film(p_try, h0_try)[1:-1]
                 problem.smoothing = np.where(film_start < SMOOTHING_FILM * problem.h_closed, FB_SMOOTHING, 0.0)
+                if CLOSED_NODES:
+                    closed = np.zeros(x.size, dtype=bool)
+                    closed[1:-1] = film_start < CLOSED_MARGIN * problem.h_closed
+                    problem.closed = closed
                 outcome = newton_solve(problem, p_try, h0_try, m_ref=m_ref, monotone=MONOTONE, freeze_scaling=True,
                                          **step_tolerances)
                 its += outcome.iterations
@@ -218,7 +224,7 @@ def _residuals(outcome) -> dict[str, float]:
 
 
 def _record(history, t, case, state, x_m, p_pa, h_m, h_closed_m):
-    contact = h_m <= h_closed_m
+    contact = h_m <= CLOSED_MARGIN * h_closed_m
     eta = state.viscosity(p_pa)
     parts = friction_components(x_m, p_pa, np.maximum(h_m, h_closed_m), eta, case.u_s, state.tau0,
                                 case.load_per_length, state.mu_d, contact)
