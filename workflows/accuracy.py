@@ -367,7 +367,7 @@ def markdown_report(study: AccuracyStudy, convergence: Sequence[dict] = (), png_
                 f"{run.wall_time_s:.3g} | {'yes' if run.converged else 'NO'} |")
     failures = [r for r in study.runs if not r.converged]
     if failures:
-        lines += ["", "Not converged (kept in the table, excluded from nothing; errors against a non-converged"
+        lines += ["", "Not converged (listed in the table with their values; errors against a non-converged"
                       " reference are n/a):", ""]
         lines += [f"- {r.case} at {r.level}: {r.message or 'converged=False'}" for r in failures]
     if convergence:
