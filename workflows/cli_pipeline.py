@@ -1,6 +1,6 @@
 """``gearloss pipeline quick|paper``: factorial → friction surrogate → Design D, in one process.
 
-``quick`` runs the 324-point ``quick`` factorial at the fast level (minutes), ``paper`` the 42,000-point
+``quick`` runs the 324-point ``quick`` factorial at the fast level, ``paper`` the 42,000-point
 ``paper2009`` factorial (the long run; ``--scheduler ADDRESS`` sends the points to a Dask cluster). Both write
 ``DIR/dataset.h5`` (continued if present), ``DIR/<lubricant>_<factorial>.json`` (+ ``.summary.txt``) and print
 Design D's P [kW], η, TE, σ_c, σ_b at the study's operating point and the time of each stage. See
@@ -19,8 +19,8 @@ def register(subparsers) -> None:
     sub = parser.add_subparsers(dest="pipeline_command", metavar="COMMAND")
     parser.set_defaults(handler=lambda args: parser.print_help() or 2)
     for name, default, help_text in (
-            ("quick", "quick", "quick factorial (324 points, fast level): the demo, minutes on a laptop"),
-            ("paper", "paper2009", "the paper's 42,000-point factorial: the long run (one night, or Dask)")):
+            ("quick", "quick", "quick factorial (324 points, fast level): the demo run"),
+            ("paper", "paper2009", "the paper's 42,000-point factorial: the long run (many CPU-hours; Dask for clusters)")):
         p = sub.add_parser(name, help=help_text, description=help_text)
         p.add_argument("--out-dir", default=f"gearloss_{name}",
                        help=f"directory for dataset.h5 and the coefficient file (default gearloss_{name})")
