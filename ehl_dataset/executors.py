@@ -29,6 +29,9 @@ def _init_local_worker(parent_pid: int) -> None:
     kernel send SIGKILL to the worker when its parent dies.
     """
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+    # A forked worker inherits the coordinator's Python SIGTERM handler (which only sets a stop flag); restore
+    # the default so that stopping the pool terminates a long solve at once.
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
     if sys.platform.startswith("linux"):
         try:
             import ctypes
@@ -115,6 +118,9 @@ class LocalExecutor:
                     process.terminate()
             for process in process_objects:
                 process.join(timeout=5)
+                if process.is_alive():
+                    process.kill()
+                    process.join(timeout=5)
         self._pool = None
 
     def describe(self) -> dict:
