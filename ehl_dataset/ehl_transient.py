@@ -129,6 +129,7 @@ def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel
     surfaces = plan_surfaces(case, x * a, t_end * time_scale, profile)
     problem.h_closed = H_CLOSED_M / film_scale
     problem.p_cap = YIELD_PRESSURE_PA / case.p_h
+    problem.scaled_norm = True
     # a time step that needs many iterations is cheaper to redo with sub-steps than to iterate on
     step_tolerances = dict(tolerances, max_iterations=min(lvl.max_iterations, STEP_ITERATIONS),
                            max_pressure_step=MAX_PRESSURE_STEP)
@@ -159,6 +160,7 @@ def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel
                     closed = np.zeros(x.size, dtype=bool)
                     closed[1:-1] = film_start < CLOSED_MARGIN * problem.h_closed
                     problem.closed = closed
+                    problem.closed_film = _pass_through_film(problem.film(p_try, h0_try), closed, problem.h_closed)
                 outcome = newton_solve(problem, p_try, h0_try, m_ref=m_ref, monotone=MONOTONE, freeze_scaling=True,
                                          **step_tolerances)
                 its += outcome.iterations
@@ -208,6 +210,24 @@ def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel
     if not all(np.isfinite([result.mu, result.h_central, result.p_max])):
         raise SolverError(f"non-finite transient result for case {case.to_dict()}")
     return result
+
+
+def _pass_through_film(film: np.ndarray, closed: np.ndarray, h_closed: float) -> np.ndarray:
+    """Film [dimensionless] whose Couette flux a closed node carries: that of the nearest open node upstream.
+
+    In a line contact a closed node that carried only ρ̄H_c would starve everything downstream of it (there is no
+    side flow in 1-D), and the film behind every asperity contact would collapse. The lubricant trapped in the
+    roughness valleys passes through an asperity contact (the 1-D trace of the flow around it), so the flux leaving
+    a closed patch is the flux that entered it; mass is conserved. Frozen over a time step (explicit in time).
+    """
+    out = np.maximum(film, h_closed)
+    last = out[0]
+    for i in range(film.size):
+        if closed[i]:
+            out[i] = last
+        else:
+            last = out[i]
+    return out
 
 
 @functools.lru_cache(maxsize=1)
