@@ -237,10 +237,11 @@ class StepOutcome:
     load: float
     step: float
     history: list = None
+    contact: np.ndarray | None = None
 
 
 def relax_step(problem: ReynoldsProblem, p0: np.ndarray, h00: float, m_ref: float, tol: Tolerances,
-               max_sweeps: int = MAX_SWEEPS, bandwidth: int | None = None) -> StepOutcome:
+               max_sweeps: int | None = None, bandwidth: int | None = None) -> StepOutcome:
     """Semi-system relaxation of one (time-step or steady) discrete problem from (``p0``, ``h00``).
 
     See the module docstring. Never raises for non-convergence: ``converged=False`` with the norms.
@@ -251,6 +252,7 @@ def relax_step(problem: ReynoldsProblem, p0: np.ndarray, h00: float, m_ref: floa
     h0 = float(h00)
     w_in = problem.weights[1:-1] / (0.5 * math.pi)
     bandwidth = BANDWIDTH if bandwidth is None else int(bandwidth)
+    max_sweeps = MAX_SWEEPS if max_sweeps is None else int(max_sweeps)
     lower, upper = max(bandwidth, 2), max(bandwidth, 1)
     step = math.inf
     r_free = load_err = math.inf
@@ -280,7 +282,8 @@ def relax_step(problem: ReynoldsProblem, p0: np.ndarray, h00: float, m_ref: floa
         history.append((r_free, load_err, step, omega_adapt, float(problem.x[worst]), float(p[worst]),
                         float(h[worst]), int(held.sum())))
         if r_free <= tol.residual and abs(load_err) <= tol.load and step <= tol.step:
-            return StepOutcome(p, h0, h, True, sweep, r_free, load_err, step, history)
+            return StepOutcome(p, h0, h, True, sweep, r_free, load_err, step, history,
+                               np.concatenate([[False], contact, [False]]))
         merit = r_free + abs(load_err)
         if ADAPTIVE:
             omega_adapt = min(1.0, omega_adapt * 1.5) if merit < merit_prev else max(OMEGA_MIN, 0.5 * omega_adapt)
@@ -469,6 +472,8 @@ def _solve(case, state, lvl: AccuracyLevel, plan: Effects, keep_series: bool) ->
 
 def _record(hist, t, case, state, x_m, p_pa, h_m, out: StepOutcome):
     contact = h_m <= H_CLOSED_M
+    if out.contact is not None:
+        contact |= out.contact  # held at h_closed to the step tolerance
     parts = friction_components(x_m, p_pa, np.maximum(h_m, H_CLOSED_M), state.viscosity(p_pa), case.u_s,
                                 state.tau0, case.load_per_length, state.mu_d, contact)
     dx = np.diff(x_m)
