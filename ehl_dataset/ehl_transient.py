@@ -136,7 +136,7 @@ def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel
     p, h0 = first.p, first.h0
     m_prev = problem.fluid(p, first.h)[3]
     t = 0.0
-    history = {k: [] for k in ("t", "mu", "share", "h_min", "h_c", "p_max", "load")}
+    history = {k: [] for k in ("t", "mu", "share", "h_min", "h_c", "p_max", "load", "yielded")}
     worst = {"reynolds": 0.0, "load": 0.0, "step": 0.0, "complementarity": 0.0}
     failure = ""
     for _ in range(n_steps):
@@ -179,7 +179,7 @@ def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel
         p, h0, m_prev = p_try, h0_try, m_try
         for key, value in _residuals(outcome).items():
             worst[key] = max(worst[key], abs(value))
-        _record(history, t, case, state, x * a, p * case.p_h, outcome.h * film_scale, H_CLOSED_M)
+        _record(history, t, case, state, x * a, p * case.p_h, outcome.h * film_scale, H_CLOSED_M, YIELD_PRESSURE_PA)
 
     converged = not failure
     steps = len(history["t"])
@@ -195,7 +195,7 @@ def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel
         h_min=float(max(np.min(history["h_min"][window]), 0.0)),
         h_central=float(np.mean(history["h_c"][window])),
         p_max=float(np.max(history["p_max"][window])), converged=converged, iterations=int(iterations),
-        wall_time=time.perf_counter() - start, level=lvl.name, effects=plan.to_dict(), lambda_bar=lambda_bar,
+        wall_time=time.perf_counter() - start, level=lvl.name, effects=_recorded_plan(plan), lambda_bar=lambda_bar,
         asperity_load_share=float(np.mean(history["share"][window])), residuals=worst,
         message="converged" if converged else f"not converged: {failure}",
         x=x * a, pressure=p * case.p_h, film=film,
@@ -204,6 +204,9 @@ def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel
                "courant_effective": float(d_t / dx), "average_from_step": int(first_avg),
                "roughness_resolution_capped": capped, "surfaces_independent": bool(surfaces.independent),
                "h_min_dowson_higginson_m": h_dh, "h_closed_m": H_CLOSED_M,
+               "yield_pressure_pa": YIELD_PRESSURE_PA,
+               "yielded_load_share": float(np.mean(history["yielded"][window])),
+               "fb_smoothing": FB_SMOOTHING,
                "max_load_error": float(np.max(np.abs(history["load"]))),
                "mu_series": np.asarray(history["mu"]), "t_series_s": np.asarray(history["t"]) * time_scale},
     )
@@ -230,6 +233,15 @@ def _pass_through_film(film: np.ndarray, closed: np.ndarray, h_closed: float) ->
     return out
 
 
+def _recorded_plan(plan: Effects) -> dict:
+    """The effect plan with the plastic pressure cap recorded (``Effects`` has no flag for it)."""
+    record = plan.to_dict()
+    record["reasons"] = dict(record.get("reasons") or {})
+    record["reasons"]["plastic_cap"] = (f"asperity pressure capped at the hardness {YIELD_PRESSURE_PA / 1e9:.1f} GPa "
+                                        "(60 HRC case-hardened steel, elastic-perfectly-plastic asperities)")
+    return record
+
+
 @functools.lru_cache(maxsize=1)
 def _baseline_profile():
     """The shipped baseline roughness profile, read once per process (reading the text file costs ~1 s)."""
@@ -243,7 +255,7 @@ def _residuals(outcome) -> dict[str, float]:
             "complementarity": outcome.complementarity}
 
 
-def _record(history, t, case, state, x_m, p_pa, h_m, h_closed_m):
+def _record(history, t, case, state, x_m, p_pa, h_m, h_closed_m, p_yield_pa=math.inf):
     contact = h_m <= CLOSED_MARGIN * h_closed_m
     eta = state.viscosity(p_pa)
     parts = friction_components(x_m, p_pa, np.maximum(h_m, h_closed_m), eta, case.u_s, state.tau0,
@@ -257,6 +269,9 @@ def _record(history, t, case, state, x_m, p_pa, h_m, h_closed_m):
     history["h_c"].append(float(np.interp(0.0, x_m, h_m)))
     history["p_max"].append(float(np.max(p_pa)))
     history["load"].append(load / case.load_per_length - 1.0)
+    yielded = p_pa >= (1.0 - 1e-6) * p_yield_pa
+    yielded_load = float(np.sum(0.5 * ((p_pa * yielded)[1:] + (p_pa * yielded)[:-1]) * np.diff(x_m)))
+    history["yielded"].append(yielded_load / load if load > 0 else 0.0)
 
 
 def _failed(case, state, lvl, plan, iterations, start, message, residuals) -> ContactResult:

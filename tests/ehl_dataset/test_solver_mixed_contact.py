@@ -49,6 +49,9 @@ def test_plastic_cap_is_inactive_below_the_hardness(monkeypatch):
     assert capped.p_max < transient.YIELD_PRESSURE_PA
     assert capped.mu == pytest.approx(free.mu, rel=1e-4)
     assert capped.p_max == pytest.approx(free.p_max, rel=1e-4)
+    assert capped.extra["yielded_load_share"] == 0.0
+    assert capped.extra["yield_pressure_pa"] == pytest.approx(6.8e9)
+    assert "plastic_cap" in capped.effects["reasons"]
 
 
 @pytest.mark.slow
