@@ -3,6 +3,7 @@
     python benchmarks/bench_mixed_relaxation.py --sample compare --level fast   # λ̄ ≈ 1–3 corners, vs the Newton solver
     python benchmarks/bench_mixed_relaxation.py --sample hard --level fast      # the brief's failing cases
     python benchmarks/bench_mixed_relaxation.py --sample corners --level fast   # the 64 corners (slow)
+    python benchmarks/bench_mixed_relaxation.py --sample sweep --level fast     # λ̄ → 0 by Rq 0.05 … 10 µm
 
 Per case: converged, μ, μ_std, h_min, asperity share, λ̄, max load error, sweeps, wall time; for ``compare`` also
 the transient Newton solver's (ehl_dataset.solver.solve_contact, effects=full) result and the relative μ
@@ -34,6 +35,10 @@ HARD = [(0.167, 10, 5, 0.327, 90, 0.4, 0.4, "gear_oil_75w90"), (1.2, 10, 3.06, 0
         (2.5, 5, 1, 1, 100, 1.0, 1.0, "atf"), (0.5, 5, 1, 1, 100, 1.0, 1.0, "atf")]
 
 
+# λ̄ → 0 at fixed conditions (0.5 GPa, 5 mm, 1 m/s, SR 1, 100 °C): Rq 0.05 … 10 µm, λ̄ ≈ 0.54 … 0.0027
+SWEEP = [(0.5, 5, 1, 1, 100, rq, rq, "atf") for rq in (0.05, 0.2, 1.0, 3.0, 10.0)]
+
+
 def corner_cases():
     import itertools
 
@@ -53,10 +58,13 @@ def _row(res, lub_mu_d):
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--level", default="fast")
-    parser.add_argument("--sample", choices=["compare", "hard", "corners"], default="compare")
+    parser.add_argument("--sample", choices=["compare", "hard", "corners", "sweep"], default="compare")
     parser.add_argument("--out", default=None)
+    parser.add_argument("--shard", default="0/1", help="k/n: run every n-th case starting at k (parallel runs)")
     args = parser.parse_args(argv)
-    cases = {"compare": COMPARE, "hard": HARD, "corners": corner_cases()}[args.sample]
+    cases = {"compare": COMPARE, "hard": HARD, "corners": corner_cases(), "sweep": SWEEP}[args.sample]
+    k, n = (int(v) for v in args.shard.split("/"))
+    cases = cases[k::n]
     rows = []
     for spec in cases:
         lub = load_lubricant(spec[7])
@@ -82,7 +90,8 @@ def main(argv=None) -> int:
     report = {"benchmark": "mixed_relaxation", "level": args.level, "sample": args.sample, "summary": summary,
               "rows": rows, "machine": {"platform": platform.platform(), "cpu_count": os.cpu_count(),
                                         "python": sys.version.split()[0], "numpy": np.__version__}}
-    out = Path(args.out or Path(__file__).parent / "results" / f"mixed_relaxation_{args.sample}_{args.level}.json")
+    out = Path(args.out or Path(__file__).parent / "results" / f"mixed_relaxation_{args.sample}_{args.level}"
+                                                  + (f"_shard{k}of{n}" if n > 1 else "") + ".json")
     out.parent.mkdir(parents=True, exist_ok=True)
     out.write_text(json.dumps(report, indent=2, default=float))
     print(json.dumps(summary, indent=2, default=float))

@@ -402,7 +402,8 @@ def _solve(case, state, lvl: AccuracyLevel, plan: Effects, keep_series: bool) ->
     p, h0 = first.p, first.h0
     m_prev = problem.fluid(p, first.h)[3]
     t = 0.0
-    hist = {k: [] for k in ("t", "mu", "share", "h_min", "h_c", "p_max", "load", "residual", "sweeps")}
+    hist = {k: [] for k in ("t", "mu", "share", "h_min", "h_min_interior", "h_ends", "h_c", "p_max", "load",
+                             "residual", "sweeps")}
     total_sweeps = 0
     failure = ""
     out = None
@@ -453,7 +454,10 @@ def _solve(case, state, lvl: AccuracyLevel, plan: Effects, keep_series: bool) ->
              "sweeps_total": int(total_sweeps), "roughness_resolution_capped": bool(capped),
              "surfaces_independent": bool(surfaces.independent), "h_min_dowson_higginson_m": h_dh,
              "h_closed_m": H_CLOSED_M, "max_load_error": float(np.max(np.abs(hist["load"]))),
-             "mu_smooth_start": float(smooth.mu), "bandwidth": BANDWIDTH}
+             "mu_smooth_start": float(smooth.mu), "bandwidth": BANDWIDTH,
+             "h_min_interior_m": float(np.min(hist["h_min_interior"][win])),
+             "h_min_domain_ends_m": float(np.min(hist["h_ends"][win])),
+             "contact_model": CONTACT_MODEL, "face_mean": FACE_MEAN}
     if keep_series:
         extra.update({"mu_series": np.asarray(hist["mu"]), "t_series_s": np.asarray(hist["t"]) * time_scale,
                       "share_series": np.asarray(hist["share"]), "h_min_series_m": np.asarray(hist["h_min"]),
@@ -484,6 +488,8 @@ def _record(hist, t, case, state, x_m, p_pa, h_m, out: StepOutcome):
     hist["mu"].append(parts["mu"])
     hist["share"].append(contact_load / load if load > 0.0 else 0.0)
     hist["h_min"].append(float(np.min(h_m)))
+    hist["h_min_interior"].append(float(np.min(h_m[1:-1])))
+    hist["h_ends"].append(float(min(h_m[0], h_m[-1])))
     hist["h_c"].append(float(np.interp(0.0, x_m, h_m)))
     hist["p_max"].append(float(np.max(p_pa)))
     hist["load"].append(load / case.load_per_length - 1.0)
