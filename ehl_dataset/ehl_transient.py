@@ -56,7 +56,7 @@ MAX_PRESSURE_STEP = 3.0
 MONOTONE = False
 CLOSED_NODES = True
 CLOSED_MARGIN = 1.01
-STEP_ITERATIONS = 25
+STEP_ITERATIONS = 40
 """Newton iterations allowed per time step before it is retried with sub-steps."""
 MAX_STEP_RETRIES = 4
 """Times a non-converged time step is retried with half the time step before the run is marked not converged."""
