@@ -213,15 +213,26 @@ def _linearised(problem: ReynoldsProblem, p, h):
                   problem.second_order)
 
 
+@numba.njit(cache=True)
 def _contact_rows(ab, col_h0, kmat, idx, lower, upper):
     """Replace the interior rows ``idx`` of the banded system by the contact condition H_i = H_closed:
     ∂H_i/∂P_j = K_ij (within the band), ∂H_i/∂H0 = 1 (residual H_i − H_closed, judged against m_ref)."""
     n_in = ab.shape[1]
-    for k in range(ab.shape[0]):
-        cols = idx + upper - k
-        ok = (cols >= 0) & (cols < n_in)
-        ab[k, cols[ok]] = kmat[idx[ok] + 1, cols[ok] + 1]
-    col_h0[idx] = 1.0
+    for r in idx:
+        for c in range(max(0, r - lower), min(n_in, r + upper + 1)):
+            ab[upper + r - c, c] = kmat[r + 1, c + 1]
+        col_h0[r] = 1.0
+
+
+@numba.njit(cache=True)
+def _identity_rows(ab, col_h0, idx, lower, upper):
+    """Replace the interior rows ``idx`` by δP_i = (right-hand side) (cavitated nodes held at P = 0)."""
+    n_in = ab.shape[1]
+    for r in idx:
+        for c in range(max(0, r - lower), min(n_in, r + upper + 1)):
+            ab[upper + r - c, c] = 0.0
+        ab[upper, r] = 1.0
+        col_h0[r] = 0.0
 
 
 @dataclass
@@ -290,17 +301,9 @@ def relax_step(problem: ReynoldsProblem, p0: np.ndarray, h00: float, m_ref: floa
         merit_prev = merit
         if sweep == max_sweeps or not np.all(np.isfinite(res)):
             break
-        # held rows become δP_i = 0
-        if held.any():
-            idx = np.nonzero(held)[0]
-            for k in range(ab.shape[0]):
-                off = upper - k  # ab[k, c] = J[c - off... ] row r = c + k - upper
-                cols = idx + off  # entries J[idx, idx + off] live at ab[k, idx + off]
-                ok = (cols >= 0) & (cols < n - 2)
-                ab[k, cols[ok]] = 0.0
-            ab[upper, idx] = 1.0
-            r_in = np.where(held, p[1:-1], r_in)  # held rows: δP_i = −P_i
-            col_h0 = np.where(held, 0.0, col_h0)
+        if held.any():  # held rows: δP_i = −P_i
+            _identity_rows(ab, col_h0, np.nonzero(held)[0], lower, upper)
+            r_in = np.where(held, p[1:-1], r_in)
         try:
             sol = scipy.linalg.solve_banded((lower, upper), ab, np.column_stack([-r_in, -col_h0]),
                                             check_finite=False)
