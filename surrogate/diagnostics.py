@@ -91,10 +91,12 @@ def plot_figures(fit: SurrogateFit, out_dir: str | Path, *, prefix: str = "surro
 
     fig, axes = plt.subplots(1, 2, figsize=(11, 4.4))
     for ax, log in zip(axes, (False, True)):
-        alpha = float(np.clip(300.0 / max(lam.size, 1), 0.08, 0.6))
+        alpha = float(np.clip(300.0 / max(lam.size, 1), 0.08, 0.8))
+        size = float(np.clip(2000.0 / max(lam.size, 1), 2.0, 14.0))
         for branch, mask in masks.items():
-            ax.scatter(lam[mask], fitted[mask], s=4, c=colours[branch], alpha=alpha, lw=0, label=labels[branch])
-        ax.scatter(lam, mu, s=2, c="k", alpha=alpha, lw=0, label="computed (dataset)")
+            ax.scatter(lam[mask], fitted[mask], s=2 * size, c=colours[branch], alpha=alpha, lw=0,
+                       label=labels[branch])
+        ax.scatter(lam, mu, s=size, c="k", alpha=alpha, lw=0, label="computed (dataset)")
         ax.axvline(fit.formula.lambda_threshold, c="k", lw=0.8, ls="--")
         ax.set_xlabel("λ̄ = h_min,DH / S_c")
         ax.set_ylabel("μ")
@@ -119,7 +121,8 @@ def plot_figures(fit: SurrogateFit, out_dir: str | Path, *, prefix: str = "surro
     predicted = np.exp(fit.cv_predictions)
     fig, ax = plt.subplots(figsize=(5.2, 5))
     for branch, mask in masks.items():
-        ax.scatter(mu[mask], predicted[mask], s=5, c=colours[branch], alpha=0.5, lw=0,
+        ax.scatter(mu[mask], predicted[mask], s=float(np.clip(3000.0 / max(mu.size, 1), 5.0, 20.0)),
+                   c=colours[branch], alpha=0.6, lw=0,
                    label=f"{labels[branch]}, n = {int(mask.sum())}")
     lo, hi = float(min(mu.min(), predicted.min())) * 0.9, float(max(mu.max(), predicted.max())) * 1.1
     ax.plot([lo, hi], [lo, hi], "k-", lw=0.8)
