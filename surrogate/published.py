@@ -100,6 +100,10 @@ def iso_14179_2_mu(w_prime, r_eq, u_r, eta0, rq1, rq2, x_l: float = 1.0):
     tangential load at the pitch point, cos α_t cos β_b smaller, i.e. ≈1–2 % in μ), v_Σc = 2 u_r, ρ_redC = r_eq,
     Ra = √(2/π) Rq. The standard intends a mesh-averaged value; here it is applied point by point. Independent of
     SR, so finite at the pitch point.
+
+    Provenance of the form and units: checked against an independent public implementation of Schlenk's formula
+    (Fernandes' GEARpie, ``CLASSES/CONTACT.py``), which also uses the normal load per unit contact length [N/mm],
+    the sum velocity [m/s], the equivalent radius at the pitch point [mm], η [mPa·s] and Ra [µm].
     """
     a = _arrays(w_prime=w_prime, r_eq=r_eq, u_r=u_r, eta0=eta0, rq1=rq1, rq2=rq2)
     if not x_l > 0:
