@@ -90,8 +90,8 @@ def main(argv=None) -> int:
     report = {"benchmark": "mixed_relaxation", "level": args.level, "sample": args.sample, "summary": summary,
               "rows": rows, "machine": {"platform": platform.platform(), "cpu_count": os.cpu_count(),
                                         "python": sys.version.split()[0], "numpy": np.__version__}}
-    out = Path(args.out or Path(__file__).parent / "results" / f"mixed_relaxation_{args.sample}_{args.level}"
-                                                  + (f"_shard{k}of{n}" if n > 1 else "") + ".json")
+    name = f"mixed_relaxation_{args.sample}_{args.level}" + (f"_shard{k}of{n}" if n > 1 else "") + ".json"
+    out = Path(args.out or Path(__file__).parent / "results" / name)
     out.parent.mkdir(parents=True, exist_ok=True)
     out.write_text(json.dumps(report, indent=2, default=float))
     print(json.dumps(summary, indent=2, default=float))
