@@ -58,6 +58,10 @@ SEARCH_CRITERIA = {
 }
 """Keys of the design-D search limits (``PaperStudy.search_limits``, SI) → the table column each one bounds."""
 
+MU_MAX = 1.0
+"""Largest friction coefficient accepted from a friction model; anything above is an extrapolation artefact (steel on
+steel in lubricated contact stays below the boundary value μ_d ≈ 0.1)."""
+
 PAPER_SEARCH_LIMITS = {"max_power_loss_w": 300.0, "max_root_stress_pa": 235e6, "max_contact_stress_pa": 1.175e9,
                        "max_transmission_error_m": 0.25e-6}
 """Li & Kahraman 2009 §3: "P < 0.3 kW, σ_b < 235 MPa, σ_c < 1.175 GPa, and the peak-to-peak TE < 0.25 µm"."""
@@ -152,6 +156,11 @@ def evaluate_design(pair: GearPair, friction: Callable, point: StudyPoint,
     mesh = evaluate_mesh(pair, point.input_torque, point.input_speed, point.modifications, options)
     loss = mesh_power_loss(mesh, friction, point.oil_temperature, point.rq1, point.rq2,
                            options.material1, options.material2)
+    mu_max = float(np.nanmax(loss.mu)) if np.any(np.isfinite(loss.mu)) else 0.0
+    if mu_max > MU_MAX:
+        at = np.unravel_index(int(np.nanargmax(loss.mu)), loss.mu.shape)
+        raise SolverError(f"friction model gave mu = {mu_max:.4g} (> {MU_MAX:g}, not physical) at p_h = "
+                          f"{loss.p_h[at]:.4g} Pa, SR = {loss.sr[at]:.4g}; a surrogate far outside its fitted ranges?")
     loads = mesh.loads
     mu_mean = float(np.nansum(np.nan_to_num(loss.mu) * loads) / loads.sum()) if loads.sum() > 0 else math.nan
     return {

@@ -32,6 +32,9 @@ def register(subparsers) -> None:
                        help="stage-1 progress on stderr (default auto: a bar on a terminal, log lines otherwise)")
         p.add_argument("--allow-unstable", action="store_true",
                        help="keep a regression flagged unstable (ill-conditioned) instead of stopping")
+        p.add_argument("--no-clip", action="store_true",
+                       help="evaluate the fitted surrogate outside its fitted input ranges (default: clip the gear "
+                            "contact conditions to those ranges and report how many points were clipped)")
         if name == "paper":
             p.add_argument("--scheduler", default=None, metavar="ADDRESS",
                            help="Dask scheduler address (tcp://host:8786); default: local processes")
@@ -47,7 +50,7 @@ def run_pipeline_command(args: argparse.Namespace) -> int:
     check_range("workers", args.workers, 1, 1024)
     result = run_pipeline(args.out_dir, args.factorial, workers=args.workers,
                           scheduler=getattr(args, "scheduler", None), progress=args.progress, design=args.design,
-                          allow_unstable=args.allow_unstable)
+                          allow_unstable=args.allow_unstable, clip_to_fitted_ranges=not args.no_clip)
     payload = result.to_dict()
     design = result.stage("design").details
     payload.update({k: design[k] for k in ("power_loss_w", "efficiency", "te_pp_m", "sigma_c_pa", "sigma_b_pa",
@@ -77,6 +80,11 @@ def _human(p: dict) -> str:
                  f"TE p-p = {design['te_pp_m'] * 1e6:.3f} µm, σ_c = {design['sigma_c_pa'] / 1e9:.3f} GPa, "
                  f"σ_b = {design['sigma_b_pa'] / 1e6:.0f} MPa, mean μ = {design['mu_mean']:.4f}, "
                  f"converged {design['converged']}")
+    clipped = design.get("clipped_to_fitted_range")
+    if clipped:
+        moved = ", ".join(f"{k} {v}" for k, v in clipped.items() if k != "contact_points" and v)
+        lines.append(f"  surrogate inputs clipped to the fitted ranges at {moved or 'no'} of "
+                     f"{clipped['contact_points']} contact points")
     for warning in fit["warnings"] + design["warnings"]:
         lines.append(f"  warning: {warning}")
     lines.append(f"total {p['wall_time_s']:.1f} s")

@@ -215,6 +215,20 @@ def test_sweep_records_failing_designs_and_never_selects_them(study, point):
     assert len(find_design_like_d(table, PAPER_SEARCH_LIMITS)) == 0
 
 
+def test_unphysical_mu_is_refused(study, point):
+    """μ > 1 (e.g. a regression far outside its data) is not a friction coefficient: the design is recorded as an
+    error, never as a loss."""
+    table = design_sweep(study.space, ConstantFriction(1.0), point, study.limits, MeshOptions(positions=6, slices=8),
+                         limit=1)
+    assert table["error"].iloc[0] == "" and table["converged"].iloc[0]
+
+    def huge(p_h, *rest):
+        return np.full(np.shape(p_h), 1.0e3)
+
+    table = design_sweep(study.space, huge, point, study.limits, MeshOptions(positions=6, slices=8), limit=1)
+    assert "not physical" in table["error"].iloc[0] and np.isnan(table["power_loss_w"].iloc[0])
+
+
 def test_sweep_records_warnings_per_design(study, point):
     """Warnings of a design's evaluation (e.g. a surrogate extrapolating) go into its row, not to the terminal."""
     import warnings

@@ -146,7 +146,7 @@ def test_fit_and_design_stages_on_a_stage1_file(synthetic_store, tmp_path):
     assert fit.details["n_used"] == sum(b["n_obs"] for b in fit.details["branches"].values())
     assert fit.details["exclusions"]["sr_zero"] == 0 and fit.details["n_used"] == 324
 
-    design = design_stage(fit.artefact)
+    design = design_stage(fit.artefact, clip_to_fitted_ranges=False)
     d = design.details
     mesh, loss = _design_d_direct(fit.artefact)
     assert d["power_loss_w"] == pytest.approx(loss.power_loss, rel=1e-12)
@@ -157,6 +157,15 @@ def test_fit_and_design_stages_on_a_stage1_file(synthetic_store, tmp_path):
     assert d["input_power_w"] == pytest.approx(250.0 * 4000.0 * math.pi / 30.0, rel=1e-12)
     assert 0.9 < d["efficiency"] < 1.0 and math.isfinite(d["efficiency"])
     assert d["converged"]
+    assert any("extrapolates" in w for w in d["warnings"])
+
+    clipped = design_stage(fit.artefact).details  # default: inputs held inside the fitted ranges
+    counts = clipped["clipped_to_fitted_range"]
+    assert counts["p_h"] > 0  # the lightly loaded tooth ends lie below the factorial's 0.5 GPa
+    assert counts["contact_points"] == int((mesh.loads > 0).sum())
+    assert not any("extrapolates" in w for w in clipped["warnings"])
+    assert 0.9 < clipped["efficiency"] < 1.0
+    assert clipped["te_pp_m"] == d["te_pp_m"]
 
 
 @pytest.mark.slow
