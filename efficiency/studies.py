@@ -306,7 +306,8 @@ def friction_from_spec(spec: str, lubricant="atf") -> Callable:
     ``constant:0.05`` → :class:`~efficiency.power_loss.ConstantFriction`; ``xu2007``, ``benedict_kelley``,
     ``iso14179`` → :class:`~efficiency.power_loss.PublishedFriction` with ``lubricant`` (name, file or
     :class:`~ehl_dataset.lubricant.Lubricant`) for the inlet viscosity; anything else is a coefficient file path
-    or a shipped coefficient name → :class:`surrogate.evaluate.FrictionSurrogate` (its own lubricant).
+    or a shipped coefficient name → :class:`surrogate.evaluate.FrictionSurrogate` (its own lubricant) with its
+    inputs clipped to the fitted ranges (gear contacts leave the factorial's ranges; Eq. 9 must not extrapolate).
     """
     from .power_loss import ConstantFriction, PublishedFriction
 
@@ -326,7 +327,7 @@ def friction_from_spec(spec: str, lubricant="atf") -> Callable:
         return PublishedFriction(PUBLISHED_NAMES[spec.lower()], lub)
     from surrogate.evaluate import FrictionSurrogate
 
-    return FrictionSurrogate.load(spec)
+    return FrictionSurrogate.load(spec, clip_to_fitted_ranges=True)
 
 
 def describe_friction(friction) -> str:

@@ -10,6 +10,10 @@ Input policy (documented in docs/surrogate.md):
   as SR → 0 (Eq. 9 contains ln SR), and the power loss μ W u_s still vanishes at the pitch point because u_s → 0.
 * Inputs outside the fitted ranges (and λ̄ outside the fitted λ̄ range) evaluate but emit one
   :class:`SurrogateExtrapolationWarning` per call listing each extrapolated input and how many points.
+* With ``clip_to_fitted_ranges=True`` every input is first clipped to the range seen in the fitted data (the
+  warning then says "clipped"): Eq. 9's power terms are not extrapolated. Gear contacts leave the factorial's ranges
+  routinely (the lightly loaded ends of a contact line lie far below 0.5 GPa), where extrapolation has produced
+  μ ≈ 1e14; the gear-side friction factory (:func:`efficiency.studies.friction_from_spec`) therefore clips.
 """
 
 from __future__ import annotations
@@ -43,8 +47,9 @@ def _first_bad(name: str, values: np.ndarray, bad: np.ndarray, accepted: str):
 class FrictionSurrogate:
     """μ from a validated :class:`CoefficientSet` (use :meth:`load` for a file or shipped name)."""
 
-    def __init__(self, coefficients: CoefficientSet):
+    def __init__(self, coefficients: CoefficientSet, clip_to_fitted_ranges: bool = False):
         self.coefficients = coefficients
+        self.clip_to_fitted_ranges = bool(clip_to_fitted_ranges)
         self.formula = coefficients.formula
         self.lubricant = coefficients.lubricant
         self.e_reduced = coefficients.e_reduced
@@ -55,8 +60,17 @@ class FrictionSurrogate:
                           f"(see its branches.*.messages)", UnstableFitWarning, stacklevel=2)
 
     @classmethod
-    def load(cls, name_or_path: str | Path) -> "FrictionSurrogate":
-        return cls(load_coefficients(name_or_path))
+    def load(cls, name_or_path: str | Path, clip_to_fitted_ranges: bool = False) -> "FrictionSurrogate":
+        return cls(load_coefficients(name_or_path), clip_to_fitted_ranges)
+
+    def _clip(self, arrays: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
+        """Inputs clipped to the fitted ranges (|SR| for SR; its lower end is the SR floor applied anyway)."""
+        ranges = self.coefficients.input_ranges
+        out = dict(arrays)
+        for name, _, key in _INPUTS:
+            lo, hi = ranges[key]
+            out[name] = np.clip(np.abs(arrays[name]) if name == "sr" else arrays[name], lo, hi)
+        return out
 
     def validate(self, p_h, r_eq, u_r, sr, temperature, rq1, rq2) -> dict[str, np.ndarray]:
         """Broadcast, check (see module docstring) and return the inputs as float arrays."""
@@ -105,15 +119,17 @@ class FrictionSurrogate:
         if below or above:
             notes.append(f"lambda_bar ({below} below {lo:.4g}, {above} above {hi:.4g})")
         if notes:
-            warnings.warn(f"friction surrogate extrapolates outside its fitted ranges: {'; '.join(notes)}",
+            action = "clipped to" if self.clip_to_fitted_ranges else "extrapolates outside"
+            warnings.warn(f"friction surrogate {action} its fitted ranges: {'; '.join(notes)}",
                           SurrogateExtrapolationWarning, stacklevel=3)
 
     def features(self, p_h, r_eq, u_r, sr, temperature, rq1, rq2, *, warn: bool = True) -> dict[str, np.ndarray]:
         """Validated features (SR floored at ``sr_floor``) of the inputs."""
         arrays = self.validate(p_h, r_eq, u_r, sr, temperature, rq1, rq2)
-        sr_eff = np.maximum(np.abs(arrays["sr"]), self.coefficients.sr_floor)
-        feats = compute_features(arrays["p_h"], arrays["r_eq"], arrays["u_r"], sr_eff, arrays["temperature"],
-                                 arrays["rq1"], arrays["rq2"], self.lubricant, self.e_reduced)
+        used = self._clip(arrays) if self.clip_to_fitted_ranges else arrays
+        sr_eff = np.maximum(np.abs(used["sr"]), self.coefficients.sr_floor)
+        feats = compute_features(used["p_h"], used["r_eq"], used["u_r"], sr_eff, used["temperature"],
+                                 used["rq1"], used["rq2"], self.lubricant, self.e_reduced)
         if warn:
             self._warn_extrapolation(arrays, feats["lam"])
         return feats

@@ -108,3 +108,22 @@ def test_factorial_corners_are_finite(surrogate):
         warnings.simplefilter("error", SurrogateExtrapolationWarning)
         mu = surrogate.mu(*corners.T)
     assert np.all(np.isfinite(mu)) and np.all((mu > 0) & (mu < 1))
+
+
+def test_clipping_policy_holds_inputs_at_the_fitted_boundary(surrogate):
+    """With clip_to_fitted_ranges, an input beyond the fitted range gives exactly μ at the range's end (Eq. 9 is not
+    extrapolated), the warning says so, and inside the ranges the two policies agree to the last digit."""
+    clipped = FrictionSurrogate(surrogate.coefficients, clip_to_fitted_ranges=True)
+    lo, hi = surrogate.coefficients.input_ranges["p_h_pa"]
+    with pytest.warns(SurrogateExtrapolationWarning, match="clipped to"):
+        beyond = _call(clipped, p_h=np.array([0.1 * lo, 10 * hi]))
+    at_ends = _call(surrogate, p_h=np.array([lo, hi]))
+    np.testing.assert_allclose(beyond, at_ends, rtol=1e-13)
+    np.testing.assert_array_equal(_call(clipped), _call(surrogate))
+
+
+def test_gear_friction_factory_clips_surrogates(surrogate):
+    from efficiency.studies import friction_from_spec
+
+    model = friction_from_spec(str(surrogate.coefficients.path))
+    assert model.clip_to_fitted_ranges
