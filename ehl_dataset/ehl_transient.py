@@ -54,8 +54,14 @@ RAMP_FRACTION = 0.5
 MAX_PRESSURE_STEP = 3.0
 """Largest pressure change per Newton iteration in a time step [p_h]: asperity contacts need pressures of several p_h."""
 MONOTONE = False
+"""False: a damped Newton step (ω < 0.3) is accepted in a time step even without a decrease of the merit."""
 CLOSED_NODES = True
+"""True: nodes whose film is below CLOSED_MARGIN·H_CLOSED_M at the start of a step take the elastic–plastic
+dry-contact condition and pass the upstream flux through (:func:`_pass_through_film`). False: the first version's
+reduced Reynolds equation in closed zones (with the pressure cap). See docs/ehl_solver.md for what each gives."""
 CLOSED_MARGIN = 1.01
+"""A node counts as closed (asperity contact, and in the asperity load share) when h ≤ 1.01 H_CLOSED_M: the solver
+holds closed nodes at H_CLOSED_M to its tolerance."""
 STEP_ITERATIONS = 40
 """Newton iterations allowed per time step before it is retried with sub-steps."""
 MAX_STEP_RETRIES = 4
