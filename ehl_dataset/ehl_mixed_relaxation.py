@@ -13,11 +13,15 @@ cycles. Same discrete equations (finite volumes of :mod:`ehl_dataset.reynolds`, 
   pressure H = H0 + G + K P kept only through the deflection coefficients K_ij of the own node and its
   ``bandwidth`` neighbours (the differential-deflection idea of Hu & Zhu: in a contact zone the reduced equation
   involves H_i − H_{i−1}, whose own-node coefficient K_ii − K_{i−1,i} is what determines the pressure there).
-  The far-field deflection is lagged (evaluated with the current pressure, dense matrix product). A banded
-  solve costs O(N); the lagged far field makes it a relaxation, not a Newton, method.
+  The far-field deflection is lagged (evaluated with the current pressure, dense matrix product). The band is
+  max(:data:`BANDWIDTH`, :data:`BAND_FRACTION`·N); the lagged far field makes it a relaxation, not a Newton, method.
 * **Load balance** every sweep: H0 is an extra unknown of the bordered banded system (Schur complement on one
   row), so ∫P dX = π/2 holds to first order after each sweep, not by a slow relaxation of H0.
-* **Cavitation**: P ≥ 0 by projection; nodes with P = 0 whose correction would be negative are held at 0.
+* **Cavitation**: primal–dual active set (held at P = 0 where the local update P − R/J_ii ≤ 0), P ≥ 0 by projection.
+* **Asperity contact** (:data:`CONTACT_MODEL` = "gap"): a node whose film falls below h_closed gets the row
+  H_i = H_closed (pressure from elasticity, as in a dry contact) and leaves the contact set when it would need
+  tension. Hu & Zhu's reduced transport equation ("transport") let negative films persist and cycled. Caveat: the
+  gap rows are not mass-conserving at a contact entry, which admits spurious contact states (docs/ehl_mixed_relaxation.md).
 * Steps are damped (at most ``MAX_STEP`` p_h per sweep, relaxation ``OMEGA``).
 
 A time step converges when the Reynolds residual on pressurised nodes (relative to the Couette flux at the centre of
