@@ -15,39 +15,9 @@ every mesh position (``power_loss_instant_w``). Without ``--friction`` no power 
 
 from __future__ import annotations
 
-import argparse
 import math
 
 from .cli import emit
-
-
-def _add_design_options(parser: argparse.ArgumentParser) -> None:
-    """The design options of ``gear geometry`` (read by ``workflows.cli_gear_geometry.build_pair``)."""
-    source = parser.add_argument_group("design source (one of)")
-    source.add_argument("--design", metavar="FILE", help="design TOML file with a [design] table")
-    paper = parser.add_argument_group("paper parametrisation (identical gears, 1:1, standard centre distance)")
-    paper.add_argument("--teeth", type=int, help="number of teeth N of each gear")
-    paper.add_argument("--working-depth", type=float, help="working depth ratio Λ_wd (whole depth / m_n)")
-    general = parser.add_argument_group("general pair")
-    general.add_argument("--teeth1", type=int, help="teeth of gear 1 (pinion, driving)")
-    general.add_argument("--teeth2", type=int, help="teeth of gear 2")
-    general.add_argument("--module-mm", type=float, help="normal module m_n [mm]")
-    general.add_argument("--shift1", type=float, default=0.0, help="profile shift coefficient x1 (default 0)")
-    general.add_argument("--shift2", type=float, default=0.0, help="profile shift coefficient x2 (default 0)")
-    general.add_argument("--addendum-coefficient", type=float, default=1.0, help="basic rack h_aP/m_n (1.0)")
-    general.add_argument("--dedendum-coefficient", type=float, default=1.25, help="basic rack h_fP/m_n (1.25)")
-    general.add_argument("--no-tip-reduction", action="store_true",
-                         help="keep the full addendum of shifted gears (no k·m_n tip reduction)")
-    common = parser.add_argument_group("common")
-    common.add_argument("--pressure-angle-deg", type=float, help="normal pressure angle [deg]")
-    common.add_argument("--helix-angle-deg", type=float, help="helix angle [deg] (0 = spur)")
-    common.add_argument("--face-width-mm", type=float, help="face width [mm] (paper: 25)")
-    common.add_argument("--center-distance-mm", type=float,
-                        help="operating centre distance [mm] (paper: 91.5; general: zero backlash if omitted)")
-    common.add_argument("--root-fillet-coefficient", type=float,
-                        help="generating rack tip radius ρ_fP/m_n (paper default 0.25, general 0.38)")
-    common.add_argument("--thickness-allowance-mm", type=float,
-                        help="normal tooth thinning A_sn of each gear [mm]")
 
 
 def register(gear_subparsers) -> None:
@@ -56,10 +26,8 @@ def register(gear_subparsers) -> None:
         description="Loaded tooth contact of one gear pair (slice model, Conry-Seireg complementarity): "
                     "peak-to-peak transmission error, max Hertz pressure, max root stress, mesh stiffness; with "
                     "--friction the sliding friction power loss and efficiency (Li & Kahraman 2009, Eq. 10-11).")
-    try:  # share the option definitions with `gear geometry` when it exposes them
-        from .cli_gear_geometry import add_design_options
-    except ImportError:
-        add_design_options = _add_design_options
+    from .cli_gear_geometry import add_design_options
+
     add_design_options(parser)
     load = parser.add_argument_group("operating point and modifications")
     load.add_argument("--torque-nm", type=float, default=250.0, help="input torque on gear 1 [N·m] (default 250)")

@@ -17,17 +17,15 @@ from ehl_dataset.validation import InputError
 from .cli import emit
 
 
-def register(gear_subparsers) -> None:
-    geometry = gear_subparsers.add_parser(
-        "geometry", help="geometry and feasibility of one helical gear pair",
-        description="Geometry (ISO 21771) and feasibility (Li & Kahraman 2009 limits) of one helical gear pair.")
-    source = geometry.add_argument_group("design source (one of)")
+def add_design_options(parser) -> None:
+    """The design options read by :func:`build_pair` (shared by ``gear geometry`` and ``gear evaluate``)."""
+    source = parser.add_argument_group("design source (one of)")
     source.add_argument("--design", metavar="FILE", help="design TOML file with a [design] table")
-    paper = geometry.add_argument_group("paper parametrisation (identical gears, 1:1, standard centre distance)")
+    paper = parser.add_argument_group("paper parametrisation (identical gears, 1:1, standard centre distance)")
     paper.add_argument("--teeth", type=int, help="number of teeth N of each gear")
     paper.add_argument("--working-depth", type=float, help="working depth ratio Λ_wd (whole depth / m_n)")
-    general = geometry.add_argument_group("general pair")
-    general.add_argument("--teeth1", type=int, help="teeth of gear 1 (pinion)")
+    general = parser.add_argument_group("general pair")
+    general.add_argument("--teeth1", type=int, help="teeth of gear 1 (pinion, driving)")
     general.add_argument("--teeth2", type=int, help="teeth of gear 2")
     general.add_argument("--module-mm", type=float, help="normal module m_n [mm]")
     general.add_argument("--shift1", type=float, default=0.0, help="profile shift coefficient x1 (default 0)")
@@ -36,7 +34,7 @@ def register(gear_subparsers) -> None:
     general.add_argument("--dedendum-coefficient", type=float, default=1.25, help="basic rack h_fP/m_n (1.25)")
     general.add_argument("--no-tip-reduction", action="store_true",
                          help="keep the full addendum of shifted gears (no k·m_n tip reduction)")
-    common = geometry.add_argument_group("common")
+    common = parser.add_argument_group("common")
     common.add_argument("--pressure-angle-deg", type=float, help="normal pressure angle [deg]")
     common.add_argument("--helix-angle-deg", type=float, help="helix angle [deg] (0 = spur)")
     common.add_argument("--face-width-mm", type=float, help="face width [mm] (paper: 25)")
@@ -46,6 +44,14 @@ def register(gear_subparsers) -> None:
                         help="generating rack tip radius ρ_fP/m_n (paper default 0.25, general 0.38)")
     common.add_argument("--thickness-allowance-mm", type=float,
                         help="normal tooth thinning A_sn of each gear [mm] (paper default: ISO/TR 10064-2 backlash)")
+
+
+def register(gear_subparsers) -> None:
+    geometry = gear_subparsers.add_parser(
+        "geometry", help="geometry and feasibility of one helical gear pair",
+        description="Geometry (ISO 21771) and feasibility (Li & Kahraman 2009 limits) of one helical gear pair.")
+    add_design_options(geometry)
+    common = geometry.add_argument_group("output")
     common.add_argument("--torque-nm", type=float,
                         help="pinion torque [N·m]: also print the ISO 6336 reference values at this torque")
     common.add_argument("--strict", action="store_true", help="exit status 1 when the design is infeasible")
