@@ -15,6 +15,7 @@ every mesh position (``power_loss_instant_w``). Without ``--friction`` no power 
 
 from __future__ import annotations
 
+import argparse
 import math
 
 from .cli import emit
