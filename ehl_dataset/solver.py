@@ -39,6 +39,10 @@ from .result import ContactResult
 from .traction import friction_components
 from .validation import InputError, SolverError
 
+SOLVER_VERSION = "ehl-2026.11-1"
+"""Version of the numerics behind :func:`solve_contact`. The dataset store records it and refuses to resume a file
+computed with another version: bump it with every change that can alter a solved value."""
+
 PSEUDO_DT = 0.3
 """Initial pseudo time step [a/u_r] of the pseudo-transient Newton globalisation."""
 

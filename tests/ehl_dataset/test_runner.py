@@ -386,3 +386,11 @@ def test_solver_warnings_are_counted_into_the_row_not_printed(tmp_path, plan, ca
         r"RuntimeWarning x3 \(test_runner\.py:\d+\); UserWarning x1 \(test_runner\.py:\d+\)").all()
     assert "ill-conditioned" not in capfd.readouterr().err
     assert (read_table(tmp_path / "r.h5", status=None)["warnings"] != "").all()
+
+
+def test_default_solver_records_the_solvers_own_version():
+    """The store's resume check compares this string: it must be the solver's SOLVER_VERSION, not the package's."""
+    from ehl_dataset import solver
+    from ehl_dataset.runner import DEFAULT_SOLVER, solver_config
+
+    assert solver_config(DEFAULT_SOLVER, "fast", "auto")["version"] == solver.SOLVER_VERSION
