@@ -216,9 +216,11 @@ def _linearised(problem: ReynoldsProblem, p, h):
         band = h < 2.0 * problem.h_closed
         eps_h = np.where(band, 0.0, eps_h)
         eps_p = np.where(band, 0.0, eps_p)
-    kernel = assemble_harmonic if FACE_MEAN == "harmonic" else assemble
-    return kernel(problem.x, p, eps, eps_p, eps_h, m, m_p, m_h, problem.squeeze, problem.m_old,
-                  problem.second_order)
+    if FACE_MEAN == "harmonic":
+        return assemble_harmonic(problem.x, p, eps, eps_p, eps_h, m, m_p, m_h, problem.squeeze, problem.m_old,
+                                 problem.second_order)
+    return assemble(problem.x, p, eps, eps_p, eps_h, m, m_p, m_h, problem.squeeze, problem.m_old,
+                    problem.face_order())
 
 
 @numba.njit(cache=True)

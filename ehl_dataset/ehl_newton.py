@@ -21,7 +21,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.linalg
 
-from .reynolds import assemble, full_jacobian
+from .reynolds import add_links, assemble, full_jacobian, reroute_patch_fluxes
 
 TRACE = False
 LINE_SEARCH = True
@@ -42,7 +42,10 @@ class ReynoldsProblem:
     ``h_closed`` film below which the Poiseuille term is dropped (unified Reynolds; 0 for smooth runs);
     ``p_cap`` plastic pressure cap P_Y [p_h] (∞: off; :func:`_capped`); ``closed`` mask (N) of closed-film
     (asperity contact) nodes, which take the dry-contact condition and carry the flux ρ̄H_c (needs ``p_cap``);
-    ``closed_film`` (N) the film whose flux closed nodes carry (None: H_closed);
+    ``closed_film`` (N) the film whose flux closed nodes carry (None: H_closed; ``closure="upstream_film"``);
+    ``closure`` how flux crosses a closed patch: ``"patch"`` (the flux entering the patch is delivered to the
+    first open node behind it, :func:`~ehl_dataset.reynolds.reroute_patch_fluxes`) or ``"upstream_film"`` (closed
+    nodes carry the Couette flux of ``closed_film``);
     ``scaled_norm`` judges convergence on max |Φ| [p_h] at every node (rough runs: the flux residual relative to
     the centre flux is not a meaningful scale where films close and reopen);
     ``smoothing`` s [p_h] of the Fischer–Burmeister functions, a number or one per interior node (0: exact
@@ -65,6 +68,7 @@ class ReynoldsProblem:
     closed: np.ndarray | None = None
     scaled_norm: bool = False
     closed_film: np.ndarray | None = None
+    closure: str = "patch"
     smoothing: float | np.ndarray = 0.0
     weights: np.ndarray = field(init=False, repr=False)
     rows: np.ndarray = field(init=False, repr=False)
@@ -134,18 +138,52 @@ class ReynoldsProblem:
             eps_h = eps_h * fade + eps * fade_h
             eps = eps * fade
             eps_p = eps_p * fade
-        if self.closed is not None:  # closed-film nodes carry ρ̄·closed_film (default H_c), fixed during the solve
-            h_m = np.where(self.closed, self.h_closed if self.closed_film is None else self.closed_film, h)
+        if self.closed is not None:  # closed-film nodes: their Couette flux is fixed during the solve
+            h_c = self.h_closed if (self.closed_film is None or self.closure == "patch") else self.closed_film
+            h_m = np.where(self.closed, h_c, h)
             return eps, eps_p, eps_h, rho * h_m, rho_p * h_m, np.where(self.closed, 0.0, rho)
         m = rho * h
         return eps, eps_p, eps_h, m, rho_p * h, rho
 
+    def face_order(self) -> np.ndarray:
+        """Weight of the linear-upwind Couette correction per face: 1 (second order) or 0 (first order, also on
+        the faces next to closed nodes, where extrapolating ρ̄H across the contact would be meaningless)."""
+        order = np.full(self.x.size - 1, 1.0 if self.second_order else 0.0)
+        if self.closed is not None and self.second_order:
+            order[self.closed[:-1]] = 0.0
+            order[1:][self.closed[:-2]] = 0.0
+        return order
+
+    def patches(self) -> tuple[np.ndarray, np.ndarray]:
+        """First and last node of every run of closed interior nodes that has open interior nodes on both sides."""
+        if self.closed is None or self.closure != "patch" or not self.closed[1:-1].any():
+            return np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int64)
+        c = self.closed.astype(np.int8).copy()
+        c[0] = c[-1] = 0
+        edges = np.diff(c)
+        starts = np.nonzero(edges == 1)[0] + 1
+        ends = np.nonzero(edges == -1)[0]
+        keep = (starts >= 2) & (ends <= self.x.size - 3)
+        return starts[keep].astype(np.int64), ends[keep].astype(np.int64)
+
     def residual(self, p, h, homotopy=1.0):
-        """Reynolds residual R (N), banded ∂R/∂P, ∂R/∂H, and m = ρ̄H with ∂m/∂P, ∂m/∂H."""
+        """Reynolds residual R (N), banded ∂R/∂P, ∂R/∂H, m = ρ̄H with ∂m/∂P, ∂m/∂H, and the out-of-band
+        Jacobian entries of rerouted patch fluxes (None without closed patches)."""
         eps, eps_p, eps_h, m, m_p, m_h = self.fluid(p, h, homotopy)
-        res, dp, dh = assemble(self.x, p, eps, eps_p, eps_h, m, m_p, m_h, self.squeeze, self.m_old,
-                               self.second_order)
-        return res, dp, dh, (m, m_p, m_h)
+        order = self.face_order()
+        res, dp, dh = assemble(self.x, p, eps, eps_p, eps_h, m, m_p, m_h, self.squeeze, self.m_old, order)
+        starts, ends = self.patches()
+        links = None
+        if starts.size:
+            links = reroute_patch_fluxes(self.x, p, eps, eps_p, eps_h, m, m_p, m_h, order, res, starts, ends)
+        return res, dp, dh, (m, m_p, m_h), links
+
+    def jacobian(self, dp, dh, links):
+        """Full Jacobian (see :func:`~ehl_dataset.reynolds.full_jacobian`) including the rerouted patch fluxes."""
+        jac = full_jacobian(dp, dh, self.kmat, self.rows)
+        if links is not None:
+            add_links(jac, self.kmat, *links)
+        return jac
 
 
 @dataclass
@@ -281,7 +319,7 @@ def newton_solve(problem: ReynoldsProblem, p0: np.ndarray, h00: float, *, homoto
     h = problem.film(p, h0)
     if problem.h_closed == 0.0 and np.any(h <= 0.0):
         return NewtonOutcome(p, h0, h, False, 0, math.inf, math.inf, math.inf, math.inf, "initial film not open")
-    res, dp, dh, mm = problem.residual(p, h, homotopy)
+    res, dp, dh, mm, links = problem.residual(p, h, homotopy)
     m_ref = max(abs(float(mm[0][centre])), 1e-300) if m_ref is None else float(m_ref)
     r_start = None
     step_norm = math.inf
@@ -290,7 +328,7 @@ def newton_solve(problem: ReynoldsProblem, p0: np.ndarray, h00: float, *, homoto
     load_row[:-1] = problem.weights[1:-1] / (0.5 * math.pi)
     for iteration in range(1, max_iterations + 1):
         load_err = problem.load(p)
-        jac = full_jacobian(dp, dh, problem.kmat, problem.rows)
+        jac = problem.jacobian(dp, dh, links)
         if iteration == 1 or not freeze_scaling:
             diag = np.abs(jac[np.arange(n - 2), np.arange(n - 2)])
             kappa = 1.0 / np.maximum(diag, 1e-12 * max(float(diag.max()), 1e-300))
@@ -315,7 +353,7 @@ def newton_solve(problem: ReynoldsProblem, p0: np.ndarray, h00: float, *, homoto
             dh = dh.copy()
             dp[:, 2] -= sq * mm[1]
             dh[:, 2] -= sq * mm[2]
-            jac = full_jacobian(dp, dh, problem.kmat, problem.rows)
+            jac = problem.jacobian(dp, dh, links)
         # dφ/dx = d_a e_i − d_b J_i  (b = −κ R)
         system = -jac * d_b[:, None]
         system[np.arange(n - 2), np.arange(n - 2)] += d_a
@@ -344,7 +382,7 @@ def newton_solve(problem: ReynoldsProblem, p0: np.ndarray, h00: float, *, homoto
             h0_new = h0 + omega * d_h0
             h_new = problem.film(p_new, h0_new)
             if problem.h_closed > 0.0 or np.all(h_new > 0.0):
-                res_new, dp_new, dh_new, m_new = problem.residual(p_new, h_new, homotopy)
+                res_new, dp_new, dh_new, m_new, links_new = problem.residual(p_new, h_new, homotopy)
                 if pseudo_dt > 0.0 and np.all(np.isfinite(res_new)):
                     accepted = True
                     break
@@ -366,7 +404,7 @@ def newton_solve(problem: ReynoldsProblem, p0: np.ndarray, h00: float, *, homoto
             print(f"it {iteration}: r {r_free:.2e} {r_cav:.2e} merit {merit0:.3e} omega {omega:.3g} step {step_norm:.3e} load {load_err:.1e} "
                   f"at x={problem.x[j]:.4f} p={p[j]:.4g}->{p_new[j]:.4g} h={h[j]:.3e} phi_max_at="
                   f"{problem.x[1 + int(np.argmax(np.abs(phi)))]:.4f}")
-        p, h0, h, res, dp, dh, mm = p_new, h0_new, h_new, res_new, dp_new, dh_new, m_new
+        p, h0, h, res, dp, dh, mm, links = p_new, h0_new, h_new, res_new, dp_new, dh_new, m_new, links_new
     phi = _complementarity(problem, p, res, kappa)[0]
     contact = None
     if math.isfinite(problem.p_cap):

@@ -59,9 +59,16 @@ CLOSED_NODES = True
 """True: nodes whose film is below CLOSED_MARGIN·H_CLOSED_M at the start of a step take the elastic–plastic
 dry-contact condition and pass the upstream flux through (:func:`_pass_through_film`). False: the first version's
 reduced Reynolds equation in closed zones (with the pressure cap). See docs/ehl_solver.md for what each gives."""
+CLOSURE = "patch"
+"""How lubricant crosses a closed patch (asperity contact): "patch", the net flux that enters the patch is
+delivered to the first open node behind it (:func:`ehl_dataset.reynolds.reroute_patch_fluxes`, mass-conserving);
+"upstream_film", closed nodes carry the Couette flux of the nearest open node upstream (the second version, which
+ignores the Poiseuille back-flow in front of the contact and so creates lubricant: films inflate at small λ̄)."""
 CLOSED_MARGIN = 1.01
 """A node counts as closed (asperity contact, and in the asperity load share) when h ≤ 1.01 H_CLOSED_M: the solver
 holds closed nodes at H_CLOSED_M to its tolerance."""
+CONTACT_ROUNDS = 4
+"""Times a time step is redone with the nodes whose film fell below H_c added to the closed (contact) set."""
 STEP_ITERATIONS = 40
 """Newton iterations allowed per time step before it is retried with sub-steps."""
 MAX_STEP_RETRIES = 4
@@ -166,10 +173,26 @@ def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel
                     closed = np.zeros(x.size, dtype=bool)
                     closed[1:-1] = film_start < CLOSED_MARGIN * problem.h_closed
                     problem.closed = closed
-                    problem.closed_film = _pass_through_film(problem.film(p_try, h0_try), closed, problem.h_closed)
+                    problem.closure = CLOSURE
+                    if CLOSURE == "upstream_film":
+                        problem.closed_film = _pass_through_film(problem.film(p_try, h0_try), closed,
+                                                                 problem.h_closed)
                 outcome = newton_solve(problem, p_try, h0_try, m_ref=m_ref, monotone=MONOTONE, freeze_scaling=True,
-                                         **step_tolerances)
+                                       **step_tolerances)
                 its += outcome.iterations
+                for _ in range(CONTACT_ROUNDS if CLOSED_NODES else 0):
+                    # an open node whose film fell below H_c during the step is an asperity contact too: add it to
+                    # the closed set and redo the step (the closed set only grows within a step, so this ends)
+                    penetrated = ~problem.closed & (outcome.h < problem.h_closed)
+                    penetrated[[0, -1]] = False
+                    if not penetrated.any():
+                        break
+                    problem.closed = problem.closed | penetrated
+                    problem.smoothing = np.where(problem.closed[1:-1], FB_SMOOTHING, problem.smoothing)
+                    start_p, start_h0 = (outcome.p, outcome.h0) if outcome.converged else (p_try, h0_try)
+                    outcome = newton_solve(problem, start_p, start_h0, m_ref=m_ref, monotone=MONOTONE,
+                                           freeze_scaling=True, **step_tolerances)
+                    its += outcome.iterations
                 if not outcome.converged:
                     ok = False
                     break

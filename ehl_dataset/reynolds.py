@@ -28,33 +28,45 @@ BAND = 4
 
 
 @numba.njit(cache=True)
-def assemble(x, p, eps, eps_p, eps_h, m, m_p, m_h, squeeze, m_old, second_order):
+def face_flux(x, p, eps, eps_p, eps_h, m, m_p, m_h, k, order):
+    """Flux Q_k through face k (between nodes k and k+1) and its partials.
+
+    Returns (Q_k, ∂Q/∂P_{k−1}, ∂Q/∂P_k, ∂Q/∂P_{k+1}, ∂Q/∂H_{k−1}, ∂Q/∂H_k, ∂Q/∂H_{k+1}). ``order`` scales the
+    linear-upwind correction of the Couette flux (1: second order, 0: first-order upwind).
+    """
+    delta = x[k + 1] - x[k]
+    grad = (p[k + 1] - p[k]) / delta
+    eps_face = 0.5 * (eps[k] + eps[k + 1])
+    c = 0.0
+    if order > 0.0 and k >= 1:
+        c = order * 0.5 * delta / (x[k] - x[k - 1])
+    couette = m[k] + c * (m[k] - m[k - 1]) if c > 0.0 else m[k]
+    q = eps_face * grad - couette
+    q_p_km1 = c * m_p[k - 1] if c > 0.0 else 0.0
+    q_p_k = 0.5 * eps_p[k] * grad - eps_face / delta - (1.0 + c) * m_p[k]
+    q_p_kp1 = 0.5 * eps_p[k + 1] * grad + eps_face / delta
+    q_h_km1 = c * m_h[k - 1] if c > 0.0 else 0.0
+    q_h_k = 0.5 * eps_h[k] * grad - (1.0 + c) * m_h[k]
+    q_h_kp1 = 0.5 * eps_h[k + 1] * grad
+    return q, q_p_km1, q_p_k, q_p_kp1, q_h_km1, q_h_k, q_h_kp1
+
+
+@numba.njit(cache=True)
+def assemble(x, p, eps, eps_p, eps_h, m, m_p, m_h, squeeze, m_old, face_order):
     """Residual R (N) and banded derivatives dR/dP, dR/dH (N × 4) of the discrete Reynolds equation.
 
     Inputs per node: ``eps`` ε, ``eps_p`` ∂ε/∂P, ``eps_h`` ∂ε/∂H, ``m`` ρ̄H, ``m_p`` ∂m/∂P, ``m_h`` ∂m/∂H,
-    ``squeeze`` w_i/ΔT (zeros for steady runs), ``m_old`` ρ̄H at the previous time step. Rows 0 and N − 1 (the
-    boundary nodes, P = 0) are left zero.
+    ``squeeze`` w_i/ΔT (zeros for steady runs), ``m_old`` ρ̄H at the previous time step; per face (N − 1)
+    ``face_order`` the weight of the linear-upwind correction (1 second order, 0 first order). Rows 0 and N − 1
+    (the boundary nodes, P = 0) are left zero.
     """
     n = x.size
     res = np.zeros(n)
     dp = np.zeros((n, BAND))
     dh = np.zeros((n, BAND))
     for k in range(n - 1):
-        delta = x[k + 1] - x[k]
-        grad = (p[k + 1] - p[k]) / delta
-        eps_face = 0.5 * (eps[k] + eps[k + 1])
-        c = 0.0
-        if second_order and k >= 1:
-            c = 0.5 * delta / (x[k] - x[k - 1])
-        couette = m[k] + c * (m[k] - m[k - 1]) if c > 0.0 else m[k]
-        q = eps_face * grad - couette
-        # partial derivatives of Q_k with respect to nodes k-1, k, k+1
-        q_p_km1 = c * m_p[k - 1] if c > 0.0 else 0.0
-        q_p_k = 0.5 * eps_p[k] * grad - eps_face / delta - (1.0 + c) * m_p[k]
-        q_p_kp1 = 0.5 * eps_p[k + 1] * grad + eps_face / delta
-        q_h_km1 = c * m_h[k - 1] if c > 0.0 else 0.0
-        q_h_k = 0.5 * eps_h[k] * grad - (1.0 + c) * m_h[k]
-        q_h_kp1 = 0.5 * eps_h[k + 1] * grad
+        q, q_p_km1, q_p_k, q_p_kp1, q_h_km1, q_h_k, q_h_kp1 = face_flux(x, p, eps, eps_p, eps_h, m, m_p, m_h, k,
+                                                                         face_order[k])
         if 1 <= k <= n - 2:  # +Q_k in row k: offsets (k-1)->1, k->2, k+1->3
             res[k] += q
             dp[k, 1] += q_p_km1
@@ -78,6 +90,61 @@ def assemble(x, p, eps, eps_p, eps_h, m, m_p, m_h, squeeze, m_old, second_order)
             dp[i, 2] -= squeeze[i] * m_p[i]
             dh[i, 2] -= squeeze[i] * m_h[i]
     return res, dp, dh
+
+
+@numba.njit(cache=True)
+def reroute_patch_fluxes(x, p, eps, eps_p, eps_h, m, m_p, m_h, face_order, res, starts, ends):
+    """Carry the flux that enters each closed-film patch to the first open node behind it (mass conservation
+    through an asperity contact in 1-D).
+
+    A patch is the run of closed nodes i … j (``starts``, ``ends``); its rows are contact conditions, not
+    Reynolds rows. The open node j + 1 receives Q_{i−1}, the flux that left node i − 1 into the patch, instead of
+    Q_j: what enters the contact leaves it (the mass held in the closed nodes, ρ̄H_c per node, is not tracked).
+    ``res`` is corrected in place. Returns the out-of-band Jacobian entries of the receiving rows as arrays
+    (row, node, ∂R/∂P, ∂R/∂H), node indices counted on the full grid.
+    """
+    n_links = starts.size
+    rows = np.zeros(6 * n_links, dtype=np.int64)
+    nodes = np.zeros(6 * n_links, dtype=np.int64)
+    vals_p = np.zeros(6 * n_links)
+    vals_h = np.zeros(6 * n_links)
+    for s in range(n_links):
+        i, j = starts[s], ends[s]
+        r = j + 1
+        q_in = face_flux(x, p, eps, eps_p, eps_h, m, m_p, m_h, i - 1, face_order[i - 1])
+        q_out = face_flux(x, p, eps, eps_p, eps_h, m, m_p, m_h, j, face_order[j])
+        # row r held −Q_j; it now holds −Q_{i−1}
+        res[r] += q_out[0] - q_in[0]
+        for o in range(3):
+            e = 6 * s + o
+            rows[e] = r
+            nodes[e] = i - 2 + o
+            vals_p[e] = -q_in[1 + o]
+            vals_h[e] = -q_in[4 + o]
+            e = 6 * s + 3 + o
+            rows[e] = r
+            nodes[e] = j - 1 + o
+            vals_p[e] = q_out[1 + o]
+            vals_h[e] = q_out[4 + o]
+    return rows, nodes, vals_p, vals_h
+
+
+@numba.njit(cache=True)
+def add_links(jac, kmat, rows, nodes, vals_p, vals_h):
+    """Add out-of-band entries (row, node, ∂R/∂P, ∂R/∂H) to the full Jacobian of :func:`full_jacobian`."""
+    n = kmat.shape[0]
+    n_in = n - 2
+    for e in range(rows.size):
+        r = rows[e] - 1
+        j = nodes[e]
+        if j < 0 or j >= n:
+            continue
+        if vals_h[e] != 0.0:
+            for c in range(n_in):
+                jac[r, c] += vals_h[e] * kmat[j, c + 1]
+            jac[r, n_in] += vals_h[e]
+        if 1 <= j <= n - 2:
+            jac[r, j - 1] += vals_p[e]
 
 
 @numba.njit(cache=True)
