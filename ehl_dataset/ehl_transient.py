@@ -95,15 +95,18 @@ def roughness_grid(case: ContactCase, lvl: AccuracyLevel, correlation_length_m: 
         dx_r *= 1.25
 
 
-def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel, plan: Effects) -> ContactResult:
-    """Transient mixed solve of one rough contact; see the module docstring."""
+def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel, plan: Effects,
+                    roughness=None) -> ContactResult:
+    """Transient mixed solve of one rough contact; see the module docstring. ``roughness``: the profile both
+    surfaces take (a :class:`~ehl_dataset.roughness.RoughnessProfile`, scaled to Rq1 and Rq2); None: the shipped
+    baseline."""
     from .roughness import plan_surfaces
     from .solver import ContactScales, dowson_higginson_lambda, moes_h_c, solve_steady, solve_steady_problem
 
     start = time.perf_counter()
     scales = ContactScales.of(case, state, plan.shear_thinning)
     a, film_scale = scales.a, scales.film_scale
-    profile = _baseline_profile()
+    profile = roughness if roughness is not None else _baseline_profile()
     x, capped = roughness_grid(case, lvl, profile.correlation_length, moes_h_c(case, state, scales))
     dx = float(np.min(np.diff(x[(x > lvl.inlet_band[1]) & (x < lvl.outlet_band[1])])))  # roughness spacing
     kmat = influence_matrix(x)
@@ -231,7 +234,8 @@ def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel
         extra={"n_nodes": int(x.size), "dx_m": float(dx * a), "dt_s": float(d_t * time_scale),
                "n_steps": int(steps), "n_steps_planned": int(n_steps),
                "courant_effective": float(d_t / dx), "average_from_step": int(first_avg),
-               "roughness_resolution_capped": capped, "surfaces_independent": bool(surfaces.independent),
+               "roughness_resolution_capped": capped, "roughness_profile": profile.source,
+               "roughness_correlation_length_m": float(profile.correlation_length), "surfaces_independent": bool(surfaces.independent),
                "h_min_dowson_higginson_m": h_dh, "h_closed_m": H_CLOSED_M,
                "yield_pressure_pa": YIELD_PRESSURE_PA,
                "yielded_load_share": float(np.mean(history["yielded"][window])),

@@ -112,14 +112,24 @@ def resolve_effects(case: ContactCase, lubricant: Lubricant, level: str, effects
 
 
 def solve_contact(case: ContactCase, lubricant: Lubricant | str, level: str | AccuracyLevel = "standard",
-                  effects: str | Effects = "auto") -> ContactResult:
-    """Solve one line contact; see the module docstring. Bad input raises :class:`InputError`."""
+                  effects: str | Effects = "auto", roughness=None) -> ContactResult:
+    """Solve one line contact; see the module docstring. Bad input raises :class:`InputError`.
+
+    ``roughness``: a :class:`~ehl_dataset.roughness.RoughnessProfile` (e.g. a measured trace from
+    :func:`~ehl_dataset.roughness.load_profile`) whose shape both surfaces take in rough runs, scaled to the case's
+    Rq1 and Rq2; None uses the shipped synthetic baseline profile.
+    """
     if not isinstance(case, ContactCase):
         raise InputError("case", type(case).__name__, "a ContactCase")
     if isinstance(lubricant, str):
         lubricant = load_lubricant(lubricant)
     if not isinstance(lubricant, Lubricant):
         raise InputError("lubricant", type(lubricant).__name__, "a Lubricant, a shipped name or a TOML path")
+    if roughness is not None:
+        from .roughness import RoughnessProfile
+
+        if not isinstance(roughness, RoughnessProfile):
+            raise InputError("roughness", type(roughness).__name__, "a RoughnessProfile or None")
     state = lubricant.state(case.temperature)
     lvl = get_level(level)
     plan = resolve_effects(case, lubricant, lvl.name, effects)
@@ -131,7 +141,7 @@ def solve_contact(case: ContactCase, lubricant: Lubricant | str, level: str | Ac
             except ImportError:
                 raise SolverError("the transient mixed-EHL solver (rough surfaces) is not available yet; "
                                   "use smooth effects (S_c = 0, or an Effects plan without roughness)") from None
-            return solve_transient(case, state, lvl, plan)
+            return solve_transient(case, state, lvl, plan, roughness)
         return solve_steady(case, state, lvl, plan)
 
 

@@ -19,6 +19,11 @@ def register(subparsers) -> None:
     solve.add_argument("--temp-c", type=float, default=90.0, help="oil inlet temperature [°C] (default 90)")
     solve.add_argument("--rq1-um", type=float, default=0.0, help="RMS roughness of surface 1 [µm] (default 0)")
     solve.add_argument("--rq2-um", type=float, default=0.0, help="RMS roughness of surface 2 [µm] (default 0)")
+    solve.add_argument("--roughness-file", default=None,
+                       help="measured roughness profile (two columns x, z; detrended, resampled, scaled to Rq1/Rq2); "
+                            "default: the shipped synthetic baseline")
+    solve.add_argument("--roughness-unit", default="um", choices=["um", "mm", "m"],
+                       help="unit of both columns of --roughness-file (default um)")
     solve.add_argument("--lubricant", default="atf",
                        help="shipped lubricant name (atf, gear_oil_75w90, validation_barus, "
                             "validation_barus_incompressible, validation_roelands_huang) or a TOML file")
@@ -45,7 +50,12 @@ def _solve(args) -> int:
                                         args.rq1_um, args.rq2_um)
     lubricant.check_temperature(case.temperature)
     effects = Effects.smooth_steady(forced="effects=smooth") if args.effects == "smooth" else args.effects
-    result = solve_contact(case, lubricant, level.name, effects)
+    roughness = None
+    if args.roughness_file is not None:
+        from ehl_dataset.roughness import load_profile
+
+        roughness = load_profile(args.roughness_file, unit=args.roughness_unit)
+    result = solve_contact(case, lubricant, level.name, effects, roughness)
     payload = {
         "mu": result.mu,
         "mu_std": result.mu_std,
@@ -64,6 +74,7 @@ def _solve(args) -> int:
         "load_per_length_n_m": case.load_per_length,
         "half_width_m": case.half_width,
         "lubricant": lubricant.name,
+        "roughness_profile": result.extra.get("roughness_profile"),
     }
     from workflows.cli import emit
 

@@ -83,17 +83,31 @@ def test_random_factorial_cases_are_converged_and_bounded_or_marked(p_h, r_eq, u
 
 
 @pytest.mark.slow
-@pytest.mark.xfail(strict=True, reason="closed nodes pass the upstream flux through: with Rq >= 0.5 um in a contact "
-                   "of many asperities the film inflates and mu falls again below lambda ~ 0.8 (measured 0.052, "
-                   "0.042, 0.031 at lambda 0.84, 0.33, 0.17); see docs/ehl_solver.md")
-def test_mu_rises_towards_mu_d_as_lambda_falls():
-    """Issue 3 limit (paper Fig. 2 shape, Stribeck): at fixed load, speed and sliding, rougher surfaces (smaller λ̄)
-    give a larger μ and a larger asperity share, μ → μ_d as λ̄ → 0. p_h 1 GPa, r_eq 20 mm, u_r 5 m/s, SR 0.5,
-    75 °C, Rq1 = Rq2 = 0.2, 0.5, 1.0 µm (λ̄ 0.84, 0.33, 0.17)."""
+def test_mu_rises_steeply_when_lambda_falls_below_one():
+    """Issue 3 limit (paper Fig. 2 shape: μ nearly flat for λ̄ > 1, steep for λ̄ ≤ 1): at fixed load, speed and
+    sliding (1 GPa, 20 mm, 5 m/s, SR 0.5, 75 °C), rougher surfaces Rq 0.05 → 0.2 µm take λ̄ from 3.3 to 0.84;
+    μ must rise steeply (measured 0.0295 → 0.0793, so more than 1.5× asserted), the asperity load share from
+    zero to a majority (measured 0 → 0.74), and μ stays below μ_d. With the second version's flux-through closure
+    μ rose only to 0.052 and then fell again (film inflation, docs/ehl_solver.md)."""
     results = [solve_contact(ContactCase.from_engineering(1.0, 20, 5, 0.5, 75, rq, rq), LUB, "fast", Effects.full())
-               for rq in (0.2, 0.5, 1.0)]
-    assert all(r.converged for r in results)
-    mus = [r.mu for r in results]
-    shares = [r.asperity_load_share for r in results]
-    assert mus[0] < mus[1] < mus[2] <= LUB.mu_d
-    assert shares[0] < shares[1] < shares[2]
+               for rq in (0.05, 0.2)]
+    assert all(r.converged for r in results), [r.message for r in results]
+    assert results[0].lambda_bar > 3.0 and results[1].lambda_bar < 1.0
+    assert results[1].mu > 1.5 * results[0].mu
+    assert results[1].mu <= LUB.mu_d
+    assert results[0].asperity_load_share < 0.01 < 0.5 < results[1].asperity_load_share
+
+
+@pytest.mark.slow
+@pytest.mark.xfail(strict=True, reason="1-D model: lubricant trapped in the roughness valleys keeps carrying load as "
+                   "the entrained film vanishes; at 1 GPa / 5 mm / SR 0.5 / 100 C / Rq 0.5 um, u_r 1 -> 0.05 m/s "
+                   "(lambda 0.045 -> 0.006) measured mu 0.074 -> 0.070, share 0.70 -> 0.69; see docs/ehl_solver.md")
+def test_mu_approaches_mu_d_as_lambda_goes_to_zero():
+    """Issue 3 limit: as λ̄ → 0, μ → μ_d and the asperity share → 1. λ̄ → 0 by slowing the surfaces at fixed
+    roughness (1 GPa, 5 mm, SR 0.5, 100 °C, Rq 0.5 µm, u_r = 0.05 m/s, λ̄ = 0.006): asserted share ≥ 0.9 and
+    μ ≥ 0.9 μ_d."""
+    res = solve_contact(ContactCase.from_engineering(1.0, 5, 0.05, 0.5, 100, 0.5, 0.5), LUB, "fast", Effects.full())
+    assert res.converged, res.message
+    assert res.lambda_bar < 0.01
+    assert res.asperity_load_share >= 0.9
+    assert res.mu >= 0.9 * LUB.mu_d
