@@ -55,9 +55,6 @@ def test_plastic_cap_is_inactive_below_the_hardness(monkeypatch):
 
 
 @pytest.mark.slow
-@pytest.mark.xfail(strict=True, reason="found 0.5 GPa / 20 mm / 5 m/s / SR 0 / 25 C / Rq 1 um: converged with "
-                   "mu = +0.013 in pure rolling and h_c = 2.5 um, the film inflation of the flux-through closure; "
-                   "see docs/ehl_solver.md")
 @settings(max_examples=4, deadline=None, derandomize=True, phases=[Phase.explicit, Phase.generate],
           suppress_health_check=[HealthCheck.too_slow])
 @given(p_h=st.sampled_from([0.5, 1.5, 2.5]), r_eq=st.sampled_from([5, 20]), u_r=st.sampled_from([1, 5, 20]),
