@@ -175,7 +175,8 @@ class ReynoldsProblem:
         starts, ends = self.patches()
         links = None
         if starts.size:
-            links = reroute_patch_fluxes(self.x, p, eps, eps_p, eps_h, m, m_p, m_h, order, res, starts, ends)
+            links = reroute_patch_fluxes(self.x, p, eps, eps_p, eps_h, m, m_p, m_h, order, self.squeeze,
+                                         self.m_old, res, starts, ends)
         return res, dp, dh, (m, m_p, m_h), links
 
     def jacobian(self, dp, dh, links):

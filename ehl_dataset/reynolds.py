@@ -93,14 +93,16 @@ def assemble(x, p, eps, eps_p, eps_h, m, m_p, m_h, squeeze, m_old, face_order):
 
 
 @numba.njit(cache=True)
-def reroute_patch_fluxes(x, p, eps, eps_p, eps_h, m, m_p, m_h, face_order, res, starts, ends):
+def reroute_patch_fluxes(x, p, eps, eps_p, eps_h, m, m_p, m_h, face_order, squeeze, m_old, res, starts, ends):
     """Carry the flux that enters each closed-film patch to the first open node behind it (mass conservation
     through an asperity contact in 1-D).
 
     A patch is the run of closed nodes i … j (``starts``, ``ends``); its rows are contact conditions, not
     Reynolds rows. The open node j + 1 receives Q_{i−1}, the flux that left node i − 1 into the patch, instead of
-    Q_j: what enters the contact leaves it (the mass held in the closed nodes, ρ̄H_c per node, is not tracked).
-    ``res`` is corrected in place. Returns the out-of-band Jacobian entries of the receiving rows as arrays
+    Q_j, plus what the patch lost from storage during the step, Σ_k w_k (m_k^old − m_k)/ΔT (lubricant in nodes
+    that closed during the step is pushed out downstream): the mass balance of the patch as a whole holds exactly.
+    The storage term enters the residual only (its derivative, w ρ̄' H_c/ΔT, is negligible). ``res`` is corrected
+    in place. Returns the out-of-band Jacobian entries of the receiving rows as arrays
     (row, node, ∂R/∂P, ∂R/∂H), node indices counted on the full grid.
     """
     n_links = starts.size
@@ -114,7 +116,10 @@ def reroute_patch_fluxes(x, p, eps, eps_p, eps_h, m, m_p, m_h, face_order, res, 
         q_in = face_flux(x, p, eps, eps_p, eps_h, m, m_p, m_h, i - 1, face_order[i - 1])
         q_out = face_flux(x, p, eps, eps_p, eps_h, m, m_p, m_h, j, face_order[j])
         # row r held −Q_j; it now holds −Q_{i−1}
-        res[r] += q_out[0] - q_in[0]
+        storage = 0.0
+        for k in range(i, j + 1):
+            storage += squeeze[k] * (m[k] - m_old[k])
+        res[r] += q_out[0] - q_in[0] - storage
         for o in range(3):
             e = 6 * s + o
             rows[e] = r
