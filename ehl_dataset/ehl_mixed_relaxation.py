@@ -220,7 +220,7 @@ def _linearised(problem: ReynoldsProblem, p, h):
         return assemble_harmonic(problem.x, p, eps, eps_p, eps_h, m, m_p, m_h, problem.squeeze, problem.m_old,
                                  problem.second_order)
     return assemble(problem.x, p, eps, eps_p, eps_h, m, m_p, m_h, problem.squeeze, problem.m_old,
-                    problem.face_order())
+                    problem.face_order(), problem.face_poiseuille())
 
 
 @numba.njit(cache=True)

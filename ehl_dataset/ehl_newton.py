@@ -69,6 +69,7 @@ class ReynoldsProblem:
     scaled_norm: bool = False
     closed_film: np.ndarray | None = None
     closure: str = "patch"
+    contact_faces_couette: bool = False
     smoothing: float | np.ndarray = 0.0
     weights: np.ndarray = field(init=False, repr=False)
     rows: np.ndarray = field(init=False, repr=False)
@@ -154,6 +155,15 @@ class ReynoldsProblem:
             order[1:][self.closed[:-2]] = 0.0
         return order
 
+    def face_poiseuille(self) -> np.ndarray:
+        """Weight of the Poiseuille term per face: 0 on the faces of closed (asperity-contact) nodes when
+        ``contact_faces_couette`` — the pressure there is the solid contact pressure, which drives no lubricant —
+        else 1 (the unified Reynolds equation's own fade of ε applies in any case)."""
+        weight = np.ones(self.x.size - 1)
+        if self.closed is not None and self.contact_faces_couette:
+            weight[self.closed[:-1] | self.closed[1:]] = 0.0
+        return weight
+
     def patches(self) -> tuple[np.ndarray, np.ndarray]:
         """First and last node of every run of closed interior nodes that has open interior nodes on both sides."""
         if self.closed is None or self.closure != "patch" or not self.closed[1:-1].any():
@@ -171,12 +181,14 @@ class ReynoldsProblem:
         Jacobian entries of rerouted patch fluxes (None without closed patches)."""
         eps, eps_p, eps_h, m, m_p, m_h = self.fluid(p, h, homotopy)
         order = self.face_order()
-        res, dp, dh = assemble(self.x, p, eps, eps_p, eps_h, m, m_p, m_h, self.squeeze, self.m_old, order)
+        poiseuille = self.face_poiseuille()
+        res, dp, dh = assemble(self.x, p, eps, eps_p, eps_h, m, m_p, m_h, self.squeeze, self.m_old, order,
+                               poiseuille)
         starts, ends = self.patches()
         links = None
         if starts.size:
-            links = reroute_patch_fluxes(self.x, p, eps, eps_p, eps_h, m, m_p, m_h, order, self.squeeze,
-                                         self.m_old, res, starts, ends)
+            links = reroute_patch_fluxes(self.x, p, eps, eps_p, eps_h, m, m_p, m_h, order, poiseuille,
+                                         self.squeeze, self.m_old, res, starts, ends)
         return res, dp, dh, (m, m_p, m_h), links
 
     def jacobian(self, dp, dh, links):

@@ -69,10 +69,19 @@ CLOSED_MARGIN = 1.01
 holds closed nodes at H_CLOSED_M to its tolerance."""
 CONTACT_ROUNDS = 4
 """Times a time step is redone with the nodes whose film fell below H_c added to the closed (contact) set."""
+ROUND_WARM_START = True
+"""True: a contact round starts from the previous round's solution; False: from the start of the step."""
 STEP_ITERATIONS = 40
-"""Newton iterations allowed per time step before it is retried with sub-steps."""
-MAX_STEP_RETRIES = 4
-"""Times a non-converged time step is retried with half the time step before the run is marked not converged."""
+"""Newton iterations allowed per time step (and per contact round) before the step is retried."""
+CONTACT_FACES_COUETTE = False
+"""False (default): the faces between an open node and an asperity contact carry the unified Reynolds flux, whose
+Poiseuille part is driven by the contact pressure (as in Hu & Zhu's unified equation, paper Eq. 1–2); True: those
+faces carry the Couette flux only (the solid contact pressure drives no lubricant). See docs/ehl_solver.md."""
+STEP_ATTEMPTS = ((1, False), (2, False), (4, False), (1, True), (4, True), (16, True))
+"""(sub-steps, Couette-only contact faces) tried in turn for a time step. The last three are the fallback for steps
+where Newton cycles between the contact pressure and the flux it throttles: the step is solved with Couette-only
+contact faces (better conditioned, still mass-conserving); such steps are counted in
+``extra["couette_fallback_steps"]``. If all fail the run is returned not converged."""
 
 
 def roughness_grid(case: ContactCase, lvl: AccuracyLevel, correlation_length_m: float,
@@ -155,10 +164,11 @@ def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel
     history = {k: [] for k in ("t", "mu", "share", "h_min", "h_c", "p_max", "load", "yielded")}
     worst = {"reynolds": 0.0, "load": 0.0, "step": 0.0, "complementarity": 0.0}
     failure = ""
+    fallback_steps = 0
     for _ in range(n_steps):
         outcome, d_sub = None, d_t
-        for attempt in range(MAX_STEP_RETRIES + 1):
-            n_sub = 2**attempt
+        for n_sub, couette_faces in STEP_ATTEMPTS:
+            problem.contact_faces_couette = CONTACT_FACES_COUETTE or couette_faces
             d_sub = d_t / n_sub
             ok, p_try, h0_try, m_try, its = True, p, h0, m_prev, 0
             for k in range(n_sub):
@@ -192,7 +202,7 @@ def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel
                         break
                     problem.closed = problem.closed | penetrated
                     problem.smoothing = np.where(problem.closed[1:-1], FB_SMOOTHING, problem.smoothing)
-                    start_p, start_h0 = (outcome.p, outcome.h0) if outcome.converged else (p_try, h0_try)
+                    start_p, start_h0 = (outcome.p, outcome.h0) if (outcome.converged and ROUND_WARM_START) else (p_try, h0_try)
                     outcome = newton_solve(problem, start_p, start_h0, m_ref=m_ref, monotone=MONOTONE,
                                            freeze_scaling=True, **step_tolerances)
                     its += outcome.iterations
@@ -208,6 +218,7 @@ def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel
             failure = f"time step at t = {t * time_scale:.3e} s did not converge ({outcome.message})"
             break
         t += d_t
+        fallback_steps += int(problem.contact_faces_couette and not CONTACT_FACES_COUETTE)
         p, h0, m_prev = p_try, h0_try, m_try
         for key, value in _residuals(outcome).items():
             worst[key] = max(worst[key], abs(value))
@@ -240,6 +251,8 @@ def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel
                "yield_pressure_pa": YIELD_PRESSURE_PA,
                "yielded_load_share": float(np.mean(history["yielded"][window])),
                "fb_smoothing": FB_SMOOTHING,
+               "contact_faces_couette": CONTACT_FACES_COUETTE,
+               "couette_fallback_steps": int(fallback_steps),
                "max_load_error": float(np.max(np.abs(history["load"]))),
                "mu_series": np.asarray(history["mu"]), "t_series_s": np.asarray(history["t"]) * time_scale},
     )

@@ -10,7 +10,7 @@ from ehl_dataset.lubricant import load_lubricant
 from ehl_dataset.reynolds import face_flux
 
 
-def _problem(compressible: bool):
+def _problem(compressible: bool, couette_faces: bool = False):
     """A 61-node rough-looking state with two closed patches (nodes 20–23 and 35), squeeze on, exact numbers
     chosen so that every branch (closed, faded, open film) is present."""
     rng = np.random.default_rng(3)
@@ -25,6 +25,7 @@ def _problem(compressible: bool):
     closed[35] = True
     problem.closed = closed
     problem.closure = "patch"
+    problem.contact_faces_couette = couette_faces
     problem.squeeze = problem.weights / 0.05
     problem.m_old = 0.01 + 0.02 * rng.random(61)
     p = np.clip(np.sqrt(np.clip(1 - x**2, 0, None)) + 0.1 * rng.standard_normal(61), 0.0, None)
@@ -36,32 +37,39 @@ def test_patches_are_found_with_open_nodes_on_both_sides():
     problem, _, _ = _problem(True)
     starts, ends = problem.patches()
     assert starts.tolist() == [20, 35] and ends.tolist() == [23, 35]
+    pois = problem.face_poiseuille()
+    assert pois.sum() == pois.size  # the unified equation everywhere by default
+    problem.contact_faces_couette = True
+    pois = problem.face_poiseuille()
+    assert np.nonzero(pois == 0.0)[0].tolist() == [19, 20, 21, 22, 23, 34, 35]
 
 
+@pytest.mark.parametrize("couette_faces", [False, True])
 @pytest.mark.parametrize("compressible", [True, False])
-def test_global_mass_balance_telescopes_across_patches(compressible):
+def test_global_mass_balance_telescopes_across_patches(compressible, couette_faces):
     """Conservation law: summed over the open (Reynolds) rows, the residuals equal the boundary flux difference
     minus the storage change of every interior node, closed ones included — so at a solution (open rows zero)
     what enters the domain either stays in it or leaves it; nothing is created or lost at a contact."""
-    problem, p, h0 = _problem(compressible)
+    problem, p, h0 = _problem(compressible, couette_faces)
     h = problem.film(p, h0)
     res, _, _, (m, m_p, m_h), links = problem.residual(p, h)
     assert links is not None
     eps, eps_p, eps_h, *_ = problem.fluid(p, h)
-    order = problem.face_order()
-    q_first = face_flux(problem.x, p, eps, eps_p, eps_h, m, m_p, m_h, 0, order[0])[0]
+    order, pois = problem.face_order(), problem.face_poiseuille()
+    q_first = face_flux(problem.x, p, eps, eps_p, eps_h, m, m_p, m_h, 0, order[0], pois[0])[0]
     n = problem.x.size
-    q_last = face_flux(problem.x, p, eps, eps_p, eps_h, m, m_p, m_h, n - 2, order[n - 2])[0]
+    q_last = face_flux(problem.x, p, eps, eps_p, eps_h, m, m_p, m_h, n - 2, order[n - 2], pois[n - 2])[0]
     open_rows = ~problem.closed[1:-1]
     storage = problem.squeeze[1:-1] * (m[1:-1] - problem.m_old[1:-1])
     expected = q_last - q_first - storage.sum()
     assert res[1:-1][open_rows].sum() == pytest.approx(expected, rel=1e-12, abs=1e-12 * np.abs(res).max())
 
 
-def test_newton_jacobian_of_open_rows_matches_finite_differences():
+@pytest.mark.parametrize("couette_faces", [False, True])
+def test_newton_jacobian_of_open_rows_matches_finite_differences(couette_faces):
     """The rerouted fluxes' out-of-band derivatives (reynolds.add_links) make the Jacobian of the open rows exact
     (incompressible, so that the storage of closed nodes, ρ̄H_c, has no pressure derivative)."""
-    problem, p, h0 = _problem(False)
+    problem, p, h0 = _problem(False, couette_faces)
     h = problem.film(p, h0)
     res, dp, dh, _, links = problem.residual(p, h)
     jac = problem.jacobian(dp, dh, links)
