@@ -78,6 +78,7 @@ def main(argv=None) -> int:
                    "lambda_bar": res.lambda_bar, "asperity_load_share": res.asperity_load_share,
                    "max_load_error": res.extra.get("max_load_error"), "n_nodes": res.extra.get("n_nodes"),
                    "yielded_load_share": res.extra.get("yielded_load_share"), "p_max_pa": res.p_max,
+                   "couette_fallback_steps": res.extra.get("couette_fallback_steps"),
                    "n_steps": res.extra.get("n_steps"), "message": res.message}
         except Exception as err:  # recorded, the sweep goes on
             row = {"case": case_args, "converged": False, "error": f"{type(err).__name__}: {err}"}
