@@ -399,8 +399,10 @@ def warm_up_indices(points: np.ndarray, candidates: list[int], lubricant: dict, 
                     solver) -> list[int]:
     """Points the coordinator computes before the workers start, so each compiled code path is built once.
 
-    For the default solver with ``effects="auto"``: the first candidate of each distinct plan (roughness,
-    transient, shear thinning) the planner makes among ``candidates``; otherwise just the first candidate.
+    For the default solver with ``effects="auto"``: for each distinct plan (roughness, transient, shear thinning)
+    the planner makes among ``candidates``, the candidate with the narrowest contact (smallest p_h·r_eq, to which
+    the Hertz half width and so the transient grid are proportional: the coordinator should not spend minutes on
+    a wide rough contact while the workers wait); otherwise just the first candidate.
     """
     if not candidates:
         return []
@@ -418,8 +420,15 @@ def warm_up_indices(points: np.ndarray, candidates: list[int], lubricant: dict, 
             plan = plan_effects(ContactCase(*(float(v) for v in points[index])), lub, level)
         except Exception:  # noqa: BLE001 - the point will report its own error when computed
             continue
-        chosen.setdefault((plan.roughness, plan.transient, plan.shear_thinning), index)
+        key = (plan.roughness, plan.transient, plan.shear_thinning)
+        if key not in chosen or _width(points[index]) < _width(points[chosen[key]]):
+            chosen[key] = index
     return sorted(chosen.values()) or candidates[:1]
+
+
+def _width(point) -> float:
+    """p_h·r_eq of a factorial point (columns as :class:`~ehl_dataset.contact.ContactCase`): ∝ the Hertz half width."""
+    return float(point[0]) * float(point[1])
 
 
 def _check_options(workers: int, options: dict) -> None:

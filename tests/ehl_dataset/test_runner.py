@@ -358,6 +358,10 @@ def test_warm_up_covers_each_distinct_effect_plan_once():
     all_keys = {key(i) for i in candidates}
     assert len(all_keys) >= 2 and sorted(key(i) for i in chosen) == sorted(all_keys)
     assert all(key(i) != key(j) for i in chosen for j in chosen if i < j)
+    # each chosen point is a narrowest contact of its plan (cheapest transient grid): minimal p_h·r_eq
+    for i in chosen:
+        same = [j for j in candidates if key(j) == key(i)]
+        assert points[i][0] * points[i][1] == min(points[j][0] * points[j][1] for j in same)
     assert warm_up_indices(points, candidates, lub.to_json_dict(), "fast", "auto", analytic_solve) == [0]
     assert warm_up_indices(points, candidates, lub.to_json_dict(), "fast", "full", DEFAULT_SOLVER) == [0]
 
