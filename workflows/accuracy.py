@@ -398,6 +398,7 @@ def plot_error_vs_time(study: AccuracyStudy, path: Path, floor: float = 1e-6) ->
     ref_times = [r.wall_time_s for r in study.runs if r.effects_mode == "reference"]
     for ax, key, label in ((axes[0], "mu_error", "relative error of μ"),
                            (axes[1], "h_min_error", "relative error of h_min")):
+        plotted = False
         for k, level in enumerate(study.levels):
             runs = [r for r in study.for_level(level) if r.effects_mode != "reference"]
             t = np.array([r.wall_time_s for r in runs])
@@ -405,6 +406,7 @@ def plot_error_vs_time(study: AccuracyStudy, path: Path, floor: float = 1e-6) ->
             ok = np.isfinite(e)
             colour = colours[k % len(colours)]
             ax.scatter(t[ok], np.maximum(e[ok], floor), s=22, color=colour, alpha=0.75, label=f"{level} (cases)")
+            plotted |= bool(ok.any())
             if ok.any():
                 ax.scatter([np.median(t[ok])], [max(np.median(e[ok]), floor)], s=140, marker="*", color=colour,
                            edgecolor="black", zorder=5, label=f"{level} median")
@@ -412,7 +414,10 @@ def plot_error_vs_time(study: AccuracyStudy, path: Path, floor: float = 1e-6) ->
             ax.axvline(float(np.median(ref_times)), color="grey", ls="--", lw=1,
                        label=f"{study.reference_level} median time")
         ax.set_xscale("log")
-        ax.set_yscale("log")
+        if plotted:
+            ax.set_yscale("log")
+        else:  # e.g. every reference film is zero (asperity contact): no relative error is defined
+            ax.text(0.5, 0.5, "no finite errors", transform=ax.transAxes, ha="center", va="center")
         ax.set_xlabel("wall time per case [s]")
         ax.set_ylabel(label)
         ax.grid(True, which="both", alpha=0.3)
