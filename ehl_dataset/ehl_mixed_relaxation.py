@@ -72,7 +72,7 @@ dry-contact complementarity, nodes enter when H_i < H_closed and leave when they
 keeps Hu & Zhu's reduced equation ∂(ρh)/∂x + ∂(ρh)/∂t = 0, which lets negative films persist (measured)."""
 FACE_MEAN = "arithmetic"
 """Face mean of the Poiseuille coefficient: "arithmetic" (the discretisation of :mod:`ehl_dataset.reynolds`,
-shared with the Newton solver) or "harmonic" (:func:`assemble_harmonic`; tried against the 2-cycles, changes μ by
+shared with the Newton solver) or "harmonic" (:func:`ehl_dataset.reynolds.face_flux` with ``harmonic``; tried against the 2-cycles, changes μ by
 4 % at λ̄ = 3 on the fast grid and is not needed with the "gap" contact model; kept as an option)."""
 LAG_EPSILON = "fade"
 """Picard (lagged) treatment of ε: "all" nodes, only in and below the "fade" band of the unified Reynolds
@@ -137,72 +137,6 @@ def semi_system_bands(dp, dh, kmat, lower, upper):
     return ab, col_h0
 
 
-@numba.njit(cache=True)
-def assemble_harmonic(x, p, eps, eps_p, eps_h, m, m_p, m_h, squeeze, m_old, second_order):
-    """Residual and banded derivatives (offsets −2 … +1) of the discrete Reynolds equation of
-    :mod:`ehl_dataset.reynolds`, but with the **harmonic** face mean of the Poiseuille coefficient,
-    ε_face = 2 ε_k ε_{k+1}/(ε_k + ε_{k+1}) (series resistances, as for conduction with a varying conductivity).
-
-    ε varies by many orders of magnitude between neighbours at heavy asperity load (ε ∝ e^{−αp}); with the
-    arithmetic mean a low-pressure node between two high-pressure ones has a face coefficient dominated by its own
-    ε, whose pressure derivative then flips the sign of ∂R_i/∂P_i (the discrete operator loses its M-matrix
-    property and the iteration 2-cycles, measured). The harmonic mean is controlled by the smaller coefficient
-    and is zero next to a closed-film node (ε = 0). Same second-order accuracy for smooth ε.
-    Inputs as :func:`ehl_dataset.reynolds.assemble`.
-    """
-    n = x.size
-    res = np.zeros(n)
-    dp = np.zeros((n, 4))
-    dh = np.zeros((n, 4))
-    for k in range(n - 1):
-        delta = x[k + 1] - x[k]
-        grad = (p[k + 1] - p[k]) / delta
-        ea, eb = eps[k], eps[k + 1]
-        s = ea + eb
-        if s > 0.0:
-            face = 2.0 * ea * eb / s
-            f_a = 2.0 * eb * eb / (s * s)
-            f_b = 2.0 * ea * ea / (s * s)
-        else:
-            face = 0.0
-            f_a = 0.0
-            f_b = 0.0
-        c = 0.0
-        if second_order and k >= 1:
-            c = 0.5 * delta / (x[k] - x[k - 1])
-        couette = m[k] + c * (m[k] - m[k - 1]) if c > 0.0 else m[k]
-        q = face * grad - couette
-        q_p_km1 = c * m_p[k - 1] if c > 0.0 else 0.0
-        q_p_k = f_a * eps_p[k] * grad - face / delta - (1.0 + c) * m_p[k]
-        q_p_kp1 = f_b * eps_p[k + 1] * grad + face / delta
-        q_h_km1 = c * m_h[k - 1] if c > 0.0 else 0.0
-        q_h_k = f_a * eps_h[k] * grad - (1.0 + c) * m_h[k]
-        q_h_kp1 = f_b * eps_h[k + 1] * grad
-        if 1 <= k <= n - 2:
-            res[k] += q
-            dp[k, 1] += q_p_km1
-            dp[k, 2] += q_p_k
-            dp[k, 3] += q_p_kp1
-            dh[k, 1] += q_h_km1
-            dh[k, 2] += q_h_k
-            dh[k, 3] += q_h_kp1
-        i = k + 1
-        if 1 <= i <= n - 2:
-            res[i] -= q
-            dp[i, 0] -= q_p_km1
-            dp[i, 1] -= q_p_k
-            dp[i, 2] -= q_p_kp1
-            dh[i, 0] -= q_h_km1
-            dh[i, 1] -= q_h_k
-            dh[i, 2] -= q_h_kp1
-    for i in range(1, n - 1):
-        if squeeze[i] != 0.0:
-            res[i] -= squeeze[i] * (m[i] - m_old[i])
-            dp[i, 2] -= squeeze[i] * m_p[i]
-            dh[i, 2] -= squeeze[i] * m_h[i]
-    return res, dp, dh
-
-
 def _linearised(problem: ReynoldsProblem, p, h):
     """Reynolds residual and banded derivatives; with :data:`LAG_FADE` the derivatives of ε are dropped where the
     film is inside the fade band (h_closed, 2 h_closed) or below it (Picard in ε there, as in Hu & Zhu's
@@ -216,11 +150,8 @@ def _linearised(problem: ReynoldsProblem, p, h):
         band = h < 2.0 * problem.h_closed
         eps_h = np.where(band, 0.0, eps_h)
         eps_p = np.where(band, 0.0, eps_p)
-    if FACE_MEAN == "harmonic":
-        return assemble_harmonic(problem.x, p, eps, eps_p, eps_h, m, m_p, m_h, problem.squeeze, problem.m_old,
-                                 problem.second_order)
     return assemble(problem.x, p, eps, eps_p, eps_h, m, m_p, m_h, problem.squeeze, problem.m_old,
-                    problem.face_order(), problem.face_poiseuille())
+                    problem.face_order(), problem.face_poiseuille(), FACE_MEAN == "harmonic")
 
 
 @numba.njit(cache=True)

@@ -28,39 +28,52 @@ BAND = 4
 
 
 @numba.njit(cache=True)
-def face_flux(x, p, eps, eps_p, eps_h, m, m_p, m_h, k, order, poiseuille=1.0):
+def face_flux(x, p, eps, eps_p, eps_h, m, m_p, m_h, k, order, poiseuille=1.0, harmonic=False):
     """Flux Q_k through face k (between nodes k and k+1) and its partials.
 
     Returns (Q_k, ∂Q/∂P_{k−1}, ∂Q/∂P_k, ∂Q/∂P_{k+1}, ∂Q/∂H_{k−1}, ∂Q/∂H_k, ∂Q/∂H_{k+1}). ``order`` scales the
     linear-upwind correction of the Couette flux (1: second order, 0: first-order upwind); ``poiseuille`` the
-    pressure-driven part (0 on faces next to an asperity contact, whose pressure is a solid contact pressure).
+    pressure-driven part (0 on faces next to an asperity contact, whose pressure is a solid contact pressure);
+    ``harmonic`` uses the face mean 2 ε_k ε_{k+1}/(ε_k + ε_{k+1}) instead of the arithmetic one (series
+    resistances: controlled by the smaller coefficient, zero next to a node with ε = 0).
     """
     delta = x[k + 1] - x[k]
     grad = (p[k + 1] - p[k]) / delta
-    half = 0.5 * poiseuille
-    eps_face = half * (eps[k] + eps[k + 1])
+    ea, eb = eps[k], eps[k + 1]
+    if harmonic:
+        total = ea + eb
+        if total > 0.0:
+            eps_face = poiseuille * 2.0 * ea * eb / total
+            w_a = poiseuille * 2.0 * eb * eb / (total * total)  # ∂ε_face/∂ε_k
+            w_b = poiseuille * 2.0 * ea * ea / (total * total)
+        else:
+            eps_face = w_a = w_b = 0.0
+    else:
+        w_a = w_b = 0.5 * poiseuille
+        eps_face = w_a * (ea + eb)
     c = 0.0
     if order > 0.0 and k >= 1:
         c = order * 0.5 * delta / (x[k] - x[k - 1])
     couette = m[k] + c * (m[k] - m[k - 1]) if c > 0.0 else m[k]
     q = eps_face * grad - couette
     q_p_km1 = c * m_p[k - 1] if c > 0.0 else 0.0
-    q_p_k = half * eps_p[k] * grad - eps_face / delta - (1.0 + c) * m_p[k]
-    q_p_kp1 = half * eps_p[k + 1] * grad + eps_face / delta
+    q_p_k = w_a * eps_p[k] * grad - eps_face / delta - (1.0 + c) * m_p[k]
+    q_p_kp1 = w_b * eps_p[k + 1] * grad + eps_face / delta
     q_h_km1 = c * m_h[k - 1] if c > 0.0 else 0.0
-    q_h_k = half * eps_h[k] * grad - (1.0 + c) * m_h[k]
-    q_h_kp1 = half * eps_h[k + 1] * grad
+    q_h_k = w_a * eps_h[k] * grad - (1.0 + c) * m_h[k]
+    q_h_kp1 = w_b * eps_h[k + 1] * grad
     return q, q_p_km1, q_p_k, q_p_kp1, q_h_km1, q_h_k, q_h_kp1
 
 
 @numba.njit(cache=True)
-def assemble(x, p, eps, eps_p, eps_h, m, m_p, m_h, squeeze, m_old, face_order, face_poiseuille):
+def assemble(x, p, eps, eps_p, eps_h, m, m_p, m_h, squeeze, m_old, face_order, face_poiseuille, harmonic=False):
     """Residual R (N) and banded derivatives dR/dP, dR/dH (N × 4) of the discrete Reynolds equation.
 
     Inputs per node: ``eps`` ε, ``eps_p`` ∂ε/∂P, ``eps_h`` ∂ε/∂H, ``m`` ρ̄H, ``m_p`` ∂m/∂P, ``m_h`` ∂m/∂H,
     ``squeeze`` w_i/ΔT (zeros for steady runs), ``m_old`` ρ̄H at the previous time step; per face (N − 1)
     ``face_order`` the weight of the linear-upwind correction (1 second order, 0 first order) and
-    ``face_poiseuille`` the weight of the Poiseuille term (1, or 0 next to asperity contacts). Rows 0 and N − 1
+    ``face_poiseuille`` the weight of the Poiseuille term (1, or 0 next to asperity contacts); ``harmonic`` the
+    face mean of ε (see :func:`face_flux`). Rows 0 and N − 1
     (the boundary nodes, P = 0) are left zero.
     """
     n = x.size
@@ -69,7 +82,7 @@ def assemble(x, p, eps, eps_p, eps_h, m, m_p, m_h, squeeze, m_old, face_order, f
     dh = np.zeros((n, BAND))
     for k in range(n - 1):
         q, q_p_km1, q_p_k, q_p_kp1, q_h_km1, q_h_k, q_h_kp1 = face_flux(x, p, eps, eps_p, eps_h, m, m_p, m_h, k,
-                                                                         face_order[k], face_poiseuille[k])
+                                                                         face_order[k], face_poiseuille[k], harmonic)
         if 1 <= k <= n - 2:  # +Q_k in row k: offsets (k-1)->1, k->2, k+1->3
             res[k] += q
             dp[k, 1] += q_p_km1

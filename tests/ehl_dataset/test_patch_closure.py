@@ -85,3 +85,23 @@ def test_newton_jacobian_of_open_rows_matches_finite_differences(couette_faces):
         fd = (res_plus - res_minus)[1:-1] / (2 * step)
         scale = np.abs(jac[open_rows]).max()
         assert np.max(np.abs(fd[open_rows] - jac[open_rows, col])) <= 1e-6 * scale, col
+
+
+@pytest.mark.parametrize("harmonic", [False, True])
+def test_face_flux_derivatives_match_finite_differences(harmonic):
+    """The face flux's partial derivatives (arithmetic and harmonic face means of ε) equal central differences."""
+    problem, p, h0 = _problem(False)
+    h = problem.film(p, h0)
+    k = 28
+    eps, eps_p, eps_h, m, m_p, m_h = problem.fluid(p, h)
+    exact = face_flux(problem.x, p, eps, eps_p, eps_h, m, m_p, m_h, k, 1.0, 1.0, harmonic)
+    step = 1e-7
+    for o, node in enumerate((k - 1, k, k + 1)):
+        values = []
+        for sign in (1.0, -1.0):
+            pp = p.copy()
+            pp[node] += sign * step
+            f = problem.fluid(pp, h)
+            values.append(face_flux(problem.x, pp, *f, k, 1.0, 1.0, harmonic)[0])
+        fd = (values[0] - values[1]) / (2 * step)
+        assert fd == pytest.approx(exact[1 + o], rel=1e-5, abs=1e-9 * abs(exact[2]))
