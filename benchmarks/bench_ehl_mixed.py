@@ -57,6 +57,9 @@ def main(argv=None) -> int:
     parser.add_argument("--out", default=None)
     parser.add_argument("--shard", default=None, help="I/N: run every N-th case starting at I (one process per core)")
     parser.add_argument("--merge", nargs="+", default=None, help="shard JSON files to merge into one report")
+    parser.add_argument("--time-limit-s", type=float, default=None,
+                        help="wall-time budget per case [s]; a case that spends it counts as not finished, and the "
+                             "mean time is then a lower bound (reported as such)")
     args = parser.parse_args(argv)
     cases = corner_cases() if args.sample == "corners" else random_cases(args.n, args.seed)
     lub = load_lubricant("atf")
@@ -73,13 +76,14 @@ def main(argv=None) -> int:
         case = ContactCase.from_engineering(*case_args)
         start = time.perf_counter()
         try:
-            res = solve_contact(case, lub, args.level, Effects.full())
+            res = solve_contact(case, lub, args.level, Effects.full(), time_limit_s=args.time_limit_s)
             row = {"case": case_args, "converged": res.converged, "mu": res.mu, "mu_std": res.mu_std,
                    "lambda_bar": res.lambda_bar, "asperity_load_share": res.asperity_load_share,
                    "max_load_error": res.extra.get("max_load_error"), "n_nodes": res.extra.get("n_nodes"),
                    "yielded_load_share": res.extra.get("yielded_load_share"), "p_max_pa": res.p_max,
                    "couette_fallback_steps": res.extra.get("couette_fallback_steps"),
-                   "n_steps": res.extra.get("n_steps"), "message": res.message}
+                   "n_steps": res.extra.get("n_steps"), "substep_steps": res.extra.get("substep_steps"),
+                   "time_limited": "wall-time limit" in res.message, "message": res.message}
         except Exception as err:  # recorded, the sweep goes on
             row = {"case": case_args, "converged": False, "error": f"{type(err).__name__}: {err}"}
         row["wall_time_s"] = time.perf_counter() - start
@@ -99,7 +103,12 @@ def _report(args, lub, rows, suffix) -> int:
                "converged_mu_in_0_mu_d_for_sr_gt_0": all(0.0 <= r["mu"] <= lub.mu_d for r in ok if r["case"][3] > 0),
                "converged_max_abs_mu_sr_0": max((abs(r["mu"]) for r in ok if r["case"][3] == 0), default=None),
                "converged_max_load_error": max((r["max_load_error"] for r in ok), default=None),
-               "converged_lambda_bar_min": min((r["lambda_bar"] for r in ok), default=math.nan)}
+               "converged_lambda_bar_min": min((r["lambda_bar"] for r in ok), default=math.nan),
+               "time_limited": sum(bool(r.get("time_limited")) for r in rows),
+               "time_limit_s": getattr(args, "time_limit_s", None)}
+    if summary["time_limited"]:
+        summary["note"] = (f"{summary['time_limited']} cases stopped at the wall-time limit: the mean time and the "
+                           "projection are lower bounds")
     report = {"benchmark": "ehl_mixed", "level": args.level, "sample": args.sample, "summary": summary,
               "rows": rows, "machine": {"platform": platform.platform(), "cpu_count": os.cpu_count(),
                                         "python": sys.version.split()[0], "numpy": np.__version__}}

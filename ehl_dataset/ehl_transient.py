@@ -77,11 +77,54 @@ CONTACT_FACES_COUETTE = False
 """False (default): the faces between an open node and an asperity contact carry the unified Reynolds flux, whose
 Poiseuille part is driven by the contact pressure (as in Hu & Zhu's unified equation, paper Eq. 1–2); True: those
 faces carry the Couette flux only (the solid contact pressure drives no lubricant). See docs/ehl_solver.md."""
-STEP_ATTEMPTS = ((1, False), (2, False), (4, False), (1, True), (4, True), (16, True))
-"""(sub-steps, Couette-only contact faces) tried in turn for a time step. The last three are the fallback for steps
-where Newton cycles between the contact pressure and the flux it throttles: the step is solved with Couette-only
-contact faces (better conditioned, still mass-conserving); such steps are counted in
-``extra["couette_fallback_steps"]``. If all fail the run is returned not converged."""
+MAX_SUBSTEPS = 16
+"""Largest number of sub-steps a time step is split into before the run is returned not converged."""
+RELAX_AFTER = 4
+"""Consecutive time steps solved at the first attempt after which the starting sub-step count is halved again."""
+ROUNDS_AFTER_FAILURE = 1
+"""Contact rounds allowed after a Newton solve of the step failed (the added contact nodes sometimes rescue it;
+more rounds from the same start only repeat the failure at 40 iterations each)."""
+
+
+def step_attempts(start: int = 1) -> tuple[tuple[int, bool], ...]:
+    """(sub-steps, Couette-only contact faces) tried in turn for a time step, beginning with ``start`` sub-steps.
+
+    Unified contact faces at start, 2·start, 4·start sub-steps, then whatever of the base sequence
+    ((1, F), (2, F), (4, F), (1, T), (4, T), (MAX_SUBSTEPS, T)) was not tried yet. The attempts with Couette-only
+    contact faces are the fallback for steps where Newton cycles between the contact pressure and the flux it
+    throttles (better conditioned, still mass-conserving); such steps are counted in
+    ``extra["couette_fallback_steps"]``. If all fail the run is returned not converged. Newton's success is not
+    monotone in the step size, so a larger ``start`` never removes an attempt of the base sequence.
+
+    The run adapts ``start`` (:func:`next_start`): a step that needed k sub-steps with unified faces makes the next
+    steps begin at k (a finer time step is only more accurate), so the failing attempts are not repeated every
+    step — they cost 40 Newton iterations per contact round and were 74 % of the wall time of a hard 80 mm case.
+    """
+    start = int(min(max(start, 1), MAX_SUBSTEPS))
+    base = ((1, False), (2, False), (4, False), (1, True), (4, True), (MAX_SUBSTEPS, True))
+    first = tuple((k, False) for k in (start, 2 * start, 4 * start) if k <= MAX_SUBSTEPS)
+    return first + tuple(a for a in base if a not in first)
+
+
+def next_start(start: int, used: int, couette: bool, first_attempt: bool, calm_steps: int) -> tuple[int, int]:
+    """The sub-step count the next time step begins with, and the updated count of calm steps.
+
+    ``used``: sub-steps of the attempt that solved this step, ``couette``: whether that attempt had Couette-only
+    contact faces, ``first_attempt``: whether it was the first tried. A step that the unified faces solved only
+    with more sub-steps raises the start to ``used`` (a Couette-face success leaves it: the fallback says nothing
+    about the step size the unified faces need); after RELAX_AFTER steps solved at the first attempt the start is
+    halved (down to 1), so the run returns to the level's time step once the hard stretch has passed.
+    """
+    if not first_attempt:
+        return (start if couette else max(start, used)), 0
+    calm_steps += 1
+    if start > 1 and calm_steps >= RELAX_AFTER:
+        return start // 2, 0
+    return start, calm_steps
+
+
+STEP_ATTEMPTS = step_attempts(1)
+"""The attempts of a step that starts at one sub-step (see :func:`step_attempts`)."""
 
 
 def roughness_grid(case: ContactCase, lvl: AccuracyLevel, correlation_length_m: float,
@@ -105,10 +148,11 @@ def roughness_grid(case: ContactCase, lvl: AccuracyLevel, correlation_length_m: 
 
 
 def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel, plan: Effects,
-                    roughness=None) -> ContactResult:
+                    roughness=None, time_limit_s: float | None = None) -> ContactResult:
     """Transient mixed solve of one rough contact; see the module docstring. ``roughness``: the profile both
     surfaces take (a :class:`~ehl_dataset.roughness.RoughnessProfile`, scaled to Rq1 and Rq2); None: the shipped
-    baseline."""
+    baseline. ``time_limit_s``: wall-time budget [s]; checked before every time step, and when it is spent the run
+    ends ``converged=False`` ("wall-time limit ...")."""
     from .roughness import plan_surfaces
     from .solver import ContactScales, dowson_higginson_lambda, moes_h_c, solve_steady, solve_steady_problem
 
@@ -164,10 +208,16 @@ def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel
     history = {k: [] for k in ("t", "mu", "share", "h_min", "h_c", "p_max", "load", "yielded")}
     worst = {"reynolds": 0.0, "load": 0.0, "step": 0.0, "complementarity": 0.0}
     failure = ""
-    fallback_steps = 0
-    for _ in range(n_steps):
+    fallback_steps = substep_steps = calm_steps = 0
+    start_substeps = 1
+    for step in range(n_steps):
+        if time_limit_s is not None and time.perf_counter() - start > time_limit_s:
+            failure = (f"wall-time limit of {time_limit_s:g} s reached after {step} of {n_steps} time steps "
+                       f"(t = {t * time_scale:.3e} s)")
+            break
         outcome, d_sub = None, d_t
-        for n_sub, couette_faces in STEP_ATTEMPTS:
+        attempts = step_attempts(start_substeps)
+        for attempt, (n_sub, couette_faces) in enumerate(attempts):
             problem.contact_faces_couette = CONTACT_FACES_COUETTE or couette_faces
             d_sub = d_t / n_sub
             ok, p_try, h0_try, m_try, its = True, p, h0, m_prev, 0
@@ -193,6 +243,7 @@ def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel
                 outcome = newton_solve(problem, p_try, h0_try, m_ref=m_ref, monotone=MONOTONE, freeze_scaling=True,
                                        **step_tolerances)
                 its += outcome.iterations
+                failures = int(not outcome.converged)
                 for _ in range(CONTACT_ROUNDS if CLOSED_NODES else 0):
                     # an open node whose film fell below H_c during the step is an asperity contact too: add it to
                     # the closed set and redo the step (the closed set only grows within a step, so this ends)
@@ -206,6 +257,9 @@ def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel
                     outcome = newton_solve(problem, start_p, start_h0, m_ref=m_ref, monotone=MONOTONE,
                                            freeze_scaling=True, **step_tolerances)
                     its += outcome.iterations
+                    failures += int(not outcome.converged)
+                    if failures > ROUNDS_AFTER_FAILURE:
+                        break
                 if not outcome.converged:
                     ok = False
                     break
@@ -219,6 +273,9 @@ def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel
             break
         t += d_t
         fallback_steps += int(problem.contact_faces_couette and not CONTACT_FACES_COUETTE)
+        substep_steps += int(n_sub > 1)
+        start_substeps, calm_steps = next_start(start_substeps, n_sub, couette_faces, attempt == 0,
+                                                   calm_steps)
         p, h0, m_prev = p_try, h0_try, m_try
         for key, value in _residuals(outcome).items():
             worst[key] = max(worst[key], abs(value))
@@ -253,6 +310,7 @@ def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel
                "fb_smoothing": FB_SMOOTHING,
                "contact_faces_couette": CONTACT_FACES_COUETTE,
                "couette_fallback_steps": int(fallback_steps),
+               "substep_steps": int(substep_steps),
                "max_load_error": float(np.max(np.abs(history["load"]))),
                "mu_series": np.asarray(history["mu"]), "t_series_s": np.asarray(history["t"]) * time_scale},
     )

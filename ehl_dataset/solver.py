@@ -39,7 +39,7 @@ from .result import ContactResult
 from .traction import friction_components
 from .validation import InputError, SolverError
 
-SOLVER_VERSION = "ehl-2026.11-4"
+SOLVER_VERSION = "ehl-2026.11-5"
 """Version of the numerics behind :func:`solve_contact`. The dataset store records it and refuses to resume a file
 computed with another version: bump it with every change that can alter a solved value."""
 
@@ -112,8 +112,12 @@ def resolve_effects(case: ContactCase, lubricant: Lubricant, level: str, effects
 
 
 def solve_contact(case: ContactCase, lubricant: Lubricant | str, level: str | AccuracyLevel = "standard",
-                  effects: str | Effects = "auto", roughness=None) -> ContactResult:
+                  effects: str | Effects = "auto", roughness=None, time_limit_s: float | None = None) -> ContactResult:
     """Solve one line contact; see the module docstring. Bad input raises :class:`InputError`.
+
+    ``time_limit_s``: wall-time budget [s] of a transient (rough) solve; when it runs out the result is returned
+    ``converged=False`` with a message naming the step reached (a sweep is not held up by one pathological point;
+    the resumable pipeline can retry it). None: no limit. Steady smooth solves ignore it (they take < 1 s).
 
     ``roughness``: a :class:`~ehl_dataset.roughness.RoughnessProfile` (e.g. a measured trace from
     :func:`~ehl_dataset.roughness.load_profile`) whose shape both surfaces take in rough runs, scaled to the case's
@@ -130,6 +134,8 @@ def solve_contact(case: ContactCase, lubricant: Lubricant | str, level: str | Ac
 
         if not isinstance(roughness, RoughnessProfile):
             raise InputError("roughness", type(roughness).__name__, "a RoughnessProfile or None")
+    if time_limit_s is not None and not (math.isfinite(time_limit_s) and time_limit_s > 0.0):
+        raise InputError("time_limit_s", time_limit_s, "a positive number of seconds, or None")
     state = lubricant.state(case.temperature)
     lvl = get_level(level)
     plan = resolve_effects(case, lubricant, lvl.name, effects)
@@ -141,7 +147,7 @@ def solve_contact(case: ContactCase, lubricant: Lubricant | str, level: str | Ac
             except ImportError:
                 raise SolverError("the transient mixed-EHL solver (rough surfaces) is not available yet; "
                                   "use smooth effects (S_c = 0, or an Effects plan without roughness)") from None
-            return solve_transient(case, state, lvl, plan, roughness)
+            return solve_transient(case, state, lvl, plan, roughness, time_limit_s)
         return solve_steady(case, state, lvl, plan)
 
 

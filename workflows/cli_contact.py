@@ -30,6 +30,9 @@ def register(subparsers) -> None:
     solve.add_argument("--level", default="standard", help="accuracy level: fast, standard, reference")
     solve.add_argument("--effects", default="auto", choices=["auto", "full", "smooth"],
                        help="effect plan: auto (planner), full (everything), smooth (steady smooth solve)")
+    solve.add_argument("--time-limit-s", type=float, default=None,
+                       help="wall-time budget of a transient (rough) solve [s]; when spent the result is marked "
+                            "not converged (default: none)")
     solve.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
     solve.set_defaults(handler=_solve)
 
@@ -55,7 +58,7 @@ def _solve(args) -> int:
         from ehl_dataset.roughness import load_profile
 
         roughness = load_profile(args.roughness_file, unit=args.roughness_unit)
-    result = solve_contact(case, lubricant, level.name, effects, roughness)
+    result = solve_contact(case, lubricant, level.name, effects, roughness, args.time_limit_s)
     payload = {
         "mu": result.mu,
         "mu_std": result.mu_std,

@@ -44,6 +44,7 @@ def test_validation_fluid_by_name_and_by_file(capsys, tmp_path):
     (["--temp-c", "200"], "temperature"),
     (["--lubricant", "no_such_oil"], "lubricant"),
     (["--level", "ultra"], "level"),
+    (["--time-limit-s", "-3"], "time_limit_s"),
 ])
 def test_bad_input_one_line_nonzero_exit(capsys, args, parameter):
     argv = list(BASE)
@@ -55,6 +56,14 @@ def test_bad_input_one_line_nonzero_exit(capsys, args, parameter):
     assert main(argv) == 2
     err = capsys.readouterr().err.strip()
     assert len(err.splitlines()) == 1 and parameter in err
+
+
+def test_time_limit_flag_reaches_the_transient_solver(capsys):
+    """--time-limit-s: a rough case whose budget is spent is reported not converged, with the reason (exit 1)."""
+    assert main(BASE + ["--rq1-um", "0.4", "--rq2-um", "0.4", "--effects", "full", "--time-limit-s", "0.001",
+                        "--json"]) == 1
+    out = json.loads(capsys.readouterr().out)
+    assert out["converged"] is False and "wall-time limit" in out["message"]
 
 
 def test_console_script_subprocess():
