@@ -118,7 +118,10 @@ def _report(args, lub, rows, suffix) -> int:
         summary["note"] = (f"{summary['time_limited']} cases stopped at the wall-time limit: the mean time and the "
                            "projection are lower bounds; the extrapolated figures scale each stopped case's time by "
                            "planned/completed time steps (an estimate, not a measurement)")
+    from ehl_dataset.solver import SOLVER_VERSION
+
     report = {"benchmark": "ehl_mixed", "level": args.level, "sample": args.sample, "summary": summary,
+              "solver_version": SOLVER_VERSION,
               "rows": rows, "machine": {"platform": platform.platform(), "cpu_count": os.cpu_count(),
                                         "python": sys.version.split()[0], "numpy": np.__version__}}
     out = Path(args.out or Path(__file__).parent / "results" / f"ehl_mixed_{args.sample}_{args.level}{suffix}.json")
