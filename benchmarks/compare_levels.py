@@ -1,7 +1,8 @@
 """Compare two runs of bench_ehl_mixed.py on the same points (e.g. `fast` against `standard`): μ error and time.
 
     python benchmarks/compare_levels.py benchmarks/results/ehl_mixed_random_fast.json \\
-        benchmarks/results/ehl_mixed_random_standard.json --out docs/accuracy_random_levels.md
+        benchmarks/results/ehl_mixed_random_standard.json --out docs/accuracy_random_levels.md \\
+        --png docs/figures/accuracy_random_levels.png
 
 Writes a Markdown report: for the points both runs converged with SR > 0, the relative μ difference
 (μ_level − μ_ref)/μ_ref split at λ̄ = 1 (the paper's two regression branches), the asperity load shares, and the
@@ -80,15 +81,46 @@ def report(level_doc: dict, ref_doc: dict, note: str = "") -> str:
     return "\n".join(lines) + "\n"
 
 
+def plot(level_doc: dict, ref_doc: dict, path: str) -> None:
+    """Scatter of μ at the level against μ at the reference level (SR > 0), coloured by λ̄ (log scale)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from matplotlib.colors import LogNorm
+
+    pairs = [p for p in compare(level_doc["rows"], ref_doc["rows"]) if p["rel_err"] is not None]
+    fig, ax = plt.subplots(figsize=(5.5, 4.5))
+    sc = ax.scatter([p["mu_ref"] for p in pairs], [p["mu"] for p in pairs], c=[p["lambda_bar"] for p in pairs],
+                    cmap="viridis", norm=LogNorm(), s=28, edgecolor="k", linewidth=0.4)
+    top = max(max(p["mu"] for p in pairs), max(p["mu_ref"] for p in pairs)) * 1.05
+    ax.plot([0, top], [0, top], "k--", lw=0.8, label="equal")
+    ax.set_xlim(0, top)
+    ax.set_ylim(0, top)
+    ax.set_xlabel(f"μ at {ref_doc['level']}")
+    ax.set_ylabel(f"μ at {level_doc['level']}")
+    ax.set_title(f"Rough μ, {level_doc['level']} vs {ref_doc['level']} ({len(pairs)} random points, SR > 0)", fontsize=9)
+    fig.colorbar(sc, ax=ax, label="λ̄ (Dowson–Higginson film / S_c)")
+    ax.legend(loc="upper left", fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("level_json")
     parser.add_argument("reference_json")
     parser.add_argument("--out", required=True)
     parser.add_argument("--note", default="", help="provenance sentence added under the title")
+    parser.add_argument("--png", default=None, help="also write the scatter plot here (linked from the report)")
     args = parser.parse_args(argv)
-    text = report(json.loads(Path(args.level_json).read_text()), json.loads(Path(args.reference_json).read_text()),
-                  args.note)
+    level_doc, ref_doc = json.loads(Path(args.level_json).read_text()), json.loads(Path(args.reference_json).read_text())
+    text = report(level_doc, ref_doc, args.note)
+    if args.png:
+        plot(level_doc, ref_doc, args.png)
+        rel = Path(args.png).relative_to(Path(args.out).parent) if Path(args.png).is_relative_to(Path(args.out).parent) else Path(args.png)
+        text = text.replace("## Per point", f"![μ {level_doc['level']} against {ref_doc['level']}]({rel})\n\n## Per point", 1)
     Path(args.out).write_text(text)
     print(text.split("## Per point")[0])
     return 0
