@@ -30,7 +30,7 @@ import numpy as np
 from ehl_dataset.contact import ContactCase
 from ehl_dataset.effects import Effects
 from ehl_dataset.lubricant import load_lubricant
-from ehl_dataset.solver import solve_contact
+from ehl_dataset.solver import SOLVER_VERSION, solve_contact
 
 P_H, R_EQ, U_R = [0.5, 1.0, 1.5, 2.0, 2.5], [5, 10, 20, 40, 80], [1, 2, 5, 10, 15, 20]
 SR, TEMP = [0, 0.05, 0.1, 0.2, 0.4, 0.7, 1.0], [25, 50, 75, 100]
@@ -118,8 +118,6 @@ def _report(args, lub, rows, suffix) -> int:
         summary["note"] = (f"{summary['time_limited']} cases stopped at the wall-time limit: the mean time and the "
                            "projection are lower bounds; the extrapolated figures scale each stopped case's time by "
                            "planned/completed time steps (an estimate, not a measurement)")
-    from ehl_dataset.solver import SOLVER_VERSION
-
     report = {"benchmark": "ehl_mixed", "level": args.level, "sample": args.sample, "summary": summary,
               "solver_version": SOLVER_VERSION,
               "rows": rows, "machine": {"platform": platform.platform(), "cpu_count": os.cpu_count(),

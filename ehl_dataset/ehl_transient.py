@@ -78,7 +78,7 @@ CONTACT_FACES_COUETTE = False
 Poiseuille part is driven by the contact pressure (as in Hu & Zhu's unified equation, paper Eq. 1–2); True: those
 faces carry the Couette flux only (the solid contact pressure drives no lubricant). See docs/ehl_solver.md."""
 MAX_SUBSTEPS = 16
-"""Largest number of sub-steps a time step is split into before the run is returned not converged."""
+"""Largest number of sub-steps of the regular attempts (the careful last attempts go to 4·MAX_SUBSTEPS)."""
 RELAX_AFTER = 4
 """Consecutive time steps solved at the first attempt after which the starting sub-step count is halved again."""
 ROUNDS_AFTER_FAILURE = 1
@@ -86,6 +86,8 @@ ROUNDS_AFTER_FAILURE = 1
 more rounds from the same start only repeat the failure at 40 iterations each)."""
 
 
+STEP_ATTEMPTS = ((1, False), (2, False), (4, False), (1, True), (4, True), (MAX_SUBSTEPS, True))
+"""(sub-steps, Couette-only contact faces): the regular attempts of a time step that starts at one sub-step."""
 CAREFUL_ATTEMPTS = ((4, False), (MAX_SUBSTEPS, True), (4 * MAX_SUBSTEPS, True))
 """Last attempts of a step, with the careful Newton settings: pressure steps of at most CAREFUL_PRESSURE_STEP and
 CAREFUL_ITERATIONS iterations. Same discrete equations, only the globalisation differs. Measured on the step that
@@ -102,7 +104,7 @@ def step_attempts(start: int = 1) -> tuple[tuple[int, bool], ...]:
     """(sub-steps, Couette-only contact faces) tried in turn for a time step, beginning with ``start`` sub-steps.
 
     Unified contact faces at start, 2·start, 4·start sub-steps, then whatever of the base sequence
-    ((1, F), (2, F), (4, F), (1, T), (4, T), (MAX_SUBSTEPS, T)) was not tried yet (then the CAREFUL_ATTEMPTS, which
+    STEP_ATTEMPTS ((1, F), (2, F), (4, F), (1, T), (4, T), (MAX_SUBSTEPS, T)) was not tried yet (then the CAREFUL_ATTEMPTS, which
     the run adds with careful Newton settings). The attempts with Couette-only
     contact faces are the fallback for steps where Newton cycles between the contact pressure and the flux it
     throttles (better conditioned, still mass-conserving); such steps are counted in
@@ -114,9 +116,8 @@ def step_attempts(start: int = 1) -> tuple[tuple[int, bool], ...]:
     step — they cost 40 Newton iterations per contact round and were 74 % of the wall time of a hard 80 mm case.
     """
     start = int(min(max(start, 1), MAX_SUBSTEPS))
-    base = ((1, False), (2, False), (4, False), (1, True), (4, True), (MAX_SUBSTEPS, True))
     first = tuple((k, False) for k in (start, 2 * start, 4 * start) if k <= MAX_SUBSTEPS)
-    return first + tuple(a for a in base if a not in first)
+    return first + tuple(a for a in STEP_ATTEMPTS if a not in first)
 
 
 def next_start(start: int, used: int, couette: bool, first_attempt: bool, calm_steps: int) -> tuple[int, int]:
@@ -135,9 +136,6 @@ def next_start(start: int, used: int, couette: bool, first_attempt: bool, calm_s
         return start // 2, 0
     return start, calm_steps
 
-
-STEP_ATTEMPTS = step_attempts(1)
-"""The attempts of a step that starts at one sub-step (see :func:`step_attempts`)."""
 
 
 def roughness_grid(case: ContactCase, lvl: AccuracyLevel, correlation_length_m: float,
