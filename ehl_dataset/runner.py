@@ -16,7 +16,13 @@ Failures
     * SIGINT (Ctrl-C) or SIGTERM -> no new tasks; results already received are written, the workers are stopped,
       the session is closed in the file; :class:`RunSummary` says ``interrupted``. A second Ctrl-C aborts at once.
       SIGKILL loses at most the last ``flush_interval_s`` seconds of results; the file stays readable.
-Resuming computes every row that is not ``ok`` (pending and failed).
+    * ``time_limit_s`` (a wall-time budget per point, passed to the solver) runs out -> the solver returns
+      ``converged=False`` with "wall-time limit of T s reached after k of n time steps ...", so the point is
+      recorded like any non-converged result: ``ok``, not converged, the message in ``error``.
+Resuming computes every row that is not ``ok`` (pending and failed). Non-converged rows are ``ok`` and are *not*
+recomputed, whatever budget the resume is given: there is no retry of non-converged points (a larger budget only
+applies to rows still pending or failed). ``time_limit_s`` is an execution option like ``workers``: it is recorded
+in the session entry of the file, not in the solver configuration that a resume must match.
 """
 
 from __future__ import annotations
@@ -25,8 +31,10 @@ import contextlib
 import dataclasses
 import hashlib
 import importlib
+import inspect
 import json
 import math
+import numbers
 import os
 import signal
 import socket
@@ -57,8 +65,9 @@ _FLOAT_CHECKED = ("mu", "mu_std", "h_min", "h_central", "asperity_load_share", "
 @dataclass(frozen=True)
 class PointTask:
     """Everything a worker needs for one point (picklable): row ``index``, SI ``point`` (p_h, r_eq, u_r, sr,
-    temperature, rq1, rq2), the lubricant as JSON, level, effects, and the solver (``"module:function"`` or a
-    top-level function)."""
+    temperature, rq1, rq2), the lubricant as JSON, level, effects, the solver (``"module:function"`` or a
+    top-level function) and the wall-time budget of the solve ``time_limit_s`` [s] (None: no limit; passed to the
+    solver only when set, so solvers without that keyword work without a budget)."""
 
     index: int
     point: tuple[float, ...]
@@ -66,6 +75,7 @@ class PointTask:
     level: str
     effects: str
     solver: str | Callable = DEFAULT_SOLVER
+    time_limit_s: float | None = None
 
 
 _SOLVER_CACHE: dict[str, Callable] = {}
@@ -156,6 +166,7 @@ def compute_point(task: PointTask) -> dict[str, Any]:
 
     start = time.perf_counter()
     record = None
+    budget = {} if task.time_limit_s is None else {"time_limit_s": task.time_limit_s}
     caught: Counter = Counter()
     try:
         solve = resolve_solver(task.solver)
@@ -164,7 +175,7 @@ def compute_point(task: PointTask) -> dict[str, Any]:
             warnings.simplefilter("always")
             warnings.showwarning = lambda message, category, filename, lineno, *rest: caught.update(
                 [(category.__name__, os.path.basename(filename), lineno)])
-            result = solve(case, _lubricant(task.lubricant_json), level=task.level, effects=task.effects)
+            result = solve(case, _lubricant(task.lubricant_json), level=task.level, effects=task.effects, **budget)
         record = result.to_record()
         status, error = judge_record(record, getattr(result, "message", ""))
     except Exception as err:  # noqa: BLE001 - any solver failure is recorded, the run goes on
@@ -332,18 +343,21 @@ class RunSummary:
 
 def run_factorial(out, factorial: Factorial | str | os.PathLike, *, lubricant=None, level: str | None = None,
                   effects: str | None = None, workers: int = 1, scheduler: str | None = None,
-                  solver: str | Callable = DEFAULT_SOLVER, overwrite: bool = False, **options) -> RunSummary:
+                  solver: str | Callable = DEFAULT_SOLVER, overwrite: bool = False, time_limit_s: float | None = None,
+                  **options) -> RunSummary:
     """Compute ``factorial`` into the HDF5 file ``out``.
 
     ``lubricant`` (name, file or :class:`~ehl_dataset.lubricant.Lubricant`), ``level`` and ``effects`` default to
     the factorial's. If ``out`` exists and records the same factorial, solver and lubricant, the run continues it
     (like :func:`resume_run`); if it records something else the call is refused (``InputError``) unless
-    ``overwrite``. ``options``: see :func:`execute` (window, max_attempts, flush_interval_s, progress, warm_up,
-    stream, log_every_s).
+    ``overwrite``. ``time_limit_s``: wall-time budget of each point's solve [s] (None: none), an execution option
+    that does not enter the solver configuration (see :func:`execute`). ``options``: see :func:`execute` (window,
+    max_attempts, flush_interval_s, progress, warm_up, stream, log_every_s).
     """
     from .lubricant import Lubricant, load_lubricant
 
     _check_options(workers, options)
+    time_limit_s = check_time_limit(time_limit_s, solver)
     plan = factorial if isinstance(factorial, Factorial) else load_factorial(factorial)
     lub = lubricant if isinstance(lubricant, Lubricant) else load_lubricant(lubricant or plan.lubricant)
     config = solver_config(solver, level or plan.level, effects or plan.effects)
@@ -364,21 +378,26 @@ def run_factorial(out, factorial: Factorial | str | os.PathLike, *, lubricant=No
                                     lubricant=lubricant_dict, overwrite=overwrite)
         kind = "run"
     with store:
-        return execute(store, solver=solver, workers=workers, scheduler=scheduler, kind=kind, **options)
+        return execute(store, solver=solver, workers=workers, scheduler=scheduler, kind=kind,
+                       time_limit_s=time_limit_s, **options)
 
 
 def resume_run(path, *, workers: int = 1, scheduler: str | None = None, solver: str | Callable | None = None,
                factorial=None, lubricant=None, level: str | None = None, effects: str | None = None,
-               **options) -> RunSummary:
+               time_limit_s: float | None = None, **options) -> RunSummary:
     """Continue the run recorded in ``path``: compute every row that is not ``ok``.
 
     The solver, level, effects and lubricant are those recorded in the file. The solver's current version (and
     level definition) must equal the recorded ones; ``factorial``, ``lubricant``, ``level``, ``effects`` and
     ``solver``, when given, must match the file too — otherwise the resume is refused with ``InputError``.
+    ``time_limit_s`` (wall-time budget per point [s]) may differ from the earlier sessions' budgets: it is not part
+    of the solver configuration. It applies to the rows computed now (pending and failed); rows stored not
+    converged — including those stopped by an earlier budget — are ``ok`` and are not recomputed.
     """
     from .lubricant import Lubricant, load_lubricant
 
     _check_options(workers, options)
+    time_limit_s = check_time_limit(time_limit_s)  # the solver's keyword is checked by execute()
     with DatasetStore.open(path, "r+") as store:
         recorded = store.solver
         solver_used = solver if solver is not None else recorded.get("function", DEFAULT_SOLVER)
@@ -392,7 +411,8 @@ def resume_run(path, *, workers: int = 1, scheduler: str | None = None, solver: 
             plan = factorial if isinstance(factorial, Factorial) else load_factorial(factorial)
             factorial_hash = plan.points_hash()
         store.check_compatible(factorial_sha256=factorial_hash, solver=config, lubricant=lubricant_dict)
-        return execute(store, solver=solver_used, workers=workers, scheduler=scheduler, kind="resume", **options)
+        return execute(store, solver=solver_used, workers=workers, scheduler=scheduler, kind="resume",
+                       time_limit_s=time_limit_s, **options)
 
 
 def warm_up_indices(points: np.ndarray, candidates: list[int], lubricant: dict, level: str, effects: str,
@@ -431,6 +451,29 @@ def _width(point) -> float:
     return float(point[0]) * float(point[1])
 
 
+def check_time_limit(time_limit_s, solver: str | Callable | None = None) -> float | None:
+    """``time_limit_s`` as a float, or None; ``InputError`` unless it is None or a finite number of seconds > 0.
+
+    With a ``solver`` and a budget, the solve function must accept the keyword ``time_limit_s`` (or ``**kwargs``):
+    otherwise every point would fail on a ``TypeError``, so the run is refused at the start instead.
+    """
+    if time_limit_s is None:
+        return None
+    if isinstance(time_limit_s, bool) or not isinstance(time_limit_s, numbers.Real) \
+            or not math.isfinite(time_limit_s) or time_limit_s <= 0:
+        raise InputError("time_limit_s", time_limit_s, "a positive number of seconds, or None")
+    if solver is not None:
+        try:
+            parameters = inspect.signature(resolve_solver(solver)).parameters.values()
+        except (TypeError, ValueError):  # no signature to inspect (a builtin): let the solve itself decide
+            parameters = None
+        if parameters is not None and not any(p.name == "time_limit_s" or p.kind is p.VAR_KEYWORD
+                                              for p in parameters):
+            raise InputError("time_limit_s", time_limit_s, "None for a solver without a time_limit_s parameter",
+                             f"{solver_reference(solver)} does not accept it")
+    return float(time_limit_s)
+
+
 def _check_options(workers: int, options: dict) -> None:
     if isinstance(workers, bool) or not isinstance(workers, int) or workers < 0:
         raise InputError("workers", workers, "an integer >= 0 (0: compute in this process)")
@@ -450,7 +493,8 @@ def _check_options(workers: int, options: dict) -> None:
 def execute(store: DatasetStore, *, solver: str | Callable = DEFAULT_SOLVER, workers: int = 1,
             scheduler: str | None = None, kind: str = "run", window: int | None = None, max_attempts: int = 3,
             flush_interval_s: float = 5.0, flush_rows: int = 2000, progress: str = "auto",
-            warm_up: bool = True, stream: TextIO | None = None, log_every_s: float = 30.0) -> RunSummary:
+            warm_up: bool = True, stream: TextIO | None = None, log_every_s: float = 30.0,
+            time_limit_s: float | None = None) -> RunSummary:
     """Compute every row of an open (writable) store that is not ``ok``, with the configuration it records.
 
     ``workers``: local processes (0: in this process); ``scheduler``: a Dask scheduler address or
@@ -459,11 +503,17 @@ def execute(store: DatasetStore, *, solver: str | Callable = DEFAULT_SOLVER, wor
     ``warm_up``: with local execution, compute in this process, before the workers start, one pending point of
     each distinct effect plan (:func:`warm_up_indices`), so numba-compiled code is in the cache (and, with fork,
     in memory) for every worker.
+    ``time_limit_s``: wall-time budget of each point's solve [s] (None: none), handed to the solver in every
+    :class:`PointTask`. A point that spends it is stored ``ok``, not converged, with the solver's "wall-time limit"
+    message; later resumes do not recompute it (they compute pending and failed rows only). The budget is an
+    execution option: it is recorded in this session's entry of the ``sessions`` attribute, not in the solver
+    configuration, so runs with different budgets (or none) continue each other.
     """
     from .executors import make_executor
 
     _check_options(workers, {"max_attempts": max_attempts, "window": window, "progress": progress,
                              "flush_interval_s": flush_interval_s})
+    time_limit_s = check_time_limit(time_limit_s, solver)
     recorded = store.solver
     points = store.points()
     if _points_sha256(points) != store.metadata()["factorial_sha256"]:
@@ -473,7 +523,8 @@ def execute(store: DatasetStore, *, solver: str | Callable = DEFAULT_SOLVER, wor
     level, effects = recorded["level"], recorded["effects"]
 
     def task(index: int) -> PointTask:
-        return PointTask(int(index), tuple(float(v) for v in points[index]), lubricant_json, level, effects, solver)
+        return PointTask(int(index), tuple(float(v) for v in points[index]), lubricant_json, level, effects, solver,
+                         time_limit_s)
 
     pending = deque(int(i) for i in store.pending_indices())
     suspects: deque[int] = deque()
@@ -486,7 +537,7 @@ def execute(store: DatasetStore, *, solver: str | Callable = DEFAULT_SOLVER, wor
     started = time.perf_counter()
     executor = None
     session = store.begin_session(kind=kind, workers=workers, scheduler=scheduler or "",
-                                  solver=solver_reference(solver))
+                                  solver=solver_reference(solver), time_limit_s=time_limit_s)
     last_flush = time.monotonic()
 
     def record(result: dict, extra_attempts: int = 0) -> None:

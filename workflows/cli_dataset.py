@@ -52,6 +52,9 @@ def _execution_options(parser: argparse.ArgumentParser, solver_default: str | No
     parser.add_argument("--flush-interval", type=float, default=5.0, help="seconds between writes to disk")
     parser.add_argument("--progress", choices=("auto", "bar", "log", "none"), default="auto")
     parser.add_argument("--log-every", type=float, default=30.0, help="seconds between progress log lines")
+    parser.add_argument("--time-limit-s", type=float, default=None, metavar="SECONDS",
+                        help="wall-time budget per point [s]; a point that spends it is stored as not converged with "
+                             "its message (default: none)")
     parser.add_argument("--no-warm-up", action="store_true",
                         help="do not compute the first point in the coordinator before the workers start")
     parser.add_argument("--solver", default=None,
@@ -63,7 +66,8 @@ def _execution_options(parser: argparse.ArgumentParser, solver_default: str | No
 
 def _options(args) -> dict:
     return {"window": args.window, "max_attempts": args.max_attempts, "flush_interval_s": args.flush_interval,
-            "progress": args.progress, "log_every_s": args.log_every, "warm_up": not args.no_warm_up}
+            "progress": args.progress, "log_every_s": args.log_every, "warm_up": not args.no_warm_up,
+            "time_limit_s": args.time_limit_s}
 
 
 def _finish(summary, as_json: bool) -> int:

@@ -30,6 +30,9 @@ def register(subparsers) -> None:
         p.add_argument("--design", default="D", help="published design of the study to evaluate (default D)")
         p.add_argument("--progress", choices=("auto", "bar", "log", "none"), default="auto",
                        help="stage-1 progress on stderr (default auto: a bar on a terminal, log lines otherwise)")
+        p.add_argument("--time-limit-s", type=float, default=None, metavar="SECONDS",
+                       help="wall-time budget per point [s]; a point that spends it is stored as not converged with "
+                            "its message (default: none)")
         p.add_argument("--allow-unstable", action="store_true",
                        help="keep a regression flagged unstable (ill-conditioned) instead of stopping")
         p.add_argument("--no-clip", action="store_true",
@@ -43,14 +46,17 @@ def register(subparsers) -> None:
 
 
 def run_pipeline_command(args: argparse.Namespace) -> int:
+    from ehl_dataset.runner import check_time_limit
     from ehl_dataset.validation import check_range
 
     from .pipeline import run_pipeline
 
     check_range("workers", args.workers, 1, 1024)
+    check_time_limit(args.time_limit_s)
     result = run_pipeline(args.out_dir, args.factorial, workers=args.workers,
                           scheduler=getattr(args, "scheduler", None), progress=args.progress, design=args.design,
-                          allow_unstable=args.allow_unstable, clip_to_fitted_ranges=not args.no_clip)
+                          allow_unstable=args.allow_unstable, clip_to_fitted_ranges=not args.no_clip,
+                          time_limit_s=args.time_limit_s)
     payload = result.to_dict()
     design = result.stage("design").details
     payload.update({k: design[k] for k in ("power_loss_w", "efficiency", "te_pp_m", "sigma_c_pa", "sigma_b_pa",

@@ -82,20 +82,24 @@ def coefficients_file_name(lubricant_name: str, factorial_name: str) -> str:
 # ---------------------------------------------------------------------- stage 1
 def dataset_stage(out_dir: str | Path, factorial, *, workers: int = 1, scheduler: str | None = None,
                   lubricant=None, level: str | None = None, progress: str = "auto", overwrite: bool = False,
-                  **runner_options) -> StageResult:
+                  time_limit_s: float | None = None, **runner_options) -> StageResult:
     """Compute ``factorial`` (a :class:`~ehl_dataset.factorial.Factorial`, a shipped name or a TOML path) into
-    ``out_dir/dataset.h5``; continue the file if it holds the same run. ``runner_options`` go to
+    ``out_dir/dataset.h5``; continue the file if it holds the same run. ``time_limit_s``: wall-time budget per
+    point [s] (None: none; a point that spends it is stored not converged with its message; an execution option, so
+    a file continues whatever budget it was started with). ``runner_options`` go to
     :func:`ehl_dataset.runner.run_factorial` (``window``, ``max_attempts``, ``stream``, ...)."""
-    from ehl_dataset.runner import run_factorial
+    from ehl_dataset.runner import check_time_limit, run_factorial
 
+    time_limit_s = check_time_limit(time_limit_s)
     started = time.perf_counter()
     plan = _factorial(factorial)
     out = Path(out_dir) / DATASET_FILE
     out.parent.mkdir(parents=True, exist_ok=True)
     resumed = out.exists() and not overwrite
     summary = run_factorial(out, plan, lubricant=lubricant, level=level, workers=workers, scheduler=scheduler,
-                            progress=progress, overwrite=overwrite, **runner_options)
+                            progress=progress, overwrite=overwrite, time_limit_s=time_limit_s, **runner_options)
     details = {"factorial": plan.name, "n_points": summary.n_points, "computed": summary.computed,
+               "time_limit_s": time_limit_s,
                "ok": summary.ok, "failed": summary.failed, "pending": summary.pending,
                "non_converged": summary.non_converged, "resumed": resumed, "interrupted": summary.interrupted,
                "points_per_s": summary.points_per_s, "executor": summary.executor}
@@ -198,13 +202,15 @@ def design_stage(friction, *, study: str = "paper2009", design: str = "D", optio
 def run_pipeline(out_dir: str | Path, factorial=QUICK_FACTORIAL, *, workers: int = 1, scheduler: str | None = None,
                  lubricant=None, level: str | None = None, progress: str = "auto", study: str = "paper2009",
                  design: str = "D", allow_unstable: bool = False, mesh_options=None,
-                 clip_to_fitted_ranges: bool = True, **runner_options) -> PipelineResult:
-    """Stages 1–3 in one process: dataset → coefficient file → design evaluation (see the module docstring)."""
+                 clip_to_fitted_ranges: bool = True, time_limit_s: float | None = None,
+                 **runner_options) -> PipelineResult:
+    """Stages 1–3 in one process: dataset → coefficient file → design evaluation (see the module docstring).
+    ``time_limit_s``: stage 1's wall-time budget per point [s] (:func:`dataset_stage`)."""
     started = time.perf_counter()
     plan = _factorial(factorial)
     out = Path(out_dir)
     stages = [dataset_stage(out, plan, workers=workers, scheduler=scheduler, lubricant=lubricant, level=level,
-                            progress=progress, **runner_options)]
+                            progress=progress, time_limit_s=time_limit_s, **runner_options)]
     dataset = stages[0]
     if dataset.details["interrupted"]:
         raise SolverError(f"dataset stage interrupted ({dataset.details['interrupted']}); run the pipeline again "

@@ -398,3 +398,108 @@ def test_default_solver_records_the_solvers_own_version():
     from ehl_dataset.runner import DEFAULT_SOLVER, solver_config
 
     assert solver_config(DEFAULT_SOLVER, "fast", "auto")["version"] == solver.SOLVER_VERSION
+
+
+# --------------------------------------------------------------------------------------------------------------
+# Wall-time budget per point (time_limit_s)
+# --------------------------------------------------------------------------------------------------------------
+def budget_solve(case, lubricant, level="fast", effects="auto", time_limit_s=None):
+    """The stand-in, telling which budget it was given: raises (a failed row, recomputed by a resume) at
+    p_h > 1 GPa with SR > 0.5, returns converged=False at u_r > 10 (an ok row that a resume keeps)."""
+    if case.p_h > 1e9 and case.sr > 0.5:
+        raise SolverError(f"deliberate failure, budget {time_limit_s}")
+    result = analytic_solve(case, lubricant, level, effects)
+    if case.u_r > 10:
+        result.converged = False
+        result.message = f"stopped, budget {time_limit_s}"
+    return result
+
+
+# p_h 0.5 GPa, r_eq 5 mm, u_r 20 m/s, SR 0.1, 75 °C: Rq 0.05 µm is planned steady smooth (λ̄ 7.0), Rq 0.4 µm
+# transient rough (λ̄ 0.87); the narrowest contact, so the smooth start of the rough solve takes ~20 ms.
+BUDGET_PLAN = {"name": "budget", "level": "fast", "effects": "auto",
+               "axes": {"p_h_gpa": [0.5], "r_eq_mm": [5.0], "u_r_m_s": [20.0], "sr": [0.1], "temp_c": [75.0],
+                        "roughness_um": [[0.05, 0.05], [0.4, 0.4]]}}
+
+
+def test_a_point_that_spends_its_budget_is_stored_not_converged_with_the_message(tmp_path):
+    """The real solver (fast level) with a 1 ms budget: the rough point stops before its first time step and is
+    stored ok, not converged, with the solver's message; the steady smooth point ignores the budget; nothing
+    raises; the session records the budget."""
+    from ehl_dataset.lubricant import load_lubricant
+    from ehl_dataset.runner import PointTask, compute_point
+    from ehl_dataset.store import OK
+
+    plan = factorial_from_dict(BUDGET_PLAN)
+    rough = tuple(float(v) for v in plan.points()[1])
+    task = PointTask(1, rough, json.dumps(load_lubricant("atf").to_json_dict()), "fast", "auto", time_limit_s=1e-3)
+    out = compute_point(task)
+    assert out["status"] == OK and out["record"] is not None and not out["record"]["converged"]
+    assert "wall-time limit of 0.001 s reached after 0 of" in out["error"]
+
+    summary = run_factorial(tmp_path / "b.h5", plan, workers=0, time_limit_s=1e-3, progress="none")
+    assert summary.ok == 2 and summary.failed == 0 and summary.pending == 0 and summary.non_converged == 1
+    table = read_table(tmp_path / "b.h5", status=None)
+    smooth, stopped = table.iloc[0], table.iloc[1]
+    assert smooth["converged"] and smooth["error"] == ""
+    assert stopped["status"] == "ok" and not stopped["converged"]
+    assert stopped["error"].startswith("not converged:") and "wall-time limit of 0.001 s reached after 0 of" in \
+        stopped["error"]
+    meta = read_metadata(tmp_path / "b.h5")
+    assert meta["sessions"][0]["time_limit_s"] == 1e-3 and "time_limit_s" not in meta["solver"]
+    # a resume (here without a budget) does not recompute the stopped point: it is an ok row
+    assert resume_run(tmp_path / "b.h5", workers=0, progress="none").computed == 0
+
+
+@pytest.mark.parametrize("bad", [0, 0.0, -1, -1.0, math.nan, math.inf, -math.inf, "1", True])
+def test_invalid_budgets_are_refused_naming_time_limit_s(tmp_path, plan, bad):
+    path = tmp_path / "r.h5"
+    with pytest.raises(InputError, match="invalid time_limit_s="):
+        run_factorial(path, plan, workers=0, solver=analytic_solve, progress="none", time_limit_s=bad)
+    assert not path.exists()
+    run_factorial(path, plan, workers=0, solver=budget_solve, progress="none")
+    before = read_metadata(path)
+    with pytest.raises(InputError, match="invalid time_limit_s="):
+        resume_run(path, workers=0, progress="none", time_limit_s=bad)
+    assert read_metadata(path)["sessions"] == before["sessions"]  # refused before a session began
+
+
+def test_a_budget_for_a_solver_without_the_keyword_is_refused_at_the_start(tmp_path, plan):
+    """Custom solvers without ``time_limit_s`` keep working without a budget; with one, the run is refused at
+    once (every point would otherwise fail on a TypeError)."""
+    path = tmp_path / "r.h5"
+    with pytest.raises(InputError, match=r"invalid time_limit_s=5\.0.*analytic_solve does not accept it"):
+        run_factorial(path, plan, workers=0, solver=analytic_solve, progress="none", time_limit_s=5.0)
+    assert not path.exists()
+    assert run_factorial(path, plan, workers=0, solver=analytic_solve, progress="none").ok == 16
+    with pytest.raises(InputError, match="time_limit_s"):
+        resume_run(path, workers=0, progress="none", time_limit_s=5.0)
+
+
+def test_the_budget_is_not_part_of_the_solver_configuration(tmp_path, plan):
+    """Runs and resumes with different budgets (or none) continue each other; the budget reaches the solver of the
+    rows computed in each session; non-converged rows are ok and are not recomputed by a resume."""
+    from ehl_dataset.runner import solver_config
+
+    path = tmp_path / "r.h5"
+    first = run_factorial(path, plan, workers=0, solver=budget_solve, progress="none", time_limit_s=2.5)
+    assert first.failed == 4 and first.non_converged == 6
+    meta = read_metadata(path)
+    assert meta["solver"] == solver_config(budget_solve, "fast", "auto")
+    table = read_table(path, status=None)
+    failed = table["status"] == "failed"
+    stopped = (table["status"] == "ok") & ~table["converged"]
+    assert table.loc[failed, "error"].str.contains("budget 2.5").all()
+    assert table.loc[stopped, "error"].str.contains("budget 2.5").all()
+
+    again = resume_run(path, workers=0, progress="none")  # no budget: compatible
+    assert again.computed == 4 and again.failed == 4
+    assert read_table(path, status=None).loc[failed, "error"].str.contains("budget None").all()
+    third = run_factorial(path, plan, workers=0, solver=budget_solve, progress="none", time_limit_s=60)
+    assert third.computed == 4
+    after = read_table(path, status=None)
+    assert after.loc[failed, "error"].str.contains("budget 60.0").all() and (after.loc[failed, "attempts"] == 3).all()
+    assert after.loc[stopped, "error"].str.contains("budget 2.5").all() and (after.loc[stopped, "attempts"] == 1).all()
+    meta = read_metadata(path)
+    assert [s["time_limit_s"] for s in meta["sessions"]] == [2.5, None, 60.0]
+    assert meta["solver"] == solver_config(budget_solve, "fast", "auto")

@@ -107,3 +107,43 @@ def test_bad_input_is_one_line_and_exit_2(tmp_path, plan_file, capsys, argv, fra
     err = capsys.readouterr().err.strip()
     assert len(err.splitlines()) == 1 and fragment in err, err
     assert not (tmp_path / "a.h5").exists()
+
+
+# one steady smooth point (Rq 0.05 µm, λ̄ 7.0) and one transient rough point (Rq 0.4 µm, λ̄ 0.87), narrow contact
+BUDGET_PLAN = ('name = "budget"\nlevel = "fast"\n[axes]\np_h_gpa = [0.5]\nr_eq_mm = [5]\nu_r_m_s = [20]\nsr = [0.1]\n'
+               'temp_c = [75]\nroughness_um = [[0.05, 0.05], [0.4, 0.4]]\n')
+
+
+def test_time_limit_stops_a_rough_point_and_is_recorded_in_the_session(tmp_path, capsys):
+    plan = tmp_path / "budget.toml"
+    plan.write_text(BUDGET_PLAN)
+    out = tmp_path / "budget.h5"
+    code = main(["dataset", "run", "--factorial", str(plan), "--out", str(out), "--workers", "0",
+                 "--time-limit-s", "0.001", "--progress", "none", "--json"])
+    payload = json.loads(capsys.readouterr().out)
+    assert code == 0 and payload["ok"] == 2 and payload["non_converged"] == 1 and payload["pending"] == 0
+    assert main(["dataset", "info", str(out), "--json"]) == 0
+    info = json.loads(capsys.readouterr().out)
+    assert info["sessions"][0]["time_limit_s"] == 0.001 and "time_limit_s" not in info["solver"]
+    # a resume with another budget is compatible; the stopped point is an ok row and is not recomputed
+    assert main(["dataset", "resume", str(out), "--workers", "0", "--time-limit-s", "60", "--progress", "none",
+                 "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["computed"] == 0
+
+
+@pytest.mark.parametrize("value", ["0", "-1", "nan", "inf"])
+def test_a_bad_time_limit_is_one_line_and_exit_2(tmp_path, plan_file, capsys, value):
+    out = tmp_path / "a.h5"
+    assert main(["dataset", "run", "--factorial", str(plan_file), "--out", str(out), "--workers", "0",
+                 "--time-limit-s", value]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and "invalid time_limit_s=" in err, err
+    assert not out.exists()
+    assert main(["dataset", "run", "--factorial", str(plan_file), "--out", str(out), "--workers", "0", "--solver",
+                 SOLVER, "--progress", "none"]) == 0
+    assert main(["dataset", "resume", str(out), "--workers", "0", "--time-limit-s", value]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and "invalid time_limit_s=" in err, err
+    # the stand-in solver has no time_limit_s parameter: a valid budget is refused for it, in one line
+    assert main(["dataset", "resume", str(out), "--workers", "0", "--time-limit-s", "5"]) == 2
+    assert "film_solve does not accept it" in capsys.readouterr().err

@@ -118,6 +118,21 @@ def test_pipeline_cli_rejects_bad_input(tmp_path, capsys):
     assert "workers" in capsys.readouterr().err
     assert main(["pipeline", "quick", "--out-dir", str(tmp_path), "--factorial", "no_such_factorial"]) == 2
     assert not (tmp_path / DATASET_FILE).exists()
+    capsys.readouterr()
+    for value in ("0", "-1", "nan", "inf"):
+        assert main(["pipeline", "quick", "--out-dir", str(tmp_path / "run"), "--time-limit-s", value]) == 2
+        err = capsys.readouterr().err.strip()
+        assert len(err.splitlines()) == 1 and "invalid time_limit_s=" in err, err
+        assert not (tmp_path / "run").exists()
+
+
+def test_dataset_stage_passes_the_time_limit_and_reports_it(tmp_path, tiny):
+    """Stage 1 with a budget: the 4 smooth points ignore it (steady solves), the session records it."""
+    from ehl_dataset.store import read_metadata
+
+    stage = dataset_stage(tmp_path, tiny, workers=0, progress="none", time_limit_s=30)
+    assert stage.details["time_limit_s"] == 30.0 and stage.details["ok"] == 4
+    assert read_metadata(stage.artefact)["sessions"][0]["time_limit_s"] == 30.0
 
 
 @pytest.fixture(scope="module")
