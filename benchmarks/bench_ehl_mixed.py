@@ -58,11 +58,15 @@ def main(argv=None) -> int:
     parser.add_argument("--out", default=None)
     parser.add_argument("--shard", default=None, help="I/N: run every N-th case starting at I (one process per core)")
     parser.add_argument("--merge", nargs="+", default=None, help="shard JSON files to merge into one report")
+    parser.add_argument("--max-r-eq-mm", type=float, default=None,
+                        help="keep only the drawn points with r_eq <= this [mm] (same draws, a subset)")
     parser.add_argument("--time-limit-s", type=float, default=None,
                         help="wall-time budget per case [s]; a case that spends it counts as not finished, and the "
                              "mean time is then a lower bound (reported as such)")
     args = parser.parse_args(argv)
     cases = corner_cases() if args.sample == "corners" else random_cases(args.n, args.seed)
+    if args.max_r_eq_mm is not None:
+        cases = [c for c in cases if c[1] <= args.max_r_eq_mm]
     lub = load_lubricant("atf")
     suffix = ""
     if args.merge:
@@ -84,6 +88,10 @@ def main(argv=None) -> int:
                    "yielded_load_share": res.extra.get("yielded_load_share"), "p_max_pa": res.p_max,
                    "couette_fallback_steps": res.extra.get("couette_fallback_steps"),
                    "n_steps": res.extra.get("n_steps"), "substep_steps": res.extra.get("substep_steps"),
+                   "n_steps_planned": res.extra.get("n_steps_planned"), "mu_sem": res.mu_sem,
+                   "mu_inefficiency_steps": res.extra.get("mu_inefficiency_steps"),
+                   "mu_sem_target_met": res.extra.get("mu_sem_target_met"),
+                   "asperity_load_share_sem": res.extra.get("asperity_load_share_sem"),
                    "time_limited": "wall-time limit" in res.message, "message": res.message}
         except Exception as err:  # recorded, the sweep goes on
             row = {"case": case_args, "converged": False, "error": f"{type(err).__name__}: {err}"}

@@ -35,6 +35,7 @@ from .ehl_newton import ReynoldsProblem, newton_solve
 from .levels import AccuracyLevel
 from .lubricant import LubricantState
 from .result import ContactResult
+from .time_average import RELIABLE_LENGTH, time_mean
 from .traction import friction_components
 from .validation import SolverError
 
@@ -84,6 +85,13 @@ RELAX_AFTER = 4
 ROUNDS_AFTER_FAILURE = 1
 """Contact rounds allowed after a Newton solve of the step failed (the added contact nodes sometimes rescue it;
 more rounds from the same start only repeat the failure at 40 iterations each)."""
+
+
+MU_FLOOR = 0.01
+"""|μ| below which the standard-error target of the time average is taken relative to this value instead (pure
+rolling: μ ≈ 0.001, whose relative error is not a useful accuracy measure)."""
+CHECK_FRACTION = 0.25
+"""An extended window is tested every CHECK_FRACTION × the base averaging window (in steps)."""
 
 
 STEP_ATTEMPTS = ((1, False), (2, False), (4, False), (1, True), (4, True), (MAX_SUBSTEPS, True))
@@ -202,10 +210,18 @@ def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel
     t_end = lvl.n_passes * (lvl.x_end - lvl.x_start)
     n_steps = min(max(int(math.ceil(t_end / d_t)), 8), lvl.max_steps_rough)
     d_t = t_end / n_steps
+    # the averaging window starts after the start-up transient of the base run and may be extended (same time
+    # step) until the standard error of the time-averaged μ meets the level's target, up to max_passes
+    first_avg_base = int(n_steps * (1.0 - lvl.average_fraction))
+    n_max = n_steps
+    if lvl.mu_sem_target > 0.0 and lvl.max_passes > lvl.n_passes:
+        n_max = int(round(n_steps * lvl.max_passes / lvl.n_passes))
+    check_every = max(int(CHECK_FRACTION * (n_steps - first_avg_base)), 1)
     time_scale = a / case.u_r
     # the roughness amplitude is ramped in over the first RAMP_FRACTION of the start-up phase (excluded from the
     # averages anyway): switching it on at once is a shock the first Newton steps cannot absorb at low λ̄
     t_ramp = RAMP_FRACTION * (1.0 - lvl.average_fraction) * t_end
+    # laid out for the base run (a run that stops there is the same whatever its cap); an extension reads on
     surfaces = plan_surfaces(case, x * a, t_end * time_scale, profile)
     problem.h_closed = H_CLOSED_M / film_scale
     problem.p_cap = YIELD_PRESSURE_PA / case.p_h
@@ -223,7 +239,12 @@ def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel
     failure = ""
     fallback_steps = substep_steps = careful_steps = calm_steps = 0
     start_substeps = 1
-    for step in range(n_steps):
+    window_check = None
+    for step in range(n_max):
+        if step >= n_steps and (step - n_steps) % check_every == 0:
+            window_check = time_mean(history["mu"][first_avg_base:])
+            if window_check.within(lvl.mu_sem_target * max(abs(window_check.mean), MU_FLOOR)):
+                break
         if time_limit_s is not None and time.perf_counter() - start > time_limit_s:
             failure = (f"wall-time limit of {time_limit_s:g} s reached after {step} of {n_steps} time steps "
                        f"(t = {t * time_scale:.3e} s)")
@@ -301,9 +322,13 @@ def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel
     steps = len(history["t"])
     if steps == 0:
         return _failed(case, state, lvl, plan, iterations, start, failure, worst)
-    first_avg = int(steps * (1.0 - lvl.average_fraction)) if converged else max(steps // 2, 0)
+    first_avg = first_avg_base if (converged and steps >= n_steps) else max(steps // 2, 0)
     window = slice(first_avg, steps)
     mu = np.asarray(history["mu"][window])
+    mu_mean = time_mean(mu) if mu.size >= 2 else None
+    sem = mu_mean.standard_error if mu_mean else math.nan
+    share_sem = time_mean(history["share"][window]).standard_error if mu.size >= 2 else math.nan
+    target_met = bool(mu_mean) and mu_mean.within(lvl.mu_sem_target * max(abs(mu_mean.mean), MU_FLOOR))
     h_dh, lambda_bar = dowson_higginson_lambda(case, state)
     film = outcome.h * film_scale
     result = ContactResult(
@@ -313,13 +338,21 @@ def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel
         p_max=float(np.max(history["p_max"][window])), converged=converged, iterations=int(iterations),
         wall_time=time.perf_counter() - start, level=lvl.name, effects=_recorded_plan(plan), lambda_bar=lambda_bar,
         asperity_load_share=float(np.mean(history["share"][window])), residuals=worst,
-        message=_message(converged, failure, steps, fallback_steps, careful_steps),
+        mu_sem=sem,
+        message=_message(converged, failure, steps, fallback_steps, careful_steps)
+        + _window_note(converged, lvl, target_met, sem, mu_mean, steps, n_steps),
         x=x * a, pressure=p * case.p_h, film=film,
         extra={"n_nodes": int(x.size), "dx_m": float(dx * a), "dt_s": float(d_t * time_scale),
-               "n_steps": int(steps), "n_steps_planned": int(n_steps),
+               "n_steps": int(steps), "n_steps_planned": int(n_steps), "n_steps_max": int(n_max),
+               "mu_inefficiency_steps": mu_mean.inefficiency if mu_mean else math.nan,
+               "mu_effective_samples": mu_mean.effective_samples if mu_mean else math.nan,
+               "mu_sem_reliable": bool(mu_mean.reliable) if mu_mean else False,
+               "mu_sem_target": float(lvl.mu_sem_target), "mu_sem_target_met": target_met,
+               "asperity_load_share_sem": float(share_sem),
+               "averaging_time_s": float((steps - first_avg) * d_t * time_scale),
                "courant_effective": float(d_t / dx), "average_from_step": int(first_avg),
                "roughness_resolution_capped": capped, "roughness_profile": profile.source,
-               "roughness_correlation_length_m": float(profile.correlation_length), "surfaces_independent": bool(surfaces.independent),
+               "roughness_correlation_length_m": float(profile.correlation_length), "surfaces_independent": bool(surfaces.disjoint_until(t * time_scale)),
                "h_min_dowson_higginson_m": h_dh, "h_closed_m": H_CLOSED_M,
                "yield_pressure_pa": YIELD_PRESSURE_PA,
                "yielded_load_share": float(np.mean(history["yielded"][window])),
@@ -347,6 +380,18 @@ def _message(converged: bool, failure: str, steps: int, fallback_steps: int, car
     if careful_steps:
         notes.append(f"{careful_steps} with careful Newton settings")
     return "converged" + (f" ({', '.join(notes)})" if notes else "")
+
+
+def _window_note(converged: bool, lvl: AccuracyLevel, target_met: bool, sem: float, mu_mean, steps: int,
+                 n_steps: int) -> str:
+    """"; ..." when a converged run's time-averaged μ missed the level's standard-error target or reliability
+    (window at its cap)."""
+    if not converged or lvl.mu_sem_target <= 0.0 or target_met or mu_mean is None:
+        return ""
+    why = (f"standard error of the time-averaged mu {sem:.2g} above the target {lvl.mu_sem_target:g} x "
+           f"max(|mu|, {MU_FLOOR:g})" if sem > lvl.mu_sem_target * max(abs(mu_mean.mean), MU_FLOOR) else
+           f"averaging window shorter than {RELIABLE_LENGTH:g} correlation times (its standard error is uncertain)")
+    return f"; {why} after {steps} steps ({steps / n_steps:.2g} x the base run, the level's cap)"
 
 
 def _pass_through_film(film: np.ndarray, closed: np.ndarray, h_closed: float) -> np.ndarray:

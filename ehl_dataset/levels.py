@@ -29,10 +29,16 @@ class AccuracyLevel:
     Newton: ``tol_residual`` max relative Reynolds residual (scaled by the Couette flux ρ̄H), ``tol_load`` relative
     load-balance error, ``tol_step`` max pressure correction [p_h]; ``max_iterations`` per continuation stage.
     Transient (phase 2): ``dx_rough`` spacing [roughness correlation length], ``dx_rough_max`` cap [a];
-    ``courant`` time step as a fraction of dx/u_r; ``n_passes`` how many times the rolling speed carries the
-    surfaces through the contact width 2a (start-up transient); ``average_fraction`` fraction of the steps used for
-    the time average (the last ones); ``max_nodes_rough`` upper bound on the grid size; ``max_steps_rough`` upper
-    bound on the number of time steps (the time step grows beyond ``courant``·dx when needed; recorded).
+    ``courant`` time step as a fraction of dx/u_r; ``n_passes`` length of the base run in units of the domain length / u_r
+    (the time the rolling speed needs to carry the surfaces through the domain); ``average_fraction`` fraction of the
+    base run's steps used for the time average (the last ones; the rest is the start-up transient); ``max_nodes_rough`` upper bound on the grid size; ``max_steps_rough`` upper
+    bound on the number of time steps (the time step grows beyond ``courant``·dx when needed; recorded);
+    ``mu_sem_target`` relative standard error of the time-averaged μ (relative to max(|μ|, 0.01)) at which the
+    averaging window may stop (once it spans 20 correlation times, :data:`ehl_dataset.time_average.RELIABLE_LENGTH`):
+    a run whose μ fluctuates more is continued with the same time step, up to
+    ``max_passes`` × the domain length / u_r (0: fixed window of ``n_passes``). The passage of asperities makes μ
+    of a rough contact fluctuate by up to ±100 % over one pass at λ̄ < 1, so a fixed short window gives a
+    time average with a sampling error of tens of percent (docs/ehl_solver.md, "Sampling error of μ").
     """
 
     name: str
@@ -55,6 +61,8 @@ class AccuracyLevel:
     average_fraction: float = 0.5
     max_nodes_rough: int = 1024
     max_steps_rough: int = 600
+    mu_sem_target: float = 0.10
+    max_passes: float = 12.0
 
     def with_domain(self, x_start: float, x_end: float) -> "AccuracyLevel":
         """Copy with another domain [x_start, x_end] (in units of a), e.g. −2b…1.5b for the Huang case."""
@@ -66,11 +74,13 @@ class AccuracyLevel:
 LEVELS: dict[str, AccuracyLevel] = {
     "fast": AccuracyLevel("fast", dx_fine=6e-3, dx_coarse=4e-2, inlet_resolution=0.25, tol_residual=1e-5, tol_load=1e-5, tol_step=1e-5,
                           max_iterations=50, dx_rough=1.0, dx_rough_max=0.02, courant=2.0, n_passes=1.5,
-                          max_nodes_rough=512, max_steps_rough=300),
+                          max_nodes_rough=512, max_steps_rough=300,
+                          mu_sem_target=0.20, max_passes=6.0),
     "standard": AccuracyLevel("standard"),
     "reference": AccuracyLevel("reference", dx_fine=6e-4, dx_coarse=8e-3, transition=0.2, inlet_resolution=0.03,
                                tol_residual=1e-7, tol_load=1e-9, tol_step=1e-7, max_iterations=80, dx_rough=0.25, dx_rough_max=0.005,
-                               courant=0.5, n_passes=3.0, max_nodes_rough=4096, max_steps_rough=4000),
+                               courant=0.5, n_passes=3.0, max_nodes_rough=4096, max_steps_rough=4000,
+                               mu_sem_target=0.03, max_passes=40.0),
 }
 """The named levels. ``standard`` is the default of :func:`ehl_dataset.solver.solve_contact`."""
 

@@ -12,6 +12,7 @@ import numpy as np
 RECORD_UNITS: dict[str, str] = {
     "mu": "1",
     "mu_std": "1",
+    "mu_sem": "1",
     "h_min": "m",
     "h_central": "m",
     "lambda_bar": "1",
@@ -31,7 +32,8 @@ class ContactResult:
     """Outcome of an EHL line-contact solve.
 
     Scalars: ``mu`` friction coefficient [-] (time average for transient runs), ``mu_std`` its standard deviation
-    over the averaging window [-] (0 for steady runs), ``h_min`` minimum film [m], ``h_central`` film at x = 0 [m],
+    over the averaging window [-] (0 for steady runs), ``mu_sem`` the standard error of that time average
+    [-] (autocorrelation-corrected, :mod:`ehl_dataset.time_average`; 0 for steady runs), ``h_min`` minimum film [m], ``h_central`` film at x = 0 [m],
     ``lambda_bar`` Dowson–Higginson film over composite roughness [-] (inf for smooth surfaces),
     ``asperity_load_share`` fraction of the load carried where asperities touch [-], ``p_max`` [Pa],
     ``converged``, ``iterations``, ``wall_time`` [s], ``effects`` the plan that was simulated, ``level`` the accuracy
@@ -49,6 +51,7 @@ class ContactResult:
     level: str
     effects: dict[str, Any]
     mu_std: float = 0.0
+    mu_sem: float = 0.0
     lambda_bar: float = math.inf
     asperity_load_share: float = 0.0
     residuals: dict[str, float] = field(default_factory=dict)
@@ -63,6 +66,7 @@ class ContactResult:
         return {
             "mu": float(self.mu),
             "mu_std": float(self.mu_std),
+            "mu_sem": float(self.mu_sem),
             "h_min": float(self.h_min),
             "h_central": float(self.h_central),
             "lambda_bar": float(self.lambda_bar),

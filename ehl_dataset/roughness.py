@@ -361,6 +361,18 @@ class SurfacePair:
         r2 = self.profile.sample(self.x - self.u2 * tt - self.offset2) * self.scale2
         return r1, r2
 
+    def disjoint_until(self, t_s: float) -> bool:
+        """True when, over 0 ≤ t ≤ ``t_s`` [s] (which may exceed ``t_end``: the profile is then read on,
+        periodically), the two surfaces read disjoint parts of the periodic profile."""
+        t = max(float(t_s), self.t_end)
+        (a1, b1), (a2, b2) = _stretch(self.x, self.u1, t, self.offset1), _stretch(self.x, self.u2, t, self.offset2)
+        length = self.profile.length
+        l1, l2 = b1 - a1, b2 - a2
+        if l1 + l2 >= length:
+            return False
+        shift = (a2 - a1) % length
+        return l1 <= shift and shift + l2 <= length
+
     def stretches(self) -> tuple[tuple[float, float], tuple[float, float]]:
         """Profile-coordinate intervals [m] (unwrapped) that surfaces 1 and 2 read over the run."""
         return (_stretch(self.x, self.u1, self.t_end, self.offset1), _stretch(self.x, self.u2, self.t_end,

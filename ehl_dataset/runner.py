@@ -130,7 +130,8 @@ def describe_exception(err: BaseException) -> str:
 def judge_record(record: dict, message: str = "") -> tuple[int, str]:
     """Status and error text of a solver record: non-converged -> ok + message; converged with NaN -> failed."""
     if not record.get("converged", False):
-        return OK, f"not converged: {message}".strip()
+        text = message.strip()
+        return OK, text if text.startswith("not converged") else f"not converged: {text}".strip()
     bad = [name for name in _FLOAT_CHECKED if not math.isfinite(float(record.get(name, math.nan)))]
     if math.isnan(float(record.get("lambda_bar", math.nan))):
         bad.append("lambda_bar")

@@ -52,13 +52,13 @@ EFFECTS_WIDTH = 1536
 ERROR_WIDTH = 512
 """Bytes reserved per row for the error text (longer text is cut, keeping its start and end)."""
 
-OPTIONAL_COLUMNS = frozenset({"warnings"})
+OPTIONAL_COLUMNS = frozenset({"warnings", "mu_sem"})
 """Columns added within format version 1: files written before them are read (as "") and resumed without them."""
 
 WARNINGS_WIDTH = 256
 """Bytes reserved per row for the summary of Python warnings raised during the solve."""
 
-_FLOAT_OUTPUTS = ("mu", "mu_std", "h_min", "h_central", "lambda_bar", "asperity_load_share", "p_max", "wall_time")
+_FLOAT_OUTPUTS = ("mu", "mu_std", "mu_sem", "h_min", "h_central", "lambda_bar", "asperity_load_share", "p_max", "wall_time")
 
 _DESCRIPTIONS: dict[str, str] = {
     "p_h": "maximum Hertz pressure",
@@ -70,6 +70,7 @@ _DESCRIPTIONS: dict[str, str] = {
     "rq2": "RMS roughness of surface 2",
     "mu": "friction coefficient (time average)",
     "mu_std": "standard deviation of mu over the averaging window",
+    "mu_sem": "standard error of the time-averaged mu (autocorrelation-corrected; 0 for steady solves)",
     "h_min": "minimum film thickness",
     "h_central": "film thickness at x = 0",
     "lambda_bar": "Dowson-Higginson minimum film over composite roughness",
@@ -132,7 +133,7 @@ def _columns() -> tuple[Column, ...]:
 TABLE_COLUMNS: tuple[str, ...] = (
     "point", *POINT_FIELDS, "mu", "mu_std", "h_min", "h_central", "lambda_bar", "asperity_load_share", "p_max",
     "iterations", "converged", "wall_time", "effects", "level", "status", "error",
-    "attempts", "worker_time", "finished_at", "worker", "warnings",
+    "attempts", "worker_time", "finished_at", "worker", "warnings", "mu_sem",
 )
 """Column order of :func:`read_table` (the first 22 are the contract used by the surrogate stage)."""
 

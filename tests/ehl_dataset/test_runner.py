@@ -503,3 +503,12 @@ def test_the_budget_is_not_part_of_the_solver_configuration(tmp_path, plan):
     meta = read_metadata(path)
     assert [s["time_limit_s"] for s in meta["sessions"]] == [2.5, None, 60.0]
     assert meta["solver"] == solver_config(budget_solve, "fast", "auto")
+
+
+def test_a_non_converged_message_is_stored_with_one_prefix():
+    """The transient solver's messages already start with "not converged"; the stored error text names it once."""
+    from ehl_dataset.runner import judge_record
+
+    status, text = judge_record({"converged": False}, "not converged: wall-time limit of 1 s reached")
+    assert text == "not converged: wall-time limit of 1 s reached"
+    assert judge_record({"converged": False}, "stalled")[1] == "not converged: stalled"

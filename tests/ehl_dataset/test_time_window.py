@@ -1,0 +1,51 @@
+"""The averaging window of transient rough runs: standard error of the time-averaged μ, and the window extension
+until the level's standard-error target is met (ehl_dataset.ehl_transient, levels.mu_sem_target/max_passes)."""
+
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from ehl_dataset.contact import ContactCase
+from ehl_dataset.effects import Effects
+from ehl_dataset.levels import LEVELS
+from ehl_dataset.solver import solve_contact
+from ehl_dataset.time_average import time_mean
+
+CASE = ContactCase.from_engineering(0.5, 5, 10, 0.7, 25, 0.7, 0.7)  # λ̄ ≈ 1.2: asperities pass and touch
+SHORT = replace(LEVELS["fast"], name="short", n_passes=1.0, max_steps_rough=60)
+
+
+def test_fixed_window_reports_its_standard_error():
+    """mu_sem_target = 0: the window is the last half of the base run, as before; μ is its mean and mu_sem the
+    autocorrelation-corrected standard error of that mean, between σ/√n (independent steps) and σ (one sample)."""
+    res = solve_contact(CASE, "atf", replace(SHORT, mu_sem_target=0.0), Effects.full())
+    assert res.converged, res.message
+    assert res.extra["n_steps"] == res.extra["n_steps_planned"] == 60
+    window = res.extra["mu_series"][res.extra["average_from_step"]:]
+    assert window.size == 30
+    assert res.mu == pytest.approx(window.mean(), rel=1e-12)
+    assert res.mu_sem == pytest.approx(time_mean(window).standard_error, rel=1e-12)
+    assert window.std() / np.sqrt(window.size) <= res.mu_sem <= window.std()
+
+
+def test_unmet_target_extends_the_window_to_the_cap_and_says_so():
+    """A target no run can meet (1e−6 relative) extends the run with the same time step to max_passes (here 2 × the
+    base run) and the converged result says the target was missed; the averaging starts after the base run's
+    start-up and runs to the end."""
+    level = replace(SHORT, mu_sem_target=1e-6, max_passes=2.0)
+    res = solve_contact(CASE, "atf", level, Effects.full())
+    assert res.converged and "above the target" in res.message or "shorter than" in res.message, res.message
+    assert res.extra["n_steps"] == res.extra["n_steps_max"] == 120
+    assert res.extra["average_from_step"] == 30
+    assert res.extra["mu_sem_target_met"] is False
+    assert res.extra["averaging_time_s"] == pytest.approx(90 * res.extra["dt_s"], rel=1e-9)
+
+
+def test_met_target_stops_at_the_base_run():
+    """A loose target (100 % of μ: the sample standard deviation of μ over the window is far below μ) is met at
+    the end of the base run: no extension, and the message is the plain "converged"."""
+    level = replace(SHORT, mu_sem_target=1.0, max_passes=4.0)
+    res = solve_contact(CASE, "atf", level, Effects.full())
+    assert res.converged and res.message == "converged", res.message
+    assert res.extra["n_steps"] == 60 and res.extra["mu_sem_target_met"] is True
