@@ -62,6 +62,7 @@ def _solve(args) -> int:
     payload = {
         "mu": result.mu,
         "mu_std": result.mu_std,
+        "mu_sem": result.mu_sem,
         "h_min_m": result.h_min,
         "h_central_m": result.h_central,
         "p_max_pa": result.p_max,
@@ -89,7 +90,8 @@ def _human(d: dict) -> str:
     lam = "inf (smooth)" if d["lambda_bar"] is None else f"{d['lambda_bar']:.3f}"
     status = "converged" if d["converged"] else f"NOT CONVERGED ({d['message']})"
     lines = [
-        f"mu            {d['mu']:.5f}" + (f"  (std {d['mu_std']:.5f})" if d["mu_std"] else ""),
+        f"mu            {d['mu']:.5f}" + (f"  (standard error of the time average {d['mu_sem']:.5f}, "
+                                              f"std over time {d['mu_std']:.5f})" if d["mu_std"] else ""),
         f"h_min         {d['h_min_m'] * 1e9:.2f} nm",
         f"h_central     {d['h_central_m'] * 1e9:.2f} nm",
         f"p_max         {d['p_max_pa'] / 1e9:.4f} GPa",

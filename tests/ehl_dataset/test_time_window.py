@@ -49,3 +49,14 @@ def test_met_target_stops_at_the_base_run():
     res = solve_contact(CASE, "atf", level, Effects.full())
     assert res.converged and res.message == "converged", res.message
     assert res.extra["n_steps"] == 60 and res.extra["mu_sem_target_met"] is True
+    # the roughness is laid out for the base run, so a run that could have been extended but was not is the
+    # fixed-window run, bit for bit
+    fixed = solve_contact(CASE, "atf", replace(SHORT, mu_sem_target=0.0), Effects.full())
+    assert res.mu == fixed.mu and res.h_min == fixed.h_min
+
+
+def test_fast_level_keeps_its_fixed_window_and_reports_the_error():
+    """``fast`` has no standard-error target: its runs are the fixed-window runs of solver version -5 (on which
+    its 64-corner stability was measured), now with the standard error reported."""
+    assert LEVELS["fast"].mu_sem_target == 0.0
+    assert LEVELS["standard"].mu_sem_target > 0.0 and LEVELS["standard"].max_passes > LEVELS["standard"].n_passes
