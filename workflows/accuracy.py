@@ -76,6 +76,8 @@ class CaseRun:
     message: str = ""
     mu_error: float = math.nan
     h_min_error: float = math.nan
+    mu_sem: float = math.nan
+    """Standard error of a transient run's time-averaged μ (0 for steady solves; NaN in studies made before it)."""
 
 
 @dataclass
@@ -183,7 +185,8 @@ def _solve(solve: Callable, case: ContactCase, lubricant, level, effects, name: 
                        f"{type(err).__name__}: {err}")
     elapsed = time.perf_counter() - start
     return CaseRun(name, label, mode, float(result.mu), float(result.h_min), elapsed, bool(result.converged),
-                   float(result.lambda_bar), bool(result.effects.get("roughness", False)), result.message or "")
+                   float(result.lambda_bar), bool(result.effects.get("roughness", False)), result.message or "",
+                   mu_sem=float(getattr(result, "mu_sem", math.nan)))
 
 
 def relative_error(value: float, reference: float) -> float:
@@ -292,7 +295,8 @@ def convergence_study(spec: CaseSpec, kind: str = "grid", base_level: str = "sta
     for factor in factors:
         lvl = refined_level(base_level, kind, factor)
         run = _solve(solve, case, lub, lvl, effects, spec[0], f"{base_level}x{factor:g}", str(effects))
-        rows.append({"factor": factor, "mu": run.mu, "h_min_m": run.h_min_m, "wall_time_s": run.wall_time_s,
+        rows.append({"factor": factor, "mu": run.mu, "mu_sem": run.mu_sem, "h_min_m": run.h_min_m,
+                     "wall_time_s": run.wall_time_s,
                      "converged": run.converged, "roughness": run.roughness})
     ratios = [factors[i + 1] / factors[i] for i in range(len(factors) - 1)]
     ratio = ratios[-1] if ratios and np.allclose(ratios, ratios[-1]) else math.nan
@@ -308,6 +312,12 @@ def convergence_study(spec: CaseSpec, kind: str = "grid", base_level: str = "sta
 # ---------------------------------------------------------------------------------------------------------------
 def _fmt_err(value: float) -> str:
     return "n/a" if not math.isfinite(value) else f"{100 * value:.2g} %"
+
+
+def _fmt_mu(mu: float, sem: float | None, digits: int = 4) -> str:
+    """μ, with "± standard error of its time average" where one was recorded and is not zero."""
+    text = f"{mu:.{digits}g}"
+    return text + (f" ± {sem:.2g}" if sem is not None and math.isfinite(sem) and sem > 0.0 else "")
 
 
 def markdown_report(study: AccuracyStudy, convergence: Sequence[dict] = (), png_name: str = "accuracy.png",
@@ -362,7 +372,7 @@ def markdown_report(study: AccuracyStudy, convergence: Sequence[dict] = (), png_
             lines.append(
                 f"| {name} | {spec[1]:g} | {spec[2]:g} | {spec[3]:g} | {spec[4]:g} | {spec[5]:g} | "
                 f"{spec[6]:g}/{spec[7]:g} | {run.lambda_bar:.3g} | {run.level}"
-                f"{' (ref)' if run.effects_mode == 'reference' else ''} | {plan} | {run.mu:.4g} | "
+                f"{' (ref)' if run.effects_mode == 'reference' else ''} | {plan} | {_fmt_mu(run.mu, run.mu_sem)} | "
                 f"{run.h_min_m * 1e9:.4g} | {_fmt_err(run.mu_error)} | {_fmt_err(run.h_min_error)} | "
                 f"{run.wall_time_s:.3g} | {'yes' if run.converged else 'NO'} |")
     failures = [r for r in study.runs if not r.converged]
@@ -373,13 +383,15 @@ def markdown_report(study: AccuracyStudy, convergence: Sequence[dict] = (), png_
     if convergence:
         lines += ["", "## Convergence under refinement", "",
                   "Factor > 1 is finer (grid spacing and time step divided by it, averaging window multiplied)."
-                  " Observed order p = log(|f1 − f2|/|f2 − f3|)/log 2 from the three finest runs.", ""]
+                  " Observed order p = log(|f1 − f2|/|f2 − f3|)/log 2 from the three finest runs. ± is the standard"
+                  " error of a rough run's time-averaged μ (sampling, not discretisation): differences within about"
+                  " two combined standard errors are not resolved.", ""]
         for study_c in convergence:
             lines += [f"### {study_c['case']}: {study_c['kind']} (base `{study_c['base_level']}`, effects"
                       f" `{study_c['effects']}`)", "",
                       "| factor | μ | h_min [nm] | time [s] | converged |", "|---|---|---|---|---|"]
             for row in study_c["rows"]:
-                lines.append(f"| {row['factor']:g} | {row['mu']:.6g} | {row['h_min_m'] * 1e9:.5g} | "
+                lines.append(f"| {row['factor']:g} | {_fmt_mu(row['mu'], row.get('mu_sem'), 6)} | {row['h_min_m'] * 1e9:.5g} | "
                              f"{row['wall_time_s']:.3g} | {'yes' if row['converged'] else 'NO'} |")
             lines += ["", f"Observed order: μ {study_c['order_mu']:.2f}, h_min {study_c['order_h_min']:.2f}.", ""]
     return "\n".join(lines) + "\n"
