@@ -92,7 +92,7 @@ def main(argv=None) -> int:
                    "mu_inefficiency_steps": res.extra.get("mu_inefficiency_steps"),
                    "mu_sem_target_met": res.extra.get("mu_sem_target_met"),
                    "asperity_load_share_sem": res.extra.get("asperity_load_share_sem"),
-                   "time_limited": "wall-time limit" in res.message, "message": res.message}
+                   "time_limited": bool(res.extra.get("time_limited", False)), "message": res.message}
         except Exception as err:  # recorded, the sweep goes on
             row = {"case": case_args, "converged": False, "error": f"{type(err).__name__}: {err}"}
         row["wall_time_s"] = time.perf_counter() - start
@@ -138,11 +138,15 @@ def _report(args, lub, rows, suffix) -> int:
 
 
 def _extrapolated_time(row) -> float:
-    """Wall time [s] of a case, a case stopped at the wall-time limit scaled by planned/completed time steps."""
-    match = re.search(r"after (\d+) of (\d+) time steps", row.get("message", ""))
-    if not row.get("time_limited") or not match or int(match.group(1)) == 0:
+    """Wall time [s] of a case, a case stopped at the wall-time limit scaled by planned/completed time steps
+    (the row's ``n_steps``/``n_steps_planned``; rows written before version -6 carry them only in the message)."""
+    done, planned = row.get("n_steps"), row.get("n_steps_planned")
+    if planned is None:
+        match = re.search(r"after (\d+) of (\d+) time steps", row.get("message", ""))
+        done, planned = (int(match.group(1)), int(match.group(2))) if match else (None, None)
+    if not row.get("time_limited") or not done or not planned:
         return row["wall_time_s"]
-    return row["wall_time_s"] * int(match.group(2)) / int(match.group(1))
+    return row["wall_time_s"] * planned / done
 
 
 if __name__ == "__main__":

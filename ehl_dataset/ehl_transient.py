@@ -237,6 +237,7 @@ def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel
     history = {k: [] for k in ("t", "mu", "share", "h_min", "h_c", "p_max", "load", "yielded")}
     worst = {"reynolds": 0.0, "load": 0.0, "step": 0.0, "complementarity": 0.0}
     failure = ""
+    time_limited = False
     fallback_steps = substep_steps = careful_steps = calm_steps = 0
     start_substeps = 1
     window_check = None
@@ -246,6 +247,7 @@ def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel
             if window_check.within(lvl.mu_sem_target * max(abs(window_check.mean), MU_FLOOR)):
                 break
         if time_limit_s is not None and time.perf_counter() - start > time_limit_s:
+            time_limited = True
             failure = (f"wall-time limit of {time_limit_s:g} s reached after {step} of {n_steps} time steps "
                        f"(t = {t * time_scale:.3e} s)")
             break
@@ -321,7 +323,8 @@ def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel
     converged = not failure
     steps = len(history["t"])
     if steps == 0:
-        return _failed(case, state, lvl, plan, iterations, start, failure, worst)
+        return _failed(case, state, lvl, plan, iterations, start, failure, worst,
+                       {"n_steps": 0, "n_steps_planned": int(n_steps), "time_limited": time_limited})
     first_avg = first_avg_base if (converged and steps >= n_steps) else max(steps // 2, 0)
     window = slice(first_avg, steps)
     mu = np.asarray(history["mu"][window])
@@ -344,6 +347,7 @@ def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel
         x=x * a, pressure=p * case.p_h, film=film,
         extra={"n_nodes": int(x.size), "dx_m": float(dx * a), "dt_s": float(d_t * time_scale),
                "n_steps": int(steps), "n_steps_planned": int(n_steps), "n_steps_max": int(n_max),
+               "time_limited": time_limited,
                "mu_inefficiency_steps": mu_mean.inefficiency if mu_mean else math.nan,
                "mu_effective_samples": mu_mean.effective_samples if mu_mean else math.nan,
                "mu_sem_reliable": bool(mu_mean.reliable) if mu_mean else False,
@@ -453,11 +457,12 @@ def _record(history, t, case, state, x_m, p_pa, h_m, h_closed_m, p_yield_pa=math
     history["yielded"].append(yielded_load / load if load > 0 else 0.0)
 
 
-def _failed(case, state, lvl, plan, iterations, start, message, residuals) -> ContactResult:
+def _failed(case, state, lvl, plan, iterations, start, message, residuals, extra=None) -> ContactResult:
     from .solver import dowson_higginson_lambda
 
     _, lambda_bar = dowson_higginson_lambda(case, state)
     nan = float("nan")
     return ContactResult(mu=nan, h_min=nan, h_central=nan, p_max=nan, converged=False, iterations=int(iterations),
                          wall_time=time.perf_counter() - start, level=lvl.name, effects=plan.to_dict(),
-                         lambda_bar=lambda_bar, residuals=dict(residuals), message=f"not converged: {message}")
+                         lambda_bar=lambda_bar, residuals=dict(residuals), message=f"not converged: {message}",
+                         extra=dict(extra or {}))

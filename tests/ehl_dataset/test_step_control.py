@@ -46,6 +46,7 @@ def test_time_limit_marks_the_result_not_converged():
     res = solve_contact(case, "atf", "fast", Effects.full(), time_limit_s=1e-3)
     assert not res.converged
     assert "wall-time limit of 0.001 s" in res.message and "time steps" in res.message
+    assert res.extra["time_limited"] is True and res.extra["n_steps"] == 0 and res.extra["n_steps_planned"] > 0
 
 
 @pytest.mark.parametrize("bad", [0.0, -5.0, float("nan"), float("inf")])
