@@ -17,8 +17,6 @@ import argparse
 import itertools
 import json
 import math
-import os
-import platform
 import re
 import statistics
 import sys
@@ -31,6 +29,12 @@ from ehl_dataset.contact import ContactCase
 from ehl_dataset.effects import Effects
 from ehl_dataset.lubricant import load_lubricant
 from ehl_dataset.solver import SOLVER_VERSION, solve_contact
+
+# _common.py sits next to this file. Run as a script (`python benchmarks/bench_ehl_mixed.py` or, inside benchmarks/,
+# `python bench_ehl_mixed.py`) Python already puts this directory first on sys.path; adding it explicitly also covers
+# loading this file as a module (runpy, tests), where sys.path[0] is the caller's directory instead.
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from _common import RESULTS_DIR, machine_info, merge_shards, projected_hours, summarize_rows, write_report  # noqa: E402
 
 P_H, R_EQ, U_R = [0.5, 1.0, 1.5, 2.0, 2.5], [5, 10, 20, 40, 80], [1, 2, 5, 10, 15, 20]
 SR, TEMP = [0, 0.05, 0.1, 0.2, 0.4, 0.7, 1.0], [25, 50, 75, 100]
@@ -70,8 +74,7 @@ def main(argv=None) -> int:
     lub = load_lubricant("atf")
     suffix = ""
     if args.merge:
-        rows = [row for name in args.merge for row in json.loads(Path(name).read_text())["rows"]]
-        return _report(args, lub, rows, suffix)
+        return _report(args, lub, merge_shards(args.merge), suffix)
     if args.shard:
         index, count = (int(v) for v in args.shard.split("/"))
         cases = cases[index::count]
@@ -103,15 +106,8 @@ def main(argv=None) -> int:
 
 
 def _report(args, lub, rows, suffix) -> int:
-    times = [r["wall_time_s"] for r in rows]
     ok = [r for r in rows if r["converged"]]
-    summary = {"n_cases": len(rows), "converged": len(ok), "mean_time_s": statistics.fmean(times),
-               "median_time_s": statistics.median(times),
-               "mean_cpu_time_s": (statistics.fmean([r["cpu_time_s"] for r in rows])
-                                   if all("cpu_time_s" in r for r in rows) else None),
-               "mean_time_converged_s": statistics.fmean([r["wall_time_s"] for r in ok]) if ok else None,
-               "projected_42000_points_h_on_cpu_count_cores": 42000 * statistics.fmean(times)
-               / (os.cpu_count() or 1) / 3600.0,
+    summary = {**summarize_rows(rows),
                "converged_mu_in_0_mu_d_for_sr_gt_0": all(0.0 <= r["mu"] <= lub.mu_d for r in ok if r["case"][3] > 0),
                "converged_max_abs_mu_sr_0": max((abs(r["mu"]) for r in ok if r["case"][3] == 0), default=None),
                "converged_max_load_error": max((r["max_load_error"] for r in ok), default=None),
@@ -121,18 +117,14 @@ def _report(args, lub, rows, suffix) -> int:
     if summary["time_limited"]:
         extrapolated = [_extrapolated_time(r) for r in rows]
         summary["mean_time_extrapolated_s"] = statistics.fmean(extrapolated)
-        summary["projected_42000_points_h_extrapolated"] = (42000 * summary["mean_time_extrapolated_s"]
-                                                            / (os.cpu_count() or 1) / 3600.0)
+        summary["projected_42000_points_h_extrapolated"] = projected_hours(summary["mean_time_extrapolated_s"])
         summary["note"] = (f"{summary['time_limited']} cases stopped at the wall-time limit: the mean time and the "
                            "projection are lower bounds; the extrapolated figures scale each stopped case's time by "
                            "planned/completed time steps (an estimate, not a measurement)")
     report = {"benchmark": "ehl_mixed", "level": args.level, "sample": args.sample, "summary": summary,
               "solver_version": SOLVER_VERSION,
-              "rows": rows, "machine": {"platform": platform.platform(), "cpu_count": os.cpu_count(),
-                                        "python": sys.version.split()[0], "numpy": np.__version__}}
-    out = Path(args.out or Path(__file__).parent / "results" / f"ehl_mixed_{args.sample}_{args.level}{suffix}.json")
-    out.parent.mkdir(parents=True, exist_ok=True)
-    out.write_text(json.dumps(report, indent=2, default=float))
+              "rows": rows, "machine": machine_info()}
+    write_report(args.out or RESULTS_DIR / f"ehl_mixed_{args.sample}_{args.level}{suffix}.json", report)
     print(json.dumps(summary, indent=2, default=float))
     return 0
 

@@ -14,19 +14,19 @@ from __future__ import annotations
 
 import argparse
 import json
-import os
-import platform
-import statistics
 import sys
-import time
 from pathlib import Path
-
-import numpy as np
 
 from ehl_dataset.contact import ContactCase
 from ehl_dataset.effects import Effects
 from ehl_dataset.ehl_mixed_relaxation import solve_mixed_relaxation
 from ehl_dataset.lubricant import load_lubricant
+
+# _common.py sits next to this file. Run as a script (`python benchmarks/bench_mixed_relaxation.py` or, inside
+# benchmarks/, `python bench_mixed_relaxation.py`) Python already puts this directory first on sys.path; adding it
+# explicitly also covers loading this file as a module (runpy, tests), where sys.path[0] is the caller's directory.
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from _common import RESULTS_DIR, machine_info, summarize_rows, write_report  # noqa: E402
 
 # (p_h GPa, r_eq mm, u_r m/s, SR, T °C, Rq1 µm, Rq2 µm, lubricant)
 COMPARE = [(0.5, 5, 20, 1, 25, 1.0, 1.0, "atf"), (0.5, 80, 20, 1, 25, 1.0, 1.0, "atf"),
@@ -83,19 +83,20 @@ def main(argv=None) -> int:
                 row["mu_relative_difference"] = row["relaxation"]["mu"] / newton.mu - 1.0
         rows.append(row)
         print(json.dumps(row, default=float), flush=True)
-    rel = [r["relaxation"] for r in rows]
-    times = [r.get("wall_time_s", 0.0) for r in rel]
-    summary = {"n_cases": len(rows), "converged": sum(bool(r.get("converged")) for r in rel),
-               "median_time_s": statistics.median(times), "mean_time_s": statistics.fmean(times)}
+    summary = _summary(rows)
     report = {"benchmark": "mixed_relaxation", "level": args.level, "sample": args.sample, "summary": summary,
-              "rows": rows, "machine": {"platform": platform.platform(), "cpu_count": os.cpu_count(),
-                                        "python": sys.version.split()[0], "numpy": np.__version__}}
+              "rows": rows, "machine": machine_info()}
     name = f"mixed_relaxation_{args.sample}_{args.level}" + (f"_shard{k}of{n}" if n > 1 else "") + ".json"
-    out = Path(args.out or Path(__file__).parent / "results" / name)
-    out.parent.mkdir(parents=True, exist_ok=True)
-    out.write_text(json.dumps(report, indent=2, default=float))
+    write_report(args.out or RESULTS_DIR / name, report)
     print(json.dumps(summary, indent=2, default=float))
     return 0
+
+
+def _summary(rows) -> dict:
+    """Case count, converged count, median and mean wall time [s] of the relaxation solves (a solve that raised
+    has no time and counts 0 s)."""
+    stats = summarize_rows([r["relaxation"] for r in rows], wall_time_s=lambda r: r.get("wall_time_s", 0.0))
+    return {key: stats[key] for key in ("n_cases", "converged", "median_time_s", "mean_time_s")}
 
 
 if __name__ == "__main__":
