@@ -19,9 +19,10 @@ Failures
     * ``time_limit_s`` (a wall-time budget per point, passed to the solver) runs out -> the solver returns
       ``converged=False`` with "wall-time limit of T s reached after k of n time steps ...", so the point is
       recorded like any non-converged result: ``ok``, not converged, the message in ``error``.
-Resuming computes every row that is not ``ok`` (pending and failed). Non-converged rows are ``ok`` and are *not*
-recomputed, whatever budget the resume is given: there is no retry of non-converged points (a larger budget only
-applies to rows still pending or failed). ``time_limit_s`` is an execution option like ``workers``: it is recorded
+Resuming computes every row that is not ``ok`` (pending and failed). Non-converged rows are ``ok`` and are not
+recomputed unless the resume asks for it with ``retry_not_converged=True`` (``gearloss dataset resume
+--retry-not-converged``): then they are computed again too — e.g. a first pass with a short budget per point and a
+second pass with a long one for the points it stopped. ``time_limit_s`` is an execution option like ``workers``: it is recorded
 in the session entry of the file, not in the solver configuration that a resume must match.
 """
 
@@ -385,15 +386,17 @@ def run_factorial(out, factorial: Factorial | str | os.PathLike, *, lubricant=No
 
 def resume_run(path, *, workers: int = 1, scheduler: str | None = None, solver: str | Callable | None = None,
                factorial=None, lubricant=None, level: str | None = None, effects: str | None = None,
-               time_limit_s: float | None = None, **options) -> RunSummary:
-    """Continue the run recorded in ``path``: compute every row that is not ``ok``.
+               time_limit_s: float | None = None, retry_not_converged: bool = False, **options) -> RunSummary:
+    """Continue the run recorded in ``path``: compute every row that is not ``ok`` (and, with
+    ``retry_not_converged``, the ``ok`` rows whose solve did not converge).
 
     The solver, level, effects and lubricant are those recorded in the file. The solver's current version (and
     level definition) must equal the recorded ones; ``factorial``, ``lubricant``, ``level``, ``effects`` and
     ``solver``, when given, must match the file too — otherwise the resume is refused with ``InputError``.
     ``time_limit_s`` (wall-time budget per point [s]) may differ from the earlier sessions' budgets: it is not part
-    of the solver configuration. It applies to the rows computed now (pending and failed); rows stored not
-    converged — including those stopped by an earlier budget — are ``ok`` and are not recomputed.
+    of the solver configuration. It applies to the rows computed now (pending and failed, plus the non-converged
+    ones with ``retry_not_converged``); otherwise rows stored not converged — including those stopped by an earlier
+    budget — are ``ok`` and are not recomputed.
     """
     from .lubricant import Lubricant, load_lubricant
 
@@ -413,7 +416,7 @@ def resume_run(path, *, workers: int = 1, scheduler: str | None = None, solver: 
             factorial_hash = plan.points_hash()
         store.check_compatible(factorial_sha256=factorial_hash, solver=config, lubricant=lubricant_dict)
         return execute(store, solver=solver_used, workers=workers, scheduler=scheduler, kind="resume",
-                       time_limit_s=time_limit_s, **options)
+                       time_limit_s=time_limit_s, retry_not_converged=retry_not_converged, **options)
 
 
 def warm_up_indices(points: np.ndarray, candidates: list[int], lubricant: dict, level: str, effects: str,
@@ -495,8 +498,10 @@ def execute(store: DatasetStore, *, solver: str | Callable = DEFAULT_SOLVER, wor
             scheduler: str | None = None, kind: str = "run", window: int | None = None, max_attempts: int = 3,
             flush_interval_s: float = 5.0, flush_rows: int = 2000, progress: str = "auto",
             warm_up: bool = True, stream: TextIO | None = None, log_every_s: float = 30.0,
-            time_limit_s: float | None = None) -> RunSummary:
-    """Compute every row of an open (writable) store that is not ``ok``, with the configuration it records.
+            time_limit_s: float | None = None, retry_not_converged: bool = False) -> RunSummary:
+    """Compute every row of an open (writable) store that is not ``ok``, with the configuration it records
+    (``retry_not_converged``: also the ``ok`` rows whose solve did not converge; their earlier result is
+    overwritten by the new one, and their ``attempts`` count goes on).
 
     ``workers``: local processes (0: in this process); ``scheduler``: a Dask scheduler address or
     ``"dask-local"`` (then ``workers`` sizes the LocalCluster). ``window``: tasks in flight (default 4 per worker).
@@ -527,7 +532,12 @@ def execute(store: DatasetStore, *, solver: str | Callable = DEFAULT_SOLVER, wor
         return PointTask(int(index), tuple(float(v) for v in points[index]), lubricant_json, level, effects, solver,
                          time_limit_s)
 
-    pending = deque(int(i) for i in store.pending_indices())
+    if not isinstance(retry_not_converged, bool):
+        raise InputError("retry_not_converged", retry_not_converged, "True or False")
+    todo = store.status() != OK
+    if retry_not_converged:
+        todo |= (store.status() == OK) & ~store.column("converged").astype(bool)
+    pending = deque(int(i) for i in np.flatnonzero(todo))
     suspects: deque[int] = deque()
     failures: dict[int, int] = {}
     in_flight: dict[Any, int] = {}
@@ -538,7 +548,8 @@ def execute(store: DatasetStore, *, solver: str | Callable = DEFAULT_SOLVER, wor
     started = time.perf_counter()
     executor = None
     session = store.begin_session(kind=kind, workers=workers, scheduler=scheduler or "",
-                                  solver=solver_reference(solver), time_limit_s=time_limit_s)
+                                  solver=solver_reference(solver), time_limit_s=time_limit_s,
+                                  retry_not_converged=retry_not_converged)
     last_flush = time.monotonic()
 
     def record(result: dict, extra_attempts: int = 0) -> None:

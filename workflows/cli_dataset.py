@@ -33,6 +33,9 @@ def register(subparsers) -> None:
     resume.add_argument("--lubricant", help="refuse unless the file records this lubricant")
     resume.add_argument("--level", help="refuse unless the file records this level")
     resume.add_argument("--effects", choices=("auto", "full"), help="refuse unless the file records this plan")
+    resume.add_argument("--retry-not-converged", action="store_true",
+                        help="also recompute the rows stored not converged (e.g. stopped by an earlier "
+                             "--time-limit-s), overwriting their earlier result")
     _execution_options(resume, solver_default=None)
     resume.set_defaults(handler=_resume)
 
@@ -105,7 +108,7 @@ def _resume(args) -> int:
 
     summary = resume_run(args.file, workers=args.workers, scheduler=args.scheduler, solver=args.solver,
                          factorial=args.factorial, lubricant=args.lubricant, level=args.level,
-                         effects=args.effects, **_options(args))
+                         effects=args.effects, retry_not_converged=args.retry_not_converged, **_options(args))
     return _finish(summary, args.json)
 
 

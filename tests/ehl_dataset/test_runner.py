@@ -512,3 +512,27 @@ def test_a_non_converged_message_is_stored_with_one_prefix():
     status, text = judge_record({"converged": False}, "not converged: wall-time limit of 1 s reached")
     assert text == "not converged: wall-time limit of 1 s reached"
     assert judge_record({"converged": False}, "stalled")[1] == "not converged: stalled"
+
+
+def test_resume_can_retry_the_points_a_budget_stopped(tmp_path):
+    """Two passes: a 1 ms budget stops the rough point (stored ok, not converged); a plain resume leaves it; a
+    resume with retry_not_converged and no budget solves it (converged, μ in [0, μ_d], attempts 2) and does not
+    touch the converged smooth point."""
+    from ehl_dataset.lubricant import load_lubricant
+
+    plan = factorial_from_dict(BUDGET_PLAN)
+    path = tmp_path / "two_pass.h5"
+    run_factorial(path, plan, workers=0, time_limit_s=1e-3, progress="none")
+    first = read_table(path, status=None)
+    assert not first.iloc[1]["converged"] and first.iloc[0]["converged"]
+    assert resume_run(path, workers=0, progress="none").computed == 0
+    summary = resume_run(path, workers=0, progress="none", retry_not_converged=True)
+    assert summary.computed == 1 and summary.non_converged == 0
+    second = read_table(path, status=None)
+    mu_d = load_lubricant("atf").mu_d
+    assert second.iloc[1]["converged"] and 0.0 <= second.iloc[1]["mu"] <= mu_d and second.iloc[1]["error"] == ""
+    assert second.iloc[1]["attempts"] == 2 and second.iloc[0]["attempts"] == 1
+    assert second.iloc[0]["mu"] == first.iloc[0]["mu"]
+    assert read_metadata(path)["sessions"][-1]["retry_not_converged"] is True
+    with pytest.raises(InputError, match="retry_not_converged"):
+        resume_run(path, workers=0, progress="none", retry_not_converged="yes")

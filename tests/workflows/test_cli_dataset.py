@@ -129,6 +129,11 @@ def test_time_limit_stops_a_rough_point_and_is_recorded_in_the_session(tmp_path,
     assert main(["dataset", "resume", str(out), "--workers", "0", "--time-limit-s", "60", "--progress", "none",
                  "--json"]) == 0
     assert json.loads(capsys.readouterr().out)["computed"] == 0
+    # ... unless the resume asks for it: the second pass solves the stopped point
+    assert main(["dataset", "resume", str(out), "--workers", "0", "--retry-not-converged", "--progress", "none",
+                 "--json"]) == 0
+    second = json.loads(capsys.readouterr().out)
+    assert second["computed"] == 1 and second["non_converged"] == 0
 
 
 @pytest.mark.parametrize("value", ["0", "-1", "nan", "inf"])
