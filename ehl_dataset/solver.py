@@ -39,7 +39,7 @@ from .result import ContactResult
 from .traction import friction_components
 from .validation import InputError, SolverError
 
-SOLVER_VERSION = "ehl-2026.11-6"
+SOLVER_VERSION = "ehl-2026.11-7"
 """Version of the numerics behind :func:`solve_contact`. The dataset store records it and refuses to resume a file
 computed with another version: bump it with every change that can alter a solved value."""
 
