@@ -37,7 +37,7 @@ class AccuracyLevel:
     averaging window may stop (once it spans 20 correlation times, :data:`ehl_dataset.time_average.RELIABLE_LENGTH`):
     a run whose μ fluctuates more is continued with the same time step, up to
     ``max_passes`` × the domain length / u_r (``mu_sem_target`` 0: fixed window of ``n_passes``, the standard error
-    is still reported; ``fast`` does this, so its runs are those of solver version -5 and its measured stability holds). The passage of asperities makes μ
+    is still reported; ``fast`` does this, so its time steps are those of solver version -5 and its measured stability holds). The passage of asperities makes μ
     of a rough contact fluctuate by up to ±100 % over one pass at λ̄ < 1, so a fixed short window gives a
     time average with a sampling error of tens of percent (docs/ehl_solver.md, "Sampling error of μ").
     """

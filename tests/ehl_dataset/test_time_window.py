@@ -56,7 +56,7 @@ def test_met_target_stops_at_the_base_run():
 
 
 def test_fast_level_keeps_its_fixed_window_and_reports_the_error():
-    """``fast`` has no standard-error target: its runs are the fixed-window runs of solver version -5 (on which
+    """``fast`` has no standard-error target: its time steps are those of the fixed-window runs of solver version -5 (on which
     its 64-corner stability was measured), now with the standard error reported."""
     assert LEVELS["fast"].mu_sem_target == 0.0
     assert LEVELS["standard"].mu_sem_target > 0.0 and LEVELS["standard"].max_passes > LEVELS["standard"].n_passes
