@@ -95,7 +95,9 @@ def main(argv=None) -> int:
                    "mu_inefficiency_steps": res.extra.get("mu_inefficiency_steps"),
                    "mu_sem_target_met": res.extra.get("mu_sem_target_met"),
                    "asperity_load_share_sem": res.extra.get("asperity_load_share_sem"),
-                   "time_limited": bool(res.extra.get("time_limited", False)), "message": res.message}
+                   # a converged run may have had only its averaging-window extension cut by the budget
+                   "time_limited": bool(res.extra.get("time_limited", False)) and not res.converged,
+                   "message": res.message}
         except Exception as err:  # recorded, the sweep goes on
             row = {"case": case_args, "converged": False, "error": f"{type(err).__name__}: {err}"}
         row["wall_time_s"] = time.perf_counter() - start

@@ -248,6 +248,8 @@ def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel
                 break
         if time_limit_s is not None and time.perf_counter() - start > time_limit_s:
             time_limited = True
+            if step >= n_steps:  # the base run is complete: the budget only ends the window's extension
+                break
             failure = (f"wall-time limit of {time_limit_s:g} s reached after {step} of {n_steps} time steps "
                        f"(t = {t * time_scale:.3e} s)")
             break
@@ -343,7 +345,8 @@ def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel
         asperity_load_share=float(np.mean(history["share"][window])), residuals=worst,
         mu_sem=sem,
         message=_message(converged, failure, steps, fallback_steps, careful_steps)
-        + _window_note(converged, lvl, target_met, sem, mu_mean, steps, n_steps),
+        + _window_note(converged, lvl, target_met, sem, mu_mean, steps, n_steps,
+                       time_limit_s if (converged and time_limited) else None),
         x=x * a, pressure=p * case.p_h, film=film,
         extra={"n_nodes": int(x.size), "dx_m": float(dx * a), "dt_s": float(d_t * time_scale),
                "n_steps": int(steps), "n_steps_planned": int(n_steps), "n_steps_max": int(n_max),
@@ -387,15 +390,17 @@ def _message(converged: bool, failure: str, steps: int, fallback_steps: int, car
 
 
 def _window_note(converged: bool, lvl: AccuracyLevel, target_met: bool, sem: float, mu_mean, steps: int,
-                 n_steps: int) -> str:
+                 n_steps: int, budget_s: float | None = None) -> str:
     """"; ..." when a converged run's time-averaged μ missed the level's standard-error target or reliability
-    (window at its cap)."""
+    (window at its cap, or its extension stopped by the wall-time budget ``budget_s``)."""
     if not converged or lvl.mu_sem_target <= 0.0 or target_met or mu_mean is None:
         return ""
+    where = (f"the wall-time limit of {budget_s:g} s stopped the extension" if budget_s is not None
+             else "the level's cap")
     why = (f"standard error of the time-averaged mu {sem:.2g} above the target {lvl.mu_sem_target:g} x "
            f"max(|mu|, {MU_FLOOR:g})" if sem > lvl.mu_sem_target * max(abs(mu_mean.mean), MU_FLOOR) else
            f"averaging window shorter than {RELIABLE_LENGTH:g} correlation times (its standard error is uncertain)")
-    return f"; {why} after {steps} steps ({steps / n_steps:.2g} x the base run, the level's cap)"
+    return f"; {why} after {steps} steps ({steps / n_steps:.2g} x the base run, {where})"
 
 
 def _pass_through_film(film: np.ndarray, closed: np.ndarray, h_closed: float) -> np.ndarray:

@@ -60,3 +60,33 @@ def test_fast_level_keeps_its_fixed_window_and_reports_the_error():
     its 64-corner stability was measured), now with the standard error reported."""
     assert LEVELS["fast"].mu_sem_target == 0.0
     assert LEVELS["standard"].mu_sem_target > 0.0 and LEVELS["standard"].max_passes > LEVELS["standard"].n_passes
+
+
+class _StepClock:
+    """Stands in for the ``time`` module of ehl_transient: perf_counter advances by 1 per call (the run reads it
+    once at the start and once before every time step), so a budget is a step count, deterministically."""
+
+    def __init__(self):
+        self.calls = 0
+
+    def perf_counter(self):
+        self.calls += 1
+        return float(self.calls)
+
+
+def test_a_budget_that_runs_out_during_the_extension_keeps_the_converged_base_run(monkeypatch):
+    """The base run (60 steps) is complete when the budget runs out while the window is being extended: the run
+    is converged (its time steps all are), averaged from the base start-up on, and its message says that the
+    wall-time limit stopped the extension. A budget that runs out before the base run ends is not converged."""
+    import ehl_dataset.ehl_transient as transient
+
+    level = replace(SHORT, mu_sem_target=1e-6, max_passes=2.0)
+    monkeypatch.setattr(transient, "time", _StepClock())
+    res = solve_contact(CASE, "atf", level, Effects.full(), time_limit_s=62.5)
+    assert res.converged, res.message
+    assert res.extra["n_steps"] == 62 and res.extra["time_limited"] is True
+    assert res.extra["average_from_step"] == 30
+    assert "wall-time limit of 62.5 s stopped the extension" in res.message
+    monkeypatch.setattr(transient, "time", _StepClock())
+    early = solve_contact(CASE, "atf", level, Effects.full(), time_limit_s=40.5)
+    assert not early.converged and "wall-time limit of 40.5 s reached after 40 of 60 time steps" in early.message
