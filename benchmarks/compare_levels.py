@@ -1,8 +1,9 @@
 """Compare two runs of bench_ehl_mixed.py on the same points (e.g. `fast` against `standard`): μ error and time.
 
-    python benchmarks/compare_levels.py benchmarks/results/ehl_mixed_random_fast.json \\
-        benchmarks/results/ehl_mixed_random_standard.json --out docs/accuracy_random_levels.md \\
-        --png docs/figures/accuracy_random_levels.png
+    python benchmarks/compare_levels.py benchmarks/results/ehl_mixed_random20_fast.json \\
+        benchmarks/results/ehl_mixed_random20_standard.json --out docs/accuracy_random_levels.md \\
+        --png docs/figures/accuracy_random_levels.png --note "..."   # the committed report's note: see its header
+    python benchmarks/compare_levels.py OLD.json NEW.json --labels standard-v5 standard-v6 --out /tmp/versions.md
 
 Writes a Markdown report: for the points both runs converged with SR > 0, the relative μ difference
 (μ_level − μ_ref)/μ_ref split at λ̄ = 1 (the paper's two regression branches), the asperity load shares, and the
