@@ -87,8 +87,6 @@ MAX_SWEEPS = 200
 """Sweeps allowed per time step before it is retried with sub-steps."""
 MAX_RETRIES = 3
 """Sub-step halvings of a failing time step before the run is marked not converged."""
-RAMP_FRACTION = 0.5
-"""Fraction of the start-up (non-averaged) part of the run over which the roughness amplitude grows to 1."""
 
 
 @dataclass(frozen=True)
@@ -301,7 +299,7 @@ def solve_mixed_relaxation(case: ContactCase, lubricant: Lubricant | str, level:
 
 
 def _solve(case, state, lvl: AccuracyLevel, plan: Effects, keep_series: bool) -> ContactResult:
-    from .ehl_transient import _baseline_profile, roughness_grid
+    from .ehl_transient import _baseline_profile, roughness_grid, time_steps
     from .roughness import plan_surfaces
     from .solver import ContactScales, dowson_higginson_lambda, moes_h_c, solve_steady, solve_steady_problem
 
@@ -333,13 +331,9 @@ def _solve(case, state, lvl: AccuracyLevel, plan: Effects, keep_series: bool) ->
                        {"reynolds": first.residual, "load": first.load})
     m_ref = float(np.interp(0.0, x, problem.fluid(first.p, first.h)[3]))
 
-    # 2. time stepping, roughness ramped in over the start of the run
-    d_t = lvl.courant * dx
-    t_end = lvl.n_passes * (lvl.x_end - lvl.x_start)
-    n_steps = min(max(int(math.ceil(t_end / d_t)), 8), lvl.max_steps_rough)
-    d_t = t_end / n_steps
+    # 2. time stepping, roughness ramped in over the start of the run (the Newton solver's time grid)
+    d_t, t_end, n_steps, t_ramp = time_steps(lvl, dx)
     time_scale = a / case.u_r
-    t_ramp = RAMP_FRACTION * (1.0 - lvl.average_fraction) * t_end
     surfaces = plan_surfaces(case, x * a, t_end * time_scale, profile)
     problem.h_closed = H_CLOSED_M / film_scale
     problem.second_order = SECOND_ORDER_COUETTE

@@ -166,6 +166,17 @@ def roughness_grid(case: ContactCase, lvl: AccuracyLevel, correlation_length_m: 
         dx_r *= 1.25
 
 
+def time_steps(lvl: AccuracyLevel, dx: float) -> tuple[float, float, int, float]:
+    """(Δt, t_end, n_steps, t_ramp) of a rough run's base window, in units of a/u_r, for the roughness spacing
+    ``dx`` [a]: Δt = ``courant``·dx stretched to t_end/n_steps, t_end = ``n_passes`` × the domain length, between
+    8 and ``max_steps_rough`` steps. The roughness amplitude is ramped in over t_ramp, the first RAMP_FRACTION of
+    the start-up phase (excluded from the averages anyway): switching it on at once is a shock the first Newton
+    steps cannot absorb at low λ̄. Shared by the Newton and the relaxation transient solvers."""
+    t_end = lvl.n_passes * (lvl.x_end - lvl.x_start)
+    n_steps = min(max(int(math.ceil(t_end / (lvl.courant * dx))), 8), lvl.max_steps_rough)
+    return t_end / n_steps, t_end, n_steps, RAMP_FRACTION * (1.0 - lvl.average_fraction) * t_end
+
+
 def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel, plan: Effects,
                     roughness=None, time_limit_s: float | None = None) -> ContactResult:
     """Transient mixed solve of one rough contact; see the module docstring. ``roughness``: the profile both
@@ -206,10 +217,7 @@ def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel
     m_ref = float(np.interp(0.0, x, problem.fluid(first.p, first.h)[3]))
 
     # 2. time stepping with the roughness switched on
-    d_t = lvl.courant * dx  # [a/u_r]
-    t_end = lvl.n_passes * (lvl.x_end - lvl.x_start)
-    n_steps = min(max(int(math.ceil(t_end / d_t)), 8), lvl.max_steps_rough)
-    d_t = t_end / n_steps
+    d_t, t_end, n_steps, t_ramp = time_steps(lvl, dx)
     # the averaging window starts after the start-up transient of the base run and may be extended (same time
     # step) until the standard error of the time-averaged μ meets the level's target, up to max_passes
     first_avg_base = int(n_steps * (1.0 - lvl.average_fraction))
@@ -218,9 +226,6 @@ def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel
         n_max = int(round(n_steps * lvl.max_passes / lvl.n_passes))
     check_every = max(int(CHECK_FRACTION * (n_steps - first_avg_base)), 1)
     time_scale = a / case.u_r
-    # the roughness amplitude is ramped in over the first RAMP_FRACTION of the start-up phase (excluded from the
-    # averages anyway): switching it on at once is a shock the first Newton steps cannot absorb at low λ̄
-    t_ramp = RAMP_FRACTION * (1.0 - lvl.average_fraction) * t_end
     # laid out for the base run (a run that stops there is the same whatever its cap); an extension reads on
     surfaces = plan_surfaces(case, x * a, t_end * time_scale, profile)
     problem.h_closed = H_CLOSED_M / film_scale
