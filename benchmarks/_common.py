@@ -1,7 +1,10 @@
-"""Shared report helpers of the transient mixed EHL benchmarks (bench_ehl_mixed.py, bench_mixed_relaxation.py).
+"""Shared helpers of the benchmark scripts in this directory.
 
-Per-case result rows → timing summary, shard merging, the machine description and writing the JSON report. Each
-script keeps its own row fields and summary extras; these functions only hold what both compute the same way.
+Every script: the machine description (:func:`machine_info`; a script adds its own extras such as load averages or
+library versions), the median wall time of repeated calls (:func:`median_time`, :func:`repeat_times`) and printing /
+writing its JSON (:func:`emit_json`). The transient mixed EHL benchmarks (bench_ehl_mixed.py,
+bench_mixed_relaxation.py) also: per-case result rows → timing summary, shard merging and writing the JSON report;
+each keeps its own row fields and summary extras, these functions only hold what both compute the same way.
 """
 
 from __future__ import annotations
@@ -11,6 +14,7 @@ import os
 import platform
 import statistics
 import sys
+import time
 from collections.abc import Callable, Iterable
 from pathlib import Path
 
@@ -24,9 +28,36 @@ DATASET_POINTS = 42000
 
 
 def machine_info() -> dict:
-    """The machine running this process: platform string, logical CPU count, Python and NumPy versions."""
-    return {"platform": platform.platform(), "cpu_count": os.cpu_count(), "python": sys.version.split()[0],
-            "numpy": np.__version__}
+    """The machine running this process (a new dict): platform string, processor name (``platform.processor()``, may
+    be empty), logical CPU count, Python and NumPy versions."""
+    return {"platform": platform.platform(), "processor": platform.processor(), "cpu_count": os.cpu_count(),
+            "python": sys.version.split()[0], "numpy": np.__version__}
+
+
+def repeat_times(fn: Callable[[], object], repeats: int) -> list[float]:
+    """Wall times [s] (``time.perf_counter``) of ``repeats`` successive calls ``fn()``, in call order."""
+    times = []
+    for _ in range(repeats):
+        start = time.perf_counter()
+        fn()
+        times.append(time.perf_counter() - start)
+    return times
+
+
+def median_time(fn: Callable[[], object], repeats: int) -> float:
+    """Median wall time [s] of ``repeats`` calls ``fn()`` (:func:`repeat_times`)."""
+    return statistics.median(repeat_times(fn, repeats))
+
+
+def emit_json(report: dict, out: str | Path | None, **dumps_kwargs) -> str:
+    """Print ``report`` as JSON (``json.dumps(report, **dumps_kwargs)``) and, if ``out`` is given, also write that
+    text plus a newline to ``out``, creating its directory; returns the text."""
+    text = json.dumps(report, **dumps_kwargs)
+    print(text)
+    if out:
+        Path(out).parent.mkdir(parents=True, exist_ok=True)
+        Path(out).write_text(text + "\n")
+    return text
 
 
 def projected_hours(mean_time_s: float, n_points: int = DATASET_POINTS) -> float:

@@ -12,19 +12,20 @@ from __future__ import annotations
 import argparse
 import json
 import os
-import platform
 import statistics
 import sys
 import time
 from pathlib import Path
-
-import numpy as np
 
 from ehl_dataset.contact import ContactCase
 from ehl_dataset.effects import Effects
 from ehl_dataset.levels import LEVELS
 from ehl_dataset.lubricant import load_lubricant
 from ehl_dataset.solver import solve_contact
+
+# _common.py sits next to this file (sys.path: see bench_ehl_mixed.py)
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from _common import machine_info  # noqa: E402
 
 CASES = [(0.5, 5, 1, 0.0, 25), (0.5, 80, 20, 1.0, 100), (1.0, 10, 2, 0.2, 50), (1.0, 40, 10, 0.7, 75),
          (1.5, 20, 5, 0.4, 100), (1.5, 5, 15, 1.0, 25), (2.0, 80, 1, 0.1, 75), (2.0, 10, 20, 0.05, 50),
@@ -41,9 +42,7 @@ def main(argv=None) -> int:
     plan = Effects.smooth_steady(benchmark=True)
     solve_contact(ContactCase.from_engineering(*CASES[0]), lub, "fast", plan)  # JIT/cache warm-up
     report = {"benchmark": "ehl_smooth", "cases": CASES, "repeats": args.repeats, "levels": {},
-              "machine": {"platform": platform.platform(), "processor": platform.processor(),
-                          "cpu_count": os.cpu_count(), "python": sys.version.split()[0],
-                          "numpy": np.__version__,
+              "machine": {**machine_info(),
                           "load_average_1min": os.getloadavg()[0] if hasattr(os, "getloadavg") else None}}
     for name in args.levels:
         times, nodes, iterations, converged = [], [], [], 0

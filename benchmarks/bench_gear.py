@@ -15,10 +15,7 @@ Run: ``python benchmarks/bench_gear.py [--repeats 7] [--out benchmarks/results/g
 from __future__ import annotations
 
 import argparse
-import json
 import math
-import os
-import platform
 import statistics
 import sys
 import time
@@ -26,14 +23,9 @@ from pathlib import Path
 
 import numpy as np
 
-
-def _median_time(fn, repeats: int) -> float:
-    times = []
-    for _ in range(repeats):
-        start = time.perf_counter()
-        fn()
-        times.append(time.perf_counter() - start)
-    return statistics.median(times)
+# _common.py sits next to this file (sys.path: see bench_ehl_mixed.py)
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from _common import emit_json, machine_info, median_time  # noqa: E402
 
 
 def main(argv=None) -> int:
@@ -58,7 +50,7 @@ def main(argv=None) -> int:
     evaluate_mesh(design_d, 250.0, modifications=mods)  # load the numba cache / compile once
 
     def timed(options, pair=design_d):
-        return _median_time(lambda: evaluate_mesh(pair, 250.0, modifications=mods, options=options), args.repeats)
+        return median_time(lambda: evaluate_mesh(pair, 250.0, modifications=mods, options=options), args.repeats)
 
     default = MeshOptions()
     results = {
@@ -109,15 +101,10 @@ def main(argv=None) -> int:
         "benchmark": "gear mesh cycle (efficiency.mesh_cycle.evaluate_mesh)",
         "case": "design D (N 32, Φ 30°, Ψ 19°, Λ_wd 2.068, b 25 mm), M_P 15 µm, M_L 12 µm, 250 N·m",
         "repeats": args.repeats,
-        "machine": {"platform": platform.platform(), "processor": platform.processor(), "cpu_count": os.cpu_count(),
-                    "python": sys.version.split()[0], "numpy": np.__version__},
+        "machine": machine_info(),
         "results": results,
     }
-    text = json.dumps(payload, indent=2)
-    print(text)
-    if args.out:
-        Path(args.out).parent.mkdir(parents=True, exist_ok=True)
-        Path(args.out).write_text(text + "\n")
+    emit_json(payload, args.out, indent=2)
     return 0
 
 

@@ -28,13 +28,16 @@ import argparse
 import json
 import math
 import os
-import platform
 import sys
 import time
 import warnings
 from pathlib import Path
 
 import numpy as np
+
+# _common.py sits next to this file (sys.path: see bench_ehl_mixed.py)
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from _common import machine_info  # noqa: E402
 
 RESULTS = Path(__file__).parent / "results" / "gear_friction.json"
 GRID_SIZES = ((3, 5), (4, 6), (5, 9), (7, 12))
@@ -281,9 +284,7 @@ def main(argv=None) -> int:
 
 def _write(report, path, started):
     report["total_time_s"] = time.perf_counter() - started
-    report["machine"] = {"platform": platform.platform(), "processor": platform.processor(),
-                         "cpu_count": os.cpu_count(), "python": platform.python_version(),
-                         "numpy": np.__version__, "load_average_1min": os.getloadavg()[0]}
+    report["machine"] = {**machine_info(), "load_average_1min": os.getloadavg()[0]}
     with open(path, "w") as handle:
         json.dump(report, handle, indent=1, default=lambda v: v.item() if hasattr(v, "item") else str(v))
 

@@ -13,24 +13,14 @@ from __future__ import annotations
 
 import argparse
 import dataclasses
-import json
-import os
-import platform
-import statistics
 import sys
-import time
 from pathlib import Path
 
 import numpy as np
 
-
-def _median_time(fn, repeats: int) -> float:
-    times = []
-    for _ in range(repeats):
-        start = time.perf_counter()
-        fn()
-        times.append(time.perf_counter() - start)
-    return statistics.median(times)
+# _common.py sits next to this file (sys.path: see bench_ehl_mixed.py)
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from _common import emit_json, machine_info, median_time  # noqa: E402
 
 
 def main(argv=None) -> int:
@@ -46,7 +36,7 @@ def main(argv=None) -> int:
     study = load_study("paper2009")
     space, limits = study.space, study.limits
 
-    screen_s = _median_time(lambda: count_feasible(space, limits), args.repeats)
+    screen_s = median_time(lambda: count_feasible(space, limits), args.repeats)
     n_scalar = 200
     designs = [(int(n), float(p), float(s), float(w)) for n, p, s, w in zip(
         np.random.default_rng(1).integers(20, 54, n_scalar), np.random.default_rng(2).choice(space.pressure_angles_deg,
@@ -58,9 +48,9 @@ def main(argv=None) -> int:
         for d in designs:
             check_design(paper_design(*d), limits)
 
-    scalar_s = _median_time(scalar_checks, args.repeats) / n_scalar
+    scalar_s = median_time(scalar_checks, args.repeats) / n_scalar
     pair_d = study.design("D")
-    iso_s = _median_time(lambda: [iso6336.reference_values(pair_d, 250.0) for _ in range(100)], args.repeats) / 100
+    iso_s = median_time(lambda: [iso6336.reference_values(pair_d, 250.0) for _ in range(100)], args.repeats) / 100
 
     def count(space_changes=None, limit_changes=None, extra=None):
         s = dataclasses.replace(space, **(space_changes or {}))
@@ -92,8 +82,7 @@ def main(argv=None) -> int:
     counts = count_feasible(space, limits)
     result = {
         "benchmark": "gear_geometry",
-        "platform": platform.platform(), "processor": platform.processor(), "cpu_count": os.cpu_count(),
-        "python": sys.version.split()[0], "numpy": np.__version__,
+        **machine_info(),
         "repeats": args.repeats,
         "paper_space_designs": space.size,
         "screen_paper_space_median_s": screen_s,
@@ -103,11 +92,7 @@ def main(argv=None) -> int:
         "paper_feasible_count": study.paper_feasible_count,
         "feasible_count_sensitivity": sensitivity,
     }
-    text = json.dumps(result, indent=2)
-    print(text)
-    if args.out:
-        Path(args.out).parent.mkdir(parents=True, exist_ok=True)
-        Path(args.out).write_text(text + "\n")
+    emit_json(result, args.out, indent=2)
     return 0
 
 

@@ -15,14 +15,16 @@ Run: ``python benchmarks/bench_gear_sweep.py [--stride 1] [--friction xu2007] [-
 from __future__ import annotations
 
 import argparse
-import json
-import platform
 import os
 import sys
 import time
 from pathlib import Path
 
 import numpy as np
+
+# _common.py sits next to this file (sys.path: see bench_ehl_mixed.py)
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from _common import emit_json, machine_info  # noqa: E402
 
 FIG3_LINE = {"normal_pressure_angle_deg": 22.5, "helix_angle_deg": 20.0, "working_depth": 2.286}
 FIG4_LINES = {
@@ -33,9 +35,7 @@ FIG4_LINES = {
 
 
 def machine() -> dict:
-    return {"platform": platform.platform(), "processor": platform.processor(), "cpu_count": os.cpu_count(),
-            "python": platform.python_version(), "numpy": np.__version__,
-            "load_average_1min_at_start": os.getloadavg()[0]}
+    return {**machine_info(), "load_average_1min_at_start": os.getloadavg()[0]}
 
 
 def _scatter(ax, table, x, scale, label, line=None, line_x=None):
@@ -216,11 +216,7 @@ def main(argv=None) -> int:
         result["modification_cases"] = int(len(mods))
         if args.figures:
             result["figures"].append(modification_figure(mods, Path(args.figures), describe_friction(friction)))
-    text = json.dumps(result, indent=2, default=float)
-    print(text)
-    if args.out:
-        Path(args.out).parent.mkdir(parents=True, exist_ok=True)
-        Path(args.out).write_text(text + "\n")
+    emit_json(result, args.out, indent=2, default=float)
     return 0
 
 

@@ -18,7 +18,6 @@ import hashlib
 import json
 import math
 import os
-import platform
 import statistics
 import sys
 import tempfile
@@ -33,6 +32,10 @@ from ehl_dataset.result import ContactResult
 from ehl_dataset.runner import execute, run_factorial, solver_config
 from ehl_dataset.store import OK, DatasetStore, read_table
 
+# _common.py sits next to this file (sys.path: see bench_ehl_mixed.py)
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from _common import machine_info  # noqa: E402
+
 
 def instant_solve(case, lubricant, level="fast", effects="auto"):
     """A stand-in that costs ~nothing (to expose the pipeline's own overhead)."""
@@ -44,9 +47,8 @@ def instant_solve(case, lubricant, level="fast", effects="auto"):
 def machine() -> dict:
     import h5py
 
-    return {"platform": platform.platform(), "processor": platform.processor(), "cpu_count": os.cpu_count(),
-            "python": sys.version.split()[0], "numpy": np.__version__, "h5py": h5py.__version__,
-            "hdf5": h5py.version.hdf5_version, "load_average_1_5_15": list(os.getloadavg())}
+    return {**machine_info(), "h5py": h5py.__version__, "hdf5": h5py.version.hdf5_version,
+            "load_average_1_5_15": list(os.getloadavg())}
 
 
 def store_overhead(tmp: Path, repeats: int) -> dict:

@@ -12,7 +12,7 @@ from __future__ import annotations
 import argparse
 import json
 import os
-import platform
+import statistics
 import sys
 import time
 import warnings
@@ -20,14 +20,9 @@ from pathlib import Path
 
 import numpy as np
 
-
-def median_time(fn, repeats: int) -> tuple[float, list[float]]:
-    times = []
-    for _ in range(repeats):
-        start = time.perf_counter()
-        fn()
-        times.append(time.perf_counter() - start)
-    return float(np.median(times)), times
+# _common.py sits next to this file (sys.path: see bench_ehl_mixed.py)
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from _common import machine_info, median_time, repeat_times  # noqa: E402
 
 
 def main(argv=None) -> int:
@@ -56,10 +51,8 @@ def main(argv=None) -> int:
     table = eq9_table(factorial_inputs(PAPER_LEVELS), reference_coefficients(atf, e), atf, e, noise_sd=0.05, seed=0)
     results: dict = {
         "benchmark": "surrogate",
-        "machine": {"platform": platform.platform(), "processor": platform.processor(), "cpu_count": os.cpu_count(),
-                    "python": sys.version.split()[0], "numpy": np.__version__, "scipy": scipy.__version__,
-                    "statsmodels": statsmodels.__version__, "scikit_learn": sklearn.__version__,
-                    "load_average_1min_at_start": os.getloadavg()[0]},
+        "machine": {**machine_info(), "scipy": scipy.__version__, "statsmodels": statsmodels.__version__,
+                    "scikit_learn": sklearn.__version__, "load_average_1min_at_start": os.getloadavg()[0]},
         "data": {"rows": len(table), "source": "paper factorial, exact Eq. 9 + N(0, 0.05^2) in ln mu"},
         "repeats": args.repeats,
     }
@@ -70,12 +63,13 @@ def main(argv=None) -> int:
         fit_holder["fit"] = fit_surrogate(table, atf, e, k_folds=5, allow_unstable=True)
         fit_holder["fit_times"].append(fit_holder["fit"].fit_time_s)
 
-    t_total, raw = median_time(do_fit, args.repeats)
+    raw = repeat_times(do_fit, args.repeats)
+    t_total = statistics.median(raw)
     fit = fit_holder["fit"]
     prepared = prepare_table(table, atf, e)
-    t_cv, _ = median_time(lambda: cross_validate(fit.formula, prepared.features, prepared.ln_mu, k_folds=5,
-                                                 blend_half_width=0.1), args.repeats)
-    t_prep, _ = median_time(lambda: prepare_table(table, atf, e), args.repeats)
+    t_cv = median_time(lambda: cross_validate(fit.formula, prepared.features, prepared.ln_mu, k_folds=5,
+                                              blend_half_width=0.1), args.repeats)
+    t_prep = median_time(lambda: prepare_table(table, atf, e), args.repeats)
     results["fit"] = {
         "rows_in": fit.n_input_rows, "rows_used": fit.n_used,
         "median_total_s": t_total, "all_total_s": raw,
@@ -100,17 +94,17 @@ def main(argv=None) -> int:
               rng.choice([0.1e-6, 0.4e-6, 1.0e-6], n), rng.choice([0.1e-6, 0.4e-6, 1.0e-6], n))
     evals = {}
     surrogate.mu(*inputs)
-    t, _ = median_time(lambda: surrogate.mu(*inputs), args.repeats)
+    t = median_time(lambda: surrogate.mu(*inputs), args.repeats)
     evals["li_kahraman_2009_eq9 (FrictionSurrogate.mu, validated)"] = {"median_s": t, "points_per_s": n / t}
     learned = LearnedFriction(atf, e)
     start = time.perf_counter()
     learned.fit_features(prepared.features, prepared.ln_mu)
     learned_fit = time.perf_counter() - start
-    t, _ = median_time(lambda: learned.mu(*inputs), max(1, args.repeats // 2))
+    t = median_time(lambda: learned.mu(*inputs), max(1, args.repeats // 2))
     evals["hist_gradient_boosting (1 thread, 400 trees)"] = {"median_s": t, "points_per_s": n / t,
                                                              "fit_s_42000_rows": learned_fit}
     for name in PUBLISHED_MODELS:
-        t, _ = median_time(lambda: published_mu(name, *inputs, atf, e), args.repeats)
+        t = median_time(lambda: published_mu(name, *inputs, atf, e), args.repeats)
         evals[name] = {"median_s": t, "points_per_s": n / t}
     results["evaluation"] = {"points": n, "models": evals}
     results["machine"]["load_average_1min_at_end"] = os.getloadavg()[0]
