@@ -48,7 +48,7 @@ from .effects import Effects
 from .ehl_newton import ReynoldsProblem, newton_solve
 from .reynolds import assemble
 from .levels import AccuracyLevel, get_level
-from .lubricant import Lubricant, load_lubricant
+from .lubricant import Lubricant
 from .result import ContactResult
 from .traction import friction_components
 from .validation import InputError, SolverError
@@ -278,12 +278,9 @@ def solve_mixed_relaxation(case: ContactCase, lubricant: Lubricant | str, level:
     """
     from threadpoolctl import threadpool_limits
 
-    if not isinstance(case, ContactCase):
-        raise InputError("case", type(case).__name__, "a ContactCase")
-    if isinstance(lubricant, str):
-        lubricant = load_lubricant(lubricant)
-    if not isinstance(lubricant, Lubricant):
-        raise InputError("lubricant", type(lubricant).__name__, "a Lubricant, a shipped name or a TOML path")
+    from .solver import checked_inputs
+
+    lubricant = checked_inputs(case, lubricant)
     plan = Effects.full() if effects is None else effects
     if not isinstance(plan, Effects):
         raise InputError("effects", plan, "None or an Effects instance")

@@ -111,6 +111,18 @@ def resolve_effects(case: ContactCase, lubricant: Lubricant, level: str, effects
     raise InputError("effects", effects, "'auto', 'full' or an Effects instance")
 
 
+def checked_inputs(case, lubricant) -> Lubricant:
+    """The lubricant of a solve (a shipped name or TOML path is loaded) after checking that ``case`` is a
+    :class:`ContactCase`; InputError otherwise."""
+    if not isinstance(case, ContactCase):
+        raise InputError("case", type(case).__name__, "a ContactCase")
+    if isinstance(lubricant, str):
+        lubricant = load_lubricant(lubricant)
+    if not isinstance(lubricant, Lubricant):
+        raise InputError("lubricant", type(lubricant).__name__, "a Lubricant, a shipped name or a TOML path")
+    return lubricant
+
+
 def solve_contact(case: ContactCase, lubricant: Lubricant | str, level: str | AccuracyLevel = "standard",
                   effects: str | Effects = "auto", roughness=None, time_limit_s: float | None = None) -> ContactResult:
     """Solve one line contact; see the module docstring. Bad input raises :class:`InputError`.
@@ -123,12 +135,7 @@ def solve_contact(case: ContactCase, lubricant: Lubricant | str, level: str | Ac
     :func:`~ehl_dataset.roughness.load_profile`) whose shape both surfaces take in rough runs, scaled to the case's
     Rq1 and Rq2; None uses the shipped synthetic baseline profile.
     """
-    if not isinstance(case, ContactCase):
-        raise InputError("case", type(case).__name__, "a ContactCase")
-    if isinstance(lubricant, str):
-        lubricant = load_lubricant(lubricant)
-    if not isinstance(lubricant, Lubricant):
-        raise InputError("lubricant", type(lubricant).__name__, "a Lubricant, a shipped name or a TOML path")
+    lubricant = checked_inputs(case, lubricant)
     if roughness is not None:
         from .roughness import RoughnessProfile
 
