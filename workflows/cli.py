@@ -39,10 +39,10 @@ def _json_default(value: Any):
     raise TypeError(f"not JSON serialisable: {type(value).__name__}")
 
 
-def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(prog="gearloss", description=__doc__.splitlines()[0])
-    subparsers = parser.add_subparsers(dest="group", metavar="GROUP")
-    for name in GROUP_MODULES:
+def register_modules(subparsers, names) -> None:
+    """Let each ``workflows.<name>`` module add its sub-commands (``register(subparsers)``); a module that is not
+    there is skipped, an import error inside one is raised."""
+    for name in names:
         try:
             module = importlib.import_module(f"workflows.{name}")
         except ModuleNotFoundError as err:
@@ -50,6 +50,11 @@ def build_parser() -> argparse.ArgumentParser:
                 continue
             raise
         module.register(subparsers)
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(prog="gearloss", description=__doc__.splitlines()[0])
+    register_modules(parser.add_subparsers(dest="group", metavar="GROUP"), GROUP_MODULES)
     return parser
 
 

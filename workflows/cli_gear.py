@@ -7,8 +7,6 @@ The group is assembled from small modules so that each piece of the gear model o
 
 from __future__ import annotations
 
-import importlib
-
 PARTS = ["cli_gear_geometry", "cli_gear_evaluate", "cli_gear_studies"]
 
 
@@ -16,11 +14,6 @@ def register(subparsers) -> None:
     parser = subparsers.add_parser("gear", help="helical gear pair: geometry, evaluation, studies")
     gear_subparsers = parser.add_subparsers(dest="gear_command", metavar="COMMAND")
     parser.set_defaults(handler=lambda args: parser.print_help() or 2)
-    for name in PARTS:
-        try:
-            module = importlib.import_module(f"workflows.{name}")
-        except ModuleNotFoundError as err:
-            if err.name == f"workflows.{name}":
-                continue
-            raise
-        module.register(gear_subparsers)
+    from workflows.cli import register_modules
+
+    register_modules(gear_subparsers, PARTS)
