@@ -122,7 +122,9 @@ def _report(args, lub, rows, suffix) -> int:
         summary["projected_42000_points_h_extrapolated"] = projected_hours(summary["mean_time_extrapolated_s"])
         summary["note"] = (f"{summary['time_limited']} cases stopped at the wall-time limit: the mean time and the "
                            "projection are lower bounds; the extrapolated figures scale each stopped case's time by "
-                           "planned/completed time steps (an estimate, not a measurement)")
+                           "planned/completed time steps (an estimate, not a measurement, and a low one: steps after the "
+                           "roughness ramp-in cost more; two 80 mm points needed 2.5-2.7x it, "
+                           "results/ehl_mixed_standard_80mm_long.json)")
     report = {"benchmark": "ehl_mixed", "level": args.level, "sample": args.sample, "summary": summary,
               "solver_version": SOLVER_VERSION,
               "rows": rows, "machine": machine_info()}
