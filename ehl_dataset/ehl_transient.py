@@ -112,8 +112,8 @@ def step_attempts(start: int = 1) -> tuple[tuple[int, bool], ...]:
     """(sub-steps, Couette-only contact faces) tried in turn for a time step, beginning with ``start`` sub-steps.
 
     Unified contact faces at start, 2·start, 4·start sub-steps, then whatever of the base sequence
-    STEP_ATTEMPTS ((1, F), (2, F), (4, F), (1, T), (4, T), (MAX_SUBSTEPS, T)) was not tried yet (then the CAREFUL_ATTEMPTS, which
-    the run adds with careful Newton settings). The attempts with Couette-only
+    STEP_ATTEMPTS ((1, F), (2, F), (4, F), (1, T), (4, T), (MAX_SUBSTEPS, T)) was not tried yet (then the
+    CAREFUL_ATTEMPTS, which the run adds with careful Newton settings). The attempts with Couette-only
     contact faces are the fallback for steps where Newton cycles between the contact pressure and the flux it
     throttles (better conditioned, still mass-conserving); such steps are counted in
     ``extra["couette_fallback_steps"]``. If all fail the run is returned not converged. Newton's success is not
@@ -234,7 +234,8 @@ def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel
     # a time step that needs many iterations is cheaper to redo with sub-steps than to iterate on
     step_tolerances = dict(tolerances, max_iterations=min(lvl.max_iterations, STEP_ITERATIONS),
                            max_pressure_step=MAX_PRESSURE_STEP)
-    careful_tolerances = dict(step_tolerances, max_iterations=max(step_tolerances["max_iterations"], CAREFUL_ITERATIONS),
+    careful_tolerances = dict(step_tolerances,
+                              max_iterations=max(step_tolerances["max_iterations"], CAREFUL_ITERATIONS),
                               max_pressure_step=CAREFUL_PRESSURE_STEP)
     p, h0 = first.p, first.h0
     m_prev = problem.fluid(p, first.h)[3]
@@ -245,11 +246,10 @@ def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel
     time_limited = False
     fallback_steps = substep_steps = careful_steps = calm_steps = 0
     start_substeps = 1
-    window_check = None
     for step in range(n_max):
         if step >= n_steps and (step - n_steps) % check_every == 0:
-            window_check = time_mean(history["mu"][first_avg_base:])
-            if window_check.within(lvl.mu_sem_target * max(abs(window_check.mean), MU_FLOOR)):
+            so_far = time_mean(history["mu"][first_avg_base:])
+            if so_far.within(_sem_tolerance(lvl, so_far.mean)):
                 break
         if time_limit_s is not None and time.perf_counter() - start > time_limit_s:
             time_limited = True
@@ -338,7 +338,7 @@ def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel
     mu_mean = time_mean(mu) if mu.size >= 2 else None
     sem = mu_mean.standard_error if mu_mean else math.nan
     share_sem = time_mean(history["share"][window]).standard_error if mu.size >= 2 else math.nan
-    target_met = bool(mu_mean) and mu_mean.within(lvl.mu_sem_target * max(abs(mu_mean.mean), MU_FLOOR))
+    target_met = bool(mu_mean) and mu_mean.within(_sem_tolerance(lvl, mu_mean.mean))
     h_dh, lambda_bar = dowson_higginson_lambda(case, state)
     film = outcome.h * film_scale
     result = ContactResult(
@@ -364,7 +364,8 @@ def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel
                "averaging_time_s": float((steps - first_avg) * d_t * time_scale),
                "courant_effective": float(d_t / dx), "average_from_step": int(first_avg),
                "roughness_resolution_capped": capped, "roughness_profile": profile.source,
-               "roughness_correlation_length_m": float(profile.correlation_length), "surfaces_independent": bool(surfaces.disjoint_until(t * time_scale)),
+               "roughness_correlation_length_m": float(profile.correlation_length),
+               "surfaces_independent": bool(surfaces.disjoint_until(t * time_scale)),
                "h_min_dowson_higginson_m": h_dh, "h_closed_m": H_CLOSED_M,
                "yield_pressure_pa": YIELD_PRESSURE_PA,
                "yielded_load_share": float(np.mean(history["yielded"][window])),
@@ -394,6 +395,11 @@ def _message(converged: bool, failure: str, steps: int, fallback_steps: int, car
     return "converged" + (f" ({', '.join(notes)})" if notes else "")
 
 
+def _sem_tolerance(lvl: AccuracyLevel, mean: float) -> float:
+    """Standard error the time-averaged μ may have at this level: ``mu_sem_target`` × max(|μ|, MU_FLOOR)."""
+    return lvl.mu_sem_target * max(abs(mean), MU_FLOOR)
+
+
 def _window_note(converged: bool, lvl: AccuracyLevel, target_met: bool, sem: float, mu_mean, steps: int,
                  n_steps: int, budget_s: float | None = None) -> str:
     """"; ..." when a converged run's time-averaged μ missed the level's standard-error target or reliability
@@ -403,7 +409,7 @@ def _window_note(converged: bool, lvl: AccuracyLevel, target_met: bool, sem: flo
     where = (f"the wall-time limit of {budget_s:g} s stopped the extension" if budget_s is not None
              else "the level's cap")
     why = (f"standard error of the time-averaged mu {sem:.2g} above the target {lvl.mu_sem_target:g} x "
-           f"max(|mu|, {MU_FLOOR:g})" if sem > lvl.mu_sem_target * max(abs(mu_mean.mean), MU_FLOOR) else
+           f"max(|mu|, {MU_FLOOR:g})" if sem > _sem_tolerance(lvl, mu_mean.mean) else
            f"averaging window shorter than {RELIABLE_LENGTH:g} correlation times (its standard error is uncertain)")
     return f"; {why} after {steps} steps ({steps / n_steps:.2g} x the base run, {where})"
 

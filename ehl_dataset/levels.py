@@ -29,17 +29,18 @@ class AccuracyLevel:
     Newton: ``tol_residual`` max relative Reynolds residual (scaled by the Couette flux ρ̄H), ``tol_load`` relative
     load-balance error, ``tol_step`` max pressure correction [p_h]; ``max_iterations`` per continuation stage.
     Transient (phase 2): ``dx_rough`` spacing [roughness correlation length], ``dx_rough_max`` cap [a];
-    ``courant`` time step as a fraction of dx/u_r; ``n_passes`` length of the base run in units of the domain length / u_r
-    (the time the rolling speed needs to carry the surfaces through the domain); ``average_fraction`` fraction of the
-    base run's steps used for the time average (the last ones; the rest is the start-up transient); ``max_nodes_rough`` upper bound on the grid size; ``max_steps_rough`` upper
-    bound on the number of time steps (the time step grows beyond ``courant``·dx when needed; recorded);
-    ``mu_sem_target`` relative standard error of the time-averaged μ (relative to max(|μ|, 0.01)) at which the
-    averaging window may stop (once it spans 20 correlation times, :data:`ehl_dataset.time_average.RELIABLE_LENGTH`):
-    a run whose μ fluctuates more is continued with the same time step, up to
-    ``max_passes`` × the domain length / u_r (``mu_sem_target`` 0: fixed window of ``n_passes``, the standard error
-    is still reported; ``fast`` does this, so its time steps are those of solver version -5 and its measured stability holds). The passage of asperities makes μ
-    of a rough contact fluctuate by up to ±100 % over one pass at λ̄ < 1, so a fixed short window gives a
-    time average with a sampling error of tens of percent (docs/ehl_solver.md, "Sampling error of μ").
+    ``courant`` time step as a fraction of dx/u_r; ``n_passes`` length of the base run in units of the domain
+    length / u_r (the time the rolling speed needs to carry the surfaces through the domain); ``average_fraction``
+    fraction of the base run's steps used for the time average (the last ones; the rest is the start-up
+    transient); ``max_nodes_rough`` upper bound on the grid size; ``max_steps_rough`` upper bound on the number of
+    time steps (the time step grows beyond ``courant``·dx when needed; recorded); ``mu_sem_target`` standard error
+    of the time-averaged μ, relative to max(|μ|, 0.01), at which the averaging window may stop (once it spans 20
+    correlation times, :data:`ehl_dataset.time_average.RELIABLE_LENGTH`): a run whose μ fluctuates more is
+    continued with the same time step, up to ``max_passes`` × the domain length / u_r. ``mu_sem_target`` 0: fixed
+    window of ``n_passes``, the standard error still reported; ``fast`` does this, so its time steps are those of
+    solver version -5 and its measured stability holds. The passage of asperities makes μ of a rough contact
+    fluctuate by up to ±100 % over one pass at λ̄ < 1, so a fixed short window gives a time average with a sampling
+    error of tens of percent (docs/ehl_solver.md, "Sampling error of μ").
     """
 
     name: str

@@ -35,7 +35,6 @@ import importlib
 import inspect
 import json
 import math
-import numbers
 import os
 import signal
 import socket
@@ -54,7 +53,7 @@ import numpy as np
 
 from .factorial import Factorial, canonical_json, load_factorial
 from .store import FAILED, OK, DatasetStore, package_version
-from .validation import InputError
+from .validation import InputError, check_time_limit as check_positive_seconds
 
 DEFAULT_SOLVER = "ehl_dataset.solver:solve_contact"
 _FLOAT_CHECKED = ("mu", "mu_std", "h_min", "h_central", "asperity_load_share", "p_max")
@@ -456,17 +455,14 @@ def _width(point) -> float:
 
 
 def check_time_limit(time_limit_s, solver: str | Callable | None = None) -> float | None:
-    """``time_limit_s`` as a float, or None; ``InputError`` unless it is None or a finite number of seconds > 0.
+    """``time_limit_s`` as a float, or None; ``InputError`` unless it is None or a finite number of seconds > 0
+    (:func:`ehl_dataset.validation.check_time_limit`, the check of ``solve_contact`` too).
 
     With a ``solver`` and a budget, the solve function must accept the keyword ``time_limit_s`` (or ``**kwargs``):
     otherwise every point would fail on a ``TypeError``, so the run is refused at the start instead.
     """
-    if time_limit_s is None:
-        return None
-    if isinstance(time_limit_s, bool) or not isinstance(time_limit_s, numbers.Real) \
-            or not math.isfinite(time_limit_s) or time_limit_s <= 0:
-        raise InputError("time_limit_s", time_limit_s, "a positive number of seconds, or None")
-    if solver is not None:
+    time_limit_s = check_positive_seconds(time_limit_s)
+    if time_limit_s is not None and solver is not None:
         try:
             parameters = inspect.signature(resolve_solver(solver)).parameters.values()
         except (TypeError, ValueError):  # no signature to inspect (a builtin): let the solve itself decide
@@ -475,7 +471,7 @@ def check_time_limit(time_limit_s, solver: str | Callable | None = None) -> floa
                                               for p in parameters):
             raise InputError("time_limit_s", time_limit_s, "None for a solver without a time_limit_s parameter",
                              f"{solver_reference(solver)} does not accept it")
-    return float(time_limit_s)
+    return time_limit_s
 
 
 def _check_options(workers: int, options: dict) -> None:
@@ -511,7 +507,7 @@ def execute(store: DatasetStore, *, solver: str | Callable = DEFAULT_SOLVER, wor
     in memory) for every worker.
     ``time_limit_s``: wall-time budget of each point's solve [s] (None: none), handed to the solver in every
     :class:`PointTask`. A point that spends it is stored ``ok``, not converged, with the solver's "wall-time limit"
-    message; later resumes do not recompute it (they compute pending and failed rows only). The budget is an
+    message; later resumes recompute it only with ``retry_not_converged``. The budget is an
     execution option: it is recorded in this session's entry of the ``sessions`` attribute, not in the solver
     configuration, so runs with different budgets (or none) continue each other.
     """
@@ -534,9 +530,10 @@ def execute(store: DatasetStore, *, solver: str | Callable = DEFAULT_SOLVER, wor
 
     if not isinstance(retry_not_converged, bool):
         raise InputError("retry_not_converged", retry_not_converged, "True or False")
-    todo = store.status() != OK
+    status = store.status()
+    todo = status != OK
     if retry_not_converged:
-        todo |= (store.status() == OK) & ~store.column("converged").astype(bool)
+        todo |= (status == OK) & ~store.column("converged").astype(bool)
     pending = deque(int(i) for i in np.flatnonzero(todo))
     suspects: deque[int] = deque()
     failures: dict[int, int] = {}

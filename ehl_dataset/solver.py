@@ -37,7 +37,7 @@ from .levels import AccuracyLevel, get_level
 from .lubricant import Lubricant, LubricantState, load_lubricant
 from .result import ContactResult
 from .traction import friction_components
-from .validation import InputError, SolverError
+from .validation import InputError, SolverError, check_time_limit
 
 SOLVER_VERSION = "ehl-2026.11-7"
 """Version of the numerics behind :func:`solve_contact`. The dataset store records it and refuses to resume a file
@@ -141,8 +141,7 @@ def solve_contact(case: ContactCase, lubricant: Lubricant | str, level: str | Ac
 
         if not isinstance(roughness, RoughnessProfile):
             raise InputError("roughness", type(roughness).__name__, "a RoughnessProfile or None")
-    if time_limit_s is not None and not (math.isfinite(time_limit_s) and time_limit_s > 0.0):
-        raise InputError("time_limit_s", time_limit_s, "a positive number of seconds, or None")
+    time_limit_s = check_time_limit(time_limit_s)
     state = lubricant.state(case.temperature)
     lvl = get_level(level)
     plan = resolve_effects(case, lubricant, lvl.name, effects)

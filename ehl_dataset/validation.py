@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import numbers
 from typing import Any
 
 
@@ -54,3 +55,12 @@ def check_range(
         suffix = f" {unit}" if unit else ""
         raise InputError(name, value, f"{left}{low:g}, {high:g}{right}{suffix}")
     return number
+
+
+def check_time_limit(value) -> float | None:
+    """A wall-time budget [s]: None (no limit) or a finite number > 0 (not a bool), returned as float."""
+    if value is None:
+        return None
+    if isinstance(value, bool) or not isinstance(value, numbers.Real) or not math.isfinite(value) or value <= 0:
+        raise InputError("time_limit_s", value, "a positive number of seconds, or None")
+    return float(value)

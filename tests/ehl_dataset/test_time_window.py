@@ -35,7 +35,7 @@ def test_unmet_target_extends_the_window_to_the_cap_and_says_so():
     start-up and runs to the end."""
     level = replace(SHORT, mu_sem_target=1e-6, max_passes=2.0)
     res = solve_contact(CASE, "atf", level, Effects.full())
-    assert res.converged and "above the target" in res.message or "shorter than" in res.message, res.message
+    assert res.converged and ("above the target" in res.message or "shorter than" in res.message), res.message
     assert res.extra["n_steps"] == res.extra["n_steps_max"] == 120
     assert res.extra["average_from_step"] == 30
     assert res.extra["mu_sem_target_met"] is False
