@@ -49,7 +49,7 @@ def test_time_limit_marks_the_result_not_converged():
     assert res.extra["time_limited"] is True and res.extra["n_steps"] == 0 and res.extra["n_steps_planned"] > 0
 
 
-@pytest.mark.parametrize("bad", [0.0, -5.0, float("nan"), float("inf")])
+@pytest.mark.parametrize("bad", [0.0, -5.0, float("nan"), float("inf"), True, "10"])
 def test_time_limit_must_be_positive_and_finite(bad):
     case = ContactCase.from_engineering(1.0, 20, 5, 0.2, 90, 0.4, 0.4)
     with pytest.raises(InputError, match="time_limit_s"):
