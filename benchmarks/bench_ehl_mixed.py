@@ -38,6 +38,8 @@ from _common import RESULTS_DIR, machine_info, merge_shards, projected_hours, su
 
 P_H, R_EQ, U_R = [0.5, 1.0, 1.5, 2.0, 2.5], [5, 10, 20, 40, 80], [1, 2, 5, 10, 15, 20]
 SR, TEMP = [0, 0.05, 0.1, 0.2, 0.4, 0.7, 1.0], [25, 50, 75, 100]
+NEWTON_COST_FIELDS = ("newton_solves", "newton_solves_failed", "newton_step_iterations", "newton_iterations_failed")
+"""The transient solver's cost record (``extra``; solver results from 2026-11-22 on), copied into each row."""
 RQ = [(0.05, 0.05), (0.1, 0.1), (0.2, 0.2), (0.3, 0.3), (0.4, 0.4), (0.5, 0.5), (0.7, 0.7), (1.0, 1.0), (0.2, 0.5),
       (0.4, 1.0)]
 
@@ -95,6 +97,7 @@ def main(argv=None) -> int:
                    "mu_inefficiency_steps": res.extra.get("mu_inefficiency_steps"),
                    "mu_sem_target_met": res.extra.get("mu_sem_target_met"),
                    "asperity_load_share_sem": res.extra.get("asperity_load_share_sem"),
+                   **{key: res.extra.get(key) for key in NEWTON_COST_FIELDS},
                    # a converged run may have had only its averaging-window extension cut by the budget
                    "time_limited": bool(res.extra.get("time_limited", False)) and not res.converged,
                    "message": res.message}
@@ -107,6 +110,19 @@ def main(argv=None) -> int:
     return _report(args, lub, rows, suffix)
 
 
+def newton_cost_summary(rows) -> dict:
+    """Medians over the rows with a cost record: Newton iterations per time step (each one dense LU), Newton
+    solves per time step, and the share of the time-stepping iterations spent in solves that failed."""
+    rec = [r for r in rows if r.get("newton_step_iterations") is not None and r.get("n_steps")]
+    if not rec:
+        return {}
+    return {"median_newton_iterations_per_step": statistics.median(r["newton_step_iterations"] / r["n_steps"]
+                                                                   for r in rec),
+            "median_newton_solves_per_step": statistics.median(r["newton_solves"] / r["n_steps"] for r in rec),
+            "median_failed_iteration_share": statistics.median(
+                r["newton_iterations_failed"] / max(r["newton_step_iterations"], 1) for r in rec)}
+
+
 def _report(args, lub, rows, suffix) -> int:
     ok = [r for r in rows if r["converged"]]
     summary = {**summarize_rows(rows),
@@ -115,6 +131,7 @@ def _report(args, lub, rows, suffix) -> int:
                "converged_max_load_error": max((r["max_load_error"] for r in ok), default=None),
                "converged_lambda_bar_min": min((r["lambda_bar"] for r in ok), default=math.nan),
                "time_limited": sum(bool(r.get("time_limited")) for r in rows),
+               **newton_cost_summary(rows),
                "time_limit_s": getattr(args, "time_limit_s", None)}
     if summary["time_limited"]:
         extrapolated = [_extrapolated_time(r) for r in rows]

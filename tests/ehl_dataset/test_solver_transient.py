@@ -28,6 +28,19 @@ def test_vanishing_roughness_reproduces_the_smooth_solution():
     assert rough.asperity_load_share == 0.0
 
 
+def test_newton_cost_record_accounts_for_every_time_step():
+    """The cost record of a rough run (``extra["newton_*"]``) is an account of the work: every recorded time step
+    is at least one converged Newton solve, the time-stepping iterations are part of the run's total (which also
+    counts the smooth start), and failed solves are a part of all solves."""
+    case = ContactCase.from_engineering(1.0, 20, 10, 0.5, 50, 0.3, 0.3)
+    res = solve_contact(case, LUB, "fast", Effects.full())
+    assert res.converged, res.message
+    extra = res.extra
+    assert extra["newton_solves"] - extra["newton_solves_failed"] >= extra["n_steps"]
+    assert 0 <= extra["newton_iterations_failed"] <= extra["newton_step_iterations"] < res.iterations
+    assert 0 <= extra["newton_solves_failed"] <= extra["newton_solves"]
+
+
 @pytest.mark.slow
 def test_rough_case_near_lambda_one_is_balanced_and_bounded():
     """λ̄ ≈ 1.1 (Dowson–Higginson film / S_c): the run converges at every step, the load balances to 1e−3 at every
