@@ -27,6 +27,7 @@ import numpy as np
 
 from ehl_dataset.contact import ContactCase
 from ehl_dataset.effects import Effects
+from ehl_dataset.ehl_transient import NewtonCost
 from ehl_dataset.lubricant import load_lubricant
 from ehl_dataset.solver import SOLVER_VERSION, solve_contact
 
@@ -38,8 +39,6 @@ from _common import RESULTS_DIR, machine_info, merge_shards, projected_hours, su
 
 P_H, R_EQ, U_R = [0.5, 1.0, 1.5, 2.0, 2.5], [5, 10, 20, 40, 80], [1, 2, 5, 10, 15, 20]
 SR, TEMP = [0, 0.05, 0.1, 0.2, 0.4, 0.7, 1.0], [25, 50, 75, 100]
-NEWTON_COST_FIELDS = ("newton_solves", "newton_solves_failed", "newton_step_iterations", "newton_iterations_failed")
-"""The transient solver's cost record (``extra``; solver results from 2026-11-22 on), copied into each row."""
 RQ = [(0.05, 0.05), (0.1, 0.1), (0.2, 0.2), (0.3, 0.3), (0.4, 0.4), (0.5, 0.5), (0.7, 0.7), (1.0, 1.0), (0.2, 0.5),
       (0.4, 1.0)]
 
@@ -97,7 +96,7 @@ def main(argv=None) -> int:
                    "mu_inefficiency_steps": res.extra.get("mu_inefficiency_steps"),
                    "mu_sem_target_met": res.extra.get("mu_sem_target_met"),
                    "asperity_load_share_sem": res.extra.get("asperity_load_share_sem"),
-                   **{key: res.extra.get(key) for key in NEWTON_COST_FIELDS},
+                   **{key: res.extra.get(key) for key in NewtonCost.FIELDS},  # the solver's cost record
                    # a converged run may have had only its averaging-window extension cut by the budget
                    "time_limited": bool(res.extra.get("time_limited", False)) and not res.converged,
                    "message": res.message}

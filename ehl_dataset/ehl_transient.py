@@ -266,7 +266,7 @@ def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel
             newton_options = careful_tolerances if careful else step_tolerances
             problem.contact_faces_couette = CONTACT_FACES_COUETTE or couette_faces
             d_sub = d_t / n_sub
-            ok, p_try, h0_try, m_try, its = True, p, h0, m_prev, 0
+            ok, p_try, h0_try, m_try = True, p, h0, m_prev
             for k in range(n_sub):
                 t_k = t + (k + 1) * d_sub
                 r1, r2 = surfaces.at(t_k * time_scale)
@@ -288,7 +288,6 @@ def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel
                                                                  problem.h_closed)
                 outcome = newton_solve(problem, p_try, h0_try, m_ref=m_ref, monotone=MONOTONE, freeze_scaling=True,
                                        **newton_options)
-                its += outcome.iterations
                 failures = int(not outcome.converged)
                 cost.count(outcome)
                 for _ in range(CONTACT_ROUNDS if CLOSED_NODES else 0):
@@ -303,7 +302,6 @@ def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel
                     start_p, start_h0 = (outcome.p, outcome.h0) if (outcome.converged and ROUND_WARM_START) else (p_try, h0_try)
                     outcome = newton_solve(problem, start_p, start_h0, m_ref=m_ref, monotone=MONOTONE,
                                            freeze_scaling=True, **newton_options)
-                    its += outcome.iterations
                     failures += int(not outcome.converged)
                     cost.count(outcome)
                     if failures > ROUNDS_AFTER_FAILURE:
@@ -313,7 +311,6 @@ def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel
                     break
                 p_try, h0_try = outcome.p, outcome.h0
                 m_try = problem.fluid(p_try, outcome.h)[3]
-            iterations += its
             if ok:
                 break
         if not ok:
@@ -330,6 +327,7 @@ def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel
             worst[key] = max(worst[key], abs(value))
         _record(history, t, case, state, x * a, p * case.p_h, outcome.h * film_scale, H_CLOSED_M, YIELD_PRESSURE_PA)
 
+    iterations += cost.iterations
     converged = not failure
     steps = len(history["t"])
     if steps == 0:
@@ -390,7 +388,11 @@ class NewtonCost:
     """What the time stepping spent on Newton solves (a cost record; it changes no solved value): solves and
     iterations of the solves that converged and of those that failed (a failed solve runs to its iteration cap and
     is then retried with sub-steps). Each iteration is one dense LU factorisation of N × N, the dominant cost:
-    measured 22 ms at N = 1,006 (one BLAS thread), 72 per time step on a 2.5 GPa / 80 mm `standard` case."""
+    measured 22 ms at N = 1,006 (one BLAS thread), 72 per time step over the first 87 steps of a 2.5 GPa / 80 mm
+    `standard` case (docs/ehl_solver.md, "Where the time of a rough run goes")."""
+
+    FIELDS = ("newton_solves", "newton_solves_failed", "newton_step_iterations", "newton_iterations_failed")
+    """The ``extra`` keys of the record (:meth:`as_extra`)."""
 
     def __init__(self):
         self.solves = self.failed = self.iterations = self.failed_iterations = 0
@@ -405,8 +407,7 @@ class NewtonCost:
 
     def as_extra(self) -> dict[str, int]:
         """The record as ``extra`` fields of a result."""
-        return {"newton_solves": self.solves, "newton_solves_failed": self.failed,
-                "newton_step_iterations": self.iterations, "newton_iterations_failed": self.failed_iterations}
+        return dict(zip(self.FIELDS, (self.solves, self.failed, self.iterations, self.failed_iterations)))
 
 
 def _message(converged: bool, failure: str, steps: int, fallback_steps: int, careful_steps: int) -> str:
