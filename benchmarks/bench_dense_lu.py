@@ -10,8 +10,9 @@ Measured here on random diagonally dominant matrices with one BLAS thread (the s
 time per solve for each N, and the power law t = c·N^k fitted to them.
 
 ``--floor-from`` reads transient benchmark reports (bench_ehl_mixed.py) and computes for each row the *floor*
-n_steps × t(n_nodes) (n_steps: the steps run, at least the planned base run for a budget-stopped row): the time a run of that many time steps on that grid would take if every step needed a single
-Newton iteration (one LU) and nothing else cost anything. The measured per-row cost record (Newton iterations per
+n_steps × t(n_nodes) (n_steps: the steps run, at least the planned base run for a budget-stopped row): the time
+a run of that many time steps on that grid would take if every step needed a single Newton iteration (one LU) and
+nothing else cost anything. The measured per-row cost record (Newton iterations per
 step) is reported next to it. The floor is what an algorithmic change of the time stepping alone cannot go below;
 reaching ≈ 1 s per case needs the linear algebra itself to change (e.g. O(N log N) multilevel or Krylov solves).
 """
