@@ -2,9 +2,8 @@
 
 Every script: the machine description (:func:`machine_info`; a script adds its own extras such as load averages or
 library versions), the median wall time of repeated calls (:func:`median_time`, :func:`repeat_times`) and printing /
-writing its JSON (:func:`emit_json`). The transient mixed EHL benchmarks (bench_ehl_mixed.py,
-bench_mixed_relaxation.py) also: per-case result rows → timing summary, shard merging and writing the JSON report;
-each keeps its own row fields and summary extras, these functions only hold what both compute the same way.
+writing its JSON (:func:`emit_json`). The transient mixed EHL benchmark (bench_ehl_mixed.py) also: per-case
+result rows → timing summary, shard merging and writing the JSON report.
 """
 
 from __future__ import annotations

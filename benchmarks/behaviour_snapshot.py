@@ -163,11 +163,11 @@ def differences(before, after, where: str = "", rtol: float = 0.0) -> tuple[list
 
 def partial(out: Path, pending: list[int]) -> None:
     """A smoke-factorial file with every row computed except ``pending``, as an interrupted run leaves it."""
-    import ehl_dataset.runner as runner
-    from ehl_dataset.factorial import load_factorial
-    from ehl_dataset.store import DatasetStore
+    import ehl_dataset.dataset.runner as runner
+    from ehl_dataset.dataset.factorial import load_factorial
+    from ehl_dataset.dataset.store import DatasetStore
 
-    lubricant_mod = __import__("ehl_dataset.lubricant", fromlist=["load_lubricant"])
+    lubricant_mod = __import__("ehl_dataset.model.lubricant", fromlist=["load_lubricant"])
     plan = load_factorial("smoke")
     lub = lubricant_mod.load_lubricant(plan.lubricant)
     config = runner.solver_config(runner.DEFAULT_SOLVER, plan.level, plan.effects)

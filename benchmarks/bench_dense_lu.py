@@ -4,7 +4,7 @@ floor it puts under the time per rough case.
     python benchmarks/bench_dense_lu.py [--sizes 150 300 500 750 1000] [--repeats 7]
         [--floor-from benchmarks/results/ehl_mixed_random20_standard.json ...] [--out FILE]
 
-The full-system Newton of ``ehl_dataset.ehl_newton`` solves one dense (N − 1) × (N − 1) system per iteration
+The full-system Newton of ``ehl_dataset.solvers.newton`` solves one dense (N − 1) × (N − 1) system per iteration
 (``scipy.linalg.solve``, LU with partial pivoting, ≈ ⅔ N³ flops; the elastic coupling K makes the Jacobian dense).
 Measured here on random diagonally dominant matrices with one BLAS thread (the solver's own setting): the median
 time per solve for each N, and the power law t = c·N^k fitted to them.

@@ -25,10 +25,10 @@ from pathlib import Path
 
 import numpy as np
 
-from ehl_dataset.contact import ContactCase
-from ehl_dataset.effects import Effects
-from ehl_dataset.ehl_transient import NewtonCost
-from ehl_dataset.lubricant import load_lubricant
+from ehl_dataset.model.contact import ContactCase
+from ehl_dataset.model.effects import Effects
+from ehl_dataset.solvers.transient import NewtonCost
+from ehl_dataset.model.lubricant import load_lubricant
 from ehl_dataset.solver import SOLVER_VERSION, solve_contact
 
 # _common.py sits next to this file. Run as a script (`python benchmarks/bench_ehl_mixed.py` or, inside benchmarks/,

@@ -17,10 +17,10 @@ import sys
 import time
 from pathlib import Path
 
-from ehl_dataset.contact import ContactCase
-from ehl_dataset.effects import Effects
-from ehl_dataset.levels import LEVELS
-from ehl_dataset.lubricant import load_lubricant
+from ehl_dataset.model.contact import ContactCase
+from ehl_dataset.model.effects import Effects
+from ehl_dataset.solvers.levels import LEVELS
+from ehl_dataset.model.lubricant import load_lubricant
 from ehl_dataset.solver import solve_contact
 
 # _common.py sits next to this file (sys.path: see bench_ehl_mixed.py)

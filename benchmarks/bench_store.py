@@ -26,11 +26,11 @@ from pathlib import Path
 
 import numpy as np
 
-from ehl_dataset.factorial import canonical_json, load_factorial
-from ehl_dataset.lubricant import load_lubricant
-from ehl_dataset.result import ContactResult
-from ehl_dataset.runner import execute, run_factorial, solver_config
-from ehl_dataset.store import OK, DatasetStore, read_table
+from ehl_dataset.dataset.factorial import canonical_json, load_factorial
+from ehl_dataset.model.lubricant import load_lubricant
+from ehl_dataset.solvers.result import ContactResult
+from ehl_dataset.dataset.runner import execute, run_factorial, solver_config
+from ehl_dataset.dataset.store import OK, DatasetStore, read_table
 
 # _common.py sits next to this file (sys.path: see bench_ehl_mixed.py)
 sys.path.insert(0, str(Path(__file__).resolve().parent))

@@ -36,8 +36,8 @@ def main(argv=None) -> int:
     import sklearn
     import statsmodels
 
-    from ehl_dataset.lubricant import load_lubricant
-    from ehl_dataset.materials import STEEL, reduced_modulus
+    from ehl_dataset.model.lubricant import load_lubricant
+    from ehl_dataset.model.materials import STEEL, reduced_modulus
     from surrogate.coefficients import write_coefficients
     from surrogate.evaluate import FrictionSurrogate
     from surrogate.fit import cross_validate, fit_surrogate, prepare_table

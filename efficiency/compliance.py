@@ -44,7 +44,7 @@ import math
 import numpy as np
 from numba import njit
 
-from ehl_dataset.materials import STEEL, Material, reduced_modulus
+from ehl_dataset.model.materials import STEEL, Material, reduced_modulus
 from ehl_dataset.validation import check_range
 
 # Sainsot, Velex & Duverger 2004, Table 1: X* = A/θ_f² + B h_f² + C h_f/θ_f + D/θ_f + E h_f + F for L*, M*, P*, Q*.

@@ -31,7 +31,7 @@ from typing import Any, Callable, Mapping
 
 import numpy as np
 
-from ehl_dataset.materials import STEEL, Material
+from ehl_dataset.model.materials import STEEL, Material
 from ehl_dataset.validation import InputError, SolverError, check_range
 
 from .power_loss import EhlFriction, contact_conditions, mesh_power_loss
@@ -252,8 +252,8 @@ def friction_from_name(spec: str, lubricant="atf") -> Callable:
     [:EFFECTS][:NSxNP]`` (:class:`EhlGridFriction`, NS roll × NP load nodes), else
     :func:`efficiency.studies.friction_from_spec` (``constant:MU``, ``xu2007``, ``benedict_kelley``, ``iso14179``,
     a coefficient file). ``lubricant`` (name, file or Lubricant) is used by the EHL and published models."""
-    from ehl_dataset.levels import LEVELS
-    from ehl_dataset.lubricant import Lubricant, load_lubricant
+    from ehl_dataset.solvers.levels import LEVELS
+    from ehl_dataset.model.lubricant import Lubricant, load_lubricant
 
     accepted = ("ehl:LEVEL[:auto|full], ehl-grid:LEVEL[:auto|full][:NSxNP], constant:MU, xu2007, "
                 "benedict_kelley, iso14179 or a coefficient file")

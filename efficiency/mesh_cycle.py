@@ -29,7 +29,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ehl_dataset.materials import STEEL, Material, reduced_modulus
+from ehl_dataset.model.materials import STEEL, Material, reduced_modulus
 from ehl_dataset.validation import InputError, SolverError, check_range
 
 from .compliance import (DEFAULT_HUB_RATIO, centreline_depth, contact_compliance, face_coupling, root_bending_arm,

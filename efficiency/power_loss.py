@@ -25,7 +25,7 @@ from typing import Any, Callable, Protocol
 
 import numpy as np
 
-from ehl_dataset.materials import STEEL, Material, reduced_modulus
+from ehl_dataset.model.materials import STEEL, Material, reduced_modulus
 from ehl_dataset.validation import InputError, check_range
 
 
@@ -84,7 +84,7 @@ class EhlFriction:
     _stats: dict = field(default_factory=dict, compare=False, repr=False)
 
     def __call__(self, p_h, r_eq, u_r, sr, temperature, rq1, rq2):
-        from ehl_dataset.contact import ContactCase
+        from ehl_dataset.model.contact import ContactCase
         from ehl_dataset.solver import solve_contact
         from ehl_dataset.validation import SolverError
 

@@ -305,7 +305,7 @@ def friction_from_spec(spec: str, lubricant="atf") -> Callable:
 
     ``constant:0.05`` → :class:`~efficiency.power_loss.ConstantFriction`; ``xu2007``, ``benedict_kelley``,
     ``iso14179`` → :class:`~efficiency.power_loss.PublishedFriction` with ``lubricant`` (name, file or
-    :class:`~ehl_dataset.lubricant.Lubricant`) for the inlet viscosity; anything else is a coefficient file path
+    :class:`~ehl_dataset.model.lubricant.Lubricant`) for the inlet viscosity; anything else is a coefficient file path
     or a shipped coefficient name → :class:`surrogate.evaluate.FrictionSurrogate` (its own lubricant) with its
     inputs clipped to the fitted ranges (gear contacts leave the factorial's ranges; Eq. 9 must not extrapolate).
     """
@@ -321,7 +321,7 @@ def friction_from_spec(spec: str, lubricant="atf") -> Callable:
             raise InputError("friction", spec, "constant:MU with a number MU in [0, 1]") from None
         return ConstantFriction(mu)
     if spec.lower() in PUBLISHED_NAMES:
-        from ehl_dataset.lubricant import Lubricant, load_lubricant
+        from ehl_dataset.model.lubricant import Lubricant, load_lubricant
 
         lub = lubricant if isinstance(lubricant, Lubricant) else load_lubricant(lubricant)
         return PublishedFriction(PUBLISHED_NAMES[spec.lower()], lub)

@@ -32,7 +32,7 @@ from typing import Any
 
 import numpy as np
 
-from ehl_dataset.lubricant import Lubricant, lubricant_from_dict
+from ehl_dataset.model.lubricant import Lubricant, lubricant_from_dict
 from ehl_dataset.validation import InputError
 
 from .fit import RANGE_KEYS, SurrogateFit

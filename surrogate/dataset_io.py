@@ -1,7 +1,7 @@
 """Reading a friction dataset for fitting: the HDF5 store of stage 1, or a CSV table with the same columns.
 
 This is the only IO of the surrogate stage besides coefficient files. HDF5 files carry their lubricant and solver
-configuration (:func:`ehl_dataset.store.read_metadata`); a CSV table needs the lubricant from the caller. The
+configuration (:func:`ehl_dataset.dataset.store.read_metadata`); a CSV table needs the lubricant from the caller. The
 contacts of stage 1 use the default materials (steel on steel, E = 206 GPa, ν = 0.3) unless the solver
 configuration records ``e_reduced_pa``.
 """
@@ -14,8 +14,8 @@ from typing import Any
 
 import pandas as pd
 
-from ehl_dataset.lubricant import Lubricant, load_lubricant, lubricant_from_dict
-from ehl_dataset.materials import STEEL, reduced_modulus
+from ehl_dataset.model.lubricant import Lubricant, load_lubricant, lubricant_from_dict
+from ehl_dataset.model.materials import STEEL, reduced_modulus
 from ehl_dataset.validation import InputError
 
 from .coefficients import file_sha256
@@ -40,7 +40,7 @@ def load_dataset(path: str | Path, lubricant: str | Path | Lubricant | None = No
         raise InputError("dataset", str(path), "an existing HDF5 (.h5) dataset file or a CSV table")
     source: dict[str, Any] = {"path": str(path), "sha256": file_sha256(path)}
     if path.suffix.lower() in HDF5_SUFFIXES:
-        from ehl_dataset.store import read_metadata, read_table
+        from ehl_dataset.dataset.store import read_metadata, read_table
 
         meta = read_metadata(path)
         table = read_table(path, status=None)

@@ -27,7 +27,7 @@ import math
 
 import numpy as np
 
-from ehl_dataset.film_formulas import dowson_higginson_min_film
+from ehl_dataset.model.film_formulas import dowson_higginson_min_film
 
 FEATURE_NAMES: tuple[str, ...] = ("W", "alpha", "r", "V", "lam", "SR", "Sc", "Seq")
 """Keys of the feature dictionary, in the order used by tables and the learned model."""
@@ -59,7 +59,7 @@ def compute_features(p_h, r_eq, u_r, sr, temperature, rq1, rq2, lubricant, e_red
 
     Parameters (SI, broadcastable arrays): ``p_h`` [Pa], ``r_eq`` [m], ``u_r`` [m/s], ``sr`` [-] (sign ignored),
     ``temperature`` inlet temperature [K], ``rq1``, ``rq2`` [m]; ``lubricant`` an
-    :class:`ehl_dataset.lubricant.Lubricant`; ``e_reduced`` E' [Pa]. No validation here (pure arithmetic):
+    :class:`ehl_dataset.model.lubricant.Lubricant`; ``e_reduced`` E' [Pa]. No validation here (pure arithmetic):
     callers validate (see :mod:`surrogate.evaluate`). Also returned: ``h_min_dh`` [m] and ``w_prime`` [N/m].
     """
     p_h, r_eq, u_r, sr, temperature, rq1, rq2 = np.broadcast_arrays(

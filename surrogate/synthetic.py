@@ -112,12 +112,12 @@ def eq9_table(inputs: pd.DataFrame, params: dict[str, np.ndarray], lubricant, e_
 
 
 def write_hdf5(table: pd.DataFrame, path, lubricant, *, name: str = "synthetic", level: str = "synthetic"):
-    """Write a synthetic table into a stage-1 HDF5 store (:mod:`ehl_dataset.store`); rows with non-finite μ are
+    """Write a synthetic table into a stage-1 HDF5 store (:mod:`ehl_dataset.dataset.store`); rows with non-finite μ are
     recorded as failed. For tests and demos of the dataset → coefficient-file path."""
     import math
 
-    from ehl_dataset.factorial import POINT_DTYPE, POINT_FIELDS
-    from ehl_dataset.store import FAILED, OK, DatasetStore
+    from ehl_dataset.dataset.factorial import POINT_DTYPE, POINT_FIELDS
+    from ehl_dataset.dataset.store import FAILED, OK, DatasetStore
 
     points = np.empty(len(table), dtype=POINT_DTYPE)
     for field in POINT_FIELDS:

@@ -26,7 +26,7 @@ from typing import Any, Callable, Sequence
 
 import numpy as np
 
-from ehl_dataset.contact import ContactCase
+from ehl_dataset.model.contact import ContactCase
 from ehl_dataset.validation import InputError
 
 CaseSpec = tuple[str, float, float, float, float, float, float, float]
@@ -166,7 +166,7 @@ def _default_solver():
 def effects_argument(effects):
     """``"auto"``/``"full"``/an Effects pass through; ``"smooth"`` is the steady smooth plan (roughness ignored)."""
     if effects == "smooth":
-        from ehl_dataset.effects import Effects
+        from ehl_dataset.model.effects import Effects
 
         return Effects.smooth_steady(forced="accuracy study: steady smooth physics")
     return effects
@@ -202,7 +202,7 @@ def run_study(cases: Sequence[CaseSpec] = ACCURACY_CASES, levels: Sequence[str] 
               progress: Callable[[str], None] | None = None, checkpoint: str | Path | None = None) -> AccuracyStudy:
     """Solve every case at the reference and at each level; errors relative to the reference (see module doc).
     With ``checkpoint`` the runs so far are written there as JSON after every case (a long study can be stopped)."""
-    from ehl_dataset.lubricant import Lubricant, load_lubricant
+    from ehl_dataset.model.lubricant import Lubricant, load_lubricant
 
     if not cases:
         raise InputError("cases", 0, "at least one case")
@@ -243,7 +243,7 @@ REFINEMENTS: dict[str, tuple[str, ...]] = {
     "time_step": ("courant",),
     "window": ("n_passes",),
 }
-"""Which :class:`~ehl_dataset.levels.AccuracyLevel` fields each refinement scales (grid and time step are divided
+"""Which :class:`~ehl_dataset.solvers.levels.AccuracyLevel` fields each refinement scales (grid and time step are divided
 by the factor; the averaging window, ``n_passes``, is multiplied by it). The caps ``max_nodes_rough`` (grid) and
 ``max_steps_rough`` (every kind: the number of steps grows with each) are multiplied by the factor so that the
 refinement is not silently capped."""
@@ -251,7 +251,7 @@ refinement is not silently capped."""
 
 def refined_level(base, kind: str, factor: float):
     """Copy of level ``base`` with the fields of refinement ``kind`` refined by ``factor`` (> 1 finer)."""
-    from ehl_dataset.levels import get_level
+    from ehl_dataset.solvers.levels import get_level
 
     lvl = get_level(base)
     if kind not in REFINEMENTS:
@@ -286,7 +286,7 @@ def convergence_study(spec: CaseSpec, kind: str = "grid", base_level: str = "sta
 
     Returns the table rows and the observed orders of μ and h_min from the three finest runs.
     """
-    from ehl_dataset.lubricant import Lubricant, load_lubricant
+    from ehl_dataset.model.lubricant import Lubricant, load_lubricant
 
     lub = lubricant if isinstance(lubricant, Lubricant) else load_lubricant(lubricant)
     solve = solve or _default_solver()

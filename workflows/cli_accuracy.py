@@ -41,7 +41,7 @@ def register(subparsers) -> None:
 
 
 def run_accuracy(args) -> int:
-    from ehl_dataset.levels import get_level
+    from ehl_dataset.solvers.levels import get_level
     from ehl_dataset.validation import InputError
     from workflows import accuracy
     from workflows.cli import emit

@@ -38,10 +38,10 @@ def register(subparsers) -> None:
 
 
 def _solve(args) -> int:
-    from ehl_dataset.contact import ContactCase
-    from ehl_dataset.effects import Effects
-    from ehl_dataset.levels import get_level
-    from ehl_dataset.lubricant import load_lubricant
+    from ehl_dataset.model.contact import ContactCase
+    from ehl_dataset.model.effects import Effects
+    from ehl_dataset.solvers.levels import get_level
+    from ehl_dataset.model.lubricant import load_lubricant
     from ehl_dataset.solver import solve_contact
     from ehl_dataset.validation import check_finite
 
@@ -55,7 +55,7 @@ def _solve(args) -> int:
     effects = Effects.smooth_steady(forced="effects=smooth") if args.effects == "smooth" else args.effects
     roughness = None
     if args.roughness_file is not None:
-        from ehl_dataset.roughness import load_profile
+        from ehl_dataset.model.roughness import load_profile
 
         roughness = load_profile(args.roughness_file, unit=args.roughness_unit)
     result = solve_contact(case, lubricant, level.name, effects, roughness, args.time_limit_s)

@@ -95,7 +95,7 @@ def _human_summary(p: dict) -> str:
 
 
 def _run(args) -> int:
-    from ehl_dataset.runner import DEFAULT_SOLVER, run_factorial
+    from ehl_dataset.dataset.runner import DEFAULT_SOLVER, run_factorial
 
     summary = run_factorial(args.out, args.factorial, lubricant=args.lubricant, level=args.level,
                             effects=args.effects, workers=args.workers, scheduler=args.scheduler,
@@ -104,7 +104,7 @@ def _run(args) -> int:
 
 
 def _resume(args) -> int:
-    from ehl_dataset.runner import resume_run
+    from ehl_dataset.dataset.runner import resume_run
 
     summary = resume_run(args.file, workers=args.workers, scheduler=args.scheduler, solver=args.solver,
                          factorial=args.factorial, lubricant=args.lubricant, level=args.level,
@@ -113,7 +113,7 @@ def _resume(args) -> int:
 
 
 def _info(args) -> int:
-    from ehl_dataset.store import summarize
+    from ehl_dataset.dataset.store import summarize
     from workflows.cli import emit
 
     emit(summarize(args.file, slowest=args.slowest), args.json, _human_info)
@@ -122,7 +122,7 @@ def _info(args) -> int:
 
 def _human_info(p: dict) -> str:
     fac, sol, counts = p["factorial"], p["solver"], p["counts"]
-    from ehl_dataset.factorial import AXIS_KEYS
+    from ehl_dataset.dataset.factorial import AXIS_KEYS
 
     axes = fac.get("axes", {})
     shape = " x ".join(f"{len(axes[k])} {k}" for k in AXIS_KEYS if k in axes)

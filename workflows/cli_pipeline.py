@@ -46,7 +46,7 @@ def register(subparsers) -> None:
 
 
 def run_pipeline_command(args: argparse.Namespace) -> int:
-    from ehl_dataset.runner import check_time_limit
+    from ehl_dataset.dataset.runner import check_time_limit
     from ehl_dataset.validation import check_range
 
     from .pipeline import run_pipeline

@@ -3,7 +3,7 @@
 Three stage functions, each returning a :class:`StageResult` (artefact path, wall time, the numbers worth
 reporting), and :func:`run_pipeline` that chains them in one process (DESIGN §1, §2 ``workflows``):
 
-1. :func:`dataset_stage` — :func:`ehl_dataset.runner.run_factorial` into ``OUT/dataset.h5``; an existing file of the
+1. :func:`dataset_stage` — :func:`ehl_dataset.dataset.runner.run_factorial` into ``OUT/dataset.h5``; an existing file of the
    same factorial, solver and lubricant is continued (only rows that are not ``ok`` are computed).
 2. :func:`fit_stage` — :func:`surrogate.fit.fit_surrogate` (paper Eq. 9a/9b) on the ``ok`` rows, written with
    :func:`surrogate.coefficients.write_coefficients` to ``OUT/<lubricant>_<factorial>.json`` (plus the statsmodels
@@ -68,7 +68,7 @@ class PipelineResult:
 
 
 def _factorial(factorial):
-    from ehl_dataset.factorial import Factorial, load_factorial
+    from ehl_dataset.dataset.factorial import Factorial, load_factorial
 
     return factorial if isinstance(factorial, Factorial) else load_factorial(factorial)
 
@@ -83,12 +83,12 @@ def coefficients_file_name(lubricant_name: str, factorial_name: str) -> str:
 def dataset_stage(out_dir: str | Path, factorial, *, workers: int = 1, scheduler: str | None = None,
                   lubricant=None, level: str | None = None, progress: str = "auto", overwrite: bool = False,
                   time_limit_s: float | None = None, **runner_options) -> StageResult:
-    """Compute ``factorial`` (a :class:`~ehl_dataset.factorial.Factorial`, a shipped name or a TOML path) into
+    """Compute ``factorial`` (a :class:`~ehl_dataset.dataset.factorial.Factorial`, a shipped name or a TOML path) into
     ``out_dir/dataset.h5``; continue the file if it holds the same run. ``time_limit_s``: wall-time budget per
     point [s] (None: none; a point that spends it is stored not converged with its message; an execution option, so
     a file continues whatever budget it was started with). ``runner_options`` go to
-    :func:`ehl_dataset.runner.run_factorial` (``window``, ``max_attempts``, ``stream``, ...)."""
-    from ehl_dataset.runner import check_time_limit, run_factorial
+    :func:`ehl_dataset.dataset.runner.run_factorial` (``window``, ``max_attempts``, ``stream``, ...)."""
+    from ehl_dataset.dataset.runner import check_time_limit, run_factorial
 
     time_limit_s = check_time_limit(time_limit_s)
     started = time.perf_counter()
@@ -110,7 +110,7 @@ def dataset_stage(out_dir: str | Path, factorial, *, workers: int = 1, scheduler
 
 def _failure_digest(path: Path, keep: int = 3) -> dict[str, int]:
     """The most frequent error messages of the failed rows (message → count)."""
-    from ehl_dataset.store import read_table
+    from ehl_dataset.dataset.store import read_table
 
     failed = read_table(path, status="failed")
     counts = failed["error"].astype(str).str.slice(0, 160).value_counts()
@@ -215,7 +215,7 @@ def run_pipeline(out_dir: str | Path, factorial=QUICK_FACTORIAL, *, workers: int
     if dataset.details["interrupted"]:
         raise SolverError(f"dataset stage interrupted ({dataset.details['interrupted']}); run the pipeline again "
                           f"to resume {dataset.artefact}")
-    from ehl_dataset.store import read_metadata
+    from ehl_dataset.dataset.store import read_metadata
 
     lubricant_name = str(read_metadata(dataset.artefact)["lubricant"].get("name", "lubricant"))
     coefficients = out / coefficients_file_name(lubricant_name, plan.name)

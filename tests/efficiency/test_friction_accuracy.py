@@ -18,7 +18,7 @@ from efficiency.mesh_cycle import MeshOptions, evaluate_mesh
 from efficiency.modifications import Modifications
 from efficiency.power_loss import (ConstantFriction, EhlFriction, PublishedFriction, contact_conditions,
                                    mesh_power_loss)
-from ehl_dataset.lubricant import load_lubricant
+from ehl_dataset.model.lubricant import load_lubricant
 from ehl_dataset.validation import InputError
 from workflows.cli import main
 
@@ -139,7 +139,7 @@ def test_ehl_grid_is_exact_at_its_nodes(design_d_mesh, atf):
 @pytest.fixture(scope="module")
 def illustrative_surrogate(atf, tmp_path_factory):
     """A coefficient file fitted to a synthetic Eq. 9 table (illustrative coefficients; tests/surrogate/conftest)."""
-    from ehl_dataset.materials import STEEL, reduced_modulus
+    from ehl_dataset.model.materials import STEEL, reduced_modulus
     from surrogate.coefficients import write_coefficients
     from surrogate.evaluate import FrictionSurrogate
     from surrogate.fit import fit_surrogate

@@ -6,7 +6,7 @@ import math
 import numpy as np
 import pytest
 
-from ehl_dataset.materials import STEEL, reduced_modulus
+from ehl_dataset.model.materials import STEEL, reduced_modulus
 from ehl_dataset.validation import InputError
 from efficiency import iso6336
 from efficiency.geometry import GearPair

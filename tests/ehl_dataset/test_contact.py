@@ -4,8 +4,8 @@ import math
 
 import pytest
 
-from ehl_dataset.contact import ContactCase
-from ehl_dataset.materials import STEEL, reduced_modulus
+from ehl_dataset.model.contact import ContactCase
+from ehl_dataset.model.materials import STEEL, reduced_modulus
 from ehl_dataset.validation import InputError
 
 

@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from ehl_dataset.deflection import deflection_fft, influence_matrix, uniform_kernel
+from ehl_dataset.discretisation.deflection import deflection_fft, influence_matrix, uniform_kernel
 
 # Dimensionless Hertz line contact: for P = √(1 − X²) on |X| ≤ 1,
 #   −(1/π) ∫ ln|X − X'| P(X') dX' = ln2/2 + 1/4 − X²/2   for |X| ≤ 1
@@ -61,7 +61,7 @@ def test_si_scale_matches_point_load_far_field():
     p = np.sqrt(np.clip(1 - (x / 2e-6) ** 2, 0, None))  # strip half width 2 µm ≪ distances 50, 100 µm
     p *= load / np.trapezoid(p, x)
     x_far = np.array([5e-5, 1e-4])
-    from ehl_dataset.deflection import _hat_weights
+    from ehl_dataset.discretisation.deflection import _hat_weights
 
     v_far = -(4.0 / e_red) / np.pi * _hat_weights(x_far, x) @ p  # the kernel of influence_matrix off the grid
     k_on_grid = influence_matrix(x[::400], scale=4.0 / e_red)

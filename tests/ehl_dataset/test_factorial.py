@@ -7,10 +7,10 @@ import math
 import numpy as np
 import pytest
 
-from ehl_dataset.contact import ContactCase
-from ehl_dataset.factorial import (AXIS_KEYS, POINT_DTYPE, factorial_from_dict, load_factorial)
-from ehl_dataset.film_formulas import dowson_higginson_min_film
-from ehl_dataset.lubricant import load_lubricant
+from ehl_dataset.model.contact import ContactCase
+from ehl_dataset.dataset.factorial import (AXIS_KEYS, POINT_DTYPE, factorial_from_dict, load_factorial)
+from ehl_dataset.model.film_formulas import dowson_higginson_min_film
+from ehl_dataset.model.lubricant import load_lubricant
 from ehl_dataset.validation import InputError
 
 # Li & Kahraman 2009, Sect. 2.1, as fixed in DESIGN.md Sect. 4 (roughness as (Rq1, Rq2) pairs).

@@ -2,7 +2,7 @@
 
 import pytest
 
-from ehl_dataset import film_formulas as ff
+from ehl_dataset.model import film_formulas as ff
 
 
 def _args(u, g, w, e_red=2.26e11, r=0.02):

@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from ehl_dataset.lubricant import (
+from ehl_dataset.model.lubricant import (
     DH_GAMMA_PER_PA,
     DH_LAMBDA_PER_PA,
     dowson_higginson_density,

@@ -1,13 +1,13 @@
-"""The closure of the unified Reynolds equation across asperity-contact patches (ehl_dataset.reynolds
+"""The closure of the unified Reynolds equation across asperity-contact patches (ehl_dataset.discretisation.reynolds
 ``reroute_patch_fluxes``, used by the transient mixed solver): a conservation law and exact Newton derivatives."""
 
 import numpy as np
 import pytest
 
-from ehl_dataset.deflection import influence_matrix
-from ehl_dataset.ehl_newton import ReynoldsProblem
-from ehl_dataset.lubricant import load_lubricant
-from ehl_dataset.reynolds import face_flux
+from ehl_dataset.discretisation.deflection import influence_matrix
+from ehl_dataset.solvers.newton import ReynoldsProblem
+from ehl_dataset.model.lubricant import load_lubricant
+from ehl_dataset.discretisation.reynolds import face_flux
 
 
 def _problem(compressible: bool, couette_faces: bool = False):

@@ -7,11 +7,12 @@ import numpy as np
 
 import pytest
 
-from ehl_dataset.contact import ContactCase
-from ehl_dataset.effects import Effects
-from ehl_dataset.film_formulas import dowson_higginson_min_film
-from ehl_dataset.lubricant import load_lubricant
-from ehl_dataset.planner import THRESHOLDS, dimensionless_numbers, plan_effects, resolve_effects
+from ehl_dataset.model.contact import ContactCase
+from ehl_dataset.model.effects import Effects
+from ehl_dataset.model.film_formulas import dowson_higginson_min_film
+from ehl_dataset.model.lubricant import load_lubricant
+from ehl_dataset.solver import solve_contact as solve
+from ehl_dataset.solvers.planner import THRESHOLDS, dimensionless_numbers, plan_effects, resolve_effects
 from ehl_dataset.validation import InputError
 
 ATF = load_lubricant("atf")
@@ -130,17 +131,12 @@ def test_bad_input():
 # ---------------------------------------------------------------------------------------------------------------
 # Planned versus full: where the planner skips an effect, the full model agrees within the level's tolerance
 # ---------------------------------------------------------------------------------------------------------------
-def _solver():
-    return pytest.importorskip("ehl_dataset.solver").solve_contact
-
-
 @pytest.mark.parametrize("level", ["fast", "standard"])
 def test_shear_thinning_skip_agrees_with_full_model(level):
     """Heavy, fast, cold smooth contact (2.5 GPa, 5 mm, 15 m/s, 25 °C: the most sensitive corner of the sweep in
     docs/planner.md). SR is set for X_in = 0.5, 0.9, 1.1 and 2 × the level's threshold. Where the planner skips
     shear thinning (X_in ≤ threshold), μ and h_min of the planned solve agree with the solve that keeps it within
     the level's tolerance; the change grows with X_in (that is what the threshold is about)."""
-    solve = _solver()
     limits = THRESHOLDS[level]
     base = case(2.5, 5, 15, 1.0, 25, 0, 0)
     x_per_sr = dimensionless_numbers(base, ATF)["eyring_inlet"]
@@ -170,8 +166,6 @@ def test_roughness_skip_agrees_with_full_model(level, factors):
     tolerance (5 %, 2 %) plus three standard errors of the rough run's time average (batch means over 8 batches:
     the rough μ is itself a sample mean). Below the threshold the planner keeps roughness. The calibration over
     more cases, including the worst ones found (low SR, light load), is in docs/planner.md."""
-    solve = _solver()
-    pytest.importorskip("ehl_dataset.ehl_transient")
     limits = THRESHOLDS[level]
     smooth_case = case(1.0, 20, 10, 0.3, 50, 0, 0)
     h_dh = dimensionless_numbers(smooth_case, ATF)["h_min_dh_m"]

@@ -13,8 +13,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ehl_dataset.runner import resume_run
-from ehl_dataset.store import read_metadata, read_table
+from ehl_dataset.dataset.runner import resume_run
+from ehl_dataset.dataset.store import read_metadata, read_table
 
 REPO = Path(__file__).resolve().parents[2]
 OLD_FILE = Path(__file__).parent / "data" / "smoke_partial_v7.h5"

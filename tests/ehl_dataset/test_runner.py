@@ -16,11 +16,11 @@ from pathlib import Path
 
 import pytest
 
-from ehl_dataset.factorial import factorial_from_dict
-from ehl_dataset.film_formulas import dowson_higginson_min_film
-from ehl_dataset.result import ContactResult
-from ehl_dataset.runner import resume_run, run_factorial
-from ehl_dataset.store import read_metadata, read_table
+from ehl_dataset.dataset.factorial import factorial_from_dict
+from ehl_dataset.model.film_formulas import dowson_higginson_min_film
+from ehl_dataset.solvers.result import ContactResult
+from ehl_dataset.dataset.runner import resume_run, run_factorial
+from ehl_dataset.dataset.store import read_metadata, read_table
 from ehl_dataset.validation import InputError, SolverError
 
 REPO = Path(__file__).resolve().parents[2]
@@ -134,8 +134,8 @@ def test_local_processes_give_the_same_rows_as_in_process(tmp_path, plan):
     # the stored μ is exactly what the solve function returned for that point
     row = table.iloc[5]
     case_values = [row[c] for c in ("p_h", "r_eq", "u_r", "sr", "temperature", "rq1", "rq2")]
-    from ehl_dataset.contact import ContactCase
-    from ehl_dataset.lubricant import load_lubricant
+    from ehl_dataset.model.contact import ContactCase
+    from ehl_dataset.model.lubricant import load_lubricant
     assert row["mu"] == analytic_solve(ContactCase(*case_values), load_lubricant("atf")).mu
     sessions = read_metadata(tmp_path / "pool.h5")["sessions"]
     assert len(sessions) == 1 and sessions[0]["computed"] == 16 and sessions[0]["interrupted"] is None
@@ -313,8 +313,8 @@ def test_dask_local_cluster_gives_the_same_rows_as_local_processes(tmp_path, pla
 def test_real_solver_end_to_end(tmp_path):
     """The real EHL solver (fast level) through worker processes: every row ok, the stored values are exactly
     those of a direct solve, and λ̄ is the Dowson–Higginson film over S_c (paper Sect. 2.1)."""
-    from ehl_dataset.contact import ContactCase
-    from ehl_dataset.lubricant import load_lubricant
+    from ehl_dataset.model.contact import ContactCase
+    from ehl_dataset.model.lubricant import load_lubricant
     from ehl_dataset.solver import solve_contact
 
     plan = factorial_from_dict(plan_dict(p_h_gpa=[0.5, 1.0], u_r_m_s=[20.0], sr=[0.3], temp_c=[50.0, 75.0],
@@ -340,11 +340,11 @@ def test_real_solver_end_to_end(tmp_path):
 def test_warm_up_covers_each_distinct_effect_plan_once():
     """The coordinator pre-computes one point per distinct plan of the planner (so each compiled path is built
     once before the workers fork); injected solvers get just the first point."""
-    from ehl_dataset.contact import ContactCase
-    from ehl_dataset.factorial import load_factorial
-    from ehl_dataset.lubricant import load_lubricant
-    from ehl_dataset.planner import plan_effects
-    from ehl_dataset.runner import DEFAULT_SOLVER, warm_up_indices
+    from ehl_dataset.model.contact import ContactCase
+    from ehl_dataset.dataset.factorial import load_factorial
+    from ehl_dataset.model.lubricant import load_lubricant
+    from ehl_dataset.solvers.planner import plan_effects
+    from ehl_dataset.dataset.runner import DEFAULT_SOLVER, warm_up_indices
 
     plan, lub = load_factorial("quick"), load_lubricant("atf")
     points = plan.points()
@@ -395,7 +395,7 @@ def test_solver_warnings_are_counted_into_the_row_not_printed(tmp_path, plan, ca
 def test_default_solver_records_the_solvers_own_version():
     """The store's resume check compares this string: it must be the solver's SOLVER_VERSION, not the package's."""
     from ehl_dataset import solver
-    from ehl_dataset.runner import DEFAULT_SOLVER, solver_config
+    from ehl_dataset.dataset.runner import DEFAULT_SOLVER, solver_config
 
     assert solver_config(DEFAULT_SOLVER, "fast", "auto")["version"] == solver.SOLVER_VERSION
 
@@ -426,9 +426,9 @@ def test_a_point_that_spends_its_budget_is_stored_not_converged_with_the_message
     """The real solver (fast level) with a 1 ms budget: the rough point stops before its first time step and is
     stored ok, not converged, with the solver's message; the steady smooth point ignores the budget; nothing
     raises; the session records the budget."""
-    from ehl_dataset.lubricant import load_lubricant
-    from ehl_dataset.runner import PointTask, compute_point
-    from ehl_dataset.store import OK
+    from ehl_dataset.model.lubricant import load_lubricant
+    from ehl_dataset.dataset.runner import PointTask, compute_point
+    from ehl_dataset.dataset.store import OK
 
     plan = factorial_from_dict(BUDGET_PLAN)
     rough = tuple(float(v) for v in plan.points()[1])
@@ -479,7 +479,7 @@ def test_a_budget_for_a_solver_without_the_keyword_is_refused_at_the_start(tmp_p
 def test_the_budget_is_not_part_of_the_solver_configuration(tmp_path, plan):
     """Runs and resumes with different budgets (or none) continue each other; the budget reaches the solver of the
     rows computed in each session; non-converged rows are ok and are not recomputed by a resume."""
-    from ehl_dataset.runner import solver_config
+    from ehl_dataset.dataset.runner import solver_config
 
     path = tmp_path / "r.h5"
     first = run_factorial(path, plan, workers=0, solver=budget_solve, progress="none", time_limit_s=2.5)
@@ -507,7 +507,7 @@ def test_the_budget_is_not_part_of_the_solver_configuration(tmp_path, plan):
 
 def test_a_non_converged_message_is_stored_with_one_prefix():
     """The transient solver's messages already start with "not converged"; the stored error text names it once."""
-    from ehl_dataset.runner import judge_record
+    from ehl_dataset.dataset.runner import judge_record
 
     status, text = judge_record({"converged": False}, "not converged: wall-time limit of 1 s reached")
     assert text == "not converged: wall-time limit of 1 s reached"
@@ -518,7 +518,7 @@ def test_resume_can_retry_the_points_a_budget_stopped(tmp_path):
     """Two passes: a 1 ms budget stops the rough point (stored ok, not converged); a plain resume leaves it; a
     resume with retry_not_converged and no budget solves it (converged, μ in [0, μ_d], attempts 2) and does not
     touch the converged smooth point."""
-    from ehl_dataset.lubricant import load_lubricant
+    from ehl_dataset.model.lubricant import load_lubricant
 
     plan = factorial_from_dict(BUDGET_PLAN)
     path = tmp_path / "two_pass.h5"

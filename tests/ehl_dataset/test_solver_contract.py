@@ -5,11 +5,11 @@ from dataclasses import replace
 
 import pytest
 
-from ehl_dataset.contact import ContactCase
-from ehl_dataset.effects import Effects
-from ehl_dataset.levels import LEVELS, get_level
-from ehl_dataset.lubricant import load_lubricant
-from ehl_dataset.result import RECORD_UNITS, ContactResult
+from ehl_dataset.model.contact import ContactCase
+from ehl_dataset.model.effects import Effects
+from ehl_dataset.solvers.levels import LEVELS, get_level
+from ehl_dataset.model.lubricant import load_lubricant
+from ehl_dataset.solvers.result import RECORD_UNITS, ContactResult
 from ehl_dataset.solver import solve_contact
 from ehl_dataset.validation import InputError
 

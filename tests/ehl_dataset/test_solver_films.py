@@ -15,10 +15,10 @@ h_min/DH 0.959–1.072, h_min/PH 0.918–1.042 (largest deviations at the highes
 
 import pytest
 
-from ehl_dataset import film_formulas as ff
-from ehl_dataset.contact import ContactCase
-from ehl_dataset.effects import Effects
-from ehl_dataset.lubricant import load_lubricant
+from ehl_dataset.model import film_formulas as ff
+from ehl_dataset.model.contact import ContactCase
+from ehl_dataset.model.effects import Effects
+from ehl_dataset.model.lubricant import load_lubricant
 from ehl_dataset.solver import solve_contact
 
 POINTS = [(0.3, 80, 1), (0.5, 40, 2), (1.0, 20, 5), (1.5, 10, 10), (2.0, 5, 20), (2.5, 80, 1), (2.5, 40, 5)]

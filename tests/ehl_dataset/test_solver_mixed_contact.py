@@ -8,11 +8,11 @@ import pytest
 from hypothesis import HealthCheck, Phase, given, settings
 from hypothesis import strategies as st
 
-import ehl_dataset.ehl_transient as transient
-from ehl_dataset.contact import ContactCase
-from ehl_dataset.effects import Effects
-from ehl_dataset.ehl_newton import _fb
-from ehl_dataset.lubricant import load_lubricant
+import ehl_dataset.solvers.transient as transient
+from ehl_dataset.model.contact import ContactCase
+from ehl_dataset.model.effects import Effects
+from ehl_dataset.solvers.newton import _fb
+from ehl_dataset.model.lubricant import load_lubricant
 from ehl_dataset.solver import solve_contact
 
 LUB = load_lubricant("atf")
@@ -37,14 +37,14 @@ def test_yield_cap_is_the_hardness_of_case_hardened_steel():
     assert transient.YIELD_PRESSURE_PA == pytest.approx(697 * 9.807e6, rel=0.01)
 
 
-def test_plastic_cap_is_inactive_below_the_hardness(monkeypatch):
+def test_plastic_cap_is_inactive_below_the_hardness():
     """A rough case whose pressures stay below P_Y (p_h 1 GPa, λ̄ ≈ 2.4, p_max ≈ 1.3 p_h) gives the same result with
     the cap at the hardness and with no cap (P_Y → ∞): the box complementarity reduces to the cavitation one when
     P < P_Y. Equal to the Newton tolerance of the fast level (1e−5): asserted μ to 1e−4 relative."""
     case = ContactCase.from_engineering(1.0, 20, 10, 0.5, 50, 0.1, 0.1)
     capped = solve_contact(case, LUB, "fast", Effects.full())
-    monkeypatch.setattr(transient, "YIELD_PRESSURE_PA", 1e30)
-    free = solve_contact(case, LUB, "fast", Effects.full())
+    free = solve_contact(case, LUB, "fast", Effects.full(),
+                         transient_options=transient.TransientOptions(yield_pressure_pa=1e30))
     assert capped.converged and free.converged
     assert capped.p_max < transient.YIELD_PRESSURE_PA
     assert capped.mu == pytest.approx(free.mu, rel=1e-4)

@@ -6,11 +6,11 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from ehl_dataset.contact import ContactCase
-from ehl_dataset.effects import Effects
-from ehl_dataset.levels import get_level
-from ehl_dataset.lubricant import load_lubricant
-from ehl_dataset.materials import Material
+from ehl_dataset.model.contact import ContactCase
+from ehl_dataset.model.effects import Effects
+from ehl_dataset.solvers.levels import get_level
+from ehl_dataset.model.lubricant import load_lubricant
+from ehl_dataset.model.materials import Material
 from ehl_dataset.solver import solve_contact
 
 NEWTONIAN = Effects(roughness=False, transient=False, shear_thinning=False, compressibility=True, mode="forced")

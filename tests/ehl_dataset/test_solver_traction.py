@@ -5,11 +5,11 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from ehl_dataset.contact import ContactCase
-from ehl_dataset.effects import Effects
-from ehl_dataset.lubricant import load_lubricant
+from ehl_dataset.model.contact import ContactCase
+from ehl_dataset.model.effects import Effects
+from ehl_dataset.model.lubricant import load_lubricant
 from ehl_dataset.solver import solve_contact
-from ehl_dataset.traction import full_film_mask
+from ehl_dataset.model.traction import full_film_mask
 
 SMOOTH = Effects(False, False, True, True, "forced")
 

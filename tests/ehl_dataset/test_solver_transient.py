@@ -5,9 +5,9 @@ import math
 import numpy as np
 import pytest
 
-from ehl_dataset.contact import ContactCase
-from ehl_dataset.effects import Effects
-from ehl_dataset.lubricant import load_lubricant
+from ehl_dataset.model.contact import ContactCase
+from ehl_dataset.model.effects import Effects
+from ehl_dataset.model.lubricant import load_lubricant
 from ehl_dataset.solver import solve_contact
 
 LUB = load_lubricant("atf")

@@ -2,10 +2,10 @@
 
 import pytest
 
-from ehl_dataset import ehl_transient
-from ehl_dataset.contact import ContactCase
-from ehl_dataset.effects import Effects
-from ehl_dataset.ehl_transient import RELAX_AFTER, step_attempts, next_start
+from ehl_dataset.solvers import transient as ehl_transient
+from ehl_dataset.model.contact import ContactCase
+from ehl_dataset.model.effects import Effects
+from ehl_dataset.solvers.transient import RELAX_AFTER, step_attempts, next_start
 from ehl_dataset.solver import solve_contact
 from ehl_dataset.validation import InputError
 
@@ -60,7 +60,7 @@ def test_message_says_when_the_fallback_or_careful_settings_were_needed():
     """A run solved partly with Couette-only contact faces is converged but with other contact-face physics on
     those steps: the message says how many (measured: 246 of 300 steps on 2.5 GPa / 80 mm / 1 m/s / SR 1 / 100 °C /
     Rq 1 µm)."""
-    from ehl_dataset.ehl_transient import _message
+    from ehl_dataset.solvers.transient import _message
 
     assert _message(True, "", 300, 0, 0) == "converged"
     assert _message(True, "", 300, 246, 5) == ("converged (246 of 300 steps with Couette-only contact faces, "

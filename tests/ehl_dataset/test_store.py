@@ -7,10 +7,10 @@ import h5py
 import numpy as np
 import pytest
 
-from ehl_dataset.factorial import POINT_FIELDS, POINT_UNITS, factorial_from_dict
-from ehl_dataset.lubricant import load_lubricant, lubricant_from_dict
-from ehl_dataset.result import RECORD_UNITS, ContactResult
-from ehl_dataset.store import (EFFECTS_WIDTH, ERROR_WIDTH, FAILED, FORMAT_VERSION, OK, TABLE_COLUMNS, DatasetStore,
+from ehl_dataset.dataset.factorial import POINT_FIELDS, POINT_UNITS, factorial_from_dict
+from ehl_dataset.model.lubricant import load_lubricant, lubricant_from_dict
+from ehl_dataset.solvers.result import RECORD_UNITS, ContactResult
+from ehl_dataset.dataset.store import (EFFECTS_WIDTH, ERROR_WIDTH, FAILED, FORMAT_VERSION, OK, TABLE_COLUMNS, DatasetStore,
                                encode_effects, read_metadata, read_table)
 from ehl_dataset.validation import InputError
 

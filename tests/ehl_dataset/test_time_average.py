@@ -1,10 +1,10 @@
-"""Standard error of the time mean of an autocorrelated series (ehl_dataset.time_average)."""
+"""Standard error of the time mean of an autocorrelated series (ehl_dataset.solvers.time_average)."""
 
 import numpy as np
 import pytest
 from scipy.signal import lfilter
 
-from ehl_dataset.time_average import time_mean
+from ehl_dataset.solvers.time_average import time_mean
 
 
 def _ar1(phi: float, n: int, seed: int) -> np.ndarray:

@@ -1,16 +1,17 @@
 """The averaging window of transient rough runs: standard error of the time-averaged μ, and the window extension
-until the level's standard-error target is met (ehl_dataset.ehl_transient, levels.mu_sem_target/max_passes)."""
+until the level's standard-error target is met (ehl_dataset.solvers.transient, levels.mu_sem_target/max_passes)."""
 
 from dataclasses import replace
 
 import numpy as np
 import pytest
 
-from ehl_dataset.contact import ContactCase
-from ehl_dataset.effects import Effects
-from ehl_dataset.levels import LEVELS
+from ehl_dataset.model.contact import ContactCase
+from ehl_dataset.model.effects import Effects
 from ehl_dataset.solver import solve_contact
-from ehl_dataset.time_average import time_mean
+from ehl_dataset.solvers.levels import LEVELS
+from ehl_dataset.solvers.time_average import time_mean
+from ehl_dataset.solvers.transient import TransientOptions
 
 CASE = ContactCase.from_engineering(0.5, 5, 10, 0.7, 25, 0.7, 0.7)  # λ̄ ≈ 1.2: asperities pass and touch
 SHORT = replace(LEVELS["fast"], name="short", n_passes=1.0, max_steps_rough=60)
@@ -63,30 +64,31 @@ def test_fast_level_keeps_its_fixed_window_and_reports_the_error():
 
 
 class _StepClock:
-    """Stands in for the ``time`` module of ehl_transient: perf_counter advances by 1 per call (the run reads it
-    once at the start and once before every time step), so a budget is a step count, deterministically."""
+    """A wall clock that advances by 1 s per reading (the run reads it once at the start and once before every time
+    step), so a budget is a step count, deterministically."""
 
     def __init__(self):
         self.calls = 0
 
-    def perf_counter(self):
+    def __call__(self):
         self.calls += 1
         return float(self.calls)
 
 
-def test_a_budget_that_runs_out_during_the_extension_keeps_the_converged_base_run(monkeypatch):
+def _counting_steps() -> TransientOptions:
+    return TransientOptions(clock=_StepClock())
+
+
+def test_a_budget_that_runs_out_during_the_extension_keeps_the_converged_base_run():
     """The base run (60 steps) is complete when the budget runs out while the window is being extended: the run
     is converged (its time steps all are), averaged from the base start-up on, and its message says that the
     wall-time limit stopped the extension. A budget that runs out before the base run ends is not converged."""
-    import ehl_dataset.ehl_transient as transient
-
     level = replace(SHORT, mu_sem_target=1e-6, max_passes=2.0)
-    monkeypatch.setattr(transient, "time", _StepClock())
-    res = solve_contact(CASE, "atf", level, Effects.full(), time_limit_s=62.5)
+    res = solve_contact(CASE, "atf", level, Effects.full(), time_limit_s=62.5, transient_options=_counting_steps())
     assert res.converged, res.message
     assert res.extra["n_steps"] == 62 and res.extra["time_limited"] is True
     assert res.extra["average_from_step"] == 30
     assert "wall-time limit of 62.5 s stopped the extension" in res.message
-    monkeypatch.setattr(transient, "time", _StepClock())
-    early = solve_contact(CASE, "atf", level, Effects.full(), time_limit_s=40.5)
+    early = solve_contact(CASE, "atf", level, Effects.full(), time_limit_s=40.5,
+                          transient_options=_counting_steps())
     assert not early.converged and "wall-time limit of 40.5 s reached after 40 of 60 time steps" in early.message

@@ -6,10 +6,10 @@ import json
 import numpy as np
 import pytest
 
-from ehl_dataset.contact import ContactCase
-from ehl_dataset.effects import Effects
-from ehl_dataset.lubricant import load_lubricant
-from ehl_dataset.roughness import baseline_profile, generate_profile, load_profile
+from ehl_dataset.model.contact import ContactCase
+from ehl_dataset.model.effects import Effects
+from ehl_dataset.model.lubricant import load_lubricant
+from ehl_dataset.model.roughness import baseline_profile, generate_profile, load_profile
 from ehl_dataset.solver import solve_contact
 from ehl_dataset.validation import InputError
 from workflows.cli import main

@@ -4,8 +4,8 @@ import warnings
 
 import pytest
 
-from ehl_dataset.lubricant import load_lubricant
-from ehl_dataset.materials import STEEL, reduced_modulus
+from ehl_dataset.model.lubricant import load_lubricant
+from ehl_dataset.model.materials import STEEL, reduced_modulus
 from surrogate.fit import fit_surrogate
 from surrogate.synthetic import SMALL_LEVELS, eq9_table, factorial_inputs, reference_coefficients
 

@@ -5,8 +5,8 @@ import math
 import numpy as np
 import pytest
 
-from ehl_dataset.contact import ContactCase
-from ehl_dataset.film_formulas import dowson_higginson_min_film
+from ehl_dataset.model.contact import ContactCase
+from ehl_dataset.model.film_formulas import dowson_higginson_min_film
 from surrogate.features import at_lambda_one, compute_features
 
 

@@ -8,8 +8,6 @@ import pytest
 from workflows import accuracy
 from workflows.cli import main
 
-pytest.importorskip("ehl_dataset.solver")
-
 CHEAP = tuple(spec for spec in accuracy.ACCURACY_CASES if spec[0] in ("full-film-9", "corner-thick"))
 
 
@@ -36,7 +34,7 @@ def test_observed_order_of_a_known_sequence():
 
 
 def test_refined_level_scales_the_right_fields():
-    from ehl_dataset.levels import get_level
+    from ehl_dataset.solvers.levels import get_level
 
     base = get_level("standard")
     finer = accuracy.refined_level("standard", "grid", 2.0)

@@ -5,8 +5,8 @@ import math
 
 import pytest
 
-from ehl_dataset.film_formulas import dowson_higginson_min_film
-from ehl_dataset.result import ContactResult
+from ehl_dataset.model.film_formulas import dowson_higginson_min_film
+from ehl_dataset.solvers.result import ContactResult
 from workflows.cli import main
 
 PLAN = ('name = "cli"\nlevel = "fast"\n[axes]\np_h_gpa = [0.5, 1.5]\nr_eq_mm = [20]\nu_r_m_s = [5, 20]\n'

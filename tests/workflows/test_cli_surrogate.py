@@ -8,8 +8,8 @@ import warnings
 import numpy as np
 import pytest
 
-from ehl_dataset.lubricant import load_lubricant
-from ehl_dataset.materials import STEEL, reduced_modulus
+from ehl_dataset.model.lubricant import load_lubricant
+from ehl_dataset.model.materials import STEEL, reduced_modulus
 from surrogate.synthetic import SMALL_LEVELS, eq9_table, factorial_inputs, reference_coefficients, write_hdf5
 from workflows.cli import main
 

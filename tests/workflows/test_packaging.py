@@ -22,7 +22,7 @@ def test_wheel_ships_data_and_locator_finds_it(tmp_path):
     assert not any(name.startswith("data/") for name in names), "no top-level data package in the wheel"
     target = tmp_path / "site"
     zipfile.ZipFile(wheel).extractall(target)
-    code = ("from ehl_dataset.data_files import data_root; from ehl_dataset.lubricant import load_lubricant; "
+    code = ("from ehl_dataset.data_files import data_root; from ehl_dataset.model.lubricant import load_lubricant; "
             "print(data_root()); load_lubricant('atf')")
     env = {k: v for k, v in os.environ.items() if k not in ("GEARLOSS_DATA", "PYTHONPATH")}
     env["PYTHONPATH"] = str(target)

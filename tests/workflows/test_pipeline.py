@@ -8,14 +8,14 @@ import warnings
 import numpy as np
 import pytest
 
-from ehl_dataset.lubricant import load_lubricant
-from ehl_dataset.materials import STEEL, reduced_modulus
-from ehl_dataset.store import read_table
+from ehl_dataset.model.lubricant import load_lubricant
+from ehl_dataset.model.materials import STEEL, reduced_modulus
+from ehl_dataset.dataset.store import read_table
 from ehl_dataset.validation import SolverError
 from workflows.cli import main
 from workflows.pipeline import DATASET_FILE, dataset_stage, design_stage, fit_stage, run_pipeline
 
-TRANSIENT_SOLVER = importlib.util.find_spec("ehl_dataset.ehl_transient") is not None
+TRANSIENT_SOLVER = importlib.util.find_spec("ehl_dataset.solvers.transient") is not None
 
 # 2 × 1 × 2 × 2 × 2 × 3 = 48 points at light load (p_h ≤ 1 GPa, the cheap solves): a factorial of the paper's levels
 # found to determine both branches of Eq. 9 (10 and 14 coefficients) with full rank — 24 rows with
@@ -128,7 +128,7 @@ def test_pipeline_cli_rejects_bad_input(tmp_path, capsys):
 
 def test_dataset_stage_passes_the_time_limit_and_reports_it(tmp_path, tiny):
     """Stage 1 with a budget: the 4 smooth points ignore it (steady solves), the session records it."""
-    from ehl_dataset.store import read_metadata
+    from ehl_dataset.dataset.store import read_metadata
 
     stage = dataset_stage(tmp_path, tiny, workers=0, progress="none", time_limit_s=30)
     assert stage.details["time_limit_s"] == 30.0 and stage.details["ok"] == 4
@@ -184,7 +184,7 @@ def test_fit_and_design_stages_on_a_stage1_file(synthetic_store, tmp_path):
 
 
 @pytest.mark.slow
-@pytest.mark.skipif(not TRANSIENT_SOLVER, reason="the transient mixed-EHL solver (ehl_dataset.ehl_transient) is not "
+@pytest.mark.skipif(not TRANSIENT_SOLVER, reason="the transient mixed-EHL solver (ehl_dataset.solvers.transient) is not "
                     "in the tree yet: rough points fail and the lambda <= 1 branch of Eq. 9 cannot be fitted")
 def test_pipeline_end_to_end_with_the_ehl_solver(tmp_path, capsys):
     """All three stages with the real solver through the CLI, on a 48-point factorial passed as a file: every

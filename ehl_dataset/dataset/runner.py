@@ -1,4 +1,4 @@
-"""Run a factorial of EHL contacts into a :mod:`ehl_dataset.store` file: local processes or Dask, resumable.
+"""Run a factorial of EHL contacts into a :mod:`ehl_dataset.dataset.store` file: local processes or Dask, resumable.
 
 One coordinating process owns the HDF5 file; workers only compute (:func:`compute_point`, a top-level picklable
 function) and send back ``ContactResult.to_record()``. The coordinator keeps a bounded window of tasks in flight,
@@ -28,7 +28,6 @@ in the session entry of the file, not in the solver configuration that a resume 
 
 from __future__ import annotations
 
-import contextlib
 import dataclasses
 import hashlib
 import importlib
@@ -50,10 +49,16 @@ from pathlib import Path
 from typing import Any, Callable, TextIO
 
 import numpy as np
+from threadpoolctl import threadpool_limits
 
-from .factorial import Factorial, canonical_json, load_factorial
+from ..model.contact import ContactCase
+from ..model.lubricant import Lubricant, load_lubricant, lubricant_from_dict
+from ..solvers.levels import get_level
+from ..solvers.planner import plan_effects
+from ..validation import InputError, check_time_limit as check_positive_seconds
+from .executors import make_executor
+from .factorial import EFFECTS_MODES, Factorial, canonical_json, load_factorial
 from .store import FAILED, OK, DatasetStore, package_version
-from .validation import InputError, check_time_limit as check_positive_seconds
 
 DEFAULT_SOLVER = "ehl_dataset.solver:solve_contact"
 _FLOAT_CHECKED = ("mu", "mu_std", "h_min", "h_central", "asperity_load_share", "p_max")
@@ -110,8 +115,6 @@ def resolve_solver(solver: str | Callable) -> Callable:
 def _lubricant(lubricant_json: str):
     lubricant = _LUBRICANT_CACHE.get(lubricant_json)
     if lubricant is None:
-        from .lubricant import lubricant_from_dict
-
         lubricant = lubricant_from_dict(json.loads(lubricant_json), origin="dataset file")
         if len(_LUBRICANT_CACHE) > 8:
             _LUBRICANT_CACHE.clear()
@@ -142,18 +145,15 @@ def judge_record(record: dict, message: str = "") -> tuple[int, str]:
 
 
 def _one_blas_thread():
-    """One BLAS/OpenMP thread during a solve (DESIGN §9: one core per case). Without it every worker's LAPACK
-    would start one thread per core (oversubscription), and a point's last bits would depend on where it ran
-    (threaded reductions), so a resumed or distributed run could differ from an uninterrupted local one."""
-    try:
-        from threadpoolctl import threadpool_limits
-    except ImportError:  # pragma: no cover - threadpoolctl comes with scikit-learn
-        return contextlib.nullcontext()
+    """One BLAS/OpenMP thread during a solve (one core per case, docs/dataset_format.md "Execution"). Without it
+    every worker's LAPACK would start one thread per core (oversubscription), and a point's last bits would depend
+    on where it ran (threaded reductions), so a resumed or distributed run could differ from an uninterrupted local
+    one."""
     return threadpool_limits(limits=1)
 
 
 def summarize_warnings(counts: Counter) -> str:
-    """``LinAlgWarning x12 (ehl_newton.py:237); RuntimeWarning x2 (ehl_newton.py:106)`` — most frequent first."""
+    """``LinAlgWarning x12 (newton.py:237); RuntimeWarning x2 (newton.py:106)`` — most frequent first."""
     return "; ".join(f"{name} x{n} ({filename}:{lineno})" for (name, filename, lineno), n in counts.most_common())
 
 
@@ -163,8 +163,6 @@ def compute_point(task: PointTask) -> dict[str, Any]:
     Python warnings raised during the solve are counted (by category and location) and returned as one line
     instead of being printed: a 42,000-point run would otherwise flood the log with them.
     """
-    from .contact import ContactCase
-
     start = time.perf_counter()
     record = None
     budget = {} if task.time_limit_s is None else {"time_limit_s": task.time_limit_s}
@@ -200,10 +198,8 @@ def solver_config(solver: str | Callable, level: str, effects: str) -> dict[str,
 
     The version is the function's ``solver_version`` attribute, else its module's ``SOLVER_VERSION`` or
     ``__version__``, else ``gearloss <package version>``. The level definition comes from
-    ``ehl_dataset.levels.get_level`` when that module exists (an unknown level name is rejected there).
+    ``ehl_dataset.solvers.levels.get_level`` when that module exists (an unknown level name is rejected there).
     """
-    from .factorial import EFFECTS_MODES
-
     if effects not in EFFECTS_MODES:
         raise InputError("effects", effects, f"one of {list(EFFECTS_MODES)}")
     fn = resolve_solver(solver)
@@ -220,10 +216,6 @@ def solver_config(solver: str | Callable, level: str, effects: str) -> dict[str,
 
 
 def _level_definition(level: str):
-    try:
-        from .levels import get_level
-    except ImportError:
-        return None
     definition = get_level(level)
     if dataclasses.is_dataclass(definition):
         definition = dataclasses.asdict(definition)
@@ -348,15 +340,13 @@ def run_factorial(out, factorial: Factorial | str | os.PathLike, *, lubricant=No
                   **options) -> RunSummary:
     """Compute ``factorial`` into the HDF5 file ``out``.
 
-    ``lubricant`` (name, file or :class:`~ehl_dataset.lubricant.Lubricant`), ``level`` and ``effects`` default to
+    ``lubricant`` (name, file or :class:`~ehl_dataset.model.lubricant.Lubricant`), ``level`` and ``effects`` default to
     the factorial's. If ``out`` exists and records the same factorial, solver and lubricant, the run continues it
     (like :func:`resume_run`); if it records something else the call is refused (``InputError``) unless
     ``overwrite``. ``time_limit_s``: wall-time budget of each point's solve [s] (None: none), an execution option
     that does not enter the solver configuration (see :func:`execute`). ``options``: see :func:`execute` (window,
     max_attempts, flush_interval_s, progress, warm_up, stream, log_every_s).
     """
-    from .lubricant import Lubricant, load_lubricant
-
     _check_options(workers, options)
     time_limit_s = check_time_limit(time_limit_s, solver)
     plan = factorial if isinstance(factorial, Factorial) else load_factorial(factorial)
@@ -397,8 +387,6 @@ def resume_run(path, *, workers: int = 1, scheduler: str | None = None, solver: 
     ones with ``retry_not_converged``); otherwise rows stored not converged — including those stopped by an earlier
     budget — are ``ok`` and are not recomputed.
     """
-    from .lubricant import Lubricant, load_lubricant
-
     _check_options(workers, options)
     time_limit_s = check_time_limit(time_limit_s)  # the solver's keyword is checked by execute()
     with DatasetStore.open(path, "r+") as store:
@@ -431,11 +419,6 @@ def warm_up_indices(points: np.ndarray, candidates: list[int], lubricant: dict, 
         return []
     if solver_reference(solver) != DEFAULT_SOLVER or effects != "auto":
         return candidates[:1]
-    try:
-        from .contact import ContactCase
-        from .planner import plan_effects
-    except ImportError:
-        return candidates[:1]
     lub = _lubricant(canonical_json(lubricant))
     chosen: dict[tuple, int] = {}
     for index in candidates:
@@ -450,7 +433,7 @@ def warm_up_indices(points: np.ndarray, candidates: list[int], lubricant: dict, 
 
 
 def _width(point) -> float:
-    """p_h·r_eq of a factorial point (columns as :class:`~ehl_dataset.contact.ContactCase`): ∝ the Hertz half width."""
+    """p_h·r_eq of a factorial point (columns as :class:`~ehl_dataset.model.contact.ContactCase`): ∝ the Hertz half width."""
     return float(point[0]) * float(point[1])
 
 
@@ -511,8 +494,6 @@ def execute(store: DatasetStore, *, solver: str | Callable = DEFAULT_SOLVER, wor
     execution option: it is recorded in this session's entry of the ``sessions`` attribute, not in the solver
     configuration, so runs with different budgets (or none) continue each other.
     """
-    from .executors import make_executor
-
     _check_options(workers, {"max_attempts": max_attempts, "window": window, "progress": progress,
                              "flush_interval_s": flush_interval_s})
     time_limit_s = check_time_limit(time_limit_s, solver)

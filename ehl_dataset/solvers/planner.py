@@ -32,10 +32,11 @@ from __future__ import annotations
 import math
 from dataclasses import asdict, dataclass
 
-from .effects import Effects
-from .film_formulas import dimensionless_groups, dowson_higginson_min_film
-from .lubricant import dowson_higginson_density
-from .validation import InputError
+from ..model.effects import Effects
+from ..model.film_formulas import dimensionless_groups, dowson_higginson_min_film
+from ..model.lubricant import dowson_higginson_density
+from ..validation import InputError
+from .levels import get_level
 
 
 @dataclass(frozen=True)
@@ -62,14 +63,8 @@ THRESHOLDS: dict[str, PlannerThresholds] = {
 
 
 def thresholds_for(level) -> PlannerThresholds:
-    """Thresholds for a level name or :class:`~ehl_dataset.levels.AccuracyLevel` (validated by ``get_level``)."""
-    try:
-        from .levels import get_level
-    except ImportError:  # pragma: no cover - levels.py ships with the solver
-        name = str(level)
-    else:
-        name = get_level(level).name
-    return THRESHOLDS.get(name, THRESHOLDS["standard"])
+    """Thresholds for a level name or :class:`~ehl_dataset.solvers.levels.AccuracyLevel` (validated by ``get_level``)."""
+    return THRESHOLDS.get(get_level(level).name, THRESHOLDS["standard"])
 
 
 def dimensionless_numbers(case, lubricant) -> dict[str, float]:
@@ -112,7 +107,7 @@ def dimensionless_numbers(case, lubricant) -> dict[str, float]:
 def plan_effects(case, lubricant, level="standard") -> Effects:
     """Decide which effects to simulate for ``case`` with ``lubricant`` at accuracy ``level``.
 
-    Returns an :class:`~ehl_dataset.effects.Effects` with ``mode="auto"`` and ``reasons`` holding the numbers,
+    Returns an :class:`~ehl_dataset.model.effects.Effects` with ``mode="auto"`` and ``reasons`` holding the numbers,
     the thresholds and one sentence per decision. Bad input raises :class:`InputError` (unknown level,
     temperature outside the lubricant's data).
     """

@@ -1,7 +1,7 @@
 """Damped Newton solver with an active set for cavitation, for the coupled Reynolds–film–load problem.
 
 Unknowns: the interior pressures P_1 … P_{N−2} and the film constant H0 (dimensionless, see
-:mod:`ehl_dataset.reynolds`). Equations: the discrete Reynolds equation at every interior node, the film equation
+:mod:`ehl_dataset.discretisation.reynolds`). Equations: the discrete Reynolds equation at every interior node, the film equation
 H = H0 + G(X) + K P (G the rigid gap, minus roughness in mixed runs; K the dense deflection matrix), and the load
 balance Σ w_j P_j = π/2 (the dimensionless form of ∫p dx = W' = π a p_h/2).
 
@@ -14,6 +14,7 @@ Steps are damped by backtracking on the residual norm and kept where the film st
 
 from __future__ import annotations
 
+import logging
 import math
 import warnings
 from dataclasses import dataclass, field
@@ -21,10 +22,11 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.linalg
 
-from .reynolds import add_links, assemble, full_jacobian, reroute_patch_fluxes
+from ..discretisation.reynolds import add_links, assemble, full_jacobian, reroute_patch_fluxes
 
-TRACE = False
-LINE_SEARCH = True
+LOG = logging.getLogger(__name__)
+"""Every Newton iteration is logged at DEBUG level (norms, step, where the pressure moved most):
+``logging.getLogger("ehl_dataset.solvers.newton").setLevel(logging.DEBUG)`` to trace a solve."""
 EXPONENT_CAP = 600.0
 """Cap on ln(η/η0) so that viscosities stay finite in double precision during wild Newton iterates."""
 EXPONENT_FLOOR = 10.0
@@ -33,10 +35,10 @@ EXPONENT_FLOOR = 10.0
 
 @dataclass
 class ReynoldsProblem:
-    """A discrete line-contact problem in dimensionless variables (see :mod:`ehl_dataset.reynolds`).
+    """A discrete line-contact problem in dimensionless variables (see :mod:`ehl_dataset.discretisation.reynolds`).
 
     ``x`` nodes [a]; ``kmat`` dense deflection matrix [dimensionless]; ``gap`` rigid gap X²/2 minus roughness;
-    ``lam`` λ̄ = 12 η0 u_r r_eq²/(a³ p_h); ``p_h`` [Pa]; ``state`` the :class:`~ehl_dataset.lubricant.LubricantState`;
+    ``lam`` λ̄ = 12 η0 u_r r_eq²/(a³ p_h); ``p_h`` [Pa]; ``state`` the :class:`~ehl_dataset.model.lubricant.LubricantState`;
     ``compressible``; ``shear`` S = η0 |u_s| r_eq/(τ0 a²) (0 switches the Eyring flow factor off);
     ``second_order`` linear-upwind Couette flux; ``squeeze`` w_i/ΔT and ``m_old`` for transient steps;
     ``h_closed`` film below which the Poiseuille term is dropped (unified Reynolds; 0 for smooth runs);
@@ -44,7 +46,7 @@ class ReynoldsProblem:
     (asperity contact) nodes, which take the dry-contact condition and carry the flux ρ̄H_c (needs ``p_cap``);
     ``closed_film`` (N) the film whose flux closed nodes carry (None: H_closed; ``closure="upstream_film"``);
     ``closure`` how flux crosses a closed patch: ``"patch"`` (the flux entering the patch is delivered to the
-    first open node behind it, :func:`~ehl_dataset.reynolds.reroute_patch_fluxes`) or ``"upstream_film"`` (closed
+    first open node behind it, :func:`~ehl_dataset.discretisation.reynolds.reroute_patch_fluxes`) or ``"upstream_film"`` (closed
     nodes carry the Couette flux of ``closed_film``);
     ``scaled_norm`` judges convergence on max |Φ| [p_h] at every node (rough runs: the flux residual relative to
     the centre flux is not a meaningful scale where films close and reopen);
@@ -192,7 +194,7 @@ class ReynoldsProblem:
         return res, dp, dh, (m, m_p, m_h), links
 
     def jacobian(self, dp, dh, links):
-        """Full Jacobian (see :func:`~ehl_dataset.reynolds.full_jacobian`) including the rerouted patch fluxes."""
+        """Full Jacobian (see :func:`~ehl_dataset.discretisation.reynolds.full_jacobian`) including the rerouted patch fluxes."""
         jac = full_jacobian(dp, dh, self.kmat, self.rows)
         if links is not None:
             add_links(jac, self.kmat, *links)
@@ -404,7 +406,7 @@ def newton_solve(problem: ReynoldsProblem, p0: np.ndarray, h00: float, *, homoto
                     if math.isfinite(problem.p_cap):
                         phi_new = _capped(problem, p_new, h_new, res_new, kappa)[0]
                     merit1 = float(phi_new @ phi_new) + problem.load(p_new) ** 2
-                    if merit1 <= (1.0 - 1e-4 * omega) * merit0 or not LINE_SEARCH or (not monotone and omega < 0.3):
+                    if merit1 <= (1.0 - 1e-4 * omega) * merit0 or (not monotone and omega < 0.3):
                         accepted = True
                         break
             omega *= 0.5
@@ -412,11 +414,11 @@ def newton_solve(problem: ReynoldsProblem, p0: np.ndarray, h00: float, *, homoto
             message = "line search failed (no decrease of the residual with an open film)"
             break
         step_norm = float(np.max(np.abs(p_new - p)))
-        if TRACE:
+        if LOG.isEnabledFor(logging.DEBUG):
             j = int(np.argmax(np.abs(p_new - p)))
-            print(f"it {iteration}: r {r_free:.2e} {r_cav:.2e} merit {merit0:.3e} omega {omega:.3g} step {step_norm:.3e} load {load_err:.1e} "
-                  f"at x={problem.x[j]:.4f} p={p[j]:.4g}->{p_new[j]:.4g} h={h[j]:.3e} phi_max_at="
-                  f"{problem.x[1 + int(np.argmax(np.abs(phi)))]:.4f}")
+            LOG.debug("it %d: r %.2e %.2e merit %.3e omega %.3g step %.3e load %.1e at x=%.4f p=%.4g->%.4g h=%.3e "
+                      "phi_max_at=%.4f", iteration, r_free, r_cav, merit0, omega, step_norm, load_err, problem.x[j],
+                      p[j], p_new[j], h[j], problem.x[1 + int(np.argmax(np.abs(phi)))])
         p, h0, h, res, dp, dh, mm, links = p_new, h0_new, h_new, res_new, dp_new, dh_new, m_new, links_new
     phi = _complementarity(problem, p, res, kappa)[0]
     contact = None

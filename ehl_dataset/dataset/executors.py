@@ -141,7 +141,7 @@ class DaskExecutor:
         try:
             import distributed
         except ImportError as err:  # pragma: no cover - optional dependency
-            from .validation import InputError
+            from ..validation import InputError
 
             raise InputError("scheduler", address, "an address usable with the optional 'distributed' package",
                              "install gearloss[distributed]") from err
@@ -155,7 +155,7 @@ class DaskExecutor:
             try:
                 self.client = distributed.Client(address, timeout="20s")
             except (OSError, TimeoutError) as err:
-                from .validation import InputError
+                from ..validation import InputError
 
                 raise InputError("scheduler", address, "the address of a running Dask scheduler "
                                  "(e.g. tcp://host:8786) or 'dask-local'", str(err)) from None

@@ -8,8 +8,8 @@ Layout (format ``gearloss-ehl-dataset``, version :data:`FORMAT_VERSION`)::
     /points/point         row index 0..N-1 (an HDF5 dimension scale attached to every column)
     /points/<column>      one 1-D dataset per column, length N; attributes ``units`` and ``description``
 
-Columns: the inputs (:data:`ehl_dataset.factorial.POINT_FIELDS`, SI), the solver outputs
-(:data:`ehl_dataset.result.RECORD_UNITS`), ``status`` (enum pending/ok/failed), ``error`` (failure text, or the
+Columns: the inputs (:data:`ehl_dataset.dataset.factorial.POINT_FIELDS`, SI), the solver outputs
+(:data:`ehl_dataset.solvers.result.RECORD_UNITS`), ``status`` (enum pending/ok/failed), ``error`` (failure text, or the
 solver's message for a non-converged result), ``attempts`` (how many computations of the point were recorded, over
 all sessions), ``worker_time`` [s] (worker-side time including retries), ``finished_at`` [s since the Unix epoch],
 ``worker`` (host:pid) and ``warnings`` (Python warnings raised during the solve, counted by category and place).
@@ -39,8 +39,8 @@ from typing import Any, Iterable
 import numpy as np
 
 from .factorial import POINT_DTYPE, POINT_FIELDS, POINT_UNITS, canonical_json
-from .result import RECORD_UNITS
-from .validation import InputError
+from ..solvers.result import RECORD_UNITS
+from ..validation import InputError
 
 FORMAT_NAME = "gearloss-ehl-dataset"
 FORMAT_VERSION = 1
@@ -609,7 +609,7 @@ def read_table(path, status: str | None = "ok"):
 def read_metadata(path) -> dict[str, Any]:
     """Provenance of a dataset file: format_version, package_version, created, git_revision, factorial (dict),
     solver (dict: function, version, level, effects, ...), lubricant (dict as parsed from the lubricant TOML:
-    rebuild with :func:`ehl_dataset.lubricant.lubricant_from_dict`), sessions, n_points and counts by status."""
+    rebuild with :func:`ehl_dataset.model.lubricant.lubricant_from_dict`), sessions, n_points and counts by status."""
     with DatasetStore.open(path, "r") as store:
         return store.metadata()
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from .validation import check_range
+from ..validation import check_range
 
 
 @dataclass(frozen=True)

@@ -33,8 +33,8 @@ from pathlib import Path
 
 import numpy as np
 
-from .data_files import data_path
-from .validation import InputError, check_range
+from ..data_files import data_path
+from ..validation import InputError, check_range
 
 BASELINE_FILE = "baseline_synthetic.txt"
 """File name of the shipped baseline profile in ``data/roughness/``."""
@@ -201,7 +201,7 @@ columns: x [um]  z [um]   (z positive = material above the mean line)
 Gaussian random process, Gaussian autocorrelation C(tau) = Rq^2 exp(-tau^2/beta^2)
 beta = {BASELINE_CORRELATION_LENGTH_M * 1e6:g} um, Rq = {BASELINE_RQ_M * 1e6:g} um, spacing = {BASELINE_SPACING_M * 1e6:g} um, \
 N = {BASELINE_POINTS}, periodic, seed = {BASELINE_SEED}
-regenerate: python -c "from ehl_dataset.roughness import write_baseline; write_baseline()"
+regenerate: python -c "from ehl_dataset.model.roughness import write_baseline; write_baseline()"
 """
 
 
@@ -385,7 +385,7 @@ def _stretch(x: np.ndarray, u: float, t_end: float, offset: float) -> tuple[floa
 
 
 def plan_surfaces(case, x_m, t_end_s: float, profile: RoughnessProfile | None = None) -> SurfacePair:
-    """Lay the two surfaces of ``case`` (a :class:`~ehl_dataset.contact.ContactCase`: u1, u2, rq1, rq2) out on
+    """Lay the two surfaces of ``case`` (a :class:`~ehl_dataset.model.contact.ContactCase`: u1, u2, rq1, rq2) out on
     the profile for a run over the solver grid ``x_m`` [m] from t = 0 to ``t_end_s`` [s].
 
     Surface 1 reads the stretch starting at profile coordinate 0, surface 2 the stretch that follows after a gap

@@ -33,7 +33,7 @@ class ContactResult:
 
     Scalars: ``mu`` friction coefficient [-] (time average for transient runs), ``mu_std`` its standard deviation
     over the averaging window [-] (0 for steady runs), ``mu_sem`` the standard error of that time average [-]
-    (autocorrelation-corrected, :mod:`ehl_dataset.time_average`; 0 for steady runs), ``h_min`` minimum film [m],
+    (autocorrelation-corrected, :mod:`ehl_dataset.solvers.time_average`; 0 for steady runs), ``h_min`` minimum film [m],
     ``h_central`` film at x = 0 [m],
     ``lambda_bar`` Dowson–Higginson film over composite roughness [-] (inf for smooth surfaces),
     ``asperity_load_share`` fraction of the load carried where asperities touch [-], ``p_max`` [Pa],

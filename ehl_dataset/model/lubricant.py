@@ -25,8 +25,8 @@ from typing import Any, Literal
 
 import numpy as np
 
-from .data_files import resolve_named_file
-from .validation import InputError, check_range
+from ..data_files import resolve_named_file
+from ..validation import InputError, check_range
 
 ROELANDS_P0_PA = 1.96e8
 """Roelands reference pressure p0 [Pa]."""

@@ -6,7 +6,7 @@ import math
 from dataclasses import asdict, dataclass
 
 from .materials import STEEL, Material, reduced_modulus
-from .validation import check_range
+from ..validation import check_range
 
 
 @dataclass(frozen=True)

@@ -6,7 +6,7 @@ also in units of the roughness correlation length.
 
 Steady smooth grid: nodes are clustered (spacing ``dx_fine``) in two bands around the Hertz inlet (x ≈ −a) and the
 outlet constriction/pressure spike (x ≈ +a), growing linearly over ``transition`` to ``dx_coarse`` elsewhere
-(see :func:`ehl_dataset.ehl_grid.clustered_grid`). A uniform grid would need 1,600–3,200 nodes at M > 100
+(see :func:`ehl_dataset.discretisation.grid.clustered_grid`). A uniform grid would need 1,600–3,200 nodes at M > 100
 (DESIGN §3); the clustered grids reach the same film accuracy with a few hundred.
 """
 
@@ -14,7 +14,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, replace
 
-from .validation import InputError
+from ..validation import InputError
 
 
 @dataclass(frozen=True)
@@ -35,7 +35,7 @@ class AccuracyLevel:
     transient); ``max_nodes_rough`` upper bound on the grid size; ``max_steps_rough`` upper bound on the number of
     time steps (the time step grows beyond ``courant``·dx when needed; recorded); ``mu_sem_target`` standard error
     of the time-averaged μ, relative to max(|μ|, 0.01), at which the averaging window may stop (once it spans 20
-    correlation times, :data:`ehl_dataset.time_average.RELIABLE_LENGTH`): a run whose μ fluctuates more is
+    correlation times, :data:`ehl_dataset.solvers.time_average.RELIABLE_LENGTH`): a run whose μ fluctuates more is
     continued with the same time step, up to ``max_passes`` × the domain length / u_r. ``mu_sem_target`` 0: fixed
     window of ``n_passes``, the standard error still reported; ``fast`` does this, so its time steps are those of
     solver version -5 and its measured stability holds. The passage of asperities makes μ of a rough contact

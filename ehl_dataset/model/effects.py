@@ -1,6 +1,6 @@
 """The set of physical effects an EHL solve simulates (the "scene" plan), recorded with every result.
 
-:func:`ehl_dataset.planner.plan_effects` decides it from a case's dimensionless numbers; ``Effects.full()`` forces
+:func:`ehl_dataset.solvers.planner.plan_effects` decides it from a case's dimensionless numbers; ``Effects.full()`` forces
 everything. The solver honours each flag:
 
 * ``roughness`` — moving surface roughness R1(x − u1 t), R2(x − u2 t) and asperity contact (unified Reynolds,

@@ -1,13 +1,13 @@
-"""Transient mixed-EHL line contact with moving roughness (paper Eq. 1–8; issue 3, deliverable 2).
+"""Transient mixed-EHL line contact with moving roughness (paper Eq. 1–8).
 
-The same discretisation and Newton solver as the steady smooth solve (:mod:`ehl_dataset.reynolds`,
-:mod:`ehl_dataset.ehl_newton`), on a grid that is uniform over the contact at the roughness resolution
+The same discretisation and Newton solver as the steady smooth solve (:mod:`ehl_dataset.discretisation.reynolds`,
+:mod:`ehl_dataset.solvers.newton`), on a grid that is uniform over the contact at the roughness resolution
 (:func:`roughness_grid`), with
 
 * the squeeze term ∂(ρh)/∂t by backward Euler (the previous step is the initial guess of the next),
 * the film of paper Eq. 3, H = H0(t) + X²/2 + K P − R1(X − U1 T) − R2(X − U2 T); the two profiles come from
-  :func:`ehl_dataset.roughness.plan_surfaces` (independent stretches of the shipped baseline profile scaled to Rq1,
-  Rq2) and move with their surface speeds,
+  :func:`ehl_dataset.model.roughness.plan_surfaces` (independent stretches of the shipped baseline profile scaled
+  to Rq1, Rq2) and move with their surface speeds,
 * the unified Reynolds equation (Hu & Zhu 2000): where the film is below :data:`H_CLOSED_M` the Poiseuille term is
   dropped and the equation reduces to ∂x(u_r ρh) + ∂t(ρh) = 0 (paper Eq. 2); those nodes are asperity contacts,
   whose traction is q = μ_d p (paper after Eq. 7),
@@ -17,27 +17,34 @@ The run starts from the steady smooth solution, ramps the roughness amplitude in
 start-up phase, lasts ``n_passes`` × the domain length / u_r (the start-up
 transient is the time the disturbance needs to be carried through the domain), and μ, μ_std, the asperity load
 share, the film and the pressure are averaged over the last ``average_fraction`` of the steps.
+
+The model choices that comparison runs vary (how lubricant crosses an asperity contact, which flux the faces of a
+contact carry, the hardness cap) are the fields of :class:`TransientOptions`; the defaults are what every dataset
+uses. What each alternative gives, measured, is in docs/ehl_solver.md ("Asperity contact in the transient runs").
 """
 
 from __future__ import annotations
 
-import functools
 import math
 import time
+from dataclasses import dataclass
+from typing import Callable
 
 import numpy as np
 
-from .contact import ContactCase
-from .deflection import influence_matrix
-from .effects import Effects
-from .ehl_grid import banded_grid
-from .ehl_newton import ReynoldsProblem, newton_solve
+from ..discretisation.deflection import influence_matrix
+from ..discretisation.grid import banded_grid
+from ..model.contact import ContactCase
+from ..model.effects import Effects
+from ..model.lubricant import LubricantState
+from ..model.roughness import baseline_profile, plan_surfaces
+from ..model.traction import friction_components
+from ..validation import InputError, SolverError
 from .levels import AccuracyLevel
-from .lubricant import LubricantState
+from .newton import ReynoldsProblem, newton_solve
 from .result import ContactResult
+from .steady import ContactScales, dowson_higginson_lambda, moes_h_c, solve_steady, solve_steady_problem
 from .time_average import RELIABLE_LENGTH, time_mean
-from .traction import friction_components
-from .validation import SolverError
 
 H_CLOSED_M = 1e-9
 """Film [m] below which the Poiseuille term is dropped (unified Reynolds, Hu & Zhu 2000: a vanishing film)."""
@@ -54,30 +61,12 @@ RAMP_FRACTION = 0.5
 """Fraction of the start-up (non-averaged) part of a run over which the roughness amplitude grows from 0 to 1."""
 MAX_PRESSURE_STEP = 3.0
 """Largest pressure change per Newton iteration in a time step [p_h]: asperity contacts need pressures of several p_h."""
-MONOTONE = False
-"""False: a damped Newton step (ω < 0.3) is accepted in a time step even without a decrease of the merit."""
-CLOSED_NODES = True
-"""True: nodes whose film is below CLOSED_MARGIN·H_CLOSED_M at the start of a step take the elastic–plastic
-dry-contact condition and pass the upstream flux through (:func:`_pass_through_film`). False: the first version's
-reduced Reynolds equation in closed zones (with the pressure cap). See docs/ehl_solver.md for what each gives."""
-CLOSURE = "patch"
-"""How lubricant crosses a closed patch (asperity contact): "patch", the net flux that enters the patch is
-delivered to the first open node behind it (:func:`ehl_dataset.reynolds.reroute_patch_fluxes`, mass-conserving);
-"upstream_film", closed nodes carry the Couette flux of the nearest open node upstream (the second version, which
-ignores the Poiseuille back-flow in front of the contact and so creates lubricant: films inflate at small λ̄)."""
 CLOSED_MARGIN = 1.01
 """A node counts as closed (asperity contact, and in the asperity load share) when h ≤ 1.01 H_CLOSED_M: the solver
-holds closed nodes at H_CLOSED_M to its tolerance."""
-CONTACT_ROUNDS = 4
-"""Times a time step is redone with the nodes whose film fell below H_c added to the closed (contact) set."""
-ROUND_WARM_START = True
-"""True: a contact round starts from the previous round's solution; False: from the start of the step."""
+holds closed nodes at H_CLOSED_M to its tolerance. Nodes closed at the start of a time step take the
+elastic–plastic dry-contact condition (:func:`ehl_dataset.solvers.newton._capped`)."""
 STEP_ITERATIONS = 40
 """Newton iterations allowed per time step (and per contact round) before the step is retried."""
-CONTACT_FACES_COUETTE = False
-"""False (default): the faces between an open node and an asperity contact carry the unified Reynolds flux, whose
-Poiseuille part is driven by the contact pressure (as in Hu & Zhu's unified equation, paper Eq. 1–2); True: those
-faces carry the Couette flux only (the solid contact pressure drives no lubricant). See docs/ehl_solver.md."""
 MAX_SUBSTEPS = 16
 """Largest number of sub-steps of the regular attempts (the careful last attempts go to 4·MAX_SUBSTEPS)."""
 RELAX_AFTER = 4
@@ -98,14 +87,52 @@ STEP_ATTEMPTS = ((1, False), (2, False), (4, False), (1, True), (4, True), (MAX_
 """(sub-steps, Couette-only contact faces): the regular attempts of a time step that starts at one sub-step."""
 CAREFUL_ATTEMPTS = ((4, False), (MAX_SUBSTEPS, True), (4 * MAX_SUBSTEPS, True))
 """Last attempts of a step, with the careful Newton settings: pressure steps of at most CAREFUL_PRESSURE_STEP and
-CAREFUL_ITERATIONS iterations. Same discrete equations, only the globalisation differs. Measured on the step that
-stopped the corner 2.5 GPa / 80 mm / 1 m/s / SR 1 / 100 °C / Rq 1 µm (fast): with 3 p_h steps Newton cycled at
-one outlet node (p 0.2 ↔ 0.4 p_h) for 40 iterations; with 1 p_h steps it converged in 22. The 64-sub-step attempt
-let that corner run to the end (889 s, 5 careful steps)."""
+CAREFUL_ITERATIONS iterations. Same discrete equations, only the globalisation differs (why they exist:
+docs/ehl_solver.md, "Numerics, and why": careful attempts)."""
 CAREFUL_PRESSURE_STEP = 1.0
 """Largest pressure change per Newton iteration [p_h] in the careful attempts."""
 CAREFUL_ITERATIONS = 100
 """Newton iterations per solve in the careful attempts."""
+
+CLOSURES = ("patch", "upstream_film")
+
+
+@dataclass(frozen=True)
+class TransientOptions:
+    """Model choices of a transient mixed run, and its wall clock. The defaults are the production model (every
+    dataset uses them); the alternatives exist for comparison runs (docs/ehl_solver.md, "Asperity contact in the
+    transient runs", measures what each gives).
+
+    ``closure``: how lubricant crosses a closed patch (asperity contact). ``"patch"``: the net flux that enters
+    the patch is delivered to the first open node behind it
+    (:func:`ehl_dataset.discretisation.reynolds.reroute_patch_fluxes`; mass-conserving). ``"upstream_film"``:
+    closed nodes carry the Couette flux of the nearest open node upstream (:func:`_pass_through_film`; ignores the
+    Poiseuille back-flow in front of the contact and so creates lubricant: films inflate at small λ̄).
+    ``contact_faces_couette``: False: the faces between an open node and an asperity contact carry the unified
+    Reynolds flux, whose Poiseuille part is driven by the contact pressure (Hu & Zhu's unified equation, paper
+    Eq. 1–2); True: those faces carry the Couette flux only at every step (the solid contact pressure drives no
+    lubricant; with False the run still falls back to it on steps where Newton fails, :func:`step_attempts`).
+    ``contact_rounds``: times a time step is redone with the open nodes whose film fell below H_c added to the
+    closed (contact) set.
+    ``yield_pressure_pa``: the plastic pressure cap of asperity contacts [Pa] (:data:`YIELD_PRESSURE_PA`; ``inf``
+    switches the cap off).
+    ``clock``: the wall clock [s] that the budget ``time_limit_s`` and the result's ``wall_time`` read
+    (``time.perf_counter``; a stand-in makes a budget a count of time steps in tests).
+    """
+
+    closure: str = "patch"
+    contact_faces_couette: bool = False
+    contact_rounds: int = 4
+    yield_pressure_pa: float = YIELD_PRESSURE_PA
+    clock: Callable[[], float] = time.perf_counter
+
+    def __post_init__(self):
+        if self.closure not in CLOSURES:
+            raise InputError("closure", self.closure, f"one of {list(CLOSURES)}")
+        if isinstance(self.contact_rounds, bool) or not isinstance(self.contact_rounds, int) or self.contact_rounds < 0:
+            raise InputError("contact_rounds", self.contact_rounds, "an integer >= 0")
+        if not (isinstance(self.yield_pressure_pa, (int, float)) and self.yield_pressure_pa > 0):
+            raise InputError("yield_pressure_pa", self.yield_pressure_pa, "a pressure > 0 Pa (inf: no cap)")
 
 
 def step_attempts(start: int = 1) -> tuple[tuple[int, bool], ...]:
@@ -120,8 +147,8 @@ def step_attempts(start: int = 1) -> tuple[tuple[int, bool], ...]:
     monotone in the step size, so a larger ``start`` never removes an attempt of the base sequence.
 
     The run adapts ``start`` (:func:`next_start`): a step that needed k sub-steps with unified faces makes the next
-    steps begin at k (a finer time step is only more accurate), so the failing attempts are not repeated every
-    step — they cost 40 Newton iterations per contact round and were 74 % of the wall time of a hard 80 mm case.
+    steps begin at k (a finer time step is only more accurate), so the failing attempts, 40 Newton iterations per
+    contact round each, are not repeated every step (docs/ehl_solver.md, "Numerics, and why": adaptive start).
     """
     start = int(min(max(start, 1), MAX_SUBSTEPS))
     first = tuple((k, False) for k in (start, 2 * start, 4 * start) if k <= MAX_SUBSTEPS)
@@ -178,18 +205,17 @@ def time_steps(lvl: AccuracyLevel, dx: float) -> tuple[float, float, int, float]
 
 
 def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel, plan: Effects,
-                    roughness=None, time_limit_s: float | None = None) -> ContactResult:
+                    roughness=None, time_limit_s: float | None = None,
+                    options: TransientOptions = TransientOptions()) -> ContactResult:
     """Transient mixed solve of one rough contact; see the module docstring. ``roughness``: the profile both
-    surfaces take (a :class:`~ehl_dataset.roughness.RoughnessProfile`, scaled to Rq1 and Rq2); None: the shipped
-    baseline. ``time_limit_s``: wall-time budget [s]; checked before every time step, and when it is spent the run
-    ends ``converged=False`` ("wall-time limit ...")."""
-    from .roughness import plan_surfaces
-    from .solver import ContactScales, dowson_higginson_lambda, moes_h_c, solve_steady, solve_steady_problem
-
-    start = time.perf_counter()
+    surfaces take (a :class:`~ehl_dataset.model.roughness.RoughnessProfile`, scaled to Rq1 and Rq2); None: the
+    shipped baseline. ``time_limit_s``: wall-time budget [s]; checked before every time step, and when it is spent
+    the run ends ``converged=False`` ("wall-time limit ..."). ``options``: :class:`TransientOptions`."""
+    clock = options.clock
+    start = clock()
     scales = ContactScales.of(case, state, plan.shear_thinning)
     a, film_scale = scales.a, scales.film_scale
-    profile = roughness if roughness is not None else _baseline_profile()
+    profile = roughness if roughness is not None else baseline_profile()
     x, capped = roughness_grid(case, lvl, profile.correlation_length, moes_h_c(case, state, scales))
     dx = float(np.min(np.diff(x[(x > lvl.inlet_band[1]) & (x < lvl.outlet_band[1])])))  # roughness spacing
     kmat = influence_matrix(x)
@@ -202,7 +228,7 @@ def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel
     smooth_plan = Effects(False, False, plan.shear_thinning, plan.compressibility, plan.mode, {})
     smooth = solve_steady(case, state, lvl, smooth_plan)
     if not smooth.converged:
-        return _failed(case, state, lvl, plan, smooth.iterations, start, f"smooth start: {smooth.message}",
+        return _failed(case, state, lvl, plan, smooth.iterations, clock() - start, f"smooth start: {smooth.message}",
                        smooth.residuals)
     p0 = np.interp(x * a, smooth.x, smooth.pressure) / case.p_h
     h0 = smooth.extra["h0_m"] / film_scale
@@ -212,8 +238,8 @@ def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel
         first, its, _ = solve_steady_problem(problem, p0, h0, lvl)
         iterations += its
     if not first.converged:
-        return _failed(case, state, lvl, plan, iterations, start, f"smooth start on the rough grid: {first.message}",
-                       _residuals(first))
+        return _failed(case, state, lvl, plan, iterations, clock() - start,
+                       f"smooth start on the rough grid: {first.message}", _residuals(first))
     m_ref = float(np.interp(0.0, x, problem.fluid(first.p, first.h)[3]))
 
     # 2. time stepping with the roughness switched on
@@ -229,7 +255,8 @@ def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel
     # laid out for the base run (a run that stops there is the same whatever its cap); an extension reads on
     surfaces = plan_surfaces(case, x * a, t_end * time_scale, profile)
     problem.h_closed = H_CLOSED_M / film_scale
-    problem.p_cap = YIELD_PRESSURE_PA / case.p_h
+    problem.p_cap = options.yield_pressure_pa / case.p_h
+    problem.closure = options.closure
     problem.scaled_norm = True
     # a time step that needs many iterations is cheaper to redo with sub-steps than to iterate on
     step_tolerances = dict(tolerances, max_iterations=min(lvl.max_iterations, STEP_ITERATIONS),
@@ -252,7 +279,7 @@ def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel
             so_far = time_mean(history["mu"][first_avg_base:])
             if so_far.within(_sem_tolerance(lvl, so_far.mean)):
                 break
-        if time_limit_s is not None and time.perf_counter() - start > time_limit_s:
+        if time_limit_s is not None and clock() - start > time_limit_s:
             time_limited = True
             if step >= n_steps:  # the base run is complete: the budget only ends the window's extension
                 break
@@ -264,7 +291,7 @@ def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel
         attempts += [(k, couette, True) for k, couette in CAREFUL_ATTEMPTS]
         for attempt, (n_sub, couette_faces, careful) in enumerate(attempts):
             newton_options = careful_tolerances if careful else step_tolerances
-            problem.contact_faces_couette = CONTACT_FACES_COUETTE or couette_faces
+            problem.contact_faces_couette = options.contact_faces_couette or couette_faces
             d_sub = d_t / n_sub
             ok, p_try, h0_try, m_try = True, p, h0, m_prev
             for k in range(n_sub):
@@ -278,19 +305,18 @@ def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel
                 # exact conditions elsewhere (the inlet build-up sets the film and is sensitive to any smoothing)
                 film_start = problem.film(p_try, h0_try)[1:-1]
                 problem.smoothing = np.where(film_start < SMOOTHING_FILM * problem.h_closed, FB_SMOOTHING, 0.0)
-                if CLOSED_NODES:
-                    closed = np.zeros(x.size, dtype=bool)
-                    closed[1:-1] = film_start < CLOSED_MARGIN * problem.h_closed
-                    problem.closed = closed
-                    problem.closure = CLOSURE
-                    if CLOSURE == "upstream_film":
-                        problem.closed_film = _pass_through_film(problem.film(p_try, h0_try), closed,
-                                                                 problem.h_closed)
-                outcome = newton_solve(problem, p_try, h0_try, m_ref=m_ref, monotone=MONOTONE, freeze_scaling=True,
+                # nodes closed at the start of the step take the elastic-plastic dry-contact condition
+                closed = np.zeros(x.size, dtype=bool)
+                closed[1:-1] = film_start < CLOSED_MARGIN * problem.h_closed
+                problem.closed = closed
+                if options.closure == "upstream_film":
+                    problem.closed_film = _pass_through_film(problem.film(p_try, h0_try), closed, problem.h_closed)
+                # monotone=False: a damped step (ω < 0.3) is accepted without a decrease of the merit
+                outcome = newton_solve(problem, p_try, h0_try, m_ref=m_ref, monotone=False, freeze_scaling=True,
                                        **newton_options)
                 failures = int(not outcome.converged)
                 cost.count(outcome)
-                for _ in range(CONTACT_ROUNDS if CLOSED_NODES else 0):
+                for _ in range(options.contact_rounds):
                     # an open node whose film fell below H_c during the step is an asperity contact too: add it to
                     # the closed set and redo the step (the closed set only grows within a step, so this ends)
                     penetrated = ~problem.closed & (outcome.h < problem.h_closed)
@@ -299,8 +325,9 @@ def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel
                         break
                     problem.closed = problem.closed | penetrated
                     problem.smoothing = np.where(problem.closed[1:-1], FB_SMOOTHING, problem.smoothing)
-                    start_p, start_h0 = (outcome.p, outcome.h0) if (outcome.converged and ROUND_WARM_START) else (p_try, h0_try)
-                    outcome = newton_solve(problem, start_p, start_h0, m_ref=m_ref, monotone=MONOTONE,
+                    # a round starts from the previous round's solution when that converged
+                    start_p, start_h0 = (outcome.p, outcome.h0) if outcome.converged else (p_try, h0_try)
+                    outcome = newton_solve(problem, start_p, start_h0, m_ref=m_ref, monotone=False,
                                            freeze_scaling=True, **newton_options)
                     failures += int(not outcome.converged)
                     cost.count(outcome)
@@ -317,7 +344,7 @@ def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel
             failure = f"time step at t = {t * time_scale:.3e} s did not converge ({outcome.message})"
             break
         t += d_t
-        fallback_steps += int(problem.contact_faces_couette and not CONTACT_FACES_COUETTE)
+        fallback_steps += int(problem.contact_faces_couette and not options.contact_faces_couette)
         substep_steps += int(n_sub > 1)
         careful_steps += int(careful)
         start_substeps, calm_steps = next_start(start_substeps, n_sub, couette_faces, attempt == 0,
@@ -325,13 +352,14 @@ def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel
         p, h0, m_prev = p_try, h0_try, m_try
         for key, value in _residuals(outcome).items():
             worst[key] = max(worst[key], abs(value))
-        _record(history, t, case, state, x * a, p * case.p_h, outcome.h * film_scale, H_CLOSED_M, YIELD_PRESSURE_PA)
+        _record(history, t, case, state, x * a, p * case.p_h, outcome.h * film_scale, H_CLOSED_M,
+                options.yield_pressure_pa)
 
     iterations += cost.iterations
     converged = not failure
     steps = len(history["t"])
     if steps == 0:
-        return _failed(case, state, lvl, plan, iterations, start, failure, worst,
+        return _failed(case, state, lvl, plan, iterations, clock() - start, failure, worst,
                        {"n_steps": 0, "n_steps_planned": int(n_steps), "time_limited": time_limited})
     first_avg = first_avg_base if (converged and steps >= n_steps) else max(steps // 2, 0)
     window = slice(first_avg, steps)
@@ -347,7 +375,8 @@ def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel
         h_min=float(max(np.min(history["h_min"][window]), 0.0)),
         h_central=float(np.mean(history["h_c"][window])),
         p_max=float(np.max(history["p_max"][window])), converged=converged, iterations=int(iterations),
-        wall_time=time.perf_counter() - start, level=lvl.name, effects=_recorded_plan(plan), lambda_bar=lambda_bar,
+        wall_time=clock() - start, level=lvl.name, effects=_recorded_plan(plan, options.yield_pressure_pa),
+        lambda_bar=lambda_bar,
         asperity_load_share=float(np.mean(history["share"][window])), residuals=worst,
         mu_sem=sem,
         message=_message(converged, failure, steps, fallback_steps, careful_steps)
@@ -368,10 +397,10 @@ def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel
                "roughness_correlation_length_m": float(profile.correlation_length),
                "surfaces_independent": bool(surfaces.disjoint_until(t * time_scale)),
                "h_min_dowson_higginson_m": h_dh, "h_closed_m": H_CLOSED_M,
-               "yield_pressure_pa": YIELD_PRESSURE_PA,
+               "yield_pressure_pa": options.yield_pressure_pa,
                "yielded_load_share": float(np.mean(history["yielded"][window])),
                "fb_smoothing": FB_SMOOTHING,
-               "contact_faces_couette": CONTACT_FACES_COUETTE,
+               "contact_faces_couette": options.contact_faces_couette,
                "couette_fallback_steps": int(fallback_steps),
                "substep_steps": int(substep_steps),
                "careful_steps": int(careful_steps),
@@ -387,9 +416,8 @@ def solve_transient(case: ContactCase, state: LubricantState, lvl: AccuracyLevel
 class NewtonCost:
     """What the time stepping spent on Newton solves (a cost record; it changes no solved value): solves and
     iterations of the solves that converged and of those that failed (a failed solve runs to its iteration cap and
-    is then retried with sub-steps). Each iteration is one dense LU factorisation of N × N, the dominant cost:
-    measured 22 ms at N = 1,006 (one BLAS thread), 72 per time step over the first 87 steps of a 2.5 GPa / 80 mm
-    `standard` case (docs/ehl_solver.md, "Where the time of a rough run goes")."""
+    is then retried with sub-steps). Each iteration is one dense LU factorisation of N × N, the dominant cost
+    (measured: docs/ehl_solver.md, "Where the time of a rough run goes")."""
 
     FIELDS = ("newton_solves", "newton_solves_failed", "newton_step_iterations", "newton_iterations_failed")
     """The ``extra`` keys of the record (:meth:`as_extra`)."""
@@ -398,7 +426,7 @@ class NewtonCost:
         self.solves = self.failed = self.iterations = self.failed_iterations = 0
 
     def count(self, outcome) -> None:
-        """Add one :class:`~ehl_dataset.ehl_newton.NewtonOutcome`."""
+        """Add one :class:`~ehl_dataset.solvers.newton.NewtonOutcome`."""
         self.solves += 1
         self.iterations += int(outcome.iterations)
         if not outcome.converged:
@@ -460,21 +488,13 @@ def _pass_through_film(film: np.ndarray, closed: np.ndarray, h_closed: float) ->
     return out
 
 
-def _recorded_plan(plan: Effects) -> dict:
+def _recorded_plan(plan: Effects, yield_pressure_pa: float) -> dict:
     """The effect plan with the plastic pressure cap recorded (``Effects`` has no flag for it)."""
     record = plan.to_dict()
     record["reasons"] = dict(record.get("reasons") or {})
-    record["reasons"]["plastic_cap"] = (f"asperity pressure capped at the hardness {YIELD_PRESSURE_PA / 1e9:.1f} GPa "
+    record["reasons"]["plastic_cap"] = (f"asperity pressure capped at the hardness {yield_pressure_pa / 1e9:.1f} GPa "
                                         "(60 HRC case-hardened steel, elastic-perfectly-plastic asperities)")
     return record
-
-
-@functools.lru_cache(maxsize=1)
-def _baseline_profile():
-    """The shipped baseline roughness profile, read once per process (reading the text file costs ~1 s)."""
-    from .roughness import baseline_profile
-
-    return baseline_profile()
 
 
 def _residuals(outcome) -> dict[str, float]:
@@ -501,12 +521,11 @@ def _record(history, t, case, state, x_m, p_pa, h_m, h_closed_m, p_yield_pa=math
     history["yielded"].append(yielded_load / load if load > 0 else 0.0)
 
 
-def _failed(case, state, lvl, plan, iterations, start, message, residuals, extra=None) -> ContactResult:
-    from .solver import dowson_higginson_lambda
-
+def _failed(case, state, lvl, plan, iterations, wall_time, message, residuals, extra=None) -> ContactResult:
+    """A run that ended without an averaged result (``wall_time`` [s] spent): NaN outputs and the message."""
     _, lambda_bar = dowson_higginson_lambda(case, state)
     nan = float("nan")
     return ContactResult(mu=nan, h_min=nan, h_central=nan, p_max=nan, converged=False, iterations=int(iterations),
-                         wall_time=time.perf_counter() - start, level=lvl.name, effects=plan.to_dict(),
+                         wall_time=wall_time, level=lvl.name, effects=plan.to_dict(),
                          lambda_bar=lambda_bar, residuals=dict(residuals), message=f"not converged: {message}",
                          extra=dict(extra or {}))

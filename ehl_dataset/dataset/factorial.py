@@ -33,8 +33,8 @@ from typing import Any
 
 import numpy as np
 
-from .data_files import resolve_named_file
-from .validation import InputError, check_range
+from ..data_files import resolve_named_file
+from ..validation import InputError, check_range
 
 CELSIUS_ZERO_K = 273.15
 

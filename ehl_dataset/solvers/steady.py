@@ -1,0 +1,245 @@
+"""Steady smooth line contact: the full-system Newton solve of :mod:`ehl_dataset.solvers.newton` on a clustered grid
+(paper Eq. 1, 3–6 without the time term and roughness), with load and viscosity-exponent continuation.
+
+Also the Hertzian scales of a case (:class:`ContactScales`) and the Dowson–Higginson film parameter λ̄, which the
+transient solver shares. A smooth contact under constant load and speed has a steady solution, which is what a
+transient run would settle to, so :func:`ehl_dataset.solver.solve_contact` sends every smooth case here.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..discretisation.deflection import influence_matrix
+from ..discretisation.grid import clustered_grid
+from ..model.contact import ContactCase
+from ..model.effects import Effects
+from ..model.film_formulas import dowson_higginson_min_film, moes_central_film
+from ..model.lubricant import LubricantState
+from ..model.traction import friction_components
+from ..validation import SolverError
+from .levels import AccuracyLevel
+from .newton import NewtonOutcome, ReynoldsProblem, newton_solve
+from .result import ContactResult
+
+PSEUDO_DT = 0.3
+"""Initial pseudo time step [a/u_r] of the pseudo-transient Newton globalisation."""
+
+M_EASY = 30.0
+"""Moes load parameter above which the Hertz pressure is a good enough Newton start."""
+LAMBDA_FACTOR = 4.0
+"""Growth factor of λ̄ between the stages of the light-load continuation."""
+
+FINE_PSEUDO_DT = 0.0
+COARSENING = 3.0
+"""Spacing ratio of the continuation grid to the level's grid in :func:`solve_steady`."""
+
+__all__ = ["ContactScales", "dowson_higginson_lambda", "moes_h_c", "steady_grid", "solve_steady",
+           "solve_steady_problem"]
+
+
+@dataclass(frozen=True)
+class ContactScales:
+    """Hertzian scales and dimensionless numbers of a case (SI): ``a`` [m], ``p_h`` [Pa], ``r_eq`` [m],
+    ``load`` W' [N/m], ``e_reduced`` [Pa]; ``lam`` λ̄ = 12 η0 u_r r_eq²/(a³ p_h); ``shear`` S = η0|u_s| r_eq/(τ0 a²);
+    ``film_scale`` a²/r_eq [m] (h = H a²/r_eq)."""
+
+    a: float
+    p_h: float
+    r_eq: float
+    load: float
+    e_reduced: float
+    lam: float
+    shear: float
+
+    @property
+    def film_scale(self) -> float:
+        return self.a**2 / self.r_eq
+
+    @classmethod
+    def of(cls, case: ContactCase, state: LubricantState, shear_thinning: bool = True) -> "ContactScales":
+        a = case.half_width
+        lam = 12.0 * state.eta0 * case.u_r * case.r_eq**2 / (a**3 * case.p_h)
+        shear = state.eta0 * abs(case.u_s) * case.r_eq / (state.tau0 * a**2) if shear_thinning else 0.0
+        return cls(a, case.p_h, case.r_eq, case.load_per_length, case.e_reduced, lam, shear)
+
+
+def dowson_higginson_lambda(case: ContactCase, state: LubricantState) -> tuple[float, float]:
+    """(h_min from Dowson–Higginson [m], λ̄ = h_min,DH / S_c) as the paper defines λ̄ (inf for smooth surfaces)."""
+    h_dh = float(dowson_higginson_min_film(state.eta0, case.u_r, state.alpha1, case.e_reduced, case.r_eq,
+                                           case.load_per_length))
+    s_c = case.s_c
+    return h_dh, (h_dh / s_c if s_c > 0.0 else math.inf)
+
+
+def _initial_guess(x: np.ndarray, problem: ReynoldsProblem, case: ContactCase, state: LubricantState,
+                   scales: ContactScales) -> tuple[np.ndarray, float]:
+    """Hertz pressure and the film constant that puts the central film at Moes' estimate."""
+    p = np.sqrt(np.clip(1.0 - x**2, 0.0, None))
+    p[0] = p[-1] = 0.0
+    h_c = float(moes_central_film(state.eta0, case.u_r, state.alpha1, case.e_reduced, case.r_eq,
+                                  case.load_per_length)) / scales.film_scale
+    h_rigid = problem.film(p, 0.0)
+    centre = int(np.argmin(np.abs(x)))
+    h0 = h_c - h_rigid[centre]
+    h0 = max(h0, -float(np.min(h_rigid)) + 0.5 * h_c)
+    return p, h0
+
+
+def _newton_with_homotopy(problem: ReynoldsProblem, p0, h00, tolerances) -> tuple[NewtonOutcome, int, list[float]]:
+    """Newton from (p0, h00); on failure a continuation in the viscosity exponent c·ln(η/η0), c: 0 → 1."""
+    outcome = newton_solve(problem, p0, h00, pseudo_dt=PSEUDO_DT, **tolerances)
+    total = outcome.iterations
+    if outcome.converged:
+        return outcome, total, [1.0]
+    stages: list[float] = []
+    c, step = 0.0, 0.25
+    p, h0 = p0, h00
+    while c < 1.0:
+        trial = min(1.0, c + step)
+        out = newton_solve(problem, p, h0, homotopy=trial, pseudo_dt=PSEUDO_DT, **tolerances)
+        total += out.iterations
+        if out.converged:
+            c, p, h0 = trial, out.p, out.h0
+            stages.append(trial)
+            outcome = out
+            step = min(step * 1.5, 0.5)
+        else:
+            step *= 0.5
+            if step < 1e-2:
+                out.message = f"continuation stalled at viscosity exponent factor {c:.3f}: {out.message}"
+                return out, total, stages
+    return outcome, total, stages
+
+
+def solve_steady_problem(problem: ReynoldsProblem, p0: np.ndarray, h00: float, lvl: AccuracyLevel,
+                         ) -> tuple[NewtonOutcome, int, list]:
+    """Solve the steady problem, with continuation where a direct Newton solve is not robust.
+
+    Light loads (Moes M = √(3.70/λ̄) below :data:`M_EASY`) start from the Hertz guess at the heavier load
+    λ̄ = 3.70/M_EASY² and raise λ̄ (a speed/load continuation, λ̄ ∝ U/W²) by factors of :data:`LAMBDA_FACTOR`; each
+    stage falls back to the viscosity-exponent continuation if needed. Returns the final outcome, the total
+    number of Newton iterations and the continuation record [(λ̄, [c values]), ...].
+    """
+    tolerances = dict(tol_residual=lvl.tol_residual, tol_load=lvl.tol_load, tol_step=lvl.tol_step,
+                      max_iterations=lvl.max_iterations)
+    target = problem.lam
+    lam_easy = 3.70 / M_EASY**2
+    lams = [target]
+    if target > lam_easy:
+        n_stages = int(np.ceil(np.log(target / lam_easy) / np.log(LAMBDA_FACTOR)))
+        lams = list(lam_easy * (target / lam_easy) ** (np.arange(n_stages + 1) / n_stages))
+    record = []
+    total = 0
+    p, h0 = p0, h00
+    centre = int(np.argmin(np.abs(problem.x)))
+    for k, lam in enumerate(lams):
+        problem.lam = float(lam)
+        if k > 0:  # scale the film for the new speed: H_c ∝ λ̄^0.5 roughly at light load
+            h_prev = problem.film(p, h0)[centre]
+            h0 = h0 + h_prev * ((lams[k] / lams[k - 1]) ** 0.5 - 1.0)
+        outcome, its, stages = _newton_with_homotopy(problem, p, h0, tolerances)
+        total += its
+        record.append((float(lam), stages))
+        if not outcome.converged:
+            problem.lam = target
+            if k < len(lams) - 1:
+                outcome.message = f"load continuation failed at lambda={lam:.3g} (target {target:.3g}): " \
+                                  f"{outcome.message}"
+            return outcome, total, record
+        p, h0 = outcome.p, outcome.h0
+    problem.lam = target
+    return outcome, total, record
+
+
+def _problem_on(x: np.ndarray, case: ContactCase, state: LubricantState, plan: Effects,
+                scales: ContactScales) -> ReynoldsProblem:
+    return ReynoldsProblem(x=x, kmat=influence_matrix(x), gap=0.5 * x**2, lam=scales.lam, p_h=case.p_h,
+                           state=state, compressible=plan.compressibility and state.compressible,
+                           shear=scales.shear)
+
+
+def steady_grid(lvl: AccuracyLevel, coarsening: float = 1.0, h_c: float = math.inf) -> np.ndarray:
+    """The clustered steady grid of a level (``coarsening`` > 1 multiplies both spacings).
+
+    ``h_c`` is the expected dimensionless central film H_c = h_c r_eq/a²; the fine spacing is capped at
+    ``lvl.inlet_resolution``·H_c^(2/3), the length scale of the inlet zone at heavy load.
+    """
+    dx_fine = min(lvl.dx_fine, lvl.inlet_resolution * h_c ** (2.0 / 3.0))
+    dx_coarse = max(lvl.dx_coarse, dx_fine)
+    return clustered_grid(lvl.x_start, lvl.x_end, dx_fine * coarsening, dx_coarse * coarsening,
+                          (lvl.inlet_band, lvl.outlet_band), lvl.transition)
+
+
+def moes_h_c(case: ContactCase, state: LubricantState, scales: ContactScales) -> float:
+    """Moes' central film in units of a²/r_eq (a scale for grids and initial guesses)."""
+    return float(moes_central_film(state.eta0, case.u_r, state.alpha1, case.e_reduced, case.r_eq,
+                                   case.load_per_length)) / scales.film_scale
+
+
+def solve_steady(case: ContactCase, state: LubricantState, lvl: AccuracyLevel, plan: Effects) -> ContactResult:
+    """Steady, isothermal, smooth line contact (paper Eq. 1, 3–6 without the time term and roughness).
+
+    Two grids: the continuation (which may take tens of Newton iterations) runs on a grid
+    :data:`COARSENING` times coarser, and its interpolated solution starts the Newton iteration on the level's
+    grid, which then needs only a few iterations. If the coarse stage fails, the fine grid is solved from scratch.
+    """
+    start = time.perf_counter()
+    scales = ContactScales.of(case, state, plan.shear_thinning)
+    h_c = moes_h_c(case, state, scales)
+    x = steady_grid(lvl, h_c=h_c)
+    problem = _problem_on(x, case, state, plan, scales)
+    record: dict = {}
+    iterations = 0
+    outcome = None
+    x_coarse = steady_grid(lvl, COARSENING, h_c=h_c)
+    if x_coarse.size < 0.6 * x.size:
+        coarse = _problem_on(x_coarse, case, state, plan, scales)
+        p0, h00 = _initial_guess(x_coarse, coarse, case, state, scales)
+        coarse_out, its, stages = solve_steady_problem(coarse, p0, h00, lvl)
+        iterations += its
+        record["coarse"] = {"nodes": int(x_coarse.size), "stages": stages, "converged": coarse_out.converged}
+        if coarse_out.converged:
+            p_fine = np.interp(x, x_coarse, coarse_out.p)
+            outcome = newton_solve(problem, p_fine, coarse_out.h0, pseudo_dt=FINE_PSEUDO_DT,
+                                   tol_residual=lvl.tol_residual, tol_load=lvl.tol_load, tol_step=lvl.tol_step,
+                                   max_iterations=lvl.max_iterations)
+            iterations += outcome.iterations
+            record["fine"] = {"nodes": int(x.size), "iterations": outcome.iterations}
+    if outcome is None or not outcome.converged:
+        p0, h00 = _initial_guess(x, problem, case, state, scales)
+        outcome, its, stages = solve_steady_problem(problem, p0, h00, lvl)
+        iterations += its
+        record["fine_from_scratch"] = {"nodes": int(x.size), "stages": stages}
+    result = _result_from_steady(case, state, lvl, plan, scales, x, outcome, iterations)
+    result.extra["continuation"] = record
+    result.wall_time = time.perf_counter() - start
+    return result
+
+
+def _result_from_steady(case, state, lvl, plan, scales: ContactScales, x, outcome: NewtonOutcome,
+                        iterations: int) -> ContactResult:
+    x_m = x * scales.a
+    p_pa = outcome.p * scales.p_h
+    h_m = outcome.h * scales.film_scale
+    if not np.all(np.isfinite(p_pa)) or not np.all(np.isfinite(h_m)):
+        raise SolverError(f"non-finite pressure or film for case {case.to_dict()}")
+    eta = state.viscosity(p_pa)
+    parts = friction_components(x_m, p_pa, h_m, eta, case.u_s, state.tau0, case.load_per_length)
+    h_dh, lambda_bar = dowson_higginson_lambda(case, state)
+    residuals = {"reynolds": outcome.residual, "load": outcome.load, "step": outcome.step,
+                 "complementarity": outcome.complementarity}
+    message = outcome.message if outcome.converged else f"not converged: {outcome.message}"
+    return ContactResult(
+        mu=parts["mu"], h_min=float(np.min(h_m)), h_central=float(np.interp(0.0, x_m, h_m)),
+        p_max=float(np.max(p_pa)), converged=bool(outcome.converged), iterations=int(iterations),
+        wall_time=0.0, level=lvl.name, effects=plan.to_dict(), mu_std=0.0, lambda_bar=lambda_bar,
+        asperity_load_share=0.0, residuals=residuals, message=message, x=x_m, pressure=p_pa, film=h_m,
+        extra={"mu_poiseuille": parts["mu_poiseuille"], "mu_couette": parts["mu_couette"], "n_nodes": int(x.size),
+               "h0_m": outcome.h0 * scales.film_scale, "h_min_dowson_higginson_m": h_dh,
+               "domain_a": (lvl.x_start, lvl.x_end)},
+    )
