@@ -35,6 +35,7 @@ import numpy as np
 from ehl_dataset.model.lubricant import Lubricant, lubricant_from_dict
 from ehl_dataset.validation import InputError
 
+from .diagnostics import summary_text
 from .fit import RANGE_KEYS, SurrogateFit
 from .forms import BRANCHES, FORMULAS, Formula
 
@@ -142,7 +143,7 @@ def write_coefficients(fit: SurrogateFit, path: str | Path, *, source: dict[str,
     tmp = path.with_name(path.name + ".tmp")
     tmp.write_text(json.dumps(payload, indent=1, sort_keys=True, allow_nan=False) + "\n", encoding="utf-8")
     tmp.replace(path)
-    summary_path(path).write_text(fit.summary_text() + "\n", encoding="utf-8")
+    summary_path(path).write_text(summary_text(fit) + "\n", encoding="utf-8")
     return path
 
 

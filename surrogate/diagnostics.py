@@ -1,4 +1,5 @@
-"""Diagnostics of a surrogate fit: residuals by branch and by factor level, and the two standard figures.
+"""Diagnostics of a surrogate fit: residuals by branch and by factor level, the text summary written beside the
+coefficient file (:func:`summary_text`), and the two standard figures.
 
 Residuals are the *out-of-fold* ones of the k-fold cross-validation (ln μ_predicted − ln μ_computed), so they show
 the error a user meets on contacts the fit has not seen.
@@ -66,6 +67,26 @@ def format_residuals(residuals: dict[str, Any]) -> str:
                              else f"{branch} -")
             lines.append(f"    {level:>10s}: " + "; ".join(cells))
     return "\n".join(lines)
+
+
+def summary_text(fit: SurrogateFit) -> str:
+    """Both statsmodels summaries plus the diagnostics of a fit, as written beside its coefficient file."""
+    parts = [f"formula {fit.formula.name} v{fit.formula.version}; rows: {fit.n_input_rows} in, "
+             f"{fit.n_used} used; excluded: {fit.exclusions}"]
+    for b, f in fit.branches.items():
+        parts.append(f"\n=== branch {b} ({'lambda <= 1, Eq. 9a' if b == 'mixed' else 'lambda > 1, Eq. 9b'}) ===")
+        parts.append(f.summary_text)
+        parts.append(f"condition number: raw design {f.condition_number_raw:.4g}, standardised "
+                     f"{f.condition_number_standardized:.4g}; rank {f.rank}/{len(f.terms)}; stable={f.stable}")
+        parts.append("variance inflation factors: " + ", ".join(f"{k}={v:.4g}" for k, v in f.vif.items()))
+        parts.extend(f"note: {m}" for m in f.messages)
+    cv = fit.cv["overall"]
+    parts.append(f"\n{fit.cv['k']}-fold CV: RMSE ln mu {cv['rmse_ln_mu']:.4g}, mean |rel err mu| "
+                 f"{cv['mean_rel_err_mu']:.4g}, p95 {cv['p95_rel_err_mu']:.4g}")
+    parts.append(f"jump at lambda = 1: {fit.jump}")
+    if fit.prepared is not None and fit.cv_predictions is not None:
+        parts.append("\n" + format_residuals(residuals_by_factor(fit)))
+    return "\n".join(parts)
 
 
 def plot_figures(fit: SurrogateFit, out_dir: str | Path, *, prefix: str = "surrogate_", title: str = "") -> list[Path]:

@@ -229,17 +229,19 @@ def _intercept_column(x: np.ndarray) -> int | None:
     return hits[0] if hits else None
 
 
-def fit_branch(x: np.ndarray, y: np.ndarray, names: list[str], branch: str, lam: np.ndarray | None = None) -> BranchFit:
+def fit_branch(x: np.ndarray, y: np.ndarray, names: list[str], branch: str, lam: np.ndarray | None = None,
+               max_condition: float = MAX_STANDARDISED_CONDITION) -> BranchFit:
     """OLS fit of ln μ on one branch's design matrix with statsmodels (see module docstring for the checks).
+    ``max_condition``: condition number of the standardised design above which the branch is unstable.
 
     BLAS runs single-threaded here: the matrices are thin (n × 10–14) and multi-threaded SVDs were measured 10×
     slower on a loaded 2-core machine.
     """
     with threadpool_limits(1):
-        return _fit_branch(x, y, names, branch, lam)
+        return _fit_branch(x, y, names, branch, lam, max_condition)
 
 
-def _fit_branch(x, y, names, branch, lam) -> BranchFit:
+def _fit_branch(x, y, names, branch, lam, max_condition) -> BranchFit:
     import statsmodels.api as sm
 
     n, k = x.shape
@@ -270,10 +272,10 @@ def _fit_branch(x, y, names, branch, lam) -> BranchFit:
 
     messages = []
     stable = True
-    if cond_z > MAX_STANDARDISED_CONDITION:
+    if cond_z > max_condition:
         stable = False
         messages.append(f"condition number of the standardised design {cond_z:.3g} > "
-                        f"{MAX_STANDARDISED_CONDITION:.0e}: coefficients are numerically unreliable")
+                        f"{max_condition:.0e}: coefficients are numerically unreliable")
     if deviation > RAW_AGREEMENT_SE:
         stable = False
         messages.append(f"raw-design and standardised solutions differ by {deviation:.3g} standard errors")
@@ -418,36 +420,17 @@ class SurrogateFit:
     def params(self) -> dict[str, np.ndarray]:
         return {b: f.params for b, f in self.branches.items()}
 
-    def summary_text(self) -> str:
-        """Both statsmodels summaries plus the diagnostics, as written beside the coefficient file."""
-        parts = [f"formula {self.formula.name} v{self.formula.version}; rows: {self.n_input_rows} in, "
-                 f"{self.n_used} used; excluded: {self.exclusions}"]
-        for b, f in self.branches.items():
-            parts.append(f"\n=== branch {b} ({'lambda <= 1, Eq. 9a' if b == 'mixed' else 'lambda > 1, Eq. 9b'}) ===")
-            parts.append(f.summary_text)
-            parts.append(f"condition number: raw design {f.condition_number_raw:.4g}, standardised "
-                         f"{f.condition_number_standardized:.4g}; rank {f.rank}/{len(f.terms)}; stable={f.stable}")
-            parts.append("variance inflation factors: " + ", ".join(f"{k}={v:.4g}" for k, v in f.vif.items()))
-            parts.extend(f"note: {m}" for m in f.messages)
-        cv = self.cv["overall"]
-        parts.append(f"\n{self.cv['k']}-fold CV: RMSE ln mu {cv['rmse_ln_mu']:.4g}, mean |rel err mu| "
-                     f"{cv['mean_rel_err_mu']:.4g}, p95 {cv['p95_rel_err_mu']:.4g}")
-        parts.append(f"jump at lambda = 1: {self.jump}")
-        if self.prepared is not None and self.cv_predictions is not None:
-            from .diagnostics import format_residuals, residuals_by_factor
-
-            parts.append("\n" + format_residuals(residuals_by_factor(self)))
-        return "\n".join(parts)
 
 
 def fit_surrogate(table: pd.DataFrame, lubricant, e_reduced: float, *, formula: Formula = LI_KAHRAMAN_2009,
                   k_folds: int = 5, seed: int = 0, blend_half_width: float = 0.1,
-                  allow_unstable: bool = False) -> SurrogateFit:
+                  allow_unstable: bool = False, max_condition: float = MAX_STANDARDISED_CONDITION) -> SurrogateFit:
     """Fit both branches of ``formula`` on a dataset table (columns of the HDF5 store, SI units).
 
     ``blend_half_width`` δ of the λ̄ band where the evaluator blends the branches (0 = paper's hard switch).
     Raises :class:`SolverError` for rank-deficient branches and — unless ``allow_unstable`` — for unstable ones
-    (:data:`MAX_STANDARDISED_CONDITION`); always emits :class:`UnstableFitWarning` with the reasons.
+    (condition number of a standardised design above ``max_condition``, default
+    :data:`MAX_STANDARDISED_CONDITION`); always emits :class:`UnstableFitWarning` with the reasons.
     """
     if not 0.0 <= blend_half_width < 0.5:
         raise InputError("blend_half_width", blend_half_width, "[0, 0.5)")
@@ -459,7 +442,7 @@ def fit_surrogate(table: pd.DataFrame, lubricant, e_reduced: float, *, formula: 
     for branch, mask in masks.items():
         sub = {k: v[mask] for k, v in feats.items()}
         x = design_matrix(formula.terms[branch], sub)
-        branches[branch] = fit_branch(x, ln_mu[mask], formula.term_names(branch), branch, sub["lam"])
+        branches[branch] = fit_branch(x, ln_mu[mask], formula.term_names(branch), branch, sub["lam"], max_condition)
     stable = all(f.stable for f in branches.values())
     if prepared.lambda_column_max_rel_diff is not None and prepared.lambda_column_max_rel_diff > LAMBDA_COLUMN_RTOL:
         warnings.warn(f"lambda_bar recomputed from the inputs differs from the dataset's lambda_bar column by up to "

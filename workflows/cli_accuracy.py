@@ -44,7 +44,7 @@ def run_accuracy(args) -> int:
     from ehl_dataset.solvers.levels import get_level
     from ehl_dataset.validation import InputError
     from workflows import accuracy
-    from workflows.cli import emit
+    from workflows.cli_output import emit
 
     cases = accuracy.ACCURACY_CASES
     if args.cases is not None:

@@ -80,7 +80,7 @@ def _solve(args) -> int:
         "lubricant": lubricant.name,
         "roughness_profile": result.extra.get("roughness_profile"),
     }
-    from workflows.cli import emit
+    from workflows.cli_output import emit
 
     emit(payload, args.json, _human)
     return 0 if result.converged else 1

@@ -74,7 +74,7 @@ def _options(args) -> dict:
 
 
 def _finish(summary, as_json: bool) -> int:
-    from workflows.cli import emit
+    from workflows.cli_output import emit
 
     payload = summary.to_dict()
     emit(payload, as_json, _human_summary)
@@ -114,7 +114,7 @@ def _resume(args) -> int:
 
 def _info(args) -> int:
     from ehl_dataset.dataset.store import summarize
-    from workflows.cli import emit
+    from workflows.cli_output import emit
 
     emit(summarize(args.file, slowest=args.slowest), args.json, _human_info)
     return 0

@@ -7,13 +7,14 @@ The group is assembled from small modules so that each piece of the gear model o
 
 from __future__ import annotations
 
-PARTS = ["cli_gear_geometry", "cli_gear_evaluate", "cli_gear_studies"]
+from . import cli_gear_evaluate, cli_gear_geometry, cli_gear_studies
+
+PARTS = (cli_gear_geometry, cli_gear_evaluate, cli_gear_studies)
 
 
 def register(subparsers) -> None:
     parser = subparsers.add_parser("gear", help="helical gear pair: geometry, evaluation, studies")
     gear_subparsers = parser.add_subparsers(dest="gear_command", metavar="COMMAND")
     parser.set_defaults(handler=lambda args: parser.print_help() or 2)
-    from workflows.cli import register_modules
-
-    register_modules(gear_subparsers, PARTS)
+    for module in PARTS:
+        module.register(gear_subparsers)

@@ -18,7 +18,7 @@ from __future__ import annotations
 import argparse
 import math
 
-from .cli import emit
+from .cli_output import emit
 
 
 def register(gear_subparsers) -> None:

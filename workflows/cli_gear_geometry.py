@@ -14,7 +14,7 @@ import argparse
 
 from ehl_dataset.validation import InputError
 
-from .cli import emit
+from .cli_output import emit
 
 
 def add_design_options(parser) -> None:

@@ -15,7 +15,7 @@ import argparse
 
 from ehl_dataset.validation import InputError
 
-from .cli import emit
+from .cli_output import emit
 
 FIXABLE = {"teeth": "teeth", "n": "teeth", "pressure_angle_deg": "normal_pressure_angle_deg",
            "normal_pressure_angle_deg": "normal_pressure_angle_deg", "helix_angle_deg": "helix_angle_deg",

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import argparse
 
-from .cli import emit
+from .cli_output import emit
 
 
 def register(subparsers) -> None:

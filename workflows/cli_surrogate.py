@@ -58,7 +58,7 @@ def _fit(args) -> int:
     from surrogate.coefficients import summary_path, write_coefficients
     from surrogate.dataset_io import load_dataset
     from surrogate.fit import fit_surrogate
-    from workflows.cli import emit
+    from workflows.cli_output import emit
 
     _check_folds(args.k_folds)
     data = load_dataset(args.dataset, args.lubricant)
@@ -124,7 +124,7 @@ def _predict(args) -> int:
 
     from ehl_dataset.validation import check_range
     from surrogate.evaluate import FrictionSurrogate
-    from workflows.cli import emit
+    from workflows.cli_output import emit
 
     start = time.perf_counter()
     check_range("p_h_gpa", args.p_h_gpa, 0.0, 10.0, low_inclusive=False, unit="GPa")
@@ -170,7 +170,7 @@ def _compare(args) -> int:
 
     from surrogate.compare import compare_models, format_table
     from surrogate.dataset_io import load_dataset
-    from workflows.cli import emit
+    from workflows.cli_output import emit
 
     _check_folds(args.k_folds)
     start = time.perf_counter()
