@@ -68,13 +68,14 @@ def cases():
 
 
 def run_model(mesh, spec, lubricant, temperature, rq):
-    from efficiency.friction_accuracy import friction_from_name, load_weighted_mu, pitch_region_share
+    from efficiency.friction import friction_from_spec
+    from efficiency.friction_accuracy import load_weighted_mu, pitch_region_share
     from efficiency.power_loss import mesh_power_loss
     from ehl_dataset.validation import InputError, SolverError
 
     started = time.perf_counter()
     try:
-        friction = friction_from_name(spec, lubricant)
+        friction = friction_from_spec(spec, lubricant)
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
             result = mesh_power_loss(mesh, friction, temperature, rq, rq)

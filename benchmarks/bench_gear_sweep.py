@@ -150,10 +150,10 @@ def main(argv=None) -> int:
     args = parser.parse_args(argv)
 
     from efficiency.design_io import load_study
+    from efficiency.friction import describe_friction, friction_from_spec
     from efficiency.mesh_cycle import MeshOptions
-    from efficiency.studies import (StudyPoint, describe_friction, design_sweep, evaluate_design,
-                                    feasible_designs, find_design_like_d, friction_from_spec, modification_study,
-                                    rank_by_limits, trend_line)
+    from efficiency.studies import (StudyPoint, design_sweep, evaluate_design, feasible_designs, find_design_like_d,
+                                    modification_study, rank_by_limits, trend_line)
 
     study = load_study("paper2009")
     point = StudyPoint.from_operating_point(study.operating_point)

@@ -5,7 +5,8 @@ Every design of a :class:`~efficiency.feasibility.DesignSpace` that passes the f
 (:func:`~efficiency.feasibility.feasibility_masks`) is evaluated over one loaded mesh cycle
 (:func:`~efficiency.mesh_cycle.evaluate_mesh`) at the study's operating point, and its mechanical power loss follows
 from paper Eq. 10–11 (:func:`~efficiency.power_loss.mesh_power_loss`) with any friction model (a coefficient
-file's :class:`surrogate.evaluate.FrictionSurrogate`, a published formula, a constant).
+file's :class:`surrogate.evaluate.FrictionSurrogate`, a published formula, a constant, the EHL solver; built from a
+spec string by :func:`efficiency.friction.friction_from_spec`).
 
 Tables are :class:`pandas.DataFrame` objects in SI units, one row per design (or per modification/torque), with the
 unit in each column name:
@@ -292,51 +293,3 @@ def modification_study(pair: GearPair, friction: Callable, profile_crowns: Itera
         if progress is not None:
             progress(i + 1, len(grid))
     return pd.DataFrame(rows)
-
-
-# ---------------------------------------------------------------------- friction models by name
-PUBLISHED_NAMES = {"xu2007": "xu_2007", "xu_2007": "xu_2007", "benedict_kelley": "benedict_kelley_1961",
-                   "benedict_kelley_1961": "benedict_kelley_1961", "iso14179": "iso_tr_14179_2",
-                   "iso_tr_14179_2": "iso_tr_14179_2"}
-
-
-def friction_from_spec(spec: str, lubricant="atf") -> Callable:
-    """A friction model from a short specification (the ``--friction`` option of the study commands):
-
-    ``constant:0.05`` → :class:`~efficiency.power_loss.ConstantFriction`; ``xu2007``, ``benedict_kelley``,
-    ``iso14179`` → :class:`~efficiency.power_loss.PublishedFriction` with ``lubricant`` (name, file or
-    :class:`~ehl_dataset.model.lubricant.Lubricant`) for the inlet viscosity; anything else is a coefficient file path
-    or a shipped coefficient name → :class:`surrogate.evaluate.FrictionSurrogate` (its own lubricant) with its
-    inputs clipped to the fitted ranges (gear contacts leave the factorial's ranges; Eq. 9 must not extrapolate).
-    """
-    from .power_loss import ConstantFriction, PublishedFriction
-
-    if not isinstance(spec, str) or not spec.strip():
-        raise InputError("friction", spec, "constant:MU, xu2007, benedict_kelley, iso14179 or a coefficient file")
-    spec = spec.strip()
-    if spec.startswith("constant:"):
-        try:
-            mu = float(spec.split(":", 1)[1])
-        except ValueError:
-            raise InputError("friction", spec, "constant:MU with a number MU in [0, 1]") from None
-        return ConstantFriction(mu)
-    if spec.lower() in PUBLISHED_NAMES:
-        from ehl_dataset.model.lubricant import Lubricant, load_lubricant
-
-        lub = lubricant if isinstance(lubricant, Lubricant) else load_lubricant(lubricant)
-        return PublishedFriction(PUBLISHED_NAMES[spec.lower()], lub)
-    from surrogate.evaluate import FrictionSurrogate
-
-    return FrictionSurrogate.load(spec, clip_to_fitted_ranges=True)
-
-
-def describe_friction(friction) -> str:
-    """A one-line description of a friction model for reports."""
-    from .power_loss import ConstantFriction, PublishedFriction
-
-    if isinstance(friction, ConstantFriction):
-        return f"constant mu={friction.mu:g}"
-    if isinstance(friction, PublishedFriction):
-        return f"published {friction.name} ({getattr(friction.lubricant, 'name', 'lubricant')})"
-    path = getattr(getattr(friction, "coefficients", None), "path", "")
-    return f"surrogate {path}" if path else type(friction).__name__

@@ -13,7 +13,8 @@ Input policy (documented in docs/surrogate.md):
 * With ``clip_to_fitted_ranges=True`` every input is first clipped to the range seen in the fitted data (the
   warning then says "clipped"): Eq. 9's power terms are not extrapolated. Gear contacts leave the factorial's ranges
   routinely (the lightly loaded ends of a contact line lie far below 0.5 GPa), where extrapolation has produced
-  μ ≈ 1e14; the gear-side friction factory (:func:`efficiency.studies.friction_from_spec`) therefore clips.
+  μ ≈ 1e14; the gear-side friction factory (:func:`efficiency.friction.friction_from_spec`) therefore clips, and
+  :meth:`FrictionSurrogate.last_stats` counts the points moved per input in the last evaluation.
 """
 
 from __future__ import annotations
@@ -50,6 +51,7 @@ class FrictionSurrogate:
     def __init__(self, coefficients: CoefficientSet, clip_to_fitted_ranges: bool = False):
         self.coefficients = coefficients
         self.clip_to_fitted_ranges = bool(clip_to_fitted_ranges)
+        self._stats: dict = {}
         self.formula = coefficients.formula
         self.lubricant = coefficients.lubricant
         self.e_reduced = coefficients.e_reduced
@@ -63,14 +65,24 @@ class FrictionSurrogate:
     def load(cls, name_or_path: str | Path, clip_to_fitted_ranges: bool = False) -> "FrictionSurrogate":
         return cls(load_coefficients(name_or_path), clip_to_fitted_ranges)
 
-    def _clip(self, arrays: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
-        """Inputs clipped to the fitted ranges (|SR| for SR; its lower end is the SR floor applied anyway)."""
+    def clip(self, arrays: dict[str, np.ndarray]) -> tuple[dict[str, np.ndarray], dict[str, int]]:
+        """Inputs clipped to the fitted ranges (|SR| for SR; its lower end is the SR floor applied anyway), and per
+        input the number of points that were moved."""
         ranges = self.coefficients.input_ranges
         out = dict(arrays)
+        moved = {}
         for name, _, key in _INPUTS:
             lo, hi = ranges[key]
-            out[name] = np.clip(np.abs(arrays[name]) if name == "sr" else arrays[name], lo, hi)
-        return out
+            raw = np.abs(arrays[name]) if name == "sr" else arrays[name]
+            out[name] = np.clip(raw, lo, hi)
+            moved[name] = int(np.count_nonzero(out[name] != raw))
+        return out, moved
+
+    def last_stats(self) -> dict:
+        """What the last evaluation did: ``surrogate_points`` evaluated and, with ``clip_to_fitted_ranges``,
+        ``clipped_inputs`` {input: number of points moved to the fitted range} (p_h, r_eq, u_r, sr, temperature,
+        rq1, rq2). Empty before the first evaluation."""
+        return {k: (dict(v) if isinstance(v, dict) else v) for k, v in self._stats.items()}
 
     def validate(self, p_h, r_eq, u_r, sr, temperature, rq1, rq2) -> dict[str, np.ndarray]:
         """Broadcast, check (see module docstring) and return the inputs as float arrays."""
@@ -126,7 +138,10 @@ class FrictionSurrogate:
     def features(self, p_h, r_eq, u_r, sr, temperature, rq1, rq2, *, warn: bool = True) -> dict[str, np.ndarray]:
         """Validated features (SR floored at ``sr_floor``) of the inputs."""
         arrays = self.validate(p_h, r_eq, u_r, sr, temperature, rq1, rq2)
-        used = self._clip(arrays) if self.clip_to_fitted_ranges else arrays
+        self._stats = {"surrogate_points": int(arrays["p_h"].size)}
+        used = arrays
+        if self.clip_to_fitted_ranges:
+            used, self._stats["clipped_inputs"] = self.clip(arrays)
         sr_eff = np.maximum(np.abs(used["sr"]), self.coefficients.sr_floor)
         feats = compute_features(used["p_h"], used["r_eq"], used["u_r"], sr_eff, used["temperature"],
                                  used["rq1"], used["rq2"], self.lubricant, self.e_reduced)

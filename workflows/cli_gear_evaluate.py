@@ -8,9 +8,11 @@ modifications by ``--profile-crown-um --lead-crown-um --lead-slope-um --tip-reli
 maximum contact pressure and root stress with the mesh positions where they occur, the mesh stiffness, and the
 ISO 6336 nominal values alongside; ``--json`` prints one JSON object in SI units.
 
-With ``--friction MODEL`` (and ``--oil-temp-c --rq-um --lubricant``) it also computes the mechanical power loss of
-Li & Kahraman 2009, Eq. 10–11: the cycle mean P (``power_loss_w``), the efficiency η (``efficiency``) and P(φ_m) at
-every mesh position (``power_loss_instant_w``). Without ``--friction`` no power loss is computed.
+With ``--friction MODEL`` (and ``--oil-temp-c --rq-um --lubricant``; :func:`efficiency.friction.friction_from_spec`)
+it also computes the mechanical power loss of Li & Kahraman 2009, Eq. 10–11: the cycle mean P (``power_loss_w``),
+the efficiency η (``efficiency``) and P(φ_m) at every mesh position (``power_loss_instant_w``); a coefficient file's
+surrogate reports how many loaded points it clipped to its fitted ranges, per input
+(``friction_clipped_inputs`` of ``friction_points``). Without ``--friction`` no power loss is computed.
 """
 
 from __future__ import annotations
@@ -170,11 +172,12 @@ def _power_loss(mesh, args) -> dict:
 
     import numpy as np
 
-    from efficiency.friction_accuracy import friction_from_name, load_weighted_mu, pitch_region_share
+    from efficiency.friction import friction_from_spec
+    from efficiency.friction_accuracy import load_weighted_mu, pitch_region_share
     from efficiency.power_loss import mesh_power_loss
 
     temperature, rq1, rq2 = _friction_inputs(args)
-    friction = friction_from_name(args.friction, args.lubricant)
+    friction = friction_from_spec(args.friction, args.lubricant)
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         loss = mesh_power_loss(mesh, friction, temperature, rq1, rq2)
@@ -189,6 +192,9 @@ def _power_loss(mesh, args) -> dict:
     if "ehl_solves" in loss.extra:
         out["ehl_solves"] = int(loss.extra["ehl_solves"])
         out["ehl_points"] = int(loss.extra["ehl_points"])
+    if "clipped_inputs" in loss.extra:  # a coefficient file's surrogate, held inside its fitted ranges
+        out["friction_points"] = int(loss.extra["surrogate_points"])
+        out["friction_clipped_inputs"] = {k: int(v) for k, v in loss.extra["clipped_inputs"].items()}
     messages = sorted({str(w.message) for w in caught})
     if messages:
         out["friction_warnings"] = messages
@@ -224,6 +230,10 @@ def _human(p: dict) -> str:
         lines.append(f"instantaneous P(φ) {p['power_loss_instant_min_w'] / 1e3:.4g} to "
                      f"{p['power_loss_instant_max_w'] / 1e3:.4g} kW over the cycle "
                      f"({p['power_loss_time_s'] * 1e3:.0f} ms)")
+        if "friction_clipped_inputs" in p:
+            moved = ", ".join(f"{k} {v}" for k, v in p["friction_clipped_inputs"].items() if v)
+            lines.append(f"surrogate inputs clipped to the fitted ranges: {moved or 'none'} of {p['friction_points']} "
+                         "loaded points")
         for message in p.get("friction_warnings", []):
             lines.append(f"warning: {message}")
     lines.append(f"converged {p['converged']} (equilibrium residual {p['equilibrium_residual']:.1e}, "

@@ -117,7 +117,8 @@ def _setup(args):
     from ehl_dataset.validation import check_range
     from efficiency.design_io import load_study
     from efficiency.mesh_cycle import MeshOptions
-    from efficiency.studies import StudyPoint, friction_from_spec
+    from efficiency.friction import friction_from_spec
+    from efficiency.studies import StudyPoint
 
     check_range("positions", args.positions, 2, 1000)
     check_range("slices", args.slices, 2, 500)
@@ -150,7 +151,8 @@ def run_sweep(args: argparse.Namespace) -> int:
 
     import numpy as np
 
-    from efficiency.studies import describe_friction, design_sweep, find_design_like_d, no_error, rank_by_limits
+    from efficiency.friction import describe_friction
+    from efficiency.studies import design_sweep, find_design_like_d, no_error, rank_by_limits
 
     started = time.perf_counter()
     study, friction, point, options = _setup(args)
@@ -246,7 +248,8 @@ def run_modifications(args: argparse.Namespace) -> int:
     import time
 
     from ehl_dataset.validation import check_range
-    from efficiency.studies import describe_friction, modification_study, no_error
+    from efficiency.friction import describe_friction
+    from efficiency.studies import modification_study, no_error
 
     started = time.perf_counter()
     study, friction, point, options = _setup(args)

@@ -1,10 +1,10 @@
 """The end-to-end pipeline: a factorial of mixed-EHL contacts → a fitted friction surrogate → a gear design's loss.
 
 Three stage functions, each returning a :class:`StageResult` (artefact path, wall time, the numbers worth
-reporting), and :func:`run_pipeline` that chains them in one process (DESIGN §1, §2 ``workflows``):
+reporting), and :func:`run_pipeline` that chains them in one process (docs/pipeline.md):
 
-1. :func:`dataset_stage` — :func:`ehl_dataset.dataset.runner.run_factorial` into ``OUT/dataset.h5``; an existing file of the
-   same factorial, solver and lubricant is continued (only rows that are not ``ok`` are computed).
+1. :func:`dataset_stage` — :func:`ehl_dataset.dataset.runner.run_factorial` into ``OUT/dataset.h5``; an existing file
+   of the same factorial, solver and lubricant is continued (only rows that are not ``ok`` are computed).
 2. :func:`fit_stage` — :func:`surrogate.fit.fit_surrogate` (paper Eq. 9a/9b) on the ``ok`` rows, written with
    :func:`surrogate.coefficients.write_coefficients` to ``OUT/<lubricant>_<factorial>.json`` (plus the statsmodels
    summary beside it).
@@ -159,23 +159,20 @@ def fit_stage(dataset_path: str | Path, coefficients_path: str | Path, *, allow_
 def design_stage(friction, *, study: str = "paper2009", design: str = "D", options=None,
                  clip_to_fitted_ranges: bool = True) -> StageResult:
     """Evaluate the study's published design (default: Design D of Table 1) at the study's operating point with
-    ``friction`` (a coefficient file path / shipped name, or any friction callable of
-    :mod:`efficiency.power_loss`). A coefficient file is evaluated with its inputs clipped to its fitted ranges
-    (:class:`FittedRangeFriction`; the number of clipped contact points is reported) unless
-    ``clip_to_fitted_ranges`` is False, in which case it extrapolates with warnings."""
+    ``friction`` (a coefficient file path / shipped name or any other spec of
+    :func:`efficiency.friction.friction_from_spec`, or a friction model). A coefficient file is evaluated with its
+    inputs clipped to its fitted ranges (the surrogate's own clipping; the number of clipped contact points per
+    input is reported) unless ``clip_to_fitted_ranges`` is False, in which case it extrapolates with warnings."""
     from efficiency.design_io import load_study
+    from efficiency.friction import friction_from_spec
     from efficiency.mesh_cycle import MeshOptions
     from efficiency.studies import StudyPoint, evaluate_design
 
     started = time.perf_counter()
     artefact = None
     if isinstance(friction, (str, Path)):
-        from surrogate.evaluate import FrictionSurrogate
-
         artefact = str(friction)
-        friction = FrictionSurrogate.load(friction)
-        if clip_to_fitted_ranges:
-            friction = FittedRangeFriction(friction)
+        friction = friction_from_spec(artefact, clip_to_fitted_ranges=clip_to_fitted_ranges)
     paper = load_study(study)
     point = StudyPoint.from_operating_point(paper.operating_point)
     pair = paper.design(design)
@@ -193,8 +190,9 @@ def design_stage(friction, *, study: str = "paper2009", design: str = "D", optio
         "model_time_s": row["wall_time_s"],
         "warnings": sorted({str(w.message)[:300] for w in caught}),
     }
-    if isinstance(friction, FittedRangeFriction):
-        details["clipped_to_fitted_range"] = {"contact_points": friction.points, **friction.clipped}
+    stats = friction.last_stats() if hasattr(friction, "last_stats") else {}
+    if "clipped_inputs" in stats:
+        details["clipped_to_fitted_range"] = {"contact_points": stats["surrogate_points"], **stats["clipped_inputs"]}
     return StageResult("design", artefact, time.perf_counter() - started, details)
 
 
@@ -223,39 +221,3 @@ def run_pipeline(out_dir: str | Path, factorial=QUICK_FACTORIAL, *, workers: int
     stages.append(design_stage(stages[1].artefact, study=study, design=design, options=mesh_options,
                                clip_to_fitted_ranges=clip_to_fitted_ranges))
     return PipelineResult(str(out), stages, time.perf_counter() - started)
-
-
-# ---------------------------------------------------------------------- surrogate held inside its data
-RANGE_INPUTS = (("p_h", "p_h_pa"), ("r_eq", "r_eq_m"), ("u_r", "u_r_m_s"), ("sr", "sr_abs"),
-                ("temperature", "temperature_k"), ("rq1", "rq1_m"), ("rq2", "rq2_m"))
-
-
-class FittedRangeFriction:
-    """A :class:`surrogate.evaluate.FrictionSurrogate` evaluated with every input clipped to the range seen in its
-    fitted data (``input_ranges`` of the coefficient file; |SR| for SR): the regression's power terms are not
-    extrapolated (outside the data they can give μ > 1). ``clipped`` counts, per input, the contact points that were
-    moved to the boundary over all calls — reported by :func:`design_stage`."""
-
-    def __init__(self, surrogate):
-        import numpy as np
-
-        self.surrogate = surrogate
-        self.coefficients = surrogate.coefficients
-        self.clipped = {name: 0 for name, _ in RANGE_INPUTS}
-        self.points = 0
-        self._np = np
-
-    def __call__(self, p_h, r_eq, u_r, sr, temperature, rq1, rq2):
-        np = self._np
-        values = dict(zip((n for n, _ in RANGE_INPUTS),
-                          np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in
-                                                (p_h, r_eq, u_r, sr, temperature, rq1, rq2)))))
-        ranges = self.coefficients.input_ranges
-        self.points += int(values["p_h"].size)
-        for name, key in RANGE_INPUTS:
-            lo, hi = ranges[key]
-            raw = np.abs(values[name]) if name == "sr" else values[name]
-            clipped = np.clip(raw, lo, hi)
-            self.clipped[name] += int(np.count_nonzero(clipped != raw))
-            values[name] = clipped
-        return self.surrogate.mu(*(values[n] for n, _ in RANGE_INPUTS), warn=False)

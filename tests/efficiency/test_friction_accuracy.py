@@ -10,14 +10,13 @@ import numpy as np
 import pytest
 
 from efficiency.design_io import load_study
-from efficiency.friction_accuracy import (SR_FLOOR, EhlGridFriction, PathOfContact, barycentric_matrix,
-                                          compare_friction_models, friction_from_name, lobatto_nodes,
-                                          pitch_point_behaviour, pitch_region_share)
+from efficiency.friction import (SR_FLOOR, ConstantFriction, EhlFriction, EhlGridFriction, PathOfContact,
+                                 PublishedFriction, barycentric_matrix, friction_from_spec, lobatto_nodes)
+from efficiency.friction_accuracy import compare_friction_models, pitch_point_behaviour, pitch_region_share
 from efficiency.geometry import GearPair
 from efficiency.mesh_cycle import MeshOptions, evaluate_mesh
 from efficiency.modifications import Modifications
-from efficiency.power_loss import (ConstantFriction, EhlFriction, PublishedFriction, contact_conditions,
-                                   mesh_power_loss)
+from efficiency.power_loss import contact_conditions, mesh_power_loss
 from ehl_dataset.model.lubricant import load_lubricant
 from ehl_dataset.validation import InputError
 from workflows.cli import main
@@ -204,15 +203,15 @@ def test_compare_friction_models_errors_follow_the_linearity_of_eq_11(fzg_c_mesh
 
 
 def test_friction_from_name(atf):
-    model = friction_from_name("ehl:standard:full", atf)
+    model = friction_from_spec("ehl:standard:full", atf)
     assert isinstance(model, EhlFriction) and (model.level, model.effects) == ("standard", "full")
-    grid = friction_from_name("ehl-grid:fast:3x4", "atf")
+    grid = friction_from_spec("ehl-grid:fast:3x4", "atf")
     assert isinstance(grid, EhlGridFriction) and (grid.roll_nodes, grid.load_nodes) == (3, 4)
-    assert friction_from_name("constant:0.07").mu == 0.07
-    assert isinstance(friction_from_name("xu2007", atf), PublishedFriction)
+    assert friction_from_spec("constant:0.07").mu == 0.07
+    assert isinstance(friction_from_spec("xu2007", atf), PublishedFriction)
     for bad in ("ehl:coarse", "ehl-grid:fast:3by4", "ehl:fast:auto:9", "ehl-grid:fast:1x4", "constant:2"):
         with pytest.raises(InputError):
-            friction_from_name(bad, atf)
+            friction_from_spec(bad, atf)
 
 
 # ---------------------------------------------------------------------- CLI
@@ -256,3 +255,17 @@ def test_cli_power_loss_human_output_and_bad_input(capsys):
     assert main(DESIGN_D + ["--friction", "constant:0.05", "--rq-um", "0.1", "0.2", "0.3"]) == 2
     assert main(DESIGN_D + ["--friction", "ehl:turbo"]) == 2
     assert "friction" in capsys.readouterr().err
+
+
+def test_cli_reports_the_surrogates_clipped_inputs(capsys):
+    """A coefficient file (atf_quick) is held inside its fitted ranges by the surrogate's own clipping; the JSON
+    says at how many of the loaded points each input was clipped (the lightly loaded tooth ends lie below the
+    fitted 0.5 GPa), and a constant μ reports nothing of the kind."""
+    code, out = _json(capsys, DESIGN_D + ["--friction", "atf_quick"])
+    assert code == 0
+    counts = out["friction_clipped_inputs"]
+    assert set(counts) == {"p_h", "r_eq", "u_r", "sr", "temperature", "rq1", "rq2"}
+    assert 0 < counts["p_h"] < out["friction_points"]
+    assert any("clipped to its fitted ranges" in w for w in out["friction_warnings"])
+    code, constant = _json(capsys, DESIGN_D + ["--friction", "constant:0.05"])
+    assert code == 0 and "friction_clipped_inputs" not in constant

@@ -17,7 +17,8 @@ import pytest
 
 from efficiency.geometry import GearPair
 from efficiency.mesh_cycle import MeshOptions, evaluate_mesh
-from efficiency.power_loss import ConstantFriction, contact_conditions, mesh_power_loss
+from efficiency.friction import ConstantFriction
+from efficiency.power_loss import contact_conditions, mesh_power_loss
 from ehl_dataset.validation import InputError
 
 # FZG gears (shared/reference/gear_cases.md): z1, z2, m_n [mm], β [deg], b [mm], x1, x2; a = 91.5 mm.

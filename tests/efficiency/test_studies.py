@@ -11,10 +11,10 @@ import pytest
 from ehl_dataset.validation import InputError
 from efficiency.design_io import load_study
 from efficiency.feasibility import count_feasible, feasibility_masks
+from efficiency.friction import ConstantFriction, friction_from_spec
 from efficiency.mesh_cycle import MeshOptions
-from efficiency.power_loss import ConstantFriction
 from efficiency.studies import (PAPER_SEARCH_LIMITS, StudyPoint, design_pair, design_sweep, evaluate_design,
-                                feasible_designs, find_design_like_d, friction_from_spec, modification_study,
+                                feasible_designs, find_design_like_d, modification_study,
                                 rank_by_limits, trend_line)
 
 MU = ConstantFriction(0.05)

@@ -123,7 +123,25 @@ def test_clipping_policy_holds_inputs_at_the_fitted_boundary(surrogate):
 
 
 def test_gear_friction_factory_clips_surrogates(surrogate):
-    from efficiency.studies import friction_from_spec
+    from efficiency.friction import friction_from_spec
 
     model = friction_from_spec(str(surrogate.coefficients.path))
     assert model.clip_to_fitted_ranges
+
+
+def test_clipped_inputs_are_counted_per_input_and_evaluation(surrogate):
+    """last_stats() of a clipping surrogate: per input, how many points of the last evaluation were moved to the
+    fitted range (|SR| below the fitted minimum counts: it is evaluated at the SR floor); a second call replaces
+    the counts. A surrogate that does not clip counts only the points."""
+    clipped = FrictionSurrogate(surrogate.coefficients, clip_to_fitted_ranges=True)
+    assert clipped.last_stats() == {}
+    lo, hi = surrogate.coefficients.input_ranges["p_h_pa"]
+    with pytest.warns(SurrogateExtrapolationWarning):
+        _call(clipped, p_h=np.array([0.1 * lo, 0.5 * (lo + hi), 10 * hi, 20 * hi]))
+    stats = clipped.last_stats()
+    assert stats["surrogate_points"] == 4
+    assert stats["clipped_inputs"] == {"p_h": 3, "r_eq": 0, "u_r": 0, "sr": 0, "temperature": 0, "rq1": 0, "rq2": 0}
+    _call(clipped, p_h=np.array([lo, hi]))
+    assert clipped.last_stats()["clipped_inputs"]["p_h"] == 0
+    _call(surrogate, p_h=np.array([lo, hi]))
+    assert surrogate.last_stats() == {"surrogate_points": 2}
