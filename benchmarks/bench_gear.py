@@ -7,7 +7,7 @@ repeats and the machine noted:
   loads (no TE/stresses) requested;
 - the same over a sample of designs from the paper's design space (feasible ones only);
 - scaling with the number of slices S (at M = 24) and positions M (at S = 30), and the change of TE, σ_c, σ_b
-  against a fine 90 × 72 reference (accuracy versus time, DESIGN §1).
+  against a fine 90 × 72 reference (accuracy versus time, docs/performance.md).
 
 Run: ``python benchmarks/bench_gear.py [--repeats 7] [--out benchmarks/results/gear.json]``
 """

@@ -1,4 +1,4 @@
-"""What the friction model costs in accuracy and time inside the gear power loss (DESIGN §6 "for accuracy checks").
+"""What the friction model costs in accuracy and time inside the gear power loss (docs/gear_friction_accuracy.md).
 
 For the paper's design D at its study point and an FZG test-gear case, the mean mechanical power loss P (Li &
 Kahraman 2009, Eq. 11) of one loaded mesh cycle (default 24 positions × 30 slices) with

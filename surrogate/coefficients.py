@@ -1,4 +1,4 @@
-"""Coefficient files: the portable result of a surrogate fit (JSON, no pickles; DESIGN §5).
+"""Coefficient files: the portable result of a surrogate fit (JSON, no pickles; docs/surrogate.md).
 
 Layout (``format = "gearloss.friction_coefficients"``, ``format_version = 1``), all quantities SI:
 

@@ -1,4 +1,4 @@
-"""Dimensionless features of the paper's friction regression (Li & Kahraman 2009, Sect. 2.1; DESIGN §5).
+"""Dimensionless features of the paper's friction regression (Li & Kahraman 2009, Sect. 2.1; docs/surrogate.md).
 
 All inputs are SI arrays (broadcast together); the lubricant supplies η0(T) and α1(T) at the *inlet* temperature.
 With the Hertz line-contact load per unit length W' = 2π r_eq p_h²/E':

@@ -1,7 +1,8 @@
 """``gearloss accuracy``: each EHL accuracy level's error against the reference level versus wall time.
 
-Writes ``accuracy.md`` (tables), ``accuracy.png`` (error vs time, log axes) and ``accuracy.json`` (raw runs) into
-``--out-dir`` (default ``docs``). See :mod:`workflows.accuracy`.
+Writes ``<stem>.md`` (tables), ``<stem>.png`` (error vs time, log axes) and ``<stem>.json`` (raw runs) into
+``--out-dir`` (default ``docs``), stem ``accuracy_levels_rough`` unless ``--stem`` says otherwise (docs/accuracy.md is
+the hand-written summary of all accuracy results). See :mod:`workflows.accuracy`.
 """
 
 from __future__ import annotations
@@ -27,7 +28,8 @@ def register(subparsers) -> None:
                              "smooth: steady smooth physics for every case)")
     parser.add_argument("--reference-effects", choices=("auto", "full", "smooth"), default="full",
                         help="effects of the reference solves (default full)")
-    parser.add_argument("--stem", default="accuracy", help="file name stem of the report (default accuracy)")
+    parser.add_argument("--stem", default=None,
+                        help="file name stem of the report (default accuracy_levels_rough, workflows.accuracy.DEFAULT_STEM)")
     parser.add_argument("--lubricant", default="atf", metavar="NAME|FILE")
     parser.add_argument("--convergence", action="store_true",
                         help="also refine grid, time step and averaging window on two cases (slow)")
@@ -46,6 +48,7 @@ def run_accuracy(args) -> int:
     from workflows import accuracy
     from workflows.cli_output import emit
 
+    args.stem = args.stem or accuracy.DEFAULT_STEM
     cases = accuracy.ACCURACY_CASES
     if args.cases is not None:
         if not 1 <= args.cases <= len(cases):

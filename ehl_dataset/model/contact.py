@@ -11,7 +11,7 @@ from ..validation import check_range
 
 @dataclass(frozen=True)
 class ContactCase:
-    """One line-contact operating condition (DESIGN §3), all SI.
+    """One line-contact operating condition (paper Sect. 2.1; docs/ehl_solver.md), all SI.
 
     Attributes
     ----------

@@ -1,4 +1,4 @@
-"""The effect planner (DESIGN §3, "scene"): which physical effects one EHL contact solve needs, and why.
+"""The effect planner (docs/planner.md): which physical effects one EHL contact solve needs, and why.
 
 :func:`plan_effects` computes the case's dimensionless numbers and switches an effect off only where a measured
 threshold says it does not change the result beyond the level's tolerance (the calibration is in
@@ -18,7 +18,7 @@ threshold says it does not change the result beyond the level's tolerance (the c
   X_h = 274); X_h is recorded (it says how deep in the Eyring plateau the traction is), X_in decides.
   SR = 0 gives X = 0 (exact).
 * **compressibility** — Dowson–Higginson density change ρ(p_h)/ρ0 − 1 (paper Eq. 6) is recorded; compressibility
-  costs nothing to simulate and moves h_c by 10–20 % at the factorial's loads (DESIGN §3), so the planner always
+  costs nothing to simulate and moves h_c by 13–19 % at the factorial's loads (docs/ehl_solver.md), so the planner always
   keeps it (a lubricant file may declare itself incompressible; the solver then uses ρ = ρ0).
 
 Also recorded (they choose no flag but tell the user which regime the case is in): SR, Moes M and L, p_h/p_a for

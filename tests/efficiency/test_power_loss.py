@@ -78,7 +78,7 @@ def test_constant_mu_efficiency_is_speed_independent_and_loss_linear_in_mu():
 
 
 def test_contact_conditions_recover_the_load_per_length():
-    """p_h from each point inverts the Hertz relation W' = 2π r_eq p_h²/E' (DESIGN §3)."""
+    """p_h from each point inverts the Hertz relation W' = 2π r_eq p_h²/E' (docs/ehl_solver.md)."""
     pair = fzg("H501")
     mesh = evaluate_mesh(pair, 300.0, 100.0, options=MeshOptions(positions=12, slices=20, outputs=frozenset()))
     cond = contact_conditions(mesh)

@@ -98,7 +98,7 @@ def test_outside_the_band_each_branch_is_used_unblended(surrogate):
 
 
 def test_factorial_corners_are_finite(surrogate):
-    """DESIGN hard cases: every corner of the paper's factorial (0.5/2.5 GPa, 5/80 mm, 1/20 m/s, SR 0/1,
+    """Hard cases: every corner of the paper's factorial (0.5/2.5 GPa, 5/80 mm, 1/20 m/s, SR 0/1,
     25/100 °C, Rq 0.05/1.0 µm) evaluates to a finite μ in (0, 1) without warnings (all inside the fitted ranges)."""
     import itertools
 

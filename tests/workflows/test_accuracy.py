@@ -12,7 +12,7 @@ CHEAP = tuple(spec for spec in accuracy.ACCURACY_CASES if spec[0] in ("full-film
 
 
 def test_case_set_spans_the_factorial():
-    """≥ 12 cases; every axis of the paper's factorial (DESIGN §4) at both ends; the hardest corner is present."""
+    """≥ 12 cases; every axis of the paper's factorial (docs/dataset_format.md) at both ends; the hardest corner is present."""
     cases = accuracy.ACCURACY_CASES
     assert len(cases) >= 12
     columns = list(zip(*cases))
@@ -79,7 +79,7 @@ def test_cli_writes_report_and_json(tmp_path, capsys):
     row = payload["summary"]["fast"]
     assert row["n_cases"] == 1 and row["converged"] == 1
     assert 0.0 <= row["mu_error_max"] < 0.5 and row["wall_time_mean_s"] > 0
-    assert (tmp_path / "accuracy.md").is_file() and (tmp_path / "accuracy.png").is_file()
+    assert (tmp_path / "accuracy_levels_rough.md").is_file() and (tmp_path / "accuracy_levels_rough.png").is_file()
 
 
 def test_cli_rejects_bad_options(tmp_path, capsys):
