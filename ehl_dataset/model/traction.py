@@ -27,9 +27,8 @@ def eyring_shear_stress(eta, u_s: float, h, tau0: float):
 
 CAVITATED_FRACTION = 1e-9
 """A node counts as cavitated when its pressure is at most this fraction of the maximum: the complementarity
-solver leaves cavitated nodes at round-off level (±1e-14 p_h), and an exact ``p <= 0`` test let such a node extend
-the full-film region by a whole cavitated stretch — measured: 1.4e-4 of μ between two Newton paths to the same
-solution, independent of the tolerance."""
+solver leaves cavitated nodes at round-off level (±1e-14 p_h), where an exact ``p <= 0`` test would let such a
+node extend the full-film region over a cavitated stretch (docs/ehl_solver.md, "Sign convention of μ")."""
 
 
 def full_film_mask(pressure) -> np.ndarray:

@@ -25,7 +25,7 @@ class AccuracyLevel:
     ``inlet_band``, ``outlet_band`` (start, end) of the fine bands [a]; ``transition`` length over which the spacing
     grows from fine to coarse [a]; ``inlet_resolution`` caps the fine spacing at this fraction of the inlet length
     scale H_c^(2/3) (H_c = h_c r_eq/a², Moes' estimate): at heavy load the inlet meniscus zone and the outlet
-    spike shrink like H_c^(2/3), and a fixed spacing would under-resolve them (5 % too thin a film at M = 730).
+    spike shrink like H_c^(2/3), and a fixed spacing would under-resolve them.
     Newton: ``tol_residual`` max relative Reynolds residual (scaled by the Couette flux ρ̄H), ``tol_load`` relative
     load-balance error, ``tol_step`` max pressure correction [p_h]; ``max_iterations`` per continuation stage.
     Transient (phase 2): ``dx_rough`` spacing [roughness correlation length], ``dx_rough_max`` cap [a];
@@ -37,10 +37,8 @@ class AccuracyLevel:
     of the time-averaged μ, relative to max(|μ|, 0.01), at which the averaging window may stop (once it spans 20
     correlation times, :data:`ehl_dataset.solvers.time_average.RELIABLE_LENGTH`): a run whose μ fluctuates more is
     continued with the same time step, up to ``max_passes`` × the domain length / u_r. ``mu_sem_target`` 0: fixed
-    window of ``n_passes``, the standard error still reported; ``fast`` does this, so its time steps are those of
-    solver version -5 and its measured stability holds. The passage of asperities makes μ of a rough contact
-    fluctuate by up to ±100 % over one pass at λ̄ < 1, so a fixed short window gives a time average with a sampling
-    error of tens of percent (docs/ehl_solver.md, "Sampling error of μ").
+    window of ``n_passes``, the standard error still reported (``fast``). Why the window adapts, and what each
+    level costs and gives: docs/ehl_solver.md ("Sampling error of μ", "Accuracy levels").
     """
 
     name: str

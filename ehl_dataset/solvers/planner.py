@@ -11,11 +11,9 @@ threshold says it does not change the result beyond the level's tolerance (the c
   roughness is what makes a line contact transient, so both flags go together. S_c = 0 gives λ̄ = ∞.
 * **shear thinning** — inlet Eyring number X_in = η0·|u_s|/(τ0·h_min,DH): sinh(τ_m/τ0) of the Couette shear where
   the film is formed (the inlet, at ambient viscosity). The Eyring flow factor is √(1 + X²), and only the inlet
-  flow shapes the film: in the Hertz zone the Poiseuille flow is negligible whatever its factor. Measured on 40
-  random factorial points (docs/planner.md): switching the factor off changes h_min by ≤ 0.25 % and μ by ≤ 0.03 %
-  at X_in ≤ 0.004, by up to 1.2 % at X_in ≈ 0.014 and 14 % at X_in ≈ 0.055, while the Eyring number at the Hertz
-  pressure, X_h = η(p_h)·|u_s|/(τ0·h_min,DH), does not predict it (h_min: 0.0015 % at X_h = 1.9e5, 12 % at
-  X_h = 274); X_h is recorded (it says how deep in the Eyring plateau the traction is), X_in decides.
+  flow shapes the film: in the Hertz zone the Poiseuille flow is negligible whatever its factor. The Eyring number
+  at the Hertz pressure, X_h = η(p_h)·|u_s|/(τ0·h_min,DH), does not predict the effect (docs/planner.md measures
+  both); X_h is recorded (it says how deep in the Eyring plateau the traction is), X_in decides.
   SR = 0 gives X = 0 (exact).
 * **compressibility** — Dowson–Higginson density change ρ(p_h)/ρ0 − 1 (paper Eq. 6) is recorded; compressibility
   costs nothing to simulate and moves h_c by 13–19 % at the factorial's loads (docs/ehl_solver.md), so the planner always
