@@ -17,6 +17,8 @@ The names below are re-exported here and imported on first use, so that ``import
 every stage does) does not load the solver, numba and h5py.
 """
 
+from .lazy import lazy_exports
+
 _LAZY = {
     "solve_contact": "ehl_dataset.solver",
     "SOLVER_VERSION": "ehl_dataset.solver",
@@ -45,17 +47,4 @@ _LAZY = {
 }
 
 __all__ = sorted(_LAZY)
-
-
-def __getattr__(name):
-    if name in _LAZY:
-        import importlib
-
-        value = getattr(importlib.import_module(_LAZY[name]), name)
-        globals()[name] = value
-        return value
-    raise AttributeError(f"module 'ehl_dataset' has no attribute {name!r}")
-
-
-def __dir__():
-    return sorted(set(globals()) | set(__all__))
+__getattr__, __dir__ = lazy_exports(__name__, _LAZY, globals())

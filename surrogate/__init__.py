@@ -10,6 +10,8 @@ Main entry points (imported lazily so that ``import surrogate.published`` stays 
 See docs/surrogate.md.
 """
 
+from ehl_dataset.lazy import lazy_exports
+
 _LAZY = {
     "FrictionSurrogate": "surrogate.evaluate",
     "SurrogateExtrapolationWarning": "surrogate.evaluate",
@@ -19,11 +21,4 @@ _LAZY = {
 }
 
 __all__ = sorted(_LAZY)
-
-
-def __getattr__(name):
-    if name in _LAZY:
-        import importlib
-
-        return getattr(importlib.import_module(_LAZY[name]), name)
-    raise AttributeError(f"module 'surrogate' has no attribute {name!r}")
+__getattr__, __dir__ = lazy_exports(__name__, _LAZY, globals())
