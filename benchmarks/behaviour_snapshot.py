@@ -163,8 +163,8 @@ def differences(before, after, where: str = "", rtol: float = 0.0) -> tuple[list
 
 def partial(out: Path, pending: list[int]) -> None:
     """A smoke-factorial file with every row computed except ``pending``, as an interrupted run leaves it."""
-    import ehl_dataset.dataset.runner as runner
     from ehl_dataset.dataset.factorial import load_factorial
+    import ehl_dataset.dataset.runner as runner
     from ehl_dataset.dataset.store import DatasetStore
 
     lubricant_mod = __import__("ehl_dataset.model.lubricant", fromlist=["load_lubricant"])

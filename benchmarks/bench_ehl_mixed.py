@@ -27,9 +27,9 @@ import numpy as np
 
 from ehl_dataset.model.contact import ContactCase
 from ehl_dataset.model.effects import Effects
-from ehl_dataset.solvers.transient import NewtonCost
 from ehl_dataset.model.lubricant import load_lubricant
 from ehl_dataset.solver import SOLVER_VERSION, solve_contact
+from ehl_dataset.solvers.transient import NewtonCost
 
 # _common.py sits next to this file. Run as a script (`python benchmarks/bench_ehl_mixed.py` or, inside benchmarks/,
 # `python bench_ehl_mixed.py`) Python already puts this directory first on sys.path; adding it explicitly also covers

@@ -19,9 +19,9 @@ from pathlib import Path
 
 from ehl_dataset.model.contact import ContactCase
 from ehl_dataset.model.effects import Effects
-from ehl_dataset.solvers.levels import LEVELS
 from ehl_dataset.model.lubricant import load_lubricant
 from ehl_dataset.solver import solve_contact
+from ehl_dataset.solvers.levels import LEVELS
 
 # _common.py sits next to this file (sys.path: see bench_ehl_mixed.py)
 sys.path.insert(0, str(Path(__file__).resolve().parent))

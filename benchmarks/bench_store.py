@@ -27,10 +27,10 @@ from pathlib import Path
 import numpy as np
 
 from ehl_dataset.dataset.factorial import canonical_json, load_factorial
-from ehl_dataset.model.lubricant import load_lubricant
-from ehl_dataset.solvers.result import ContactResult
 from ehl_dataset.dataset.runner import execute, run_factorial, solver_config
 from ehl_dataset.dataset.store import OK, DatasetStore, read_table
+from ehl_dataset.model.lubricant import load_lubricant
+from ehl_dataset.solvers.result import ContactResult
 
 # _common.py sits next to this file (sys.path: see bench_ehl_mixed.py)
 sys.path.insert(0, str(Path(__file__).resolve().parent))

@@ -40,9 +40,9 @@ def register(subparsers) -> None:
 def _solve(args) -> int:
     from ehl_dataset.model.contact import ContactCase
     from ehl_dataset.model.effects import Effects
-    from ehl_dataset.solvers.levels import get_level
     from ehl_dataset.model.lubricant import load_lubricant
     from ehl_dataset.solver import solve_contact
+    from ehl_dataset.solvers.levels import get_level
     from ehl_dataset.validation import check_finite
 
     for name in ("p_h_gpa", "r_eq_mm", "u_r", "sr", "temp_c", "rq1_um", "rq2_um"):

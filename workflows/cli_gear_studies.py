@@ -116,8 +116,8 @@ def _fixed(items: list[str]) -> dict[str, float]:
 def _setup(args):
     from ehl_dataset.validation import check_range
     from efficiency.design_io import load_study
-    from efficiency.mesh_cycle import MeshOptions
     from efficiency.friction import friction_from_spec
+    from efficiency.mesh_cycle import MeshOptions
     from efficiency.studies import StudyPoint
 
     check_range("positions", args.positions, 2, 1000)

@@ -39,9 +39,9 @@ from typing import Any, Iterable
 
 import numpy as np
 
-from .factorial import POINT_DTYPE, POINT_FIELDS, POINT_UNITS, canonical_json
 from ..solvers.result import RECORD_UNITS
 from ..validation import InputError
+from .factorial import POINT_DTYPE, POINT_FIELDS, POINT_UNITS, canonical_json
 
 FORMAT_NAME = "gearloss-ehl-dataset"
 FORMAT_VERSION = 1

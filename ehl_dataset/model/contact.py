@@ -5,8 +5,8 @@ from __future__ import annotations
 import math
 from dataclasses import asdict, dataclass
 
-from .materials import STEEL, Material, reduced_modulus
 from ..validation import check_range
+from .materials import STEEL, Material, reduced_modulus
 
 
 @dataclass(frozen=True)

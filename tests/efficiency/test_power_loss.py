@@ -15,9 +15,9 @@ import math
 import numpy as np
 import pytest
 
+from efficiency.friction import ConstantFriction
 from efficiency.geometry import GearPair
 from efficiency.mesh_cycle import MeshOptions, evaluate_mesh
-from efficiency.friction import ConstantFriction
 from efficiency.power_loss import contact_conditions, mesh_power_loss
 from ehl_dataset.validation import InputError
 

@@ -7,8 +7,8 @@ import math
 import numpy as np
 import pytest
 
-from ehl_dataset.model.contact import ContactCase
 from ehl_dataset.dataset.factorial import (AXIS_KEYS, POINT_DTYPE, factorial_from_dict, load_factorial)
+from ehl_dataset.model.contact import ContactCase
 from ehl_dataset.model.film_formulas import dowson_higginson_min_film
 from ehl_dataset.model.lubricant import load_lubricant
 from ehl_dataset.validation import InputError

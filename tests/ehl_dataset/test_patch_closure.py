@@ -5,9 +5,9 @@ import numpy as np
 import pytest
 
 from ehl_dataset.discretisation.deflection import influence_matrix
-from ehl_dataset.solvers.newton import ReynoldsProblem
-from ehl_dataset.model.lubricant import load_lubricant
 from ehl_dataset.discretisation.reynolds import face_flux
+from ehl_dataset.model.lubricant import load_lubricant
+from ehl_dataset.solvers.newton import ReynoldsProblem
 
 
 def _problem(compressible: bool, couette_faces: bool = False):

@@ -6,9 +6,9 @@ import math
 import numpy as np
 import pytest
 
+from ehl_dataset.data_files import data_path
 from ehl_dataset.model import roughness as rg
 from ehl_dataset.model.contact import ContactCase
-from ehl_dataset.data_files import data_path
 from ehl_dataset.validation import InputError
 
 

@@ -17,10 +17,10 @@ from pathlib import Path
 import pytest
 
 from ehl_dataset.dataset.factorial import factorial_from_dict
-from ehl_dataset.model.film_formulas import dowson_higginson_min_film
-from ehl_dataset.solvers.result import ContactResult
 from ehl_dataset.dataset.runner import resume_run, run_factorial
 from ehl_dataset.dataset.store import read_metadata, read_table
+from ehl_dataset.model.film_formulas import dowson_higginson_min_film
+from ehl_dataset.solvers.result import ContactResult
 from ehl_dataset.validation import InputError, SolverError
 
 REPO = Path(__file__).resolve().parents[2]
@@ -340,11 +340,11 @@ def test_real_solver_end_to_end(tmp_path):
 def test_warm_up_covers_each_distinct_effect_plan_once():
     """The coordinator pre-computes one point per distinct plan of the planner (so each compiled path is built
     once before the workers fork); injected solvers get just the first point."""
-    from ehl_dataset.model.contact import ContactCase
     from ehl_dataset.dataset.factorial import load_factorial
+    from ehl_dataset.dataset.runner import DEFAULT_SOLVER, warm_up_indices
+    from ehl_dataset.model.contact import ContactCase
     from ehl_dataset.model.lubricant import load_lubricant
     from ehl_dataset.solvers.planner import plan_effects
-    from ehl_dataset.dataset.runner import DEFAULT_SOLVER, warm_up_indices
 
     plan, lub = load_factorial("quick"), load_lubricant("atf")
     points = plan.points()
@@ -426,9 +426,9 @@ def test_a_point_that_spends_its_budget_is_stored_not_converged_with_the_message
     """The real solver (fast level) with a 1 ms budget: the rough point stops before its first time step and is
     stored ok, not converged, with the solver's message; the steady smooth point ignores the budget; nothing
     raises; the session records the budget."""
-    from ehl_dataset.model.lubricant import load_lubricant
     from ehl_dataset.dataset.runner import PointTask, compute_point
     from ehl_dataset.dataset.store import OK
+    from ehl_dataset.model.lubricant import load_lubricant
 
     plan = factorial_from_dict(BUDGET_PLAN)
     rough = tuple(float(v) for v in plan.points()[1])

@@ -7,10 +7,10 @@ import pytest
 
 from ehl_dataset.model.contact import ContactCase
 from ehl_dataset.model.effects import Effects
-from ehl_dataset.solvers.levels import LEVELS, get_level
 from ehl_dataset.model.lubricant import load_lubricant
-from ehl_dataset.solvers.result import RECORD_UNITS, ContactResult
 from ehl_dataset.solver import solve_contact
+from ehl_dataset.solvers.levels import LEVELS, get_level
+from ehl_dataset.solvers.result import RECORD_UNITS, ContactResult
 from ehl_dataset.validation import InputError
 
 CASE = ContactCase.from_engineering(1.2, 20, 5, 0.3, 90)

@@ -8,12 +8,12 @@ import pytest
 from hypothesis import HealthCheck, Phase, given, settings
 from hypothesis import strategies as st
 
-import ehl_dataset.solvers.transient as transient
 from ehl_dataset.model.contact import ContactCase
 from ehl_dataset.model.effects import Effects
-from ehl_dataset.solvers.newton import _fb
 from ehl_dataset.model.lubricant import load_lubricant
 from ehl_dataset.solver import solve_contact
+from ehl_dataset.solvers.newton import _fb
+import ehl_dataset.solvers.transient as transient
 
 LUB = load_lubricant("atf")
 

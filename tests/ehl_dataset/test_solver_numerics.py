@@ -8,10 +8,10 @@ import pytest
 
 from ehl_dataset.model.contact import ContactCase
 from ehl_dataset.model.effects import Effects
-from ehl_dataset.solvers.levels import get_level
 from ehl_dataset.model.lubricant import load_lubricant
 from ehl_dataset.model.materials import Material
 from ehl_dataset.solver import solve_contact
+from ehl_dataset.solvers.levels import get_level
 
 NEWTONIAN = Effects(roughness=False, transient=False, shear_thinning=False, compressibility=True, mode="forced")
 

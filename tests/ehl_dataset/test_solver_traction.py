@@ -8,8 +8,8 @@ import pytest
 from ehl_dataset.model.contact import ContactCase
 from ehl_dataset.model.effects import Effects
 from ehl_dataset.model.lubricant import load_lubricant
-from ehl_dataset.solver import solve_contact
 from ehl_dataset.model.traction import full_film_mask
+from ehl_dataset.solver import solve_contact
 
 SMOOTH = Effects(False, False, True, True, "forced")
 

@@ -2,11 +2,11 @@
 
 import pytest
 
-from ehl_dataset.solvers import transient as ehl_transient
 from ehl_dataset.model.contact import ContactCase
 from ehl_dataset.model.effects import Effects
-from ehl_dataset.solvers.transient import RELAX_AFTER, step_attempts, next_start
 from ehl_dataset.solver import solve_contact
+from ehl_dataset.solvers import transient as ehl_transient
+from ehl_dataset.solvers.transient import RELAX_AFTER, step_attempts, next_start
 from ehl_dataset.validation import InputError
 
 BASE = ((1, False), (2, False), (4, False), (1, True), (4, True), (16, True))

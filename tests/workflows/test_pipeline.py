@@ -8,9 +8,9 @@ import warnings
 import numpy as np
 import pytest
 
+from ehl_dataset.dataset.store import read_table
 from ehl_dataset.model.lubricant import load_lubricant
 from ehl_dataset.model.materials import STEEL, reduced_modulus
-from ehl_dataset.dataset.store import read_table
 from ehl_dataset.validation import SolverError
 from workflows.cli import main
 from workflows.pipeline import DATASET_FILE, dataset_stage, design_stage, fit_stage, run_pipeline
