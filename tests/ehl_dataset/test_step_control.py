@@ -5,7 +5,7 @@ import pytest
 from ehl_dataset.model.contact import ContactCase
 from ehl_dataset.model.effects import Effects
 from ehl_dataset.solver import solve_contact
-from ehl_dataset.solvers import transient as ehl_transient
+from ehl_dataset.solvers import transient
 from ehl_dataset.solvers.transient import RELAX_AFTER, step_attempts, next_start
 from ehl_dataset.validation import InputError
 
@@ -26,7 +26,7 @@ def test_a_raised_start_only_reorders_never_drops_an_attempt(start):
     assert attempts[0] == (start, False)
     assert set(BASE) <= set(attempts)
     assert len(attempts) == len(set(attempts))
-    assert all(k <= ehl_transient.MAX_SUBSTEPS for k, _ in attempts)
+    assert all(k <= transient.MAX_SUBSTEPS for k, _ in attempts)
 
 
 def test_start_follows_the_unified_faces_and_relaxes_after_calm_steps():
