@@ -28,6 +28,7 @@ from .model.contact import ContactCase
 from .model.effects import Effects
 from .model.lubricant import Lubricant, load_lubricant
 from .model.roughness import RoughnessProfile
+from .solvers.deterministic import DeterministicOptions, deterministic_options, solve_deterministic
 from .solvers.levels import AccuracyLevel, get_level
 from .solvers.planner import resolve_effects
 from .solvers.result import ContactResult
@@ -39,7 +40,13 @@ SOLVER_VERSION = "ehl-2026.11-7"
 """Version of the numerics behind :func:`solve_contact`. The dataset store records it and refuses to resume a file
 computed with another version: bump it with every change that can alter a solved value."""
 
-__all__ = ["solve_contact", "checked_inputs", "SOLVER_VERSION"]
+MODELS = ("auto", "smooth", "deterministic")
+"""Contact models :func:`solve_contact` can be asked for: ``auto`` (the effect plan decides: steady smooth, or the
+transient mixed solver of :mod:`ehl_dataset.solvers.transient` for rough surfaces), ``smooth`` (steady smooth
+surfaces whatever the roughness), ``deterministic`` (the deterministic mixed reference solver,
+:mod:`ehl_dataset.solvers.deterministic`, for rough surfaces)."""
+
+__all__ = ["solve_contact", "checked_inputs", "SOLVER_VERSION", "MODELS"]
 
 
 def checked_inputs(case, lubricant) -> Lubricant:
@@ -56,7 +63,8 @@ def checked_inputs(case, lubricant) -> Lubricant:
 
 def solve_contact(case: ContactCase, lubricant: Lubricant | str, level: str | AccuracyLevel = "standard",
                   effects: str | Effects = "auto", roughness=None, time_limit_s: float | None = None,
-                  transient_options: TransientOptions | None = None) -> ContactResult:
+                  transient_options: TransientOptions | None = None, model: str = "auto",
+                  deterministic: DeterministicOptions | None = None) -> ContactResult:
     """Solve one line contact; see the module docstring. Bad input raises :class:`InputError`.
 
     ``time_limit_s``: wall-time budget [s] of a transient (rough) solve; when it runs out the result is returned
@@ -69,18 +77,30 @@ def solve_contact(case: ContactCase, lubricant: Lubricant | str, level: str | Ac
 
     ``transient_options``: the model choices of the transient solver
     (:class:`~ehl_dataset.solvers.transient.TransientOptions`; None: the defaults, which every dataset uses).
+
+    ``model``: one of :data:`MODELS`. ``deterministic``: the options of the deterministic model (None: those of the
+    level, :func:`~ehl_dataset.solvers.deterministic.deterministic_options`).
     """
     lubricant = checked_inputs(case, lubricant)
     if roughness is not None and not isinstance(roughness, RoughnessProfile):
         raise InputError("roughness", type(roughness).__name__, "a RoughnessProfile or None")
     if transient_options is not None and not isinstance(transient_options, TransientOptions):
         raise InputError("transient_options", type(transient_options).__name__, "a TransientOptions or None")
+    if model not in MODELS:
+        raise InputError("model", model, f"one of {list(MODELS)}")
+    if deterministic is not None and not isinstance(deterministic, DeterministicOptions):
+        raise InputError("deterministic", type(deterministic).__name__, "a DeterministicOptions or None")
     time_limit_s = check_time_limit(time_limit_s)
     state = lubricant.state(case.temperature)
     lvl = get_level(level)
+    if model == "smooth":
+        effects = Effects.smooth_steady(forced="model=smooth")
     plan = resolve_effects(effects, case, lubricant, lvl.name)
     # one BLAS thread per solve: the dense solves are small, and workers run one case per core
     with threadpool_limits(limits=1):
+        if model == "deterministic":
+            return solve_deterministic(case, state, plan, deterministic or deterministic_options(lvl.name),
+                                       roughness, time_limit_s, lvl.name)
         if plan.roughness and case.s_c > 0.0:
             return solve_transient(case, state, lvl, plan, roughness, time_limit_s,
                                    transient_options or TransientOptions())

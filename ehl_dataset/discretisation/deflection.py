@@ -98,3 +98,42 @@ def deflection_fft(p: np.ndarray, kernel: np.ndarray) -> np.ndarray:
     spectrum = np.fft.rfft(kernel, size) * np.fft.rfft(p, size)
     full = np.fft.irfft(spectrum, size)
     return full[n - 1: 2 * n - 1]
+
+
+def uniform_symbol(n_fft: int, dx: float, images: int = 200) -> np.ndarray:
+    """Discrete Fourier symbol s(θ_k), θ_k = 2π k/n_fft, of the uniform-grid operator (K p)_i = Σ_j k[i − j] p_j of
+    :func:`uniform_kernel` (unit scale) on the infinite line, for the n_fft angles of ``np.fft.fftfreq``.
+
+    The operator −(1/π)∫ln|x − x'| p(x') dx' has the continuous symbol 1/|ξ|; with hat-function pressures sampled at
+    the nodes its discrete symbol is the aliased sum s(θ) = dx Σ_j sinc²(θ/2 + πj)/|θ + 2πj| (sinc t = sin t/t),
+    summed over |j| ≤ ``images`` (the terms fall off as 1/j³). s(0) = ∞ (the log kernel); the entry is set to inf.
+    """
+    theta = 2.0 * np.pi * np.fft.fftfreq(n_fft)
+    total = np.zeros(n_fft)
+    half = 0.5 * theta
+    for j in range(-images, images + 1):
+        t = theta + 2.0 * np.pi * j
+        with np.errstate(divide="ignore", invalid="ignore"):
+            total += np.where(t != 0.0, np.sin(half) ** 2 / (0.5 * t) ** 2 / np.abs(t), 0.0)
+    total *= dx
+    total[0] = np.inf
+    return total
+
+
+def inverse_kernel_band(width: int, dx: float, n_fft: int = 1 << 14) -> np.ndarray:
+    """Coefficients b[m], m = −width … width (array index m + width), of the banded approximation B ≈ K⁻¹ of the
+    uniform-grid deflection operator of :func:`uniform_kernel` (unit scale), spacing ``dx``.
+
+    The exact inverse of the infinite Toeplitz operator has the symbol 1/s(θ) (:func:`uniform_symbol`), whose
+    coefficients decay like −1/(π m² dx) (the hypersingular kernel of the Hilbert-transform derivative). They are
+    truncated at ``width`` and their sum set to zero (a constant deflection needs no pressure: the film constant
+    takes it). B is local, so the preconditioner of the mixed solver that uses it stays banded; it is exact at the
+    grid scale and wrong only for wavelengths above ~ width·dx, which the Krylov iteration corrects.
+    """
+    if width < 1 or not dx > 0.0:
+        raise ValueError("need width >= 1 and dx > 0")
+    inverse = 1.0 / uniform_symbol(n_fft, dx)
+    coefficients = np.fft.ifft(inverse).real
+    band = np.concatenate([coefficients[-width:], coefficients[: width + 1]])
+    band[width] -= band.sum()
+    return band

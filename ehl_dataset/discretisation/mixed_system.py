@@ -1,0 +1,216 @@
+"""Discrete equations of the deterministic mixed-EHL line contact (paper Eq. 1–3, 6; docs/deterministic_solver.md).
+
+Dimensionless variables as in :mod:`ehl_dataset.discretisation.reynolds`: X = x/a, P = p/p_h, H = h r_eq/a²,
+T = t u_r/a. The grid is uniform (spacing Δ), node-centred finite volumes of width w_i (Δ, Δ/2 at the ends).
+
+Unknowns per node i, interleaved: z[3i] = P_f (fluid pressure), z[3i+1] = θ (fraction of the gap filled with
+lubricant, mass-conserving cavitation), z[3i+2] = P_c (solid contact pressure of the boundary film); z[3N] = H0.
+The film is H = H0 + G(X, T) + K (P_f + P_c): the solid contact pressure deflects the surfaces like the fluid's.
+
+Equations per node:
+
+* row 3i, mass balance of cell i (Elrod–Adams / Jakobsson–Floberg–Olsson, in flux form, so that lubricant mass is
+  conserved exactly, including through cavitation and contacts):
+
+      Q_{i+½} − Q_{i−½} − w_i ∂m_i/∂T = 0,   m = ρ̄ θ H,   Q = ε_face (P_{f,i+1} − P_{f,i})/Δ − m_upwind,
+
+  ε = ρ̄ H³ cosh(τ_m/τ0)/(η̄ λ̄) (paper Eq. 1b), the Couette flux m upwinded to second order (linear upwind,
+  first order at the first face); node 0 is the flooded inlet (θ = 1), node N−1 the outflow (Couette flux
+  m_{N−1} leaves the domain). Only the fluid pressure drives flow: the contact pressure P_c is absent from Q
+  (solid contact pressure drives no flow; Liu, Wang, Chung & Berkebile, Tribol. Lett. 69 (2021) 164).
+* row 3i+1, cavitation: 0 ≤ P_f ⊥ 1 − θ ≥ 0 as a Fischer–Burmeister equation φ(P_f, 1 − θ) = 0 (P_f = 0 at both
+  ends);
+* row 3i+2, contact with a boundary film of thickness H_b and elastic–perfectly-plastic asperities:
+  0 ≤ P_c ≤ P_Y box-complementary to κ(H − H_b) (P_c = 0 where H > H_b, H = H_b while 0 < P_c < P_Y, H ≤ H_b at
+  the hardness P_c = P_Y: plastic flattening), Billups' nested form Φ = φ(P_c, −φ(P_Y − P_c, −κ(H − H_b))),
+  κ = 1/K_ii.
+
+The time derivative is BDF2 with variable steps (or backward Euler): w_i ∂m/∂T ≈ c_i m_i + old_i, the caller
+gives c_i = w_i a0/ΔT and old_i = w_i (a1 m_i^n + a2 m_i^{n−1})/ΔT (zeros for a steady solve).
+
+The Jacobian is returned in band form: ``A[r, o, k]`` = ∂F_r/∂z_{3j+k} with j = i + o − 2 (the node of row r is
+i = r // 3; offsets −2 … 2), and ``D[r, o]`` = ∂F_r/∂H_j: the film couples every node to every other through K,
+which the Krylov solver applies by FFT (:mod:`ehl_dataset.solvers.krylov`).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numba
+import numpy as np
+
+OFFSETS = 5
+"""Node offsets −2 … 2 of the local band of the Jacobian."""
+FACE_MEANS = {"harmonic": 1, "arithmetic": 0, "logarithmic": 2}
+"""Face conductance ε_{i+½} from the nodal values: harmonic (series resistances: exact for 1-D flow through a
+varying film at constant viscosity; the default), arithmetic, or logarithmic (exact for an exponentially varying
+conductance at constant film)."""
+
+
+@numba.njit(cache=True)
+def fischer_burmeister(a, b):
+    """φ(a, b) = a + b − √(a² + b²) and its partials (a generalised gradient at a = b = 0); the cancellation-free
+    form 2ab/(a + b + √(a² + b²)) is used for a + b > 0."""
+    r = math.sqrt(a * a + b * b)
+    if r < 1e-300:
+        c = 1.0 - 1.0 / math.sqrt(2.0)
+        return 0.0, c, c
+    s = a + b
+    phi = 2.0 * a * b / (s + r) if s > 0.0 else s - r
+    return phi, 1.0 - a / r, 1.0 - b / r
+
+
+@numba.njit(cache=True)
+def _face(ea, eb, mean):
+    """ε_face and its partials with respect to the two nodal values."""
+    if mean == 1:
+        total = ea + eb
+        if total > 0.0:
+            return 2.0 * ea * eb / total, 2.0 * eb * eb / (total * total), 2.0 * ea * ea / (total * total)
+        return 0.0, 0.0, 0.0
+    if mean == 2 and ea > 0.0 and eb > 0.0 and abs(ea - eb) > 1e-9 * (ea + eb):
+        la = math.log(ea / eb)
+        return (ea - eb) / la, (la - 1.0 + eb / ea) / (la * la), (-la - 1.0 + ea / eb) / (la * la)
+    return 0.5 * (ea + eb), 0.5, 0.5
+
+
+@numba.njit(cache=True)
+def assemble(dx, pf, th, pc, h, eps, eps_p, eps_h, rho, rho_p, h_b, kappa, p_yield, stor_coef, stor_old, mean,
+             order):
+    """Residual (3N) and band Jacobians (A, D) of the node equations; the load row is the caller's.
+
+    Per node: ``pf``, ``th``, ``pc``, ``h`` the state; ``eps``, ``eps_p``, ``eps_h`` ε and its partials in P_f and H;
+    ``rho``, ``rho_p`` ρ̄ and ∂ρ̄/∂P_f; ``stor_coef``, ``stor_old`` the time-derivative terms (module docstring).
+    Scalars: ``h_b`` H_b, ``kappa`` κ, ``p_yield`` P_Y (inf: elastic), ``mean`` the face mean code
+    (:data:`FACE_MEANS`), ``order`` 1 for the second-order Couette flux (0: first order).
+    """
+    n = pf.size
+    res = np.zeros(3 * n)
+    jac = np.zeros((3 * n, OFFSETS, 3))
+    dfilm = np.zeros((3 * n, OFFSETS))
+    m = rho * th * h
+    m_p = rho_p * th * h
+    m_t = rho * h
+    m_h = rho * th
+    for k in range(n - 1):
+        ef, wa, wb = _face(eps[k], eps[k + 1], mean)
+        grad = (pf[k + 1] - pf[k]) / dx
+        c = 0.5 * order if k >= 1 else 0.0
+        m_km1 = m[k - 1] if k >= 1 else 0.0
+        q = ef * grad - (m[k] + c * (m[k] - m_km1))
+        q_pf_k = wa * eps_p[k] * grad - ef / dx - (1.0 + c) * m_p[k]
+        q_th_k = -(1.0 + c) * m_t[k]
+        q_h_k = wa * eps_h[k] * grad - (1.0 + c) * m_h[k]
+        q_pf_k1 = wb * eps_p[k + 1] * grad + ef / dx
+        q_h_k1 = wb * eps_h[k + 1] * grad
+        for side in range(2):
+            node = k if side == 0 else k + 1
+            if node < 1:
+                continue
+            sign = 1.0 if side == 0 else -1.0
+            r = 3 * node
+            o = k - node + 2
+            res[r] += sign * q
+            jac[r, o, 0] += sign * q_pf_k
+            jac[r, o, 1] += sign * q_th_k
+            dfilm[r, o] += sign * q_h_k
+            jac[r, o + 1, 0] += sign * q_pf_k1
+            dfilm[r, o + 1] += sign * q_h_k1
+            if k >= 1:
+                jac[r, o - 1, 0] += sign * c * m_p[k - 1]
+                jac[r, o - 1, 1] += sign * c * m_t[k - 1]
+                dfilm[r, o - 1] += sign * c * m_h[k - 1]
+    last = 3 * (n - 1)
+    res[last] -= m[n - 1]
+    jac[last, 2, 0] -= m_p[n - 1]
+    jac[last, 2, 1] -= m_t[n - 1]
+    dfilm[last, 2] -= m_h[n - 1]
+    for i in range(1, n):
+        r = 3 * i
+        res[r] -= stor_coef[i] * m[i] + stor_old[i]
+        jac[r, 2, 0] -= stor_coef[i] * m_p[i]
+        jac[r, 2, 1] -= stor_coef[i] * m_t[i]
+        dfilm[r, 2] -= stor_coef[i] * m_h[i]
+    res[0] = th[0] - 1.0
+    jac[0, 2, 1] = 1.0
+    for i in range(n):
+        r = 3 * i + 1
+        if i == 0 or i == n - 1:
+            res[r] = pf[i]
+            jac[r, 2, 0] = 1.0
+        else:
+            phi, da, db = fischer_burmeister(pf[i], 1.0 - th[i])
+            res[r] = phi
+            jac[r, 2, 0] = da
+            jac[r, 2, 1] = -db
+        r = 3 * i + 2
+        b = -kappa * (h[i] - h_b)
+        psi, da2, db2 = fischer_burmeister(p_yield - pc[i], b)
+        big, da1, db1 = fischer_burmeister(pc[i], -psi)
+        res[r] = big
+        jac[r, 2, 2] = da1 + db1 * da2
+        dfilm[r, 2] = db1 * db2 * kappa
+    return res, jac, dfilm
+
+
+@numba.njit(cache=True)
+def local_matvec(jac, dfilm, v, dh):
+    """Σ_j A_rj v_j + Σ_j D_rj dH_j for the band arrays of :func:`assemble` (``v`` the 3N local unknowns and more,
+    ``dh`` the film change at every node)."""
+    n3 = jac.shape[0]
+    n = n3 // 3
+    out = np.zeros(n3)
+    for r in range(n3):
+        i = r // 3
+        total = 0.0
+        for o in range(OFFSETS):
+            j = i + o - 2
+            if j < 0 or j >= n:
+                continue
+            total += (jac[r, o, 0] * v[3 * j] + jac[r, o, 1] * v[3 * j + 1] + jac[r, o, 2] * v[3 * j + 2]
+                      + dfilm[r, o] * dh[j])
+        out[r] = total
+    return out
+
+
+@numba.njit(cache=True)
+def preconditioner_band(jac, dfilm, binv, kl):
+    """LAPACK band storage (2·kl + kl + 1 rows) of the banded approximation M of the Jacobian in the variables
+    z' = per node (ΔV, ΔP_f, Δθ), where ΔV = K(ΔP_f + ΔP_c) is the deflection change: then
+    ΔP_c = B ΔV − ΔP_f with B ≈ K⁻¹ banded (``binv``, :func:`~ehl_dataset.discretisation.deflection.inverse_kernel_band`)
+    and ΔH = ΔV + ΔH0, so every row is local. Returns the band array and the ΔH0 column."""
+    n3 = jac.shape[0]
+    n = n3 // 3
+    width = (binv.size - 1) // 2
+    ku = kl
+    band = np.zeros((2 * kl + ku + 1, n3))
+    col_h0 = np.zeros(n3)
+    for r in range(n3):
+        i = r // 3
+        for o in range(OFFSETS):
+            j = i + o - 2
+            if j < 0 or j >= n:
+                continue
+            a_pf = jac[r, o, 0]
+            a_th = jac[r, o, 1]
+            a_pc = jac[r, o, 2]
+            d_h = dfilm[r, o]
+            if a_pf != 0.0 or a_pc != 0.0:
+                c = 3 * j + 1
+                band[kl + ku + r - c, c] += a_pf - a_pc
+            if a_th != 0.0:
+                c = 3 * j + 2
+                band[kl + ku + r - c, c] += a_th
+            if d_h != 0.0:
+                c = 3 * j
+                band[kl + ku + r - c, c] += d_h
+                col_h0[r] += d_h
+            if a_pc != 0.0:
+                for mm in range(-width, width + 1):
+                    node = j - mm
+                    if node < 0 or node >= n:
+                        continue
+                    c = 3 * node
+                    band[kl + ku + r - c, c] += a_pc * binv[mm + width]
+    return band, col_h0

@@ -1,0 +1,554 @@
+"""Deterministic transient mixed-EHL line contact: the accuracy reference of the rough regime (paper Eq. 1–8;
+docs/deterministic_solver.md).
+
+Physics: the paper's unified Reynolds equation with the Eyring flow factor, the film of Eq. 3 with both roughness
+profiles moving with their surfaces, the log-kernel deflection (Eq. 4), two-slope viscosity, Dowson–Higginson
+density, μ_d·p where asperities touch and the time-averaged μ (Eq. 8). What makes μ converge with the grid:
+
+* asperity contact is a complementarity between the solid contact pressure p_c ≥ 0 and the gap above a physical
+  boundary-film (film-breakdown) thickness h_b, with elastic–perfectly-plastic asperities (p_c ≤ hardness); the
+  total pressure p = p_f + p_c deflects the surfaces, only the fluid pressure p_f drives flow;
+* lubricant mass is conserved exactly: flux-form finite volumes with mass-conserving (Elrod–Adams) cavitation,
+  through contacts as everywhere else;
+* the grid resolves the roughness and the micro-EHL length ℓ = √(2 R_asp h_b) (:func:`grid_spacing`), the time
+  integrator is second order (variable-step BDF2) at Courant ≈ 1;
+* each time step is a semismooth Newton solve whose linear systems are solved by GMRES with FFT products of the
+  deflection and a banded preconditioner (:mod:`ehl_dataset.solvers.krylov`): O(N log N) per iteration.
+
+μ(t) = (1/W')[∫(h/2)∂p_f/∂x dx + ∫θ τ dx + sign(u_s) μ_d ∫p_c dx] with the Eyring shear τ = τ0 asinh(η u_s/(τ0 h))
+(h the local film, h_b in contact, θ the filled fraction) and is averaged over time with its autocorrelation-
+corrected standard error, the window extended until that error meets the target.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+from typing import Callable
+
+import numpy as np
+import scipy.fft
+
+from ..discretisation.deflection import inverse_kernel_band, uniform_kernel
+from ..discretisation.mixed_system import FACE_MEANS, assemble, local_matvec
+from ..model.contact import ContactCase
+from ..model.effects import Effects
+from ..model.lubricant import LubricantState
+from ..model.roughness import RoughnessProfile, baseline_profile, plan_surfaces
+from ..model.traction import eyring_shear_stress
+from ..validation import InputError, check_range
+from .krylov import BandedPreconditioner, gmres
+from .levels import get_level
+from .result import ContactResult
+from .steady import ContactScales, dowson_higginson_lambda, solve_steady
+from .time_average import time_mean
+
+BOUNDARY_FILM_M = 5e-9
+"""Default film-breakdown (boundary-film) thickness h_b [m]: below it the surfaces are in solid contact through
+their adsorbed/reacted boundary films, which carry load and friction μ_d·p_c. Representative value: adsorbed
+friction-modifier layers are a few nm thick, and deterministic mixed-EHL becomes mesh-dependent once films fall
+below ~10–20 nm (Liu, Wang, Wang, Hu & Zhu, J. Tribol. 128 (2006) 641); its effect on μ is reported as a
+sensitivity (h_b × 0.5, × 2) in docs/deterministic_solver.md."""
+YIELD_PRESSURE_PA = 6.8e9
+"""Hardness of case-hardened gear steel, 60 HRC ≈ 697 HV ≈ 6.8 GPa (ASTM E140): the cap of the solid contact
+pressure (elastic–perfectly-plastic asperities; Johnson 1985, §6)."""
+
+
+@dataclass(frozen=True)
+class DeterministicOptions:
+    """Discretisation and stopping rules of a deterministic run (all physical inputs are in the case/lubricant).
+
+    ``dx_m`` grid spacing [m] (None: :func:`grid_spacing` with ``points_per_beta``, ``points_per_ell``);
+    ``boundary_film_m`` h_b [m] (None: :data:`BOUNDARY_FILM_M`); ``yield_pressure_pa`` the contact-pressure cap;
+    ``courant`` u_r Δt/Δx; ``domain`` (x_start, x_end) [a]; ``ramp_passes`` the roughness amplitude grows from 0
+    to 1 over this many passes (one pass: the domain length at u_r); ``startup_passes`` passes after the ramp before
+    averaging starts; ``min_average_passes``, ``max_passes`` bounds of the averaging window, extended until the
+    standard error of the time-averaged μ is ≤ ``mu_sem_target``·max(|μ|, 0.01) over ≥ 20 correlation times;
+    ``face_mean`` of the Poiseuille conductance; ``band`` half-width of the banded inverse kernel in the
+    preconditioner; ``newton_tolerance`` max scaled residual (mass rows relative to the central Couette flux,
+    complementarity rows in p_h) of every step; ``max_substeps`` largest split of a time step whose Newton solve
+    failed; ``clock`` the wall clock (time.perf_counter).
+    """
+
+    dx_m: float | None = None
+    points_per_beta: float = 32.0
+    points_per_ell: float = 2.5
+    boundary_film_m: float | None = None
+    yield_pressure_pa: float = YIELD_PRESSURE_PA
+    courant: float = 1.0
+    domain: tuple[float, float] = (-2.5, 1.5)
+    ramp_passes: float = 0.5
+    startup_passes: float = 1.0
+    min_average_passes: float = 1.5
+    max_passes: float = 12.0
+    mu_sem_target: float = 0.015
+    face_mean: str = "harmonic"
+    band: int = 12
+    newton_tolerance: float = 1e-10
+    newton_iterations: int = 25
+    max_substeps: int = 32
+    max_nodes: int = 20000
+    clock: Callable[[], float] = field(default=time.perf_counter, compare=False)
+
+    def __post_init__(self):
+        if self.dx_m is not None:
+            check_range("dx_m", self.dx_m, 0.0, 1e-3, low_inclusive=False, unit="m")
+        if self.boundary_film_m is not None:
+            check_range("boundary_film_m", self.boundary_film_m, 0.0, 1e-6, low_inclusive=False, unit="m")
+        check_range("courant", self.courant, 0.0, 8.0, low_inclusive=False)
+        check_range("mu_sem_target", self.mu_sem_target, 0.0, 1.0)
+        if self.face_mean not in FACE_MEANS:
+            raise InputError("face_mean", self.face_mean, f"one of {sorted(FACE_MEANS)}")
+        x_start, x_end = self.domain
+        if not (x_start < -1.0 and x_end > 1.0):
+            raise InputError("domain", self.domain, "x_start < -1 < 1 < x_end (units of the Hertz half width)")
+
+
+LEVEL_OPTIONS = {
+    "fast": dict(points_per_beta=8.0, points_per_ell=0.625, mu_sem_target=0.10, max_passes=6.0),
+    "standard": dict(points_per_beta=16.0, points_per_ell=1.25, mu_sem_target=0.03, max_passes=12.0),
+    "reference": dict(points_per_beta=32.0, points_per_ell=2.5, mu_sem_target=0.015, max_passes=40.0),
+}
+"""Grid rule and averaging target of the deterministic model per accuracy level (the level names an error budget;
+what each costs and gives is measured in docs/deterministic_solver.md)."""
+
+
+def deterministic_options(level: str = "reference", **overrides) -> DeterministicOptions:
+    """The :class:`DeterministicOptions` of an accuracy level, with ``overrides`` (e.g. ``dx_m``)."""
+    if level not in LEVEL_OPTIONS:
+        raise InputError("level", level, f"one of {sorted(LEVEL_OPTIONS)}")
+    return DeterministicOptions(**{**LEVEL_OPTIONS[level], **overrides})
+
+
+def asperity_radius(profile: RoughnessProfile, rq1: float, rq2: float) -> float:
+    """Mean summit radius [m] of the composite roughness, 1/√m4 with m4 the fourth spectral moment (mean square
+    curvature) of the profile scaled to σ = √(Rq1² + Rq2²); a Gaussian ACF of correlation length β gives
+    β²/(√12 σ) (Nayak 1971)."""
+    sigma = math.hypot(rq1, rq2)
+    z = profile.z * (sigma / profile.rq)
+    curvature = np.diff(z, 2) / profile.spacing**2
+    return 1.0 / math.sqrt(float(np.mean(curvature**2)))
+
+
+def grid_spacing(profile: RoughnessProfile, rq1: float, rq2: float, h_b: float, options: DeterministicOptions
+                 ) -> tuple[float, dict]:
+    """Grid spacing [m] that resolves the roughness (β/``points_per_beta``) and the micro-EHL length
+    ℓ = √(2 R_asp h_b) (ℓ/``points_per_ell``), and the numbers it came from."""
+    beta = profile.correlation_length
+    r_asp = asperity_radius(profile, rq1, rq2)
+    ell = math.sqrt(2.0 * r_asp * h_b)
+    dx = min(beta / options.points_per_beta, ell / options.points_per_ell)
+    return dx, {"beta_m": beta, "asperity_radius_m": r_asp, "micro_ehl_length_m": ell}
+
+
+class MixedProblem:
+    """The discrete mixed-EHL equations (:mod:`ehl_dataset.discretisation.mixed_system`) on a uniform grid ``x``
+    [a], with the film H = H0 + gap + K(P_f + P_c) computed by FFT, and their Newton–Krylov solution."""
+
+    def __init__(self, x: np.ndarray, scales: ContactScales, state: LubricantState, h_b: float, p_yield: float,
+                 compressible: bool = True, face_mean: str = "harmonic", band: int = 12):
+        self.x = np.ascontiguousarray(x, dtype=float)
+        self.n = n = self.x.size
+        self.dx = float(self.x[1] - self.x[0])
+        self.lam = scales.lam
+        self.shear = scales.shear
+        self.p_h = scales.p_h
+        self.state = state
+        self.h_b = h_b
+        self.p_yield = p_yield
+        self.compressible = compressible and state.compressible
+        self.mean = FACE_MEANS[face_mean]
+        kernel = uniform_kernel(n, self.dx)
+        # circular convolution of length >= 2N - 1 holds the linear one on the N output nodes (DC-FFT)
+        self.fft_size = scipy.fft.next_fast_len(2 * n - 1, real=True)
+        wrapped = np.zeros(self.fft_size)
+        wrapped[:n] = kernel[n - 1:]
+        wrapped[-(n - 1):] = kernel[: n - 1]
+        self.kernel_spectrum = scipy.fft.rfft(wrapped)
+        self.weights = np.full(n, self.dx)
+        self.weights[0] = self.weights[-1] = 0.5 * self.dx
+        self.kappa = 1.0 / float(kernel[n - 1])
+        self.binv = inverse_kernel_band(band, self.dx)
+        self.m_ref = 1.0
+        self.preconditioner = None
+        self.cost = {"newton_iterations": 0, "gmres_iterations": 0, "factorisations": 0}
+
+    # -- state --------------------------------------------------------------------------------------------------
+    def pack(self, pf, th, pc, h0) -> np.ndarray:
+        z = np.empty(3 * self.n + 1)
+        z[0:-1:3], z[1:-1:3], z[2:-1:3], z[-1] = pf, th, pc, h0
+        return z
+
+    @staticmethod
+    def unpack(z):
+        return z[0:-1:3], z[1:-1:3], z[2:-1:3], float(z[-1])
+
+    def deflection(self, p: np.ndarray) -> np.ndarray:
+        """K p by zero-padded FFT (DC-FFT)."""
+        return scipy.fft.irfft(scipy.fft.rfft(p, self.fft_size) * self.kernel_spectrum, self.fft_size)[: self.n]
+
+    def film(self, z, gap) -> np.ndarray:
+        pf, _, pc, h0 = self.unpack(z)
+        return h0 + gap + self.deflection(pf + pc)
+
+    def fluid(self, pf, h):
+        """ε, ∂ε/∂P_f, ∂ε/∂H, ρ̄, ∂ρ̄/∂P_f at the nodes (negative iterate pressures read as 0)."""
+        st = self.state
+        positive = pf > 0.0
+        pa = np.where(positive, pf, 0.0) * self.p_h
+        phi = np.minimum(st.law.exponent(pa), 600.0)
+        phi_p = st.law.exponent_derivative(pa) * self.p_h * positive
+        if self.compressible:
+            rho = st.density(pa) / st.rho0
+            rho_p = st.density_derivative(pa) * self.p_h / st.rho0 * positive
+        else:
+            rho = np.ones_like(pf)
+            rho_p = np.zeros_like(pf)
+        floor = 1e-3 * self.h_b
+        hp = np.maximum(h, floor)
+        inv_eta2 = np.exp(-2.0 * phi)
+        shear2 = (self.shear / hp) ** 2
+        g2 = inv_eta2 + shear2
+        eps = rho * hp**3 * np.sqrt(g2) / self.lam
+        eps_p = eps * (rho_p / rho - phi_p * inv_eta2 / g2)
+        eps_h = np.where(h > floor, eps * (3.0 / hp - shear2 / (hp * g2)), 0.0)
+        return eps, eps_p, eps_h, rho, rho_p
+
+    def content(self, z, h) -> np.ndarray:
+        """Lubricant content m = ρ̄ θ H per node."""
+        pf, th, _, _ = self.unpack(z)
+        return self.fluid(pf, h)[3] * th * h
+
+    def storage(self, d_t: float | None, ratio: float, m_old, m_older):
+        """(w a0/ΔT, w (a1 m^n + a2 m^{n−1})/ΔT): backward Euler for ``ratio`` = 0, variable-step BDF2 with
+        ΔT/ΔT_previous = ``ratio`` otherwise; zeros for a steady solve (``d_t`` None)."""
+        if d_t is None:
+            zero = np.zeros(self.n)
+            return zero, zero
+        if ratio == 0.0:
+            a0, a1, a2 = 1.0, -1.0, 0.0
+        else:
+            a0, a1, a2 = (1 + 2 * ratio) / (1 + ratio), -(1 + ratio), ratio * ratio / (1 + ratio)
+        old = a1 * m_old + (a2 * m_older if a2 else 0.0)
+        return self.weights * (a0 / d_t), self.weights * old / d_t
+
+    # -- equations --------------------------------------------------------------------------------------------
+    def evaluate(self, z, gap, storage):
+        """Residual (3N + 1), film, and the band Jacobians."""
+        pf, th, pc, h0 = self.unpack(z)
+        h = h0 + gap + self.deflection(pf + pc)
+        eps, eps_p, eps_h, rho, rho_p = self.fluid(pf, h)
+        res, jac, dfilm = assemble(self.dx, np.ascontiguousarray(pf), np.ascontiguousarray(th),
+                                   np.ascontiguousarray(pc), h, eps, eps_p, eps_h, rho, rho_p, self.h_b, self.kappa,
+                                   self.p_yield, storage[0], storage[1], self.mean, 1.0)
+        out = np.empty(3 * self.n + 1)
+        out[:-1] = res
+        out[-1] = float(self.weights @ (pf + pc)) - 0.5 * math.pi
+        return out, h, jac, dfilm
+
+    def row_scale(self) -> np.ndarray:
+        """Mass rows relative to the reference flux ρ̄H at the contact centre; the others in their own units."""
+        scale = np.ones(3 * self.n + 1)
+        scale[0:-1:3] = 1.0 / self.m_ref
+        return scale
+
+    def jacobian_product(self, jac, dfilm, v):
+        dp = v[0:-1:3] + v[2:-1:3]
+        out = np.empty_like(v)
+        out[:-1] = local_matvec(jac, dfilm, v, self.deflection(dp) + v[-1])
+        out[-1] = float(self.weights @ dp)
+        return out
+
+    def _direction(self, jac, dfilm, scaled_residual, scale, tol):
+        if self.preconditioner is None:
+            self.preconditioner = BandedPreconditioner(jac, dfilm, self.binv, self.weights)
+            self.cost["factorisations"] += 1
+        matvec = lambda v: self.jacobian_product(jac, dfilm, v) * scale  # noqa: E731
+        apply = lambda r: self.preconditioner.apply(r / scale)  # noqa: E731
+        step, its, rel = gmres(matvec, apply, -scaled_residual, tol, 40)
+        if rel > tol or its >= 20:  # the stored LU has aged: refactor with this Jacobian and solve again
+            self.preconditioner = BandedPreconditioner(jac, dfilm, self.binv, self.weights)
+            self.cost["factorisations"] += 1
+            apply = lambda r: self.preconditioner.apply(r / scale)  # noqa: E731
+            step2, its2, rel = gmres(matvec, apply, -scaled_residual, tol, 80)
+            step, its = step2, its + its2
+        self.cost["gmres_iterations"] += its
+        return step, rel
+
+    def newton(self, z, gap, storage, tol: float, max_iterations: int, max_pressure_step: float = 2.0):
+        """Semismooth Newton from ``z`` with an Armijo line search on ½‖S F‖²; inexact linear solves with the
+        Eisenstat–Walker-type forcing term min(0.1, ‖S F‖∞). Returns (z, converged, iterations, ‖S F‖∞)."""
+        scale = self.row_scale()
+        res, h, jac, dfilm = self.evaluate(z, gap, storage)
+        for iteration in range(max_iterations):
+            scaled = res * scale
+            norm = float(np.max(np.abs(scaled)))
+            if norm <= tol:
+                self.last_residual = res
+                return z, True, iteration, norm
+            if not np.isfinite(norm):
+                return z, False, iteration, norm
+            forcing = min(0.1, max(norm, 1e-3 * tol / norm))
+            step, _ = self._direction(jac, dfilm, scaled, scale, forcing)
+            largest = max(float(np.max(np.abs(step[0:-1:3]))), float(np.max(np.abs(step[2:-1:3]))), 1e-300)
+            omega = min(1.0, max_pressure_step / largest)
+            merit = float(scaled @ scaled)
+            accepted = False
+            for attempt in range(25):
+                if attempt == 4 and forcing > 1e-6:  # slow descent: an accurate direction with a fresh LU
+                    self.preconditioner = None
+                    forcing = 1e-6
+                    step, _ = self._direction(jac, dfilm, scaled, scale, forcing)
+                    largest = max(float(np.max(np.abs(step[0:-1:3]))), float(np.max(np.abs(step[2:-1:3]))), 1e-300)
+                    omega = min(1.0, max_pressure_step / largest)
+                trial = z + omega * step
+                res_t, h_t, jac_t, dfilm_t = self.evaluate(trial, gap, storage)
+                scaled_t = res_t * scale
+                merit_t = float(scaled_t @ scaled_t)
+                if np.isfinite(merit_t) and merit_t <= (1.0 - 1e-4 * omega) * merit:
+                    accepted = True
+                    break
+                omega *= 0.5
+            self.cost["newton_iterations"] += 1
+            if not accepted:
+                return z, False, iteration + 1, norm
+            z, res, h, jac, dfilm = trial, res_t, h_t, jac_t, dfilm_t
+        norm = float(np.max(np.abs(res * scale)))
+        self.last_residual = res
+        return z, norm <= tol, max_iterations, norm
+
+    def mass_balance_error(self) -> float:
+        """|Σ_cells (flux in − flux out − storage change)| / reference flux of the last Newton solution: the global
+        lubricant balance of the discrete equations (the mass rows summed; interior faces cancel in pairs)."""
+        return abs(float(np.sum(self.last_residual[3:-1:3]))) / self.m_ref
+
+
+def _traction(problem: MixedProblem, case: ContactCase, state: LubricantState, scales: ContactScales, z, h):
+    """(μ, asperity part of μ, asperity load share, yielded load share) of one state (paper Eq. 7–8)."""
+    pf, th, pc, _ = problem.unpack(z)
+    p_f = pf * case.p_h
+    p_c = pc * case.p_h
+    h_m = np.maximum(h, problem.h_b) * scales.film_scale
+    x_m = problem.x * scales.a
+    tau = th * eyring_shear_stress(state.viscosity(p_f), case.u_s, h_m, state.tau0)
+    rolling = 0.5 * h_m * np.gradient(p_f, x_m)
+    w = problem.weights * scales.a
+    load = case.load_per_length
+    asperity = float(w @ (state.mu_d * math.copysign(1.0, case.u_s) * p_c)) / load if case.u_s != 0.0 else 0.0
+    mu = float(w @ (tau + rolling)) / load + asperity
+    share = float(w @ p_c) / load
+    yielded = float(w @ (p_c * (pc >= (1.0 - 1e-9) * problem.p_yield))) / load
+    return mu, asperity, share, yielded
+
+
+def solve_deterministic(case: ContactCase, state: LubricantState, plan: Effects, options: DeterministicOptions,
+                        roughness: RoughnessProfile | None = None, time_limit_s: float | None = None,
+                        level_name: str = "reference") -> ContactResult:
+    """Solve one rough contact with the deterministic transient model (module docstring)."""
+    clock = options.clock
+    start = clock()
+    scales = ContactScales.of(case, state, plan.shear_thinning)
+    a = scales.a
+    profile = roughness if roughness is not None else baseline_profile()
+    h_b_m = options.boundary_film_m if options.boundary_film_m is not None else BOUNDARY_FILM_M
+    rule = {}
+    if options.dx_m is not None:
+        dx_m = options.dx_m
+    else:
+        dx_m, rule = grid_spacing(profile, case.rq1, case.rq2, h_b_m, options)
+    x_start, x_end = options.domain
+    n = int(round((x_end - x_start) * a / dx_m)) + 1
+    if n > options.max_nodes:
+        raise InputError("dx_m", dx_m, f">= {(x_end - x_start) * a / (options.max_nodes - 1):.3g} m for this "
+                         f"contact (at most {options.max_nodes} nodes; a = {a:.3g} m)")
+    x = np.linspace(x_start, x_end, max(n, 9))
+    problem = MixedProblem(x, scales, state, h_b_m / scales.film_scale, options.yield_pressure_pa / case.p_h,
+                           plan.compressibility, options.face_mean, options.band)
+    smooth_plan = Effects(False, False, plan.shear_thinning, plan.compressibility, plan.mode, {})
+    smooth = solve_steady(case, state, get_level("standard"), smooth_plan)
+    if not smooth.converged:
+        return _failed(case, state, plan, level_name, start, clock, f"smooth start: {smooth.message}", {})
+    p0 = np.interp(x * a, smooth.x, smooth.pressure) / case.p_h
+    z = problem.pack(p0, np.ones(x.size), np.zeros(x.size), smooth.extra["h0_m"] / scales.film_scale)
+    problem.m_ref = float(np.interp(0.0, smooth.x, smooth.film)) / scales.film_scale
+    gap0 = 0.5 * x**2
+    steady = problem.storage(None, 0.0, None, None)
+    z, ok, _, norm = problem.newton(z, gap0, steady, options.newton_tolerance, 60)
+    if not ok:
+        return _failed(case, state, plan, level_name, start, clock,
+                       f"steady smooth start on the uniform grid: residual {norm:.2e}", {"residual": norm})
+    h = problem.film(z, gap0)
+    smooth_mu = _traction(problem, case, state, scales, z, h)[0]
+    record = _Record()
+    record.smooth = {"mu": smooth_mu, "h_min_m": float(np.min(h)) * scales.film_scale}
+    if case.s_c == 0.0:
+        return _result(case, state, plan, level_name, options, problem, scales, z, h, record, start, clock, True,
+                       "converged (smooth surfaces: steady solution)", rule, dx_m, 0, None)
+
+    passes_dt = (x_end - x_start)  # one pass in units of a/u_r
+    d_t = options.courant * problem.dx
+    steps_per_pass = passes_dt / d_t
+    n_ramp = int(math.ceil(options.ramp_passes * steps_per_pass))
+    first_average = n_ramp + int(math.ceil(options.startup_passes * steps_per_pass))
+    n_min = first_average + int(math.ceil(options.min_average_passes * steps_per_pass))
+    n_max = max(int(math.ceil(options.max_passes * steps_per_pass)), n_min)
+    check_every = max(int(0.25 * steps_per_pass), 1)
+    time_scale = a / case.u_r
+    surfaces = plan_surfaces(case, x * a, n_max * d_t * time_scale, profile)
+
+    def gap_at(t):
+        r1, r2 = surfaces.at(t * time_scale)
+        amplitude = min(1.0, t / (n_ramp * d_t)) if n_ramp else 1.0
+        return gap0 - amplitude * (r1 + r2) / scales.film_scale
+
+    m = problem.content(z, h)
+    state_now = {"z": z, "m": m, "m_prev": m, "z_prev": None, "dt_prev": None}
+    message, converged, mu_mean = "", True, None
+    k = 0
+    t = 0.0
+    while k < n_max:
+        if time_limit_s is not None and clock() - start > time_limit_s:
+            converged = k >= n_min
+            message = f"wall-time limit of {time_limit_s:g} s reached after {k} of at least {n_min} steps"
+            break
+        outcome = _advance(problem, state_now, gap_at, t, d_t, options)
+        if outcome is None:
+            converged = False
+            message = f"Newton failed at step {k + 1} even with {options.max_substeps} sub-steps"
+            break
+        z, h, g, substeps = outcome
+        k += 1
+        t = k * d_t
+        record.add(problem, case, state, scales, z, h, g, substeps)
+        if k >= n_min and (k - n_min) % check_every == 0:
+            mu_mean = time_mean(record.mu[first_average:])
+            tolerance = options.mu_sem_target * max(abs(mu_mean.mean), 0.01)
+            if mu_mean.within(tolerance):
+                break
+    if converged and k < n_min:
+        converged = False
+    if k > first_average + 1:
+        mu_mean = time_mean(record.mu[first_average:])
+    if converged:
+        target = options.mu_sem_target * max(abs(mu_mean.mean), 0.01)
+        message = "converged" + ("" if mu_mean.within(target) else
+                                 f"; standard error of mu {mu_mean.standard_error:.2g} above the target "
+                                 f"{target:.2g} after the cap of {options.max_passes:g} passes") + message
+    return _result(case, state, plan, level_name, options, problem, scales, z, h, record, start, clock, converged,
+                   message, rule, dx_m, first_average, mu_mean)
+
+
+def _advance(problem: MixedProblem, s: dict, gap_at, t: float, d_t: float, options: DeterministicOptions):
+    """One time step from t to t + d_t, split into 2, 4, … sub-steps while Newton fails. Updates ``s``; returns
+    (z, h, gap, sub-steps) or None."""
+    parts = 1
+    while parts <= options.max_substeps:
+        saved = dict(s)
+        ok = True
+        for j in range(parts):
+            step = d_t / parts
+            gap = gap_at(t + (j + 1) * step)
+            ratio = step / s["dt_prev"] if s["dt_prev"] else 0.0
+            storage = problem.storage(step, ratio, s["m"], s["m_prev"])
+            guess = s["z"]
+            if s["z_prev"] is not None and ratio:
+                extrapolated = s["z"] + ratio * (s["z"] - s["z_prev"])
+                extrapolated[0:-1:3] = np.maximum(extrapolated[0:-1:3], 0.0)
+                extrapolated[1:-1:3] = np.clip(extrapolated[1:-1:3], 0.0, 1.0)
+                extrapolated[2:-1:3] = np.maximum(extrapolated[2:-1:3], 0.0)
+                scale = problem.row_scale()
+                if (np.max(np.abs(problem.evaluate(extrapolated, gap, storage)[0] * scale))
+                        < np.max(np.abs(problem.evaluate(guess, gap, storage)[0] * scale))):
+                    guess = extrapolated
+            z, converged, _, _ = problem.newton(guess, gap, storage, options.newton_tolerance,
+                                                options.newton_iterations)
+            if not converged:
+                ok = False
+                break
+            h = problem.film(z, gap)
+            s["m_prev"], s["m"] = s["m"], problem.content(z, h)
+            s["z_prev"], s["z"] = s["z"], z
+            s["dt_prev"] = step
+            s["last_storage"] = storage
+        if ok:
+            return s["z"], h, gap, parts
+        s.clear()
+        s.update(saved)
+        problem.preconditioner = None
+        parts *= 2
+    return None
+
+
+class _Record:
+    """Per-step history of a run."""
+
+    def __init__(self):
+        self.mu, self.asperity, self.share, self.yielded, self.h_min, self.h_c = [], [], [], [], [], []
+        self.mass, self.load = [], []
+        self.substep_steps = 0
+        self.smooth = {}
+
+    def add(self, problem, case, state, scales, z, h, gap, substeps):
+        mu, asperity, share, yielded = _traction(problem, case, state, scales, z, h)
+        self.mu.append(mu)
+        self.asperity.append(asperity)
+        self.share.append(share)
+        self.yielded.append(yielded)
+        self.h_min.append(float(np.min(h)) * scales.film_scale)
+        self.h_c.append(float(np.interp(0.0, problem.x, h)) * scales.film_scale)
+        pf, _, pc, _ = problem.unpack(z)
+        self.load.append(float(problem.weights @ (pf + pc)) / (0.5 * math.pi) - 1.0)
+        self.mass.append(problem.mass_balance_error())
+        self.substep_steps += substeps > 1
+
+
+def _result(case, state, plan, level_name, options, problem, scales, z, h, record, start, clock, converged, message,
+            rule, dx_m, first_average, mu_mean) -> ContactResult:
+    _, lambda_bar = dowson_higginson_lambda(case, state)
+    pf, th, pc, h0 = problem.unpack(z)
+    x_m = problem.x * scales.a
+    if record.mu:
+        window = slice(first_average, None)
+        mu = mu_mean.mean if mu_mean is not None else float(np.mean(record.mu[window]))
+        sem = mu_mean.standard_error if mu_mean is not None else math.nan
+        share = float(np.mean(record.share[window]))
+        share_sem = time_mean(record.share[window]).standard_error if len(record.share[window]) > 1 else math.nan
+        h_min = float(np.mean(record.h_min[window]))
+        h_c = float(np.mean(record.h_c[window]))
+        mu_std = float(np.std(record.mu[window]))
+        yielded = float(np.mean(record.yielded[window]))
+    else:
+        mu = record.smooth["mu"]
+        sem = share = mu_std = yielded = 0.0
+        share_sem = 0.0
+        h_min = float(np.min(h)) * scales.film_scale
+        h_c = float(np.interp(0.0, problem.x, h)) * scales.film_scale
+    recorded = plan.to_dict()
+    recorded["reasons"] = dict(recorded.get("reasons") or {})
+    recorded["reasons"]["model"] = "deterministic transient mixed EHL (contact complementarity, mass-conserving)"
+    n_steps = len(record.mu)
+    return ContactResult(
+        mu=float(mu), h_min=h_min, h_central=h_c, p_max=float(np.max(pf + pc)) * case.p_h, converged=bool(converged),
+        iterations=int(problem.cost["newton_iterations"]), wall_time=clock() - start, level=level_name,
+        effects=recorded, mu_std=mu_std, mu_sem=float(sem), lambda_bar=lambda_bar, asperity_load_share=share,
+        residuals={"max_load_error": float(np.max(np.abs(record.load))) if record.load else 0.0,
+                   "max_mass_error": float(np.max(record.mass)) if record.mass else 0.0},
+        message=message, x=x_m, pressure=(pf + pc) * case.p_h, film=h * scales.film_scale,
+        extra={"model": "deterministic", "dx_m": float(problem.dx * scales.a), "n_nodes": int(problem.n),
+               "n_steps": n_steps, "average_from_step": int(first_average), "courant": options.courant,
+               "boundary_film_m": float(problem.h_b * scales.film_scale),
+               "yield_pressure_pa": float(problem.p_yield * case.p_h), "asperity_load_share_sem": float(share_sem),
+               "yielded_load_share": yielded, "substep_steps": int(record.substep_steps),
+               "smooth_mu": record.smooth.get("mu"), "smooth_h_min_m": record.smooth.get("h_min_m"),
+               "mu_series": np.asarray(record.mu), "face_mean": options.face_mean, **problem.cost, **rule},
+    )
+
+
+def _failed(case, state, plan, level_name, start, clock, message, residuals) -> ContactResult:
+    _, lambda_bar = dowson_higginson_lambda(case, state)
+    nan = math.nan
+    return ContactResult(mu=nan, h_min=nan, h_central=nan, p_max=nan, converged=False, iterations=0,
+                         wall_time=clock() - start, level=level_name, effects=plan.to_dict(), lambda_bar=lambda_bar,
+                         residuals=dict(residuals), message=f"not converged: {message}",
+                         extra={"model": "deterministic"})
