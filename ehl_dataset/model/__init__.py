@@ -1,0 +1,1 @@
+"""Micro-scale building blocks of the homogenised (two-scale, averaged-Reynolds) mixed-EHL model."""
