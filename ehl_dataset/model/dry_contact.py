@@ -54,7 +54,7 @@ from pathlib import Path
 
 import numpy as np
 import scipy.fft as sfft
-from scipy.interpolate import PchipInterpolator
+from scipy.interpolate import CubicHermiteSpline, PchipInterpolator
 
 from ehl_dataset.data_files import data_path
 from ehl_dataset.roughness import RoughnessProfile, baseline_profile
@@ -432,21 +432,27 @@ class DryContactSettings:
     ``window_correlation_lengths`` window length L/β; ``n_windows`` independent windows averaged (each uses two
     disjoint stretches of the profile, one per surface); ``points_per_correlation_length`` β/Δ (resolution);
     ``blend_correlation_lengths`` length/β of the variance-preserving cross-fade that makes a stretch periodic;
-    ``levels_per_decade`` mean-pressure steps per decade; ``first_level`` lowest p̄ as a fraction of
-    p_scale = min(H, E'·s_rms/2) (s_rms the composite rms slope); ``max_pressure_pa`` the ladder stops at this p̄
-    or at ``full_contact_fraction``; ``tol`` CG tolerance (relative pressure change).
+    ``steps_per_decade`` target number of separation steps per decade of p_a (adaptive step in d, between
+    ``min_step``·σ and ``max_step``·σ, and at most ``max_contact_step`` change of the contact fraction);
+    the ladder starts at the highest summit and stops when p_a ≥ ``max_pressure_pa`` or the contact fraction
+    ≥ ``full_contact_fraction``; rows of the table start once ``min_contact_nodes`` nodes touch;
+    ``tol`` solver tolerance on the contact conditions (× rms height); ``floor_points_per_decade`` density of the
+    floor grid h/σ = 10^-5 … 10^1 of the stored gap moments.
     """
 
     window_correlation_lengths: float = 512.0
     n_windows: int = 4
     points_per_correlation_length: float = 32.0
     blend_correlation_lengths: float = 4.0
-    levels_per_decade: int = 8
-    first_level: float = 1e-4
+    steps_per_decade: float = 8.0
+    min_step: float = 0.002
+    max_step: float = 0.2
+    max_contact_step: float = 0.05
     max_pressure_pa: float = 3.0e9
     full_contact_fraction: float = 0.995
+    min_contact_nodes: int = 64
     tol: float = 1e-9
-    floor_points_per_decade: int = 8
+    floor_points_per_decade: int = 6
 
     def __post_init__(self):
         check_range("window_correlation_lengths", self.window_correlation_lengths, 4.0, 1e5)
@@ -454,10 +460,15 @@ class DryContactSettings:
             raise InputError("n_windows", self.n_windows, "an integer in [1, 64]")
         check_range("points_per_correlation_length", self.points_per_correlation_length, 2.0, 1024.0)
         check_range("blend_correlation_lengths", self.blend_correlation_lengths, 0.0, 100.0)
-        check_range("first_level", self.first_level, 1e-9, 0.1)
+        check_range("steps_per_decade", self.steps_per_decade, 1.0, 100.0)
+        check_range("min_step", self.min_step, 1e-6, 0.1)
+        check_range("max_step", self.max_step, self.min_step, 2.0)
+        check_range("max_contact_step", self.max_contact_step, 1e-3, 1.0)
         check_range("max_pressure_pa", self.max_pressure_pa, 1e5, 1e12)
         check_range("full_contact_fraction", self.full_contact_fraction, 0.5, 1.0)
+        check_range("min_contact_nodes", self.min_contact_nodes, 1, 1e9)
         check_range("tol", self.tol, 1e-15, 1e-3)
+        check_range("floor_points_per_decade", self.floor_points_per_decade, 1, 64)
 
 
 def _periodic_stretch(z: np.ndarray, start: int, n_window: int, n_blend: int) -> np.ndarray:
@@ -532,3 +543,534 @@ def composite_windows(profile: RoughnessProfile, rq1: float, rq2: float,
     z = _resample_periodic(np.array(rows), n_nodes)
     z -= z.mean(axis=1, keepdims=True)
     return z, length / n_nodes
+
+
+# ---------------------------------------------------------------------------------------------------------------
+# Table computation
+# ---------------------------------------------------------------------------------------------------------------
+def floor_grid(sigma: float, points_per_decade: int) -> np.ndarray:
+    """Floor values h [m] of the stored gap moments: σ·10^u, u from −5 to 1 (``points_per_decade`` per decade)."""
+    lo, hi = FLOOR_GRID_DECADES
+    count = int(round((hi - lo) * points_per_decade)) + 1
+    return sigma * np.logspace(lo, hi, count)
+
+
+def quantile_rule() -> tuple[np.ndarray, np.ndarray]:
+    """Levels t_q and weights w_q of the quadrature ∫₀¹ f(Q(t)) dt ≈ Σ w_q f(Q(t_q)) over the quantile function Q
+    of the open gaps: Gauss–Legendre in s with t = s³ (clusters levels at the smallest gaps, where g ∝ t^{3/2})."""
+    x, w = np.polynomial.legendre.leggauss(QUANTILE_NODES)
+    s = 0.5 * (x + 1.0)
+    return s**3, 0.5 * w * 3.0 * s**2
+
+
+def _gap_statistics(gap: np.ndarray, floors: np.ndarray, levels: np.ndarray) -> dict:
+    """CDF F(h) = P(g ≤ h), floored moments ⟨max(g, h)^k⟩ (k in MOMENT_ORDERS) on the floor grid, and the
+    quantiles of the open (g > 0) gaps at ``levels``, pooled over all nodes of all windows."""
+    g = np.sort(gap.ravel())
+    m = g.size
+    idx = np.searchsorted(g, floors, side="right")
+    cdf = idx / m
+    moments = np.empty((len(MOMENT_ORDERS), floors.size))
+    positive = g > 0.0
+    for row, k in enumerate(MOMENT_ORDERS):
+        powers = np.where(positive, np.power(np.where(positive, g, 1.0), float(k)), 0.0)
+        suffix = np.concatenate([np.cumsum(powers[::-1])[::-1], [0.0]])  # suffix[i] = Σ_{j ≥ i} g_j^k
+        moments[row] = (idx * floors**k + suffix[idx]) / m
+    open_gaps = g[positive]
+    quantiles = np.quantile(open_gaps, levels) if open_gaps.size else np.zeros(levels.size)
+    return {"cdf": cdf, "moments": moments, "quantiles": quantiles}
+
+
+def compute_dry_contact_table(profile: RoughnessProfile, rq1: float, rq2: float,
+                              e_reduced: float = STEEL_E_REDUCED_PA, hardness: float = DEFAULT_HARDNESS_PA,
+                              settings: DryContactSettings | None = None, *, progress=None) -> "DryContactTable":
+    """Compute the dry-contact table of the roughness pair (``profile`` scaled to Rq1, Rq2 [m]) for E' and H [Pa].
+
+    The separation d steps down from the highest summit of the composite windows (:func:`composite_windows`),
+    warm-started, with an adaptive step (:class:`DryContactSettings`); at every d the contact problem of all
+    windows is solved (:func:`solve_contact`) and the statistics are pooled over all nodes (equal-d averaging:
+    the macro film sees one d for all the roughness under it). ``progress`` optional callable(d/σ, p_a).
+    """
+    settings = settings or DryContactSettings()
+    check_range("e_reduced", e_reduced, 1e6, 1e13, unit="Pa")
+    check_range("hardness", hardness, 1e6, 1e13, unit="Pa")
+    started = time.perf_counter()
+    z, spacing = composite_windows(profile, rq1, rq2, settings)
+    rows, n = z.shape
+    sigma = math.hypot(rq1, rq2)
+    ops = _Operators(n, spacing, e_reduced)
+    scale = float(np.sqrt(np.mean(z * z)))
+    floors = floor_grid(sigma, settings.floor_points_per_decade)
+    levels, _ = quantile_rule()
+    batches = 8
+    records = []
+    d = float(z.max())
+    p = np.zeros_like(z)
+    step = 0.05 * sigma
+    target = math.log(10.0) / settings.steps_per_decade
+    iterations = inner = 0
+    residual = 0.0
+    for _ in range(400):
+        d -= step
+        d_col = np.full((rows, 1), d)
+        p, kp, r, its, more = _solve_separation(ops, z, d_col, hardness, p, settings.tol * scale, 200)
+        iterations += its
+        inner += more
+        residual = max(residual, float(_kkt_residual(p, r, hardness).max()))
+        contact = p > 0.0
+        n_contact = int(contact.sum())
+        p_mean = float(p.mean())
+        if progress is not None:
+            progress(d / sigma, p_mean)
+        if n_contact >= settings.min_contact_nodes:
+            gap = np.where(contact, 0.0, np.maximum(r, 0.0))
+            plastic = np.where(p >= hardness, np.maximum(-r, 0.0), 0.0)
+            batch_p = p.reshape(rows, batches, -1).mean(axis=2).ravel() if n % batches == 0 else p.mean(axis=1)
+            batch_c = contact.reshape(rows, batches, -1).mean(axis=2).ravel() if n % batches == 0 \
+                else contact.mean(axis=1)
+            record = {"separation": d, "pressure": p_mean, "contact_fraction": n_contact / p.size,
+                      "plastic_fraction": float((p >= hardness).mean()), "mean_gap": float(gap.mean()),
+                      "mean_plastic": float(plastic.mean()),
+                      "pressure_se": float(batch_p.std(ddof=1) / math.sqrt(batch_p.size)),
+                      "contact_fraction_se": float(batch_c.std(ddof=1) / math.sqrt(batch_c.size))}
+            record.update(_gap_statistics(gap, floors, levels))
+            records.append(record)
+        if p_mean >= settings.max_pressure_pa or n_contact >= settings.full_contact_fraction * p.size:
+            break
+        # next step: ~1/steps_per_decade of a decade of p_a, bounded in d and in the contact fraction
+        if len(records) >= 2 and records[-1]["pressure"] > 0 and records[-2]["pressure"] > 0:
+            a, b = records[-2], records[-1]
+            dd = a["separation"] - b["separation"]
+            slope = math.log(b["pressure"] / a["pressure"]) / dd
+            cf_slope = (b["contact_fraction"] - a["contact_fraction"]) / dd
+            step = target / max(slope, 1e-30)
+            if cf_slope > 0:
+                step = min(step, settings.max_contact_step / cf_slope)
+        else:
+            step = 0.05 * sigma
+        step = min(max(step, settings.min_step * sigma), settings.max_step * sigma)
+    else:
+        raise SolverError("dry-contact ladder did not reach its end in 400 steps")
+    if len(records) < 4:
+        raise SolverError(f"dry-contact table has only {len(records)} rows; refine the settings")
+    arrays = {f"tab_{key}": np.array([rec[key] for rec in records]) for key in records[0]}
+    meta = {"format": TABLE_FORMAT, "rq1_m": rq1, "rq2_m": rq2, "sigma_m": sigma, "e_reduced_pa": e_reduced,
+            "hardness_pa": hardness, "settings": asdict(settings), "profile_sha256": profile_hash(profile),
+            "profile_source": profile.source, "correlation_length_m": profile.correlation_length,
+            "window_rms_m": scale, "node_spacing_m": spacing, "nodes_per_window": n, "windows": rows,
+            "iterations": iterations, "pcg_iterations": inner, "max_contact_residual_m": residual,
+            "seconds": time.perf_counter() - started}
+    meta["key"] = table_key(profile, rq1, rq2, e_reduced, hardness, settings)
+    return DryContactTable(meta=meta, floors=floors, levels=levels, **arrays)
+
+
+def profile_hash(profile: RoughnessProfile) -> str:
+    """SHA-256 of a profile's heights (float64 bytes) and spacing."""
+    digest = hashlib.sha256(np.ascontiguousarray(profile.z, dtype="<f8").tobytes())
+    digest.update(repr(float(profile.spacing)).encode())
+    return digest.hexdigest()
+
+
+def table_key(profile: RoughnessProfile, rq1: float, rq2: float, e_reduced: float, hardness: float,
+              settings: DryContactSettings | None = None) -> str:
+    """Content hash (hex, 24 characters) identifying a table: format version, profile hash, Rq1, Rq2, E', H and all
+    settings. Dimensional values are keyed as given (plasticity breaks the σ, E' scaling of the elastic problem)."""
+    settings = settings or DryContactSettings()
+    payload = {"format": TABLE_FORMAT, "profile": profile_hash(profile), "rq1": float(rq1).hex(),
+               "rq2": float(rq2).hex(), "e_reduced": float(e_reduced).hex(), "hardness": float(hardness).hex(),
+               "settings": asdict(settings)}
+    return hashlib.sha256(json.dumps(payload, sort_keys=True).encode()).hexdigest()[:24]
+
+
+# ---------------------------------------------------------------------------------------------------------------
+# Interpolation
+# ---------------------------------------------------------------------------------------------------------------
+def pchip_slopes(x: np.ndarray, y: np.ndarray) -> np.ndarray:
+    """Node slopes of the monotone piecewise-cubic Hermite interpolant (Fritsch & Butland 1984: weighted harmonic
+    mean of the adjacent secants, 0 at a local extremum), with the end slopes set to the end secants (which keeps
+    the end intervals monotone and gives the continuations beyond the table a slope of the data's trend)."""
+    h = np.diff(x)
+    delta = np.diff(y) / h
+    m = np.empty_like(y)
+    m[0], m[-1] = delta[0], delta[-1]
+    w1 = 2 * h[1:] + h[:-1]
+    w2 = h[1:] + 2 * h[:-1]
+    same = delta[:-1] * delta[1:] > 0
+    with np.errstate(divide="ignore", invalid="ignore"):
+        inner = (w1 + w2) / (w1 / delta[:-1] + w2 / delta[1:])
+    m[1:-1] = np.where(same, inner, 0.0)
+    return m
+
+
+class _Curve:
+    """C¹ function of d: monotone cubic Hermite through (x, y) (or through ln y when ``log``; node slopes from
+    :func:`pchip_slopes`), continued beyond the ends.
+
+    ``top`` (d > x_max): ``"linear"``; ``"exp"`` y0·e^{s(d−x)}, s = y0'/y0 (decay to 0); ``("power", k)``
+    A(d − c)^k matched to value and slope (the large-gap law of a moment ⟨g^k⟩); ``"zero"``.
+    ``bottom`` (d < x_min): ``"linear"``; ``("limit", L)`` L − (L − y0)e^{s(d−x)} matched to value and slope
+    (approach to the limit L as d → −∞). Every continuation matches the value and the slope at the end (C¹); a
+    continuation whose matched parameters are not admissible falls back to the constant end value.
+    """
+
+    def __init__(self, x, y, *, log=False, top="linear", bottom="linear"):
+        self.x = np.asarray(x, dtype=float)
+        y = np.asarray(y, dtype=float)
+        self.log = log
+        values = np.log(y) if log else y
+        self.spline = CubicHermiteSpline(self.x, values, pchip_slopes(self.x, values), extrapolate=False)
+        self.dspline = self.spline.derivative()
+        self.ends = []
+        for xe, policy in ((self.x[0], bottom), (self.x[-1], top)):
+            ye, se = self._inside(np.array([xe]))
+            self.ends.append((float(xe), float(ye[0]), float(se[0]), policy))
+
+    def _inside(self, d):
+        v = self.spline(d)
+        s = self.dspline(d)
+        if self.log:
+            v = np.exp(v)
+            s = s * v
+        return v, s
+
+    @staticmethod
+    def _outside(d, end):
+        x0, y0, s0, policy = end
+        t = d - x0
+        kind = policy[0] if isinstance(policy, tuple) else policy
+        if kind == "linear":
+            return y0 + s0 * t, np.full_like(t, s0)
+        if kind == "zero":
+            return np.zeros_like(t), np.zeros_like(t)
+        if kind == "exp" and y0 > 0:
+            rate = s0 / y0  # decay: rate < 0 above the table (t > 0)
+            if rate * t.mean() < 0:
+                v = y0 * np.exp(rate * t)
+                return v, rate * v
+        if kind == "power" and s0 != 0 and y0 != 0:
+            k = policy[1]
+            shift = k * y0 / s0  # = x0 − c > 0 required
+            if shift > 0:
+                base = (t + shift) / shift
+                v = y0 * base**k
+                return v, k * v / (t + shift)
+        if kind == "limit":
+            limit = policy[1]
+            gap = limit - y0
+            if gap != 0:
+                rate = -s0 / gap
+                if rate > 0:
+                    e = np.exp(rate * t)
+                    return limit - gap * e, -gap * rate * e
+        return np.full_like(t, y0), np.zeros_like(t)
+
+    def __call__(self, d, derivative=False):
+        d = np.asarray(d, dtype=float)
+        flat = d.reshape(-1)
+        value = np.empty_like(flat)
+        slope = np.empty_like(flat)
+        lo, hi = self.x[0], self.x[-1]
+        inside = (flat >= lo) & (flat <= hi)
+        if inside.any():
+            value[inside], slope[inside] = self._inside(flat[inside])
+        for mask, end in ((flat < lo, self.ends[0]), (flat > hi, self.ends[1])):
+            if mask.any():
+                value[mask], slope[mask] = self._outside(flat[mask], end)
+        out = slope if derivative else value
+        return out.reshape(d.shape) if d.ndim else float(out[0])
+
+
+@dataclass(eq=False)
+class DryContactTable:
+    """Dry-contact table of one roughness pair (one row per separation d), with C¹ interpolation in d.
+
+    Stored rows (``tab_*`` arrays of length n, SI units, d descending as computed): ``tab_separation`` d [m],
+    ``tab_pressure`` p_a [Pa] (mean asperity pressure), ``tab_contact_fraction``, ``tab_plastic_fraction``,
+    ``tab_mean_gap`` ⟨g⟩ [m] (lubricant volume per area), ``tab_mean_plastic`` ⟨u_p⟩ [m], ``tab_pressure_se`` /
+    ``tab_contact_fraction_se`` sampling standard errors (batch means over 8 sub-windows per window), ``tab_cdf``
+    (n, n_h) = P(g ≤ h) on the floor grid ``floors`` [m], ``tab_moments`` (n, 4, n_h) = ⟨max(g, h)^k⟩ for k in
+    :data:`MOMENT_ORDERS`, ``tab_quantiles`` (n, n_q) of the open gaps at the ``levels`` of :func:`quantile_rule`;
+    ``meta`` provenance (Rq1, Rq2, σ, E', H, settings, profile hash, key, cost).
+
+    Every method takes d [m] as a scalar or array and returns the same shape; methods named ``d_*`` are
+    derivatives with respect to d. Outside the table: above it (large d) p_a, the contact and plastic fractions
+    decay exponentially to 0 with the end slope (C¹), ⟨g⟩ continues linearly, the negative moments follow a
+    power law A(d − c)^k; below it (small d) p_a continues linearly with the end slope, the fractions tend to 1,
+    ⟨g⟩ → 0 and ⟨max(g, h_b)^k⟩ → h_b^k exponentially (C¹). Never NaN.
+    """
+
+    meta: dict
+    floors: np.ndarray
+    levels: np.ndarray
+    tab_separation: np.ndarray
+    tab_pressure: np.ndarray
+    tab_contact_fraction: np.ndarray
+    tab_plastic_fraction: np.ndarray
+    tab_mean_gap: np.ndarray
+    tab_mean_plastic: np.ndarray
+    tab_pressure_se: np.ndarray
+    tab_contact_fraction_se: np.ndarray
+    tab_cdf: np.ndarray
+    tab_moments: np.ndarray
+    tab_quantiles: np.ndarray
+    _cache: dict = field(default_factory=dict, repr=False)
+
+    ARRAYS = ("floors", "levels") + tuple(f"tab_{name}" for name in (
+        "separation", "pressure", "contact_fraction", "plastic_fraction", "mean_gap", "mean_plastic", "pressure_se",
+        "contact_fraction_se", "cdf", "moments", "quantiles"))
+
+    # -- description --------------------------------------------------------------------------------------------
+    @property
+    def sigma(self) -> float:
+        """Composite rms roughness σ = √(Rq1² + Rq2²) [m]."""
+        return float(self.meta["sigma_m"])
+
+    @property
+    def key(self) -> str:
+        return str(self.meta["key"])
+
+    @property
+    def d_range(self) -> tuple[float, float]:
+        """Smallest and largest tabulated separation [m]."""
+        return float(self.tab_separation.min()), float(self.tab_separation.max())
+
+    def _ascending(self, values):
+        return np.asarray(values)[::-1]
+
+    @functools.cached_property
+    def _x(self):
+        return self._ascending(self.tab_separation)
+
+    # -- curves ---------------------------------------------------------------------------------------------------
+    @functools.cached_property
+    def _pressure_curve(self):
+        return _Curve(self._x, self._ascending(self.tab_pressure), log=True, top="exp", bottom="linear")
+
+    @functools.cached_property
+    def _contact_curve(self):
+        return _Curve(self._x, self._ascending(self.tab_contact_fraction), log=True, top="exp", bottom=("limit", 1.0))
+
+    @functools.cached_property
+    def _plastic_curve(self):
+        return _Curve(self._x, self._ascending(self.tab_plastic_fraction), top="exp", bottom=("limit", 1.0))
+
+    @functools.cached_property
+    def _gap_curve(self):
+        return _Curve(self._x, self._ascending(self.tab_mean_gap), top="linear", bottom=("limit", 0.0))
+
+    @functools.cached_property
+    def _quantile_spline(self):
+        return PchipInterpolator(self._x, self._ascending(self.tab_quantiles), axis=0, extrapolate=False)
+
+    def asperity_pressure(self, d):
+        """Mean asperity (dry-contact) pressure p_a(d) [Pa], ≥ 0, decreasing in d."""
+        return self._pressure_curve(d)
+
+    def d_asperity_pressure(self, d):
+        """dp_a/dd [Pa/m] (≤ 0)."""
+        return self._pressure_curve(d, derivative=True)
+
+    def contact_fraction(self, d):
+        """Fraction of the nominal area in dry contact (p > 0), in [0, 1]."""
+        return self._contact_curve(d)
+
+    def d_contact_fraction(self, d):
+        """d(contact fraction)/dd [1/m]."""
+        return self._contact_curve(d, derivative=True)
+
+    def lubricated_fraction(self, d):
+        """1 − contact fraction: the fraction of the area covered by lubricant."""
+        return 1.0 - self._contact_curve(d)
+
+    def plastic_fraction(self, d):
+        """Fraction of the nominal area at the hardness (yielded), in [0, contact fraction]."""
+        return np.minimum(np.maximum(self._plastic_curve(d), 0.0), self._contact_curve(d))
+
+    def mean_gap(self, d, h_b: float = 0.0):
+        """Mean gap ⟨max(g, h_b)⟩ [m] (h_b = 0: the lubricant volume per area, ⟨g⟩ = d + ⟨u_p⟩)."""
+        if h_b == 0.0:
+            return self._gap_curve(d)
+        return self.gap_moment(d, 1, h_b)
+
+    def d_mean_gap(self, d, h_b: float = 0.0):
+        """d⟨max(g, h_b)⟩/dd [-]."""
+        if h_b == 0.0:
+            return self._gap_curve(d, derivative=True)
+        return self.d_gap_moment(d, 1, h_b)
+
+    def gap_moment(self, d, k: int, h_b: float):
+        """Floored gap moment ⟨max(g, h_b)^k⟩ [m^k], k in :data:`MOMENT_ORDERS` (1, −1, −2, −3), h_b > 0 [m] the
+        film-breakdown floor (≤ 10σ; below 10⁻⁵σ the contact atom's h_b^k is added to the value at 10⁻⁵σ)."""
+        return self._moment_curve(k, h_b)(d)
+
+    def d_gap_moment(self, d, k: int, h_b: float):
+        """d⟨max(g, h_b)^k⟩/dd [m^(k−1)]."""
+        return self._moment_curve(k, h_b)(d, derivative=True)
+
+    def _moment_curve(self, k: int, h_b: float) -> _Curve:
+        key = (int(k), float(h_b))
+        curve = self._cache.get(key)
+        if curve is None:
+            column = self._ascending(self._moment_column(k, h_b))
+            if k < 0:
+                curve = _Curve(self._x, column, log=True, top=("power", float(k)), bottom=("limit", h_b**k))
+            else:
+                curve = _Curve(self._x, column, top=("power", float(k)), bottom=("limit", h_b**k))
+            if len(self._cache) > 64:
+                self._cache.clear()
+            self._cache[key] = curve
+        return curve
+
+    def _moment_column(self, k: int, h_b: float) -> np.ndarray:
+        """⟨max(g, h_b)^k⟩ at every table row: cubic Hermite in (ln h, ln E) between floor-grid points with the
+        exact slope d ln E/d ln h = k h^k F(h)/E."""
+        if k not in MOMENT_ORDERS:
+            raise InputError("k", k, f"one of {MOMENT_ORDERS}")
+        h_b = float(h_b)
+        floors = self.floors
+        if not (math.isfinite(h_b) and 0.0 < h_b <= floors[-1]):
+            raise InputError("h_b", h_b, f"a floor in (0, {floors[-1]:.3g}] m (0 < h_b ≤ 10σ)")
+        row = MOMENT_ORDERS.index(k)
+        values = self.tab_moments[:, row, :]
+        if h_b <= floors[0]:
+            return values[:, 0] + self.tab_cdf[:, 0] * (h_b**k - floors[0] ** k)
+        u = np.log(floors)
+        i = min(int(np.searchsorted(u, math.log(h_b), side="right")) - 1, u.size - 2)
+        du = u[i + 1] - u[i]
+        t = (math.log(h_b) - u[i]) / du
+        y0, y1 = np.log(values[:, i]), np.log(values[:, i + 1])
+        m0 = k * floors[i] ** k * self.tab_cdf[:, i] / values[:, i]
+        m1 = k * floors[i + 1] ** k * self.tab_cdf[:, i + 1] / values[:, i + 1]
+        h00, h10, h01, h11 = 2 * t**3 - 3 * t**2 + 1, t**3 - 2 * t**2 + t, -2 * t**3 + 3 * t**2, t**3 - t**2
+        return np.exp(h00 * y0 + h10 * du * m0 + h01 * y1 + h11 * du * m1)
+
+    def gap_expectation(self, d, func, h_b: float = 0.0):
+        """⟨f(max(g, h_b))⟩ for any vectorised f of the gap [m] (e.g. an Eyring shear stress), from the contact
+        fraction (contact nodes have g = 0) and a 24-point quadrature of the open gaps' quantile function
+        (:func:`quantile_rule`); typically within 1 % of the exact pooled average for smooth f. Outside the table
+        the quantiles are shifted by d − d_max above it and scaled with the mean gap below it."""
+        d = np.asarray(d, dtype=float)
+        flat = d.reshape(-1)
+        lo, hi = self._x[0], self._x[-1]
+        q = np.empty((flat.size, self.levels.size))
+        inside = (flat >= lo) & (flat <= hi)
+        q[inside] = self._quantile_spline(flat[inside])
+        above = flat > hi
+        q[above] = self.tab_quantiles[0][None, :] + (flat[above] - hi)[:, None]
+        below = flat < lo
+        if below.any():
+            ratio = self._gap_curve(flat[below]) / max(float(self.tab_mean_gap[-1]), 1e-300)
+            q[below] = self.tab_quantiles[-1][None, :] * ratio[:, None]
+        _, weights = quantile_rule()
+        cf = np.clip(np.asarray(self.contact_fraction(flat), dtype=float).reshape(-1), 0.0, 1.0)
+        open_part = (np.asarray(func(np.maximum(q, h_b)), dtype=float) * weights).sum(axis=1)
+        contact_value = np.asarray(func(np.full(flat.size, float(h_b))), dtype=float)
+        out = cf * contact_value + (1.0 - cf) * open_part
+        return out.reshape(d.shape) if d.ndim else float(out[0])
+
+    def separation_at_pressure(self, p_a):
+        """Inverse of :meth:`asperity_pressure`: the separation d [m] at which the mean asperity pressure is
+        ``p_a`` [Pa] (> 0). Newton iterations on ln p_a(d) from a PCHIP guess; exact inverse also outside the table."""
+        p_a = np.asarray(p_a, dtype=float)
+        if np.any(~(p_a > 0)) or not np.all(np.isfinite(p_a)):
+            raise InputError("p_a", "array" if p_a.ndim else float(p_a), "finite pressures > 0 [Pa]")
+        x = self._x
+        lp = np.log(self._ascending(self.tab_pressure))
+        guess = PchipInterpolator(lp[::-1], x[::-1], extrapolate=True)
+        d = np.clip(guess(np.log(p_a)), x[0] - 10 * self.sigma, x[-1] + 10 * self.sigma)
+        for _ in range(30):
+            value = self.asperity_pressure(d)
+            slope = self.d_asperity_pressure(d)
+            f = np.log(np.maximum(value, 1e-300)) - np.log(p_a)
+            fp = slope / np.maximum(value, 1e-300)
+            step = np.where(fp < 0, f / np.where(fp < 0, fp, -1.0), 0.0)
+            step = np.clip(step, -self.sigma, self.sigma)
+            d = d - step
+            if np.all(np.abs(step) <= 1e-12 * self.sigma):
+                break
+        return d if d.ndim else float(d)
+
+    def summary(self) -> dict:
+        """Short description: Rq pair, σ, E', H, d range in σ, p_a range, rows, cost."""
+        return {"rq1_m": self.meta["rq1_m"], "rq2_m": self.meta["rq2_m"], "sigma_m": self.sigma,
+                "e_reduced_pa": self.meta["e_reduced_pa"], "hardness_pa": self.meta["hardness_pa"],
+                "rows": int(self.tab_separation.size), "d_over_sigma": [float(v / self.sigma) for v in self.d_range],
+                "p_a_pa": [float(self.tab_pressure.min()), float(self.tab_pressure.max())],
+                "max_contact_fraction": float(self.tab_contact_fraction.max()), "seconds": self.meta.get("seconds"),
+                "key": self.key}
+
+    # -- storage --------------------------------------------------------------------------------------------------
+    def save(self, path: str | Path) -> Path:
+        """Write the table as a compressed .npz (large arrays in float32, ~50 kB) with its metadata as JSON."""
+        path = Path(path)
+        path.parent.mkdir(parents=True, exist_ok=True)
+        arrays = {}
+        for name in self.ARRAYS:
+            value = np.asarray(getattr(self, name))
+            arrays[name] = value.astype(np.float32) if name in ("tab_cdf", "tab_moments", "tab_quantiles") else value
+        tmp = path.with_name(path.name + f".tmp{os.getpid()}.npz")
+        np.savez_compressed(tmp, meta=np.array(json.dumps(self.meta)), **arrays)
+        os.replace(tmp, path)
+        return path
+
+    @classmethod
+    def load(cls, path: str | Path) -> "DryContactTable":
+        """Read a table written by :meth:`save`."""
+        with np.load(Path(path), allow_pickle=False) as data:
+            meta = json.loads(str(data["meta"]))
+            if meta.get("format") != TABLE_FORMAT:
+                raise InputError("dry-contact table", str(path), f"format {TABLE_FORMAT}",
+                                 f"file has {meta.get('format')}")
+            arrays = {name: np.asarray(data[name], dtype=float) for name in cls.ARRAYS}
+        return cls(meta=meta, **arrays)
+
+
+# ---------------------------------------------------------------------------------------------------------------
+# Shipped tables, disk cache
+# ---------------------------------------------------------------------------------------------------------------
+SHIPPED_DIR = ("roughness", "dry_contact")
+"""Data sub-directory of the shipped tables (``data/roughness/dry_contact/<key>.npz``)."""
+PAPER_RQ_PAIRS_UM = ((0.05, 0.05), (0.1, 0.1), (0.2, 0.2), (0.3, 0.3), (0.4, 0.4), (0.5, 0.5), (0.7, 0.7),
+                     (1.0, 1.0), (0.2, 0.5), (0.4, 1.0))
+"""The (Rq1, Rq2) pairs [µm] of the paper's factorial, whose tables (shipped baseline profile, steel E',
+H = 6.8 GPa, default settings) ship with the package."""
+
+
+def cache_directory() -> Path:
+    """Directory of computed tables: ``$GEARLOSS_CACHE_DIR/dry_contact`` or ``~/.cache/gearloss/dry_contact``."""
+    root = os.environ.get(CACHE_ENV)
+    base = Path(root) if root else Path.home() / ".cache" / "gearloss"
+    return base / "dry_contact"
+
+
+def dry_contact_table(profile: RoughnessProfile | None = None, rq1: float = 0.4e-6, rq2: float = 0.4e-6,
+                      e_reduced: float = STEEL_E_REDUCED_PA, hardness: float = DEFAULT_HARDNESS_PA,
+                      settings: DryContactSettings | None = None, *, cache: bool = True,
+                      cache_dir: str | Path | None = None) -> DryContactTable:
+    """The dry-contact table of ``profile`` (default: the shipped baseline) scaled to ``rq1``, ``rq2`` [m], for the
+    reduced modulus ``e_reduced`` and hardness ``hardness`` [Pa].
+
+    Looked up by its content key (:func:`table_key`) among the shipped tables (data/roughness/dry_contact/), then
+    in the cache directory (``cache_dir`` or :func:`cache_directory`); otherwise computed
+    (:func:`compute_dry_contact_table`, seconds to a minute) and, with ``cache``, written to the cache.
+    """
+    profile = profile if profile is not None else baseline_profile()
+    settings = settings or DryContactSettings()
+    key = table_key(profile, rq1, rq2, e_reduced, hardness, settings)
+    shipped = data_path(*SHIPPED_DIR, f"{key}.npz")
+    if shipped.is_file():
+        return DryContactTable.load(shipped)
+    directory = Path(cache_dir) if cache_dir is not None else cache_directory()
+    cached = directory / f"{key}.npz"
+    if cache and cached.is_file():
+        try:
+            return DryContactTable.load(cached)
+        except (OSError, ValueError, KeyError):
+            pass  # unreadable or stale: recompute
+    table = compute_dry_contact_table(profile, rq1, rq2, e_reduced, hardness, settings)
+    if cache:
+        try:
+            table.save(cached)
+        except OSError:
+            pass  # a read-only cache is not an error
+    return table
