@@ -72,6 +72,8 @@ FLOOR_GRID_DECADES = (-5.0, 1.0)
 """The floor grid h/σ spans 10^-5 … 10^1 (log-spaced, :attr:`DryContactSettings.floor_points_per_decade`)."""
 QUANTILE_NODES = 24
 """Gauss–Legendre nodes of the stored quantile function of the open (non-contact) gaps."""
+FFT_WORKERS = max(1, min(2, os.cpu_count() or 1))
+"""Threads of the batched FFTs of the table computation (the windows are independent rows)."""
 CACHE_ENV = "GEARLOSS_CACHE_DIR"
 """Environment variable that overrides the cache directory (default ~/.cache/gearloss)."""
 
@@ -127,10 +129,12 @@ class _Operators:
         self.inv = 0.25 * e_reduced * np.maximum(k, k[1])  # E'|k|/4; the k = 0 mode gets the k1 value (SPD)
 
     def deflect(self, v):
-        return sfft.irfft(sfft.rfft(v, axis=-1) * self.mult, n=self.n, axis=-1)
+        workers = FFT_WORKERS if v.ndim > 1 and v.shape[0] > 1 else 1
+        return sfft.irfft(sfft.rfft(v, axis=-1, workers=workers) * self.mult, n=self.n, axis=-1, workers=workers)
 
     def precondition(self, v):
-        return sfft.irfft(sfft.rfft(v, axis=-1) * self.inv, n=self.n, axis=-1)
+        workers = FFT_WORKERS if v.ndim > 1 and v.shape[0] > 1 else 1
+        return sfft.irfft(sfft.rfft(v, axis=-1, workers=workers) * self.inv, n=self.n, axis=-1, workers=workers)
 
 
 def _rowsum(a):
@@ -200,7 +204,7 @@ def _solve_separation(ops: _Operators, z, d, hardness, p0, tol_gap, max_iteratio
         free = ~(lower | upper)
         p_upper = np.where(upper, upper_value, 0.0)
         rhs = z - d - (ops.deflect(p_upper) if upper.any() else 0.0)
-        x, its = _pcg(ops, free, rhs, p, 1e-11 if tight else 1e-4, 500)
+        x, its = _pcg(ops, free, rhs, p, 1e-10 if tight else 1e-2, 500)
         inner += its
         p = np.where(free, x, p_upper)
         kp = ops.deflect(p)
@@ -441,7 +445,7 @@ class DryContactSettings:
     """
 
     window_correlation_lengths: float = 512.0
-    n_windows: int = 4
+    n_windows: int = 8
     points_per_correlation_length: float = 32.0
     blend_correlation_lengths: float = 4.0
     steps_per_decade: float = 8.0
@@ -564,18 +568,21 @@ def quantile_rule() -> tuple[np.ndarray, np.ndarray]:
 
 
 def _gap_statistics(gap: np.ndarray, floors: np.ndarray, levels: np.ndarray) -> dict:
-    """CDF F(h) = P(g ≤ h), floored moments ⟨max(g, h)^k⟩ (k in MOMENT_ORDERS) on the floor grid, and the
-    quantiles of the open (g > 0) gaps at ``levels``, pooled over all nodes of all windows."""
+    """CDF F(h) = P(g ≤ h), the open-gap floored moments ⟨max(g, h)^k·1[g > 0]⟩ (k in MOMENT_ORDERS) on the floor
+    grid, and the quantiles of the open (g > 0) gaps at ``levels``, pooled over all nodes of all windows. (The
+    full floored moment adds the contact atom: ⟨max(g, h)^k⟩ = open moment + contact fraction·h^k; storing the
+    open part keeps it exact where the atom dominates by many orders of magnitude.)"""
     g = np.sort(gap.ravel())
     m = g.size
     idx = np.searchsorted(g, floors, side="right")
     cdf = idx / m
     moments = np.empty((len(MOMENT_ORDERS), floors.size))
     positive = g > 0.0
+    zeros = m - int(positive.sum())
     for row, k in enumerate(MOMENT_ORDERS):
         powers = np.where(positive, np.power(np.where(positive, g, 1.0), float(k)), 0.0)
         suffix = np.concatenate([np.cumsum(powers[::-1])[::-1], [0.0]])  # suffix[i] = Σ_{j ≥ i} g_j^k
-        moments[row] = (idx * floors**k + suffix[idx]) / m
+        moments[row] = ((idx - zeros) * floors**k + suffix[idx]) / m
     open_gaps = g[positive]
     quantiles = np.quantile(open_gaps, levels) if open_gaps.size else np.zeros(levels.size)
     return {"cdf": cdf, "moments": moments, "quantiles": quantiles}
@@ -602,7 +609,6 @@ def compute_dry_contact_table(profile: RoughnessProfile, rq1: float, rq2: float,
     scale = float(np.sqrt(np.mean(z * z)))
     floors = floor_grid(sigma, settings.floor_points_per_decade)
     levels, _ = quantile_rule()
-    batches = 8
     records = []
     d = float(z.max())
     p = np.zeros_like(z)
@@ -625,14 +631,14 @@ def compute_dry_contact_table(profile: RoughnessProfile, rq1: float, rq2: float,
         if n_contact >= settings.min_contact_nodes:
             gap = np.where(contact, 0.0, np.maximum(r, 0.0))
             plastic = np.where(p >= hardness, np.maximum(-r, 0.0), 0.0)
-            batch_p = p.reshape(rows, batches, -1).mean(axis=2).ravel() if n % batches == 0 else p.mean(axis=1)
-            batch_c = contact.reshape(rows, batches, -1).mean(axis=2).ravel() if n % batches == 0 \
-                else contact.mean(axis=1)
+            window_p = p.mean(axis=1)
+            window_c = contact.mean(axis=1)
+            spread = math.sqrt(rows) if rows > 1 else math.inf
             record = {"separation": d, "pressure": p_mean, "contact_fraction": n_contact / p.size,
                       "plastic_fraction": float((p >= hardness).mean()), "mean_gap": float(gap.mean()),
                       "mean_plastic": float(plastic.mean()),
-                      "pressure_se": float(batch_p.std(ddof=1) / math.sqrt(batch_p.size)),
-                      "contact_fraction_se": float(batch_c.std(ddof=1) / math.sqrt(batch_c.size))}
+                      "pressure_se": float(window_p.std(ddof=1) / spread) if rows > 1 else math.inf,
+                      "contact_fraction_se": float(window_c.std(ddof=1) / spread) if rows > 1 else math.inf}
             record.update(_gap_statistics(gap, floors, levels))
             records.append(record)
         if p_mean >= settings.max_pressure_pa or n_contact >= settings.full_contact_fraction * p.size:
@@ -787,9 +793,9 @@ class DryContactTable:
     Stored rows (``tab_*`` arrays of length n, SI units, d descending as computed): ``tab_separation`` d [m],
     ``tab_pressure`` p_a [Pa] (mean asperity pressure), ``tab_contact_fraction``, ``tab_plastic_fraction``,
     ``tab_mean_gap`` ⟨g⟩ [m] (lubricant volume per area), ``tab_mean_plastic`` ⟨u_p⟩ [m], ``tab_pressure_se`` /
-    ``tab_contact_fraction_se`` sampling standard errors (batch means over 8 sub-windows per window), ``tab_cdf``
-    (n, n_h) = P(g ≤ h) on the floor grid ``floors`` [m], ``tab_moments`` (n, 4, n_h) = ⟨max(g, h)^k⟩ for k in
-    :data:`MOMENT_ORDERS`, ``tab_quantiles`` (n, n_q) of the open gaps at the ``levels`` of :func:`quantile_rule`;
+    ``tab_contact_fraction_se`` sampling standard errors (spread of the independent windows' means / √windows), ``tab_cdf``
+    (n, n_h) = P(g ≤ h) on the floor grid ``floors`` [m], ``tab_moments`` (n, 4, n_h) = the open-gap moments
+    ⟨max(g, h)^k·1[g > 0]⟩ for k in :data:`MOMENT_ORDERS` (the full moment adds contact fraction × h^k), ``tab_quantiles`` (n, n_q) of the open gaps at the ``levels`` of :func:`quantile_rule`;
     ``meta`` provenance (Rq1, Rq2, σ, E', H, settings, profile hash, key, cost).
 
     Every method takes d [m] as a scalar or array and returns the same shape; methods named ``d_*`` are
@@ -898,32 +904,43 @@ class DryContactTable:
             return self._gap_curve(d, derivative=True)
         return self.d_gap_moment(d, 1, h_b)
 
-    def gap_moment(self, d, k: int, h_b: float):
-        """Floored gap moment ⟨max(g, h_b)^k⟩ [m^k], k in :data:`MOMENT_ORDERS` (1, −1, −2, −3), h_b > 0 [m] the
-        film-breakdown floor (≤ 10σ; below 10⁻⁵σ the contact atom's h_b^k is added to the value at 10⁻⁵σ)."""
-        return self._moment_curve(k, h_b)(d)
+    def gap_moment(self, d, k: int, h_b: float, part: str = "all"):
+        """Floored gap moment ⟨max(g, h_b)^k⟩ [m^k] over the whole area (``part="all"``: contact spots count as
+        gaps h_b) or over the open gaps only (``part="open"``: ⟨max(g, h_b)^k·1[g > 0]⟩), k in
+        :data:`MOMENT_ORDERS` (1, −1, −2, −3), h_b > 0 [m] the film-breakdown floor (≤ 10σ; below 10⁻⁵σ the open
+        part is held at its value at 10⁻⁵σ)."""
+        return self._moment_curve(k, h_b, part)(d)
 
-    def d_gap_moment(self, d, k: int, h_b: float):
-        """d⟨max(g, h_b)^k⟩/dd [m^(k−1)]."""
-        return self._moment_curve(k, h_b)(d, derivative=True)
+    def d_gap_moment(self, d, k: int, h_b: float, part: str = "all"):
+        """d/dd of :meth:`gap_moment` [m^(k−1)]."""
+        return self._moment_curve(k, h_b, part)(d, derivative=True)
 
-    def _moment_curve(self, k: int, h_b: float) -> _Curve:
-        key = (int(k), float(h_b))
+    def _moment_curve(self, k: int, h_b: float, part: str) -> _Curve:
+        if part not in ("all", "open"):
+            raise InputError("part", part, "'all' or 'open'")
+        key = (int(k), float(h_b), part)
         curve = self._cache.get(key)
         if curve is None:
-            column = self._ascending(self._moment_column(k, h_b))
-            if k < 0:
-                curve = _Curve(self._x, column, log=True, top=("power", float(k)), bottom=("limit", h_b**k))
+            column = self._open_moment_column(k, h_b)
+            limit = h_b**k
+            if part == "all":
+                column = column + self.tab_contact_fraction * h_b**k
             else:
-                curve = _Curve(self._x, column, top=("power", float(k)), bottom=("limit", h_b**k))
+                limit = 0.0  # every gap closes: no open part left
+                column = np.maximum(column, 1e-300)
+            column = self._ascending(column)
+            if k < 0:
+                curve = _Curve(self._x, column, log=True, top=("power", float(k)), bottom=("limit", limit))
+            else:
+                curve = _Curve(self._x, column, top=("power", float(k)), bottom=("limit", limit))
             if len(self._cache) > 64:
                 self._cache.clear()
             self._cache[key] = curve
         return curve
 
-    def _moment_column(self, k: int, h_b: float) -> np.ndarray:
-        """⟨max(g, h_b)^k⟩ at every table row: cubic Hermite in (ln h, ln E) between floor-grid points with the
-        exact slope d ln E/d ln h = k h^k F(h)/E."""
+    def _open_moment_column(self, k: int, h_b: float) -> np.ndarray:
+        """⟨max(g, h_b)^k·1[g > 0]⟩ at every table row: cubic Hermite in (ln h, ln O) between floor-grid points
+        with the exact slope d ln O/d ln h = k h^k (F(h) − F(0))/O."""
         if k not in MOMENT_ORDERS:
             raise InputError("k", k, f"one of {MOMENT_ORDERS}")
         h_b = float(h_b)
@@ -933,22 +950,31 @@ class DryContactTable:
         row = MOMENT_ORDERS.index(k)
         values = self.tab_moments[:, row, :]
         if h_b <= floors[0]:
-            return values[:, 0] + self.tab_cdf[:, 0] * (h_b**k - floors[0] ** k)
+            return values[:, 0].copy()
         u = np.log(floors)
         i = min(int(np.searchsorted(u, math.log(h_b), side="right")) - 1, u.size - 2)
         du = u[i + 1] - u[i]
         t = (math.log(h_b) - u[i]) / du
-        y0, y1 = np.log(values[:, i]), np.log(values[:, i + 1])
-        m0 = k * floors[i] ** k * self.tab_cdf[:, i] / values[:, i]
-        m1 = k * floors[i + 1] ** k * self.tab_cdf[:, i + 1] / values[:, i + 1]
+        open_cdf = np.maximum(self.tab_cdf - self.tab_contact_fraction[:, None], 0.0)
+        ok = (values[:, i] > 0) & (values[:, i + 1] > 0)
+        v0 = np.where(ok, values[:, i], 1.0)
+        v1 = np.where(ok, values[:, i + 1], 1.0)
+        y0, y1 = np.log(v0), np.log(v1)
+        m0 = k * floors[i] ** k * open_cdf[:, i] / v0
+        m1 = k * floors[i + 1] ** k * open_cdf[:, i + 1] / v1
         h00, h10, h01, h11 = 2 * t**3 - 3 * t**2 + 1, t**3 - 2 * t**2 + t, -2 * t**3 + 3 * t**2, t**3 - t**2
-        return np.exp(h00 * y0 + h10 * du * m0 + h01 * y1 + h11 * du * m1)
+        hermite = np.exp(h00 * y0 + h10 * du * m0 + h01 * y1 + h11 * du * m1)
+        linear = values[:, i] * (1 - t) + values[:, i + 1] * t
+        return np.where(ok, hermite, linear)
 
-    def gap_expectation(self, d, func, h_b: float = 0.0):
-        """⟨f(max(g, h_b))⟩ for any vectorised f of the gap [m] (e.g. an Eyring shear stress), from the contact
-        fraction (contact nodes have g = 0) and a 24-point quadrature of the open gaps' quantile function
-        (:func:`quantile_rule`); typically within 1 % of the exact pooled average for smooth f. Outside the table
-        the quantiles are shifted by d − d_max above it and scaled with the mean gap below it."""
+    def open_gap_expectation(self, d, func, h_b: float = 0.0):
+        """⟨f(max(g, h_b))·1[g > 0]⟩: the average over the nominal area of f on the open (lubricated) gaps, i.e.
+        (1 − contact fraction) × the mean of f over the open gaps. ``func`` is called once with an array of shape
+        (number of d values, 24) of floored gaps [m] (row i belongs to the i-th d, so per-d parameters can be
+        broadcast as ``param[:, None]``). 24-point quadrature of the open gaps' quantile function
+        (:func:`quantile_rule`), typically within 1 % of the exact pooled average for smooth f (a few % for the
+        strongly singular g⁻³). Outside the table the quantiles are shifted by d − d_max above it and scaled with
+        the mean gap below it."""
         d = np.asarray(d, dtype=float)
         flat = d.reshape(-1)
         lo, hi = self._x[0], self._x[-1]
@@ -963,9 +989,19 @@ class DryContactTable:
             q[below] = self.tab_quantiles[-1][None, :] * ratio[:, None]
         _, weights = quantile_rule()
         cf = np.clip(np.asarray(self.contact_fraction(flat), dtype=float).reshape(-1), 0.0, 1.0)
-        open_part = (np.asarray(func(np.maximum(q, h_b)), dtype=float) * weights).sum(axis=1)
-        contact_value = np.asarray(func(np.full(flat.size, float(h_b))), dtype=float)
-        out = cf * contact_value + (1.0 - cf) * open_part
+        values = np.asarray(func(np.maximum(q, h_b)), dtype=float)
+        out = (1.0 - cf) * (values * weights).sum(axis=1)
+        return out.reshape(d.shape) if d.ndim else float(out[0])
+
+    def gap_expectation(self, d, func, h_b: float = 0.0):
+        """⟨f(max(g, h_b))⟩ over the whole nominal area: the contact spots (g = 0) contribute f(h_b) (``func`` is
+        then called with an array (number of d values, 1) filled with h_b), the open gaps as in
+        :meth:`open_gap_expectation`."""
+        d = np.asarray(d, dtype=float)
+        flat = d.reshape(-1)
+        cf = np.clip(np.asarray(self.contact_fraction(flat), dtype=float).reshape(-1), 0.0, 1.0)
+        at_floor = np.asarray(func(np.full((flat.size, 1), float(h_b))), dtype=float).reshape(-1)
+        out = cf * at_floor + np.asarray(self.open_gap_expectation(flat, func, h_b)).reshape(-1)
         return out.reshape(d.shape) if d.ndim else float(out[0])
 
     def separation_at_pressure(self, p_a):
@@ -1001,13 +1037,13 @@ class DryContactTable:
 
     # -- storage --------------------------------------------------------------------------------------------------
     def save(self, path: str | Path) -> Path:
-        """Write the table as a compressed .npz (large arrays in float32, ~50 kB) with its metadata as JSON."""
+        """Write the table as a compressed .npz (CDF and quantiles in float32, ~50 kB) with its metadata as JSON."""
         path = Path(path)
         path.parent.mkdir(parents=True, exist_ok=True)
         arrays = {}
         for name in self.ARRAYS:
             value = np.asarray(getattr(self, name))
-            arrays[name] = value.astype(np.float32) if name in ("tab_cdf", "tab_moments", "tab_quantiles") else value
+            arrays[name] = value.astype(np.float32) if name in ("tab_cdf", "tab_quantiles") else value
         tmp = path.with_name(path.name + f".tmp{os.getpid()}.npz")
         np.savez_compressed(tmp, meta=np.array(json.dumps(self.meta)), **arrays)
         os.replace(tmp, path)
@@ -1074,3 +1110,26 @@ def dry_contact_table(profile: RoughnessProfile | None = None, rq1: float = 0.4e
         except OSError:
             pass  # a read-only cache is not an error
     return table
+
+
+def build_shipped_tables(directory: str | Path | None = None, pairs=PAPER_RQ_PAIRS_UM, progress=print) -> Path:
+    """Compute the tables of the shipped baseline profile for the (Rq1, Rq2) ``pairs`` [µm] (steel E',
+    H = 6.8 GPa, default settings) into ``directory`` (default data/roughness/dry_contact/) with an index.json.
+    Regenerate: ``python -c "from ehl_dataset.model.dry_contact import build_shipped_tables as b; b()"``."""
+    target = Path(directory) if directory is not None else data_path(*SHIPPED_DIR)
+    target.mkdir(parents=True, exist_ok=True)
+    profile = baseline_profile()
+    index = {"format": TABLE_FORMAT, "profile_sha256": profile_hash(profile), "e_reduced_pa": STEEL_E_REDUCED_PA,
+             "hardness_pa": DEFAULT_HARDNESS_PA, "settings": asdict(DryContactSettings()), "tables": []}
+    for rq1_um, rq2_um in pairs:
+        table = compute_dry_contact_table(profile, rq1_um * 1e-6, rq2_um * 1e-6)
+        table.save(target / f"{table.key}.npz")
+        row = table.summary()
+        index["tables"].append({"rq_um": [rq1_um, rq2_um], "key": table.key, "rows": row["rows"],
+                                "d_over_sigma": row["d_over_sigma"], "p_a_pa": row["p_a_pa"],
+                                "max_contact_fraction": row["max_contact_fraction"],
+                                "seconds": round(row["seconds"], 1)})
+        if progress:
+            progress(f"{rq1_um}/{rq2_um} um: {row['rows']} rows, {row['seconds']:.1f} s -> {table.key}.npz")
+    (target / "index.json").write_text(json.dumps(index, indent=1) + "\n")
+    return target
