@@ -338,7 +338,7 @@ def solve_contact(z, spacing: float, e_reduced: float, separation=None, *, mean_
     """
     z = np.atleast_2d(np.asarray(z, dtype=float))
     rows, n = z.shape
-    check_range("e_reduced", e_reduced, 0.0, 1e15, low_inclusive=False, unit="Pa")
+    check_range("e_reduced", e_reduced, 0.0, 1e20, low_inclusive=False, unit="Pa")
     check_range("spacing", spacing, 0.0, 1.0, low_inclusive=False, unit="m")
     if not (isinstance(hardness, (int, float)) and hardness > 0 and not math.isnan(hardness)):
         raise InputError("hardness", hardness, "a number > 0 [Pa] (math.inf: purely elastic)")
@@ -382,10 +382,11 @@ def _solve_load(ops, z, mean_pressure, hardness, p, tol_gap, max_iterations):
     d_hi = z.max(axis=1, keepdims=True) - 1e-3 * scale
     p_hi, kp, r, f_hi = evaluate(d_hi, np.zeros_like(z))
     step = 0.5 * scale
-    elastic = not math.isfinite(hardness)  # then p̄(d) → ∞ only as d → 0⁺: stay above 0
+    elastic = not math.isfinite(hardness)  # then p̄(d) → ∞ only as ⟨g⟩ = d − ⟨z⟩ → 0⁺: stay above ⟨z⟩
+    z_mean = z.mean(axis=1, keepdims=True)
 
     def lower(d, step):
-        return np.maximum(d - step, 0.25 * d) if elastic else d - step
+        return np.maximum(d - step, z_mean + 0.25 * (d - z_mean)) if elastic else d - step
 
     d_lo = lower(d_hi, step)
     p_lo, kp, r, f_lo = evaluate(d_lo, p_hi)
@@ -487,7 +488,8 @@ def _periodic_stretch(z: np.ndarray, start: int, n_window: int, n_blend: int) ->
         m = np.arange(1, n_blend + 1) / (n_blend + 1.0)
         theta = 0.5 * math.pi * (3 * m**2 - 2 * m**3)
         tail = np.arange(n_window - n_blend, n_window)
-        y[tail] = np.cos(theta) * z[(start + n_blend + tail) % size] + np.sin(theta) * z[(start + tail) % size]
+        before = start + n_blend + tail - n_window  # the n_blend samples that precede the window
+        y[tail] = np.cos(theta) * z[(start + n_blend + tail) % size] + np.sin(theta) * z[before % size]
     return y
 
 
