@@ -714,10 +714,12 @@ class _Curve:
     """C¹ function of d: monotone cubic Hermite through (x, y) (or through ln y when ``log``; node slopes from
     :func:`pchip_slopes`), continued beyond the ends.
 
-    ``top`` (d > x_max): ``"linear"``; ``"exp"`` y0·e^{s(d−x)}, s = y0'/y0 (decay to 0); ``("power", k)``
+    ``top`` (d > x_max): ``"linear"``; ``"exp"`` y0·e^{s(d−x)}, s = y0'/y0 (decay to 0); ``("gauss", w)``
+    y0·exp(s t − t²/(2w²)), t = d − x (the Gaussian tail of the summit heights, w = σ); ``("power", k)``
     A(d − c)^k matched to value and slope (the large-gap law of a moment ⟨g^k⟩); ``"zero"``.
     ``bottom`` (d < x_min): ``"linear"``; ``("limit", L)`` L − (L − y0)e^{s(d−x)} matched to value and slope
-    (approach to the limit L as d → −∞). Every continuation matches the value and the slope at the end (C¹); a
+    (approach to the limit L as d → −∞; for L = 0 and an end slope pointing away from 0, y0 e^{rt}(1 + (s0/y0 − r)t)
+    with r = |s0/y0|). Every continuation matches the value and the slope at the end (C¹); a
     continuation whose matched parameters are not admissible falls back to the constant end value.
     """
 
@@ -750,6 +752,11 @@ class _Curve:
             return y0 + s0 * t, np.full_like(t, s0)
         if kind == "zero":
             return np.zeros_like(t), np.zeros_like(t)
+        if kind == "gauss" and y0 > 0:  # y0 exp(r t − t²/(2 w²)), r = y0'/y0: Gaussian-tail decay (t > 0)
+            rate, width = s0 / y0, policy[1]
+            if rate <= 0:
+                v = y0 * np.exp(rate * t - 0.5 * (t / width) ** 2)
+                return v, (rate - t / width**2) * v
         if kind == "exp" and y0 > 0:
             rate = s0 / y0  # decay: rate < 0 above the table (t > 0)
             if rate * t.mean() < 0:
@@ -770,6 +777,11 @@ class _Curve:
                 if rate > 0:
                     e = np.exp(rate * t)
                     return limit - gap * e, -gap * rate * e
+                if limit == 0.0:  # slope away from 0: y0 e^{rt}(1 + (s0/y0 − r)t), r = |s0/y0|, still → 0 (t < 0)
+                    r = abs(s0 / y0)
+                    c = s0 / y0 - r
+                    e = np.exp(r * t)
+                    return y0 * e * (1 + c * t), y0 * e * (r * (1 + c * t) + c)
         return np.full_like(t, y0), np.zeros_like(t)
 
     def __call__(self, d, derivative=False):
@@ -788,6 +800,50 @@ class _Curve:
         return out.reshape(d.shape) if d.ndim else float(out[0])
 
 
+class _ShiftedAbove:
+    """Open-gap moment ⟨max(g, h_b)^k·1[g > 0]⟩ as a C¹ function of d: the table's curve up to d_max; above it the
+    open gaps of the top row shifted by t = d − d_max (asperities unloading: every open gap grows with the flat),
+    Y(t) = (1 − cf(d)) Σ_q w_q max(Q_q + t, h_b)^k, times 1 + (a + c t) e^{−2t/σ} with a, c matching the value and
+    the slope at d_max (C¹; the correction of the quadrature dies out within σ). Y has the far-field law
+    ⟨(ḡ + t)^k⟩ of the shifted distribution."""
+
+    def __init__(self, inner: _Curve, table: "DryContactTable", k: int, h_b: float):
+        self.inner, self.table, self.k, self.h_b = inner, table, k, h_b
+        self.top = float(inner.x[-1])
+        self.quantiles = table.tab_quantiles[0]
+        _, self.weights = quantile_rule()
+        y0, s0 = inner.ends[1][1], inner.ends[1][2]
+        v0, d0 = self._base(np.array([self.top]))
+        v0, d0 = float(v0[0]), float(d0[0])
+        self.b = 2.0 / table.sigma
+        self.a = y0 / v0 - 1.0 if v0 > 0 else 0.0
+        self.c = (s0 - d0 * (1 + self.a)) / v0 + self.a * self.b if v0 > 0 else 0.0
+
+    def _base(self, d):
+        t = d - self.top
+        g = np.maximum(self.quantiles[None, :] + t[:, None], self.h_b)
+        moving = (self.quantiles[None, :] + t[:, None]) > self.h_b
+        mean = (g**self.k * self.weights).sum(axis=1)
+        dmean = (np.where(moving, self.k * g ** (self.k - 1.0), 0.0) * self.weights).sum(axis=1)
+        cf = np.asarray(self.table._contact_curve(d), dtype=float)
+        dcf = np.asarray(self.table._contact_curve(d, derivative=True), dtype=float)
+        return (1 - cf) * mean, (1 - cf) * dmean - dcf * mean
+
+    def __call__(self, d, derivative=False):
+        d = np.asarray(d, dtype=float)
+        flat = d.reshape(-1)
+        out = np.asarray(self.inner(flat, derivative), dtype=float).reshape(-1).copy()
+        above = flat > self.top
+        if above.any():
+            t = flat[above] - self.top
+            v, dv = self._base(flat[above])
+            e = np.exp(-self.b * t)
+            factor = 1 + (self.a + self.c * t) * e
+            dfactor = (self.c - self.b * (self.a + self.c * t)) * e
+            out[above] = dv * factor + v * dfactor if derivative else v * factor
+        return out.reshape(d.shape) if d.ndim else float(out[0])
+
+
 @dataclass(eq=False)
 class DryContactTable:
     """Dry-contact table of one roughness pair (one row per separation d), with C¹ interpolation in d.
@@ -801,9 +857,9 @@ class DryContactTable:
     ``meta`` provenance (Rq1, Rq2, σ, E', H, settings, profile hash, key, cost).
 
     Every method takes d [m] as a scalar or array and returns the same shape; methods named ``d_*`` are
-    derivatives with respect to d. Outside the table: above it (large d) p_a, the contact and plastic fractions
-    decay exponentially to 0 with the end slope (C¹), ⟨g⟩ continues linearly, the negative moments follow a
-    power law A(d − c)^k; below it (small d) p_a continues linearly with the end slope, the fractions tend to 1,
+    derivatives with respect to d. Outside the table: above it (large d) p_a and the contact fraction decay like a
+    Gaussian tail, y0·exp(s t − t²/2σ²) with the end slope s (C¹), the plastic fraction exponentially, ⟨g⟩
+    continues linearly, the open-gap moments follow the top row's open gaps shifted by d − d_max (:class:`_ShiftedAbove`); below it (small d) p_a continues linearly with the end slope, the fractions tend to 1,
     ⟨g⟩ → 0 and ⟨max(g, h_b)^k⟩ → h_b^k exponentially (C¹). Never NaN.
     """
 
@@ -852,11 +908,13 @@ class DryContactTable:
     # -- curves ---------------------------------------------------------------------------------------------------
     @functools.cached_property
     def _pressure_curve(self):
-        return _Curve(self._x, self._ascending(self.tab_pressure), log=True, top="exp", bottom="linear")
+        return _Curve(self._x, self._ascending(self.tab_pressure), log=True, top=("gauss", self.sigma),
+                      bottom="linear")
 
     @functools.cached_property
     def _contact_curve(self):
-        return _Curve(self._x, self._ascending(self.tab_contact_fraction), log=True, top="exp", bottom=("limit", 1.0))
+        return _Curve(self._x, self._ascending(self.tab_contact_fraction), log=True, top=("gauss", self.sigma),
+                      bottom=("limit", 1.0))
 
     @functools.cached_property
     def _plastic_curve(self):
@@ -917,28 +975,30 @@ class DryContactTable:
         """d/dd of :meth:`gap_moment` [m^(k−1)]."""
         return self._moment_curve(k, h_b, part)(d, derivative=True)
 
-    def _moment_curve(self, k: int, h_b: float, part: str) -> _Curve:
+    def _moment_curve(self, k: int, h_b: float, part: str):
+        """C¹ curve of the open-gap moment in d (log-Hermite for k < 0; above the table the power law A(d − c)^k
+        of a distribution that only shifts, below it → 0); for ``part="all"`` the contact atom
+        contact_fraction(d)·h_b^k is added (so the atom decays with the contact fraction above the table and the
+        moment tends to h_b^k below it)."""
         if part not in ("all", "open"):
             raise InputError("part", part, "'all' or 'open'")
-        key = (int(k), float(h_b), part)
+        key = (int(k), float(h_b))
         curve = self._cache.get(key)
         if curve is None:
-            column = self._open_moment_column(k, h_b)
-            limit = h_b**k
-            if part == "all":
-                column = column + self.tab_contact_fraction * h_b**k
-            else:
-                limit = 0.0  # every gap closes: no open part left
-                column = np.maximum(column, 1e-300)
-            column = self._ascending(column)
-            if k < 0:
-                curve = _Curve(self._x, column, log=True, top=("power", float(k)), bottom=("limit", limit))
-            else:
-                curve = _Curve(self._x, column, top=("power", float(k)), bottom=("limit", limit))
+            column = self._ascending(np.maximum(self._open_moment_column(k, h_b), 1e-300))
+            inner = _Curve(self._x, column, log=k < 0, top=("power", float(k)), bottom=("limit", 0.0))
+            curve = _ShiftedAbove(inner, self, k, float(h_b))
             if len(self._cache) > 64:
                 self._cache.clear()
             self._cache[key] = curve
-        return curve
+        if part == "open":
+            return curve
+        atom = float(h_b) ** k
+        contact = self._contact_curve
+
+        def full(d, derivative=False):
+            return curve(d, derivative) + atom * contact(d, derivative)
+        return full
 
     def _open_moment_column(self, k: int, h_b: float) -> np.ndarray:
         """⟨max(g, h_b)^k·1[g > 0]⟩ at every table row: cubic Hermite in (ln h, ln O) between floor-grid points

@@ -231,13 +231,15 @@ def test_interpolation_is_monotone_c1_and_never_nan(table):
 
 
 def test_continuations(table):
-    """Above the table p_a decays exponentially (constant ratio per σ), ⟨g⟩ continues with slope 1 (no contact:
+    """Above the table p_a decays like a Gaussian tail (ln p_a has the constant second difference −1 in units of σ),
+    ⟨g⟩ continues with slope 1 (no contact:
     ⟨g⟩ = d); below it p_a is linear (zero second difference), the contact fraction → 1, ⟨max(g, h_b)^-3⟩ →
     h_b^-3 and ⟨g⟩ → 0."""
     s = table.sigma
     lo, hi = table.d_range
     p = table.asperity_pressure(np.array([hi + s, hi + 2 * s, hi + 3 * s]))
-    assert p[1] / p[0] == pytest.approx(p[2] / p[1], rel=1e-10) and p[1] < p[0]
+    lp = np.log(p)
+    assert lp[0] - 2 * lp[1] + lp[2] == pytest.approx(-1.0, rel=1e-9) and p[1] < p[0]
     assert table.d_mean_gap(hi + 5 * s) == pytest.approx(1.0, abs=0.02)
     q = table.asperity_pressure(np.array([lo - 3 * s, lo - 2 * s, lo - s]))
     assert q[0] - 2 * q[1] + q[2] == pytest.approx(0.0, abs=1e-9 * q[0])
