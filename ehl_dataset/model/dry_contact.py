@@ -851,16 +851,18 @@ class DryContactTable:
     Stored rows (``tab_*`` arrays of length n, SI units, d descending as computed): ``tab_separation`` d [m],
     ``tab_pressure`` p_a [Pa] (mean asperity pressure), ``tab_contact_fraction``, ``tab_plastic_fraction``,
     ``tab_mean_gap`` ⟨g⟩ [m] (lubricant volume per area), ``tab_mean_plastic`` ⟨u_p⟩ [m], ``tab_pressure_se`` /
-    ``tab_contact_fraction_se`` sampling standard errors (spread of the independent windows' means / √windows), ``tab_cdf``
-    (n, n_h) = P(g ≤ h) on the floor grid ``floors`` [m], ``tab_moments`` (n, 4, n_h) = the open-gap moments
-    ⟨max(g, h)^k·1[g > 0]⟩ for k in :data:`MOMENT_ORDERS` (the full moment adds contact fraction × h^k), ``tab_quantiles`` (n, n_q) of the open gaps at the ``levels`` of :func:`quantile_rule`;
-    ``meta`` provenance (Rq1, Rq2, σ, E', H, settings, profile hash, key, cost).
+    ``tab_contact_fraction_se`` sampling standard errors (spread of the independent windows' means / √windows),
+    ``tab_cdf`` (n, n_h) = P(g ≤ h) on the floor grid ``floors`` [m], ``tab_moments`` (n, 4, n_h) = the open-gap
+    moments ⟨max(g, h)^k·1[g > 0]⟩ for k in :data:`MOMENT_ORDERS` (the full moment adds contact fraction × h^k),
+    ``tab_quantiles`` (n, n_q) of the open gaps at the ``levels`` of :func:`quantile_rule`; ``meta`` provenance
+    (Rq1, Rq2, σ, E', H, settings, profile hash, key, cost).
 
     Every method takes d [m] as a scalar or array and returns the same shape; methods named ``d_*`` are
     derivatives with respect to d. Outside the table: above it (large d) p_a and the contact fraction decay like a
     Gaussian tail, y0·exp(s t − t²/2σ²) with the end slope s (C¹), the plastic fraction exponentially, ⟨g⟩
-    continues linearly, the open-gap moments follow the top row's open gaps shifted by d − d_max (:class:`_ShiftedAbove`); below it (small d) p_a continues linearly with the end slope, the fractions tend to 1,
-    ⟨g⟩ → 0 and ⟨max(g, h_b)^k⟩ → h_b^k exponentially (C¹). Never NaN.
+    continues linearly, the open-gap moments follow the top row's open gaps shifted by d − d_max
+    (:class:`_ShiftedAbove`); below it (small d) p_a continues linearly with the end slope, the fractions tend to
+    1, ⟨g⟩ → 0 and ⟨max(g, h_b)^k⟩ → h_b^k exponentially (C¹). Never NaN.
     """
 
     meta: dict

@@ -320,15 +320,16 @@ def isotropic_flow_factors(table, d, transport="variance", blend=DEFAULT_BLEND) 
     dcond = (1 - weight) * dpsi + weight * dpc_c + dweight * (pc_c - psi)
     shear = (1 - weight) * wm_s + weight * pcs
     dshear = (1 - weight) * dwm_s + weight * dpcs + dweight * (pcs - wm_s)
-    phif, _ = pc_couette_stress_factor(H)
-    phifs, _ = pc_shear_stress_factor(H)
-    phifp, _ = pc_pressure_stress_factor(H)
-    scale = H / ratio_t  # PC factors are referred to the nominal h; FlowFactors refers them to h_T
+    h_stress = np.maximum(nominal_ratio_from_mean_gap(ratio_t)[0], 0.5)  # PC stress factors: valid H ≥ 0.5
+    phif, _ = pc_couette_stress_factor(h_stress)
+    phifs, _ = pc_shear_stress_factor(h_stress)
+    phifp, _ = pc_pressure_stress_factor(h_stress)
+    scale = h_stress / ratio_t  # PC factors are referred to the nominal h; FlowFactors refers them to h_T
     cf = np.asarray(table.contact_fraction(d), dtype=float)
     return FlowFactors(mean_gap=h_t, d_mean_gap=dh_t, conductance=sigma**3 * cond,
                        d_conductance=sigma**2 * dcond * dh_t, shear_flow=(2 * w - 1) * sigma * shear,
                        d_shear_flow=(2 * w - 1) * dshear * dh_t, phi_f=phif / scale,
-                       phi_fs=(2 * w - 1) * phifs / scale, phi_fp=phifp * scale**2 * np.ones_like(h_t),
+                       phi_fs=(2 * w - 1) * phifs / scale, phi_fp=phifp * scale,
                        lubricated_fraction=1.0 - cf, sigma=sigma, model="isotropic-pc-wm")
 
 

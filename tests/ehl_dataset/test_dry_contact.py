@@ -250,8 +250,8 @@ def test_continuations(table):
 
 def test_moments(table):
     """⟨max(g, h)⟩ → ⟨g⟩ for small h and ≥ h; the moments are ordered by the floor; the full moment is the open
-    moment + contact fraction·h^k at the rows; the 24-point quantile quadrature agrees with the exact moments (⟨g⟩ 0.5 %,
-    ⟨g⁻³⟩ floored at 10 nm 10 %) inside the table."""
+    moment + contact fraction·h^k at the rows; the 24-point quantile quadrature agrees with the exact moments
+    (⟨g⟩ 0.5 %, ⟨g⁻³⟩ floored at 10 nm 10 %) inside the table."""
     s = table.sigma
     d = np.linspace(*table.d_range, 9)[1:-1]
     assert np.allclose(table.gap_moment(d, 1, 1e-5 * s), table.mean_gap(d), rtol=1e-3, atol=1e-4 * s)

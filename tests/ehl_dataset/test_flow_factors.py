@@ -221,7 +221,8 @@ def test_transverse_contacts_block_the_pressure_flow(table):
 # ---------------------------------------------------------------------------------------------------------------
 def test_isotropic_closure(table):
     """Wilson–Marsault below H_T = 2.5, Patir–Cheng above 3.5, C¹ in between (derivatives agree with centred
-    differences across the blend edges), no pressure flow below the percolation threshold, φ_x → 1 far away."""
+    differences across the blend edges), no pressure flow below the percolation threshold, φ_x, φ_f, φ_fp → 1 far
+    away (Couette shear η Δu/h on both walls)."""
     s = table.sigma
     d = np.linspace(-1 * s, 8 * s, 181)
     f = ff.isotropic_flow_factors(table, d)
@@ -240,6 +241,10 @@ def test_isotropic_closure(table):
         assert np.allclose(fd, an, rtol=1e-4, atol=1e-5 * np.abs(an).max())
     far = ff.isotropic_flow_factors(table, 40 * s)
     assert float(far.phi_x) == pytest.approx(1.0, abs=1e-3)
+    assert float(far.phi_f) == pytest.approx(1.0, abs=1e-3) and float(far.phi_fp) == pytest.approx(1.0, abs=1e-3)
+    tau1, tau2 = far.shear_stresses(0.0, 0.01, 1.0, 3.0)  # plain Couette between smooth walls
+    assert float(tau1) == pytest.approx(0.01 * 2.0 / float(far.mean_gap), rel=1e-3)
+    assert float(tau2) == pytest.approx(-float(tau1), rel=1e-6)
     with pytest.raises(InputError):
         ff.isotropic_flow_factors(table, s, blend=(3.0, 2.0))
 
