@@ -30,6 +30,11 @@ def register(subparsers) -> None:
     solve.add_argument("--level", default="standard", help="accuracy level: fast, standard, reference")
     solve.add_argument("--effects", default="auto", choices=["auto", "full", "smooth"],
                        help="effect plan: auto (planner), full (everything), smooth (steady smooth solve)")
+    solve.add_argument("--model", default="auto", choices=["auto", "smooth", "deterministic"],
+                       help="contact model: auto (the effect plan decides), smooth (steady smooth surfaces), "
+                            "deterministic (the deterministic mixed reference solver; slow: minutes per case)")
+    solve.add_argument("--dx-um", type=float, default=None,
+                       help="grid spacing of the deterministic model [µm] (default: the level's grid rule)")
     solve.add_argument("--time-limit-s", type=float, default=None,
                        help="wall-time budget of a transient (rough) solve [s]; when spent the result is marked "
                             "not converged (default: none)")
@@ -58,7 +63,14 @@ def _solve(args) -> int:
         from ehl_dataset.model.roughness import load_profile
 
         roughness = load_profile(args.roughness_file, unit=args.roughness_unit)
-    result = solve_contact(case, lubricant, level.name, effects, roughness, args.time_limit_s)
+    deterministic = None
+    if args.dx_um is not None:
+        from ehl_dataset.solvers.deterministic import deterministic_options
+
+        check_finite("dx_um", args.dx_um)
+        deterministic = deterministic_options(level.name, dx_m=args.dx_um * 1e-6)
+    result = solve_contact(case, lubricant, level.name, effects, roughness, args.time_limit_s, model=args.model,
+                           deterministic=deterministic)
     payload = {
         "mu": result.mu,
         "mu_std": result.mu_std,
@@ -79,6 +91,10 @@ def _solve(args) -> int:
         "half_width_m": case.half_width,
         "lubricant": lubricant.name,
         "roughness_profile": result.extra.get("roughness_profile"),
+        "model": result.extra.get("model", "transient" if result.effects.get("roughness") else "smooth"),
+        "dx_m": result.extra.get("dx_m"),
+        "n_nodes": result.extra.get("n_nodes"),
+        "n_steps": result.extra.get("n_steps"),
     }
     from workflows.cli_output import emit
 
