@@ -17,7 +17,10 @@ density, μ_d·p where asperities touch and the time-averaged μ (Eq. 8). What m
 
 μ(t) = (1/W')[∫(h/2)∂p_f/∂x dx + ∫θ τ dx + sign(u_s) μ_d ∫p_c dx] with the Eyring shear τ = τ0 asinh(η u_s/(τ0 h))
 (h the local film, h_b in contact, θ the filled fraction) and is averaged over time with its autocorrelation-
-corrected standard error, the window extended until that error meets the target.
+corrected standard error, the window extended until that error meets the target. The reported film is the
+time-averaged film profile over the averaging window (``h_min`` its minimum, ``h_central`` its value at x = 0, the
+quantities a homogenised model predicts); the time-averaged minimum of the instantaneous film is
+``extra["h_min_local_m"]``.
 """
 
 from __future__ import annotations
@@ -41,9 +44,12 @@ from ..validation import InputError, check_range
 from .krylov import BandedPreconditioner, gmres
 from .levels import get_level
 from .result import ContactResult
-from .steady import ContactScales, dowson_higginson_lambda, solve_steady
+from .steady import ContactScales, dowson_higginson_lambda, moes_h_c, solve_steady
 from .time_average import time_mean
 
+MODEL_VERSION = "det-2026.11-1"
+"""Version of the deterministic model's numerics (recorded with its results; bump with any change that can alter a
+solved value). :data:`ehl_dataset.solver.SOLVER_VERSION` covers the whole solver."""
 BOUNDARY_FILM_M = 5e-9
 """Default film-breakdown (boundary-film) thickness h_b [m]: below it the surfaces are in solid contact through
 their adsorbed/reacted boundary films, which carry load and friction μ_d·p_c. Representative value: adsorbed
@@ -131,15 +137,23 @@ def asperity_radius(profile: RoughnessProfile, rq1: float, rq2: float) -> float:
     return 1.0 / math.sqrt(float(np.mean(curvature**2)))
 
 
-def grid_spacing(profile: RoughnessProfile, rq1: float, rq2: float, h_b: float, options: DeterministicOptions
-                 ) -> tuple[float, dict]:
-    """Grid spacing [m] that resolves the roughness (β/``points_per_beta``) and the micro-EHL length
-    ℓ = √(2 R_asp h_b) (ℓ/``points_per_ell``), and the numbers it came from."""
+INLET_RESOLUTION = 0.1
+"""Largest spacing relative to the inlet length scale a·H_c^(2/3) of the smooth EHL solution (H_c = h_c r/a²,
+Moes' central film): the heavy-load inlet and outlet zones shrink like H_c^(2/3) (the steady solver's rule,
+docs/ehl_solver.md)."""
+
+
+def grid_spacing(profile: RoughnessProfile, rq1: float, rq2: float, h_b: float, options: DeterministicOptions,
+                 inlet_length: float = math.inf) -> tuple[float, dict]:
+    """Grid spacing [m] that resolves the roughness (β/``points_per_beta``), the micro-EHL length
+    ℓ = √(2 R_asp h_b) (ℓ/``points_per_ell``) and the smooth inlet length scale ``inlet_length`` [m]
+    (:data:`INLET_RESOLUTION` of it), and the numbers it came from."""
     beta = profile.correlation_length
     r_asp = asperity_radius(profile, rq1, rq2)
     ell = math.sqrt(2.0 * r_asp * h_b)
-    dx = min(beta / options.points_per_beta, ell / options.points_per_ell)
-    return dx, {"beta_m": beta, "asperity_radius_m": r_asp, "micro_ehl_length_m": ell}
+    dx = min(beta / options.points_per_beta, ell / options.points_per_ell, INLET_RESOLUTION * inlet_length)
+    return dx, {"beta_m": beta, "asperity_radius_m": r_asp, "micro_ehl_length_m": ell,
+                "inlet_length_m": inlet_length}
 
 
 class MixedProblem:
@@ -356,7 +370,8 @@ def solve_deterministic(case: ContactCase, state: LubricantState, plan: Effects,
     if options.dx_m is not None:
         dx_m = options.dx_m
     else:
-        dx_m, rule = grid_spacing(profile, case.rq1, case.rq2, h_b_m, options)
+        inlet_length = a * moes_h_c(case, state, scales) ** (2.0 / 3.0)
+        dx_m, rule = grid_spacing(profile, case.rq1, case.rq2, h_b_m, options, inlet_length)
     x_start, x_end = options.domain
     n = int(round((x_end - x_start) * a / dx_m)) + 1
     if n > options.max_nodes:
@@ -374,7 +389,10 @@ def solve_deterministic(case: ContactCase, state: LubricantState, plan: Effects,
     problem.m_ref = float(np.interp(0.0, smooth.x, smooth.film)) / scales.film_scale
     gap0 = 0.5 * x**2
     steady = problem.storage(None, 0.0, None, None)
+    z_start = z
     z, ok, _, norm = problem.newton(z, gap0, steady, options.newton_tolerance, 60)
+    if not ok:  # pseudo-transient continuation: smooth time steps from the interpolated state until steady
+        z, ok, norm = _settle(problem, z_start, gap0, options)
     if not ok:
         return _failed(case, state, plan, level_name, start, clock,
                        f"steady smooth start on the uniform grid: residual {norm:.2e}", {"residual": norm})
@@ -395,7 +413,9 @@ def solve_deterministic(case: ContactCase, state: LubricantState, plan: Effects,
     n_max = max(int(math.ceil(options.max_passes * steps_per_pass)), n_min)
     check_every = max(int(0.25 * steps_per_pass), 1)
     time_scale = a / case.u_r
-    surfaces = plan_surfaces(case, x * a, n_max * d_t * time_scale, profile)
+    # laid out for max_passes whatever the spacing: runs at different spacings read the same roughness at the same
+    # times (paired comparisons, docs/deterministic_solver.md)
+    surfaces = plan_surfaces(case, x * a, options.max_passes * passes_dt * time_scale, profile)
 
     def gap_at(t):
         r1, r2 = surfaces.at(t * time_scale)
@@ -420,7 +440,10 @@ def solve_deterministic(case: ContactCase, state: LubricantState, plan: Effects,
         z, h, g, substeps = outcome
         k += 1
         t = k * d_t
-        record.add(problem, case, state, scales, z, h, g, substeps)
+        record.add(problem, case, state, scales, z, h, g, substeps, t * time_scale)
+        if k > first_average:
+            record.film_sum = record.last_film.copy() if record.film_sum is None else record.film_sum + record.last_film
+            record.film_count += 1
         if k >= n_min and (k - n_min) % check_every == 0:
             mu_mean = time_mean(record.mu[first_average:])
             tolerance = options.mu_sem_target * max(abs(mu_mean.mean), 0.01)
@@ -437,6 +460,25 @@ def solve_deterministic(case: ContactCase, state: LubricantState, plan: Effects,
                                  f"{target:.2g} after the cap of {options.max_passes:g} passes") + message
     return _result(case, state, plan, level_name, options, problem, scales, z, h, record, start, clock, converged,
                    message, rule, dx_m, first_average, mu_mean)
+
+
+def _settle(problem: MixedProblem, z, gap, options: DeterministicOptions, passes: float = 4.0):
+    """Time steps with smooth surfaces (Courant ``options.courant``) from ``z`` until the steady equations hold:
+    the physical transient as a globalisation of the steady solve. Returns (z, converged, steady residual)."""
+    steady = problem.storage(None, 0.0, None, None)
+    d_t = options.courant * problem.dx
+    h = problem.film(z, gap)
+    s = {"z": z, "m": problem.content(z, h), "m_prev": problem.content(z, h), "z_prev": None, "dt_prev": None}
+    n_steps = int(math.ceil(passes * (problem.x[-1] - problem.x[0]) / d_t))
+    norm = math.inf
+    for k in range(n_steps):
+        if _advance(problem, s, lambda t: gap, k * d_t, d_t, options) is None:
+            break
+        if k % 10 == 9:
+            z, ok, _, norm = problem.newton(s["z"], gap, steady, options.newton_tolerance, 10)
+            if ok:
+                return z, True, norm
+    return s["z"], False, norm
 
 
 def _advance(problem: MixedProblem, s: dict, gap_at, t: float, d_t: float, options: DeterministicOptions):
@@ -485,12 +527,16 @@ class _Record:
 
     def __init__(self):
         self.mu, self.asperity, self.share, self.yielded, self.h_min, self.h_c = [], [], [], [], [], []
+        self.t = []
         self.mass, self.load = [], []
+        self.film_sum = None
+        self.film_count = 0
         self.substep_steps = 0
         self.smooth = {}
 
-    def add(self, problem, case, state, scales, z, h, gap, substeps):
+    def add(self, problem, case, state, scales, z, h, gap, substeps, t_s):
         mu, asperity, share, yielded = _traction(problem, case, state, scales, z, h)
+        self.t.append(t_s)
         self.mu.append(mu)
         self.asperity.append(asperity)
         self.share.append(share)
@@ -500,6 +546,7 @@ class _Record:
         pf, _, pc, _ = problem.unpack(z)
         self.load.append(float(problem.weights @ (pf + pc)) / (0.5 * math.pi) - 1.0)
         self.mass.append(problem.mass_balance_error())
+        self.last_film = h * scales.film_scale
         self.substep_steps += substeps > 1
 
 
@@ -514,15 +561,18 @@ def _result(case, state, plan, level_name, options, problem, scales, z, h, recor
         sem = mu_mean.standard_error if mu_mean is not None else math.nan
         share = float(np.mean(record.share[window]))
         share_sem = time_mean(record.share[window]).standard_error if len(record.share[window]) > 1 else math.nan
-        h_min = float(np.mean(record.h_min[window]))
-        h_c = float(np.mean(record.h_c[window]))
+        mean_film = record.film_sum / record.film_count if record.film_count else h * scales.film_scale
+        h_min = float(np.min(mean_film))
+        h_c = float(np.interp(0.0, problem.x, mean_film))
+        local_min = float(np.mean(record.h_min[window]))
         mu_std = float(np.std(record.mu[window]))
         yielded = float(np.mean(record.yielded[window]))
     else:
         mu = record.smooth["mu"]
         sem = share = mu_std = yielded = 0.0
         share_sem = 0.0
-        h_min = float(np.min(h)) * scales.film_scale
+        mean_film = h * scales.film_scale
+        h_min = local_min = float(np.min(h)) * scales.film_scale
         h_c = float(np.interp(0.0, problem.x, h)) * scales.film_scale
     recorded = plan.to_dict()
     recorded["reasons"] = dict(recorded.get("reasons") or {})
@@ -534,14 +584,16 @@ def _result(case, state, plan, level_name, options, problem, scales, z, h, recor
         effects=recorded, mu_std=mu_std, mu_sem=float(sem), lambda_bar=lambda_bar, asperity_load_share=share,
         residuals={"max_load_error": float(np.max(np.abs(record.load))) if record.load else 0.0,
                    "max_mass_error": float(np.max(record.mass)) if record.mass else 0.0},
-        message=message, x=x_m, pressure=(pf + pc) * case.p_h, film=h * scales.film_scale,
-        extra={"model": "deterministic", "dx_m": float(problem.dx * scales.a), "n_nodes": int(problem.n),
+        message=message, x=x_m, pressure=(pf + pc) * case.p_h, film=mean_film,
+        extra={"model": "deterministic", "model_version": MODEL_VERSION, "dx_m": float(problem.dx * scales.a), "n_nodes": int(problem.n),
                "n_steps": n_steps, "average_from_step": int(first_average), "courant": options.courant,
                "boundary_film_m": float(problem.h_b * scales.film_scale),
                "yield_pressure_pa": float(problem.p_yield * case.p_h), "asperity_load_share_sem": float(share_sem),
                "yielded_load_share": yielded, "substep_steps": int(record.substep_steps),
                "smooth_mu": record.smooth.get("mu"), "smooth_h_min_m": record.smooth.get("h_min_m"),
-               "mu_series": np.asarray(record.mu), "face_mean": options.face_mean, **problem.cost, **rule},
+               "mu_series": np.asarray(record.mu), "share_series": np.asarray(record.share),
+               "t_series_s": np.asarray(record.t), "h_min_local_m": local_min,
+               "h_min_local_series_m": np.asarray(record.h_min), "face_mean": options.face_mean, **problem.cost, **rule},
     )
 
 

@@ -193,6 +193,11 @@ class ReynoldsProblem:
                                          self.squeeze, self.m_old, res, starts, ends)
         return res, dp, dh, (m, m_p, m_h), links
 
+    def cavitation_offset(self, h):
+        """(s, ∂s/∂H) per node when the cavitation condition applies to P − s(H) rather than to P (the homogenised
+        model, whose unknown is the total pressure and whose fluid pressure is P − p_a(H)); None here."""
+        return None
+
     def jacobian(self, dp, dh, links):
         """Full Jacobian (see :func:`~ehl_dataset.discretisation.reynolds.full_jacobian`) including the rerouted patch fluxes."""
         jac = full_jacobian(dp, dh, self.kmat, self.rows)
@@ -347,11 +352,13 @@ def newton_solve(problem: ReynoldsProblem, p0: np.ndarray, h00: float, *, homoto
         if iteration == 1 or not freeze_scaling:
             diag = np.abs(jac[np.arange(n - 2), np.arange(n - 2)])
             kappa = 1.0 / np.maximum(diag, 1e-12 * max(float(diag.max()), 1e-300))
-        phi, d_a, d_b = _complementarity(problem, p, res, kappa)
+        shift = problem.cavitation_offset(h)
+        p_cav = p if shift is None else p - shift[0]
+        phi, d_a, d_b = _complementarity(problem, p_cav, res, kappa)
         contact = c_gap = None
         if math.isfinite(problem.p_cap):
             phi, d_a, d_b, contact, c_gap = _capped(problem, p, h, res, kappa)
-        r_free, r_cav = _norms(p, res, m_ref, phi, kappa, contact, problem.smoothing,
+        r_free, r_cav = _norms(p_cav, res, m_ref, phi, kappa, contact, problem.smoothing,
                                 problem.scaled_norm)
         # the step test is waived when the equations hold 1000× below tolerance: a nearly singular Jacobian
         # (closed-film pockets in rough runs) can keep the step from settling although the residual vanishes
@@ -376,6 +383,10 @@ def newton_solve(problem: ReynoldsProblem, p0: np.ndarray, h00: float, *, homoto
             rows = np.nonzero(c_gap)[0]
             system[rows, :-1] += c_gap[rows, None] * problem.kmat[rows + 1, 1:-1]
             system[rows, -1] += c_gap[rows]
+        if shift is not None:  # a = P_i − s(H_i): dH_i = K_i· dP + dH0
+            coupling = d_a * shift[1][1:-1]
+            system[:, :-1] -= coupling[:, None] * problem.kmat[1:-1, 1:-1]
+            system[:, -1] -= coupling
         system = np.vstack([system, load_row[None, :]])
         rhs = -np.concatenate([phi, [load_err]])
         try:
@@ -402,7 +413,9 @@ def newton_solve(problem: ReynoldsProblem, p0: np.ndarray, h00: float, *, homoto
                     accepted = True
                     break
                 if np.all(np.isfinite(res_new)):
-                    phi_new = _complementarity(problem, p_new, res_new, kappa)[0]
+                    shift_new = problem.cavitation_offset(h_new)
+                    phi_new = _complementarity(problem, p_new if shift_new is None else p_new - shift_new[0],
+                                               res_new, kappa)[0]
                     if math.isfinite(problem.p_cap):
                         phi_new = _capped(problem, p_new, h_new, res_new, kappa)[0]
                     merit1 = float(phi_new @ phi_new) + problem.load(p_new) ** 2
@@ -420,10 +433,12 @@ def newton_solve(problem: ReynoldsProblem, p0: np.ndarray, h00: float, *, homoto
                       "phi_max_at=%.4f", iteration, r_free, r_cav, merit0, omega, step_norm, load_err, problem.x[j],
                       p[j], p_new[j], h[j], problem.x[1 + int(np.argmax(np.abs(phi)))])
         p, h0, h, res, dp, dh, mm, links = p_new, h0_new, h_new, res_new, dp_new, dh_new, m_new, links_new
-    phi = _complementarity(problem, p, res, kappa)[0]
+    shift = problem.cavitation_offset(h)
+    p_cav = p if shift is None else p - shift[0]
+    phi = _complementarity(problem, p_cav, res, kappa)[0]
     contact = None
     if math.isfinite(problem.p_cap):
         phi, _, _, contact, _ = _capped(problem, p, h, res, kappa)
-    r_free, r_cav = _norms(p, res, m_ref, phi, kappa, contact, problem.smoothing,
+    r_free, r_cav = _norms(p_cav, res, m_ref, phi, kappa, contact, problem.smoothing,
                                 problem.scaled_norm)
     return NewtonOutcome(p, h0, h, False, max_iterations, r_free, problem.load(p), step_norm, r_cav, message)

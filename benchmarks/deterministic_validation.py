@@ -1,0 +1,221 @@
+"""The validation set of the deterministic mixed-EHL solver (issue 14): rough cases across the paper's factorial, each
+solved at three grid spacings (β/8, β/16, β/32), the grid-converged μ and asperity share with their uncertainty.
+
+Estimator (multilevel, Giles, Oper. Res. 56 (2008) 607): the three runs of a case read the same roughness at the same
+times, so their differences are paired and vary little. The β/16 run carries the long averaging window (standard
+error of μ ≤ 1.5 %); the β/8 and β/32 runs last only the start-up and a short window, and enter through their mean
+difference to β/16 over that window:
+
+    μ̂_16 = ⟨μ_16⟩_long,   μ̂_32 = μ̂_16 + ⟨μ_32 − μ_16⟩_short,   μ̂_8 = μ̂_16 + ⟨μ_8 − μ_16⟩_short,
+
+each mean with its autocorrelation-corrected standard error (ehl_dataset.solvers.time_average). Richardson
+extrapolation (spacing ratio 2) gives the observed order p = log2((μ̂_8 − μ̂_16)/(μ̂_16 − μ̂_32)) and
+μ_∞ = μ̂_32 + (μ̂_32 − μ̂_16)/(2^p − 1); its uncertainty combines the standard error and Roache's grid convergence
+index with safety factor 1.25 (or |μ̂_32 − μ̂_16| when no order can be observed).
+
+    python benchmarks/deterministic_validation.py --case A          # run (resumable) one case, all spacings
+    python benchmarks/deterministic_validation.py --all             # all cases, cheapest first
+    python benchmarks/deterministic_validation.py --summarise       # data/reference + docs table from the runs
+
+Runs are cached as benchmarks/results/deterministic/<case>_beta<n>.json (the series and the run's record).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+from ehl_dataset.model.contact import ContactCase
+from ehl_dataset.model.effects import Effects
+from ehl_dataset.model.lubricant import load_lubricant
+from ehl_dataset.model.roughness import baseline_profile
+from ehl_dataset.solvers.deterministic import MODEL_VERSION, DeterministicOptions, solve_deterministic
+from ehl_dataset.solvers.steady import dowson_higginson_lambda
+from ehl_dataset.solvers.time_average import time_mean
+
+ROOT = Path(__file__).resolve().parents[1]
+RUNS = ROOT / "benchmarks" / "results" / "deterministic"
+REFERENCE = ROOT / "data" / "reference" / "deterministic_validation.json"
+REPORT = ROOT / "docs" / "deterministic_validation.md"
+
+CASES = {
+    # name: (p_h GPa, r_eq mm, u_r m/s, SR, T °C, Rq1 µm, Rq2 µm)
+    "A": (0.5, 5, 5, 0.3, 90, 0.3, 0.3),
+    "B": (0.5, 5, 1, 0.05, 100, 0.5, 0.5),
+    "C": (0.5, 5, 2, 0.7, 25, 1.0, 1.0),
+    "D": (1.0, 5, 2, 0.5, 100, 0.5, 0.5),
+    "E": (1.0, 5, 10, 0.1, 25, 0.3, 0.3),
+    "F": (1.0, 5, 20, 0.7, 100, 0.05, 0.05),
+    "G": (0.5, 10, 10, 0.2, 100, 0.4, 0.4),
+    "H": (1.5, 5, 1, 1.0, 100, 0.4, 0.4),
+    "I": (1.5, 5, 5, 0.2, 75, 0.2, 0.5),
+    "J": (1.0, 10, 2, 0.4, 50, 0.3, 0.3),
+    "K": (2.0, 5, 15, 0.05, 25, 0.7, 0.7),
+    "L": (2.5, 5, 5, 0.1, 100, 0.4, 0.4),
+}
+POINTS_PER_BETA = (8, 16, 32)
+LONG = 16
+MAX_PASSES = 40.0
+SHORT_AVERAGE_PASSES = 1.5
+LONG_TARGET = 0.015
+SAFETY = 1.25
+LUBRICANT = "atf"
+
+
+def options_for(n: int) -> DeterministicOptions:
+    beta = baseline_profile().correlation_length
+    if n == LONG:
+        return DeterministicOptions(dx_m=beta / n, max_passes=MAX_PASSES, mu_sem_target=LONG_TARGET)
+    # short runs: stop at the minimum window (a target of 100 % is met at once)
+    return DeterministicOptions(dx_m=beta / n, max_passes=MAX_PASSES, mu_sem_target=1.0,
+                                min_average_passes=SHORT_AVERAGE_PASSES)
+
+
+def run_path(name: str, n: int) -> Path:
+    return RUNS / f"{name}_beta{n}.json"
+
+
+def run_case(name: str) -> None:
+    lubricant = load_lubricant(LUBRICANT)
+    case = ContactCase.from_engineering(*CASES[name])
+    state = lubricant.state(case.temperature)
+    RUNS.mkdir(parents=True, exist_ok=True)
+    for n in (LONG, 8, 32):
+        path = run_path(name, n)
+        if path.exists() and json.loads(path.read_text()).get("solver_version") == MODEL_VERSION:
+            continue
+        start = time.time()
+        result = solve_deterministic(case, state, Effects.full(), options_for(n))
+        extra = {k: (v.tolist() if isinstance(v, np.ndarray) else v) for k, v in result.extra.items()}
+        record = {"case": name, "inputs": CASES[name], "points_per_beta": n, "solver_version": MODEL_VERSION,
+                  "mu": result.mu, "mu_sem": result.mu_sem, "asperity_load_share": result.asperity_load_share,
+                  "h_min_m": result.h_min, "h_central_m": result.h_central, "converged": result.converged,
+                  "message": result.message, "wall_time_s": result.wall_time, "lambda_bar": result.lambda_bar,
+                  "residuals": result.residuals, "extra": extra}
+        path.write_text(json.dumps(record))
+        print(f"{name} beta/{n}: mu {result.mu:.5f} +- {result.mu_sem:.5f} share {result.asperity_load_share:.4f} "
+              f"{result.message} {time.time() - start:.0f} s", flush=True)
+
+
+def _on_grid(t_fine, y_fine, t_grid):
+    """Mean of a finer (or equal) series over each interval (t_grid[k-1], t_grid[k]]."""
+    edges = np.concatenate([[t_grid[0] - (t_grid[1] - t_grid[0])], t_grid])
+    index = np.searchsorted(edges, t_fine, side="left") - 1
+    out = np.full(t_grid.size, np.nan)
+    for k in range(t_grid.size):
+        sel = index == k
+        if sel.any():
+            out[k] = float(np.mean(y_fine[sel]))
+    return out
+
+
+def paired_difference(run: dict, base: dict, key: str) -> tuple[float, float]:
+    """Mean and standard error of (run − base) of series ``key`` over the run's averaging window, both series on
+    the coarser of the two time grids."""
+    t_r, y_r = np.asarray(run["extra"]["t_series_s"]), np.asarray(run["extra"][key])
+    t_b, y_b = np.asarray(base["extra"]["t_series_s"]), np.asarray(base["extra"][key])
+    t_start = t_r[run["extra"]["average_from_step"]]
+    t_end = t_r[-1]
+    coarse_r = (t_r[1] - t_r[0]) >= (t_b[1] - t_b[0])
+    if coarse_r:
+        grid = t_r[(t_r > t_start) & (t_r <= t_end)]
+        a, b = y_r[(t_r > t_start) & (t_r <= t_end)], _on_grid(t_b, y_b, grid)
+    else:
+        grid = t_b[(t_b > t_start) & (t_b <= t_end)]
+        a, b = _on_grid(t_r, y_r, grid), y_b[(t_b > t_start) & (t_b <= t_end)]
+    keep = np.isfinite(a) & np.isfinite(b)
+    diff = time_mean(a[keep] - b[keep])
+    return diff.mean, diff.standard_error
+
+
+def summarise_case(name: str) -> dict | None:
+    runs = {n: json.loads(run_path(name, n).read_text()) for n in POINTS_PER_BETA if run_path(name, n).exists()}
+    if set(runs) != set(POINTS_PER_BETA) or not all(r["converged"] for r in runs.values()):
+        return None
+    base = runs[LONG]
+    out = {"case": name, "inputs": dict(zip(("p_h_gpa", "r_eq_mm", "u_r_m_s", "sr", "temp_c", "rq1_um", "rq2_um"),
+                                            CASES[name])),
+           "lambda_bar": base["lambda_bar"], "solver_version": base["solver_version"],
+           "half_width_m": ContactCase.from_engineering(*CASES[name]).half_width,
+           "wall_time_s": {f"beta/{n}": runs[n]["wall_time_s"] for n in POINTS_PER_BETA},
+           "n_nodes": {f"beta/{n}": runs[n]["extra"]["n_nodes"] for n in POINTS_PER_BETA},
+           "smooth_mu": base["extra"]["smooth_mu"]}
+    for key, series in (("mu", "mu_series"), ("asperity_load_share", "share_series")):
+        long_mean = time_mean(np.asarray(base["extra"][series])[base["extra"]["average_from_step"]:])
+        values, errors = {LONG: long_mean.mean}, {LONG: long_mean.standard_error}
+        for n in (8, 32):
+            d, se = paired_difference(runs[n], base, series)
+            values[n] = long_mean.mean + d
+            errors[n] = math.hypot(long_mean.standard_error, se)
+        e_coarse = values[8] - values[16]
+        e_fine = values[16] - values[32]
+        order = math.nan
+        if e_coarse * e_fine > 0 and abs(e_coarse) > abs(e_fine):
+            order = math.log2(e_coarse / e_fine)
+        if math.isfinite(order) and order > 0.5:
+            correction = (values[32] - values[16]) / (2.0**order - 1.0)
+            extrapolated = values[32] + correction
+            grid_uncertainty = SAFETY * abs(correction)
+        else:
+            extrapolated = values[32]
+            grid_uncertainty = abs(values[32] - values[16])
+        out[key] = {f"beta/{n}": values[n] for n in POINTS_PER_BETA}
+        out[key + "_sem"] = {f"beta/{n}": errors[n] for n in POINTS_PER_BETA}
+        out[key + "_observed_order"] = order
+        out[key + "_extrapolated"] = extrapolated
+        out[key + "_uncertainty"] = math.hypot(grid_uncertainty, errors[32])
+        out[key + "_fine_step"] = values[32] - values[16]
+    out["mu_fine_step_relative"] = out["mu_fine_step"] / out["mu"]["beta/32"]
+    return out
+
+
+def summarise() -> None:
+    rows = [r for r in (summarise_case(name) for name in CASES) if r is not None]
+    REFERENCE.parent.mkdir(parents=True, exist_ok=True)
+    REFERENCE.write_text(json.dumps({"description": "Grid-converged mu of the deterministic mixed-EHL solver "
+                                                    "(benchmarks/deterministic_validation.py)",
+                                     "lubricant": LUBRICANT, "cases": rows}, indent=1, default=float) + "\n")
+    lines = ["# Validation set of the deterministic solver", "",
+             f"Made by `python benchmarks/deterministic_validation.py --summarise` (solver version "
+             f"{rows[0]['solver_version'] if rows else '-'}); the data: `data/reference/deterministic_validation.json`.",
+             "", "| case | p_h GPa | r_eq mm | u_r m/s | SR | T °C | Rq µm | λ̄ | a/β | μ β/8 | μ β/16 | μ β/32 | "
+             "fine step | order | μ extrapolated | ± | share β/32 | share fine step | smooth μ |",
+             "|---|" + "---|" * 19]
+    beta = baseline_profile().correlation_length
+    for r in rows:
+        i = r["inputs"]
+        lines.append(
+            f"| {r['case']} | {i['p_h_gpa']} | {i['r_eq_mm']} | {i['u_r_m_s']} | {i['sr']} | {i['temp_c']} | "
+            f"{i['rq1_um']}/{i['rq2_um']} | {r['lambda_bar']:.3f} | {r['half_width_m'] / beta:.1f} | "
+            f"{r['mu']['beta/8']:.4f} | {r['mu']['beta/16']:.4f} | {r['mu']['beta/32']:.4f} | "
+            f"{100 * r['mu_fine_step_relative']:+.1f} % | {r['mu_observed_order']:.1f} | "
+            f"{r['mu_extrapolated']:.4f} | {r['mu_uncertainty']:.4f} | {r['asperity_load_share']['beta/32']:.3f} | "
+            f"{r['asperity_load_share_fine_step']:+.3f} | {r['smooth_mu']:.4f} |")
+    REPORT.write_text("\n".join(lines) + "\n")
+    print("\n".join(lines))
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--case", action="append", default=[], help="case name (repeatable)")
+    parser.add_argument("--all", action="store_true", help="every case, cheapest first")
+    parser.add_argument("--summarise", action="store_true", help="write the reference data and the docs table")
+    args = parser.parse_args(argv)
+    names = list(CASES) if args.all else args.case
+    if args.all:
+        names.sort(key=lambda k: CASES[k][0] * CASES[k][1])
+    for name in names:
+        run_case(name)
+    if args.summarise:
+        summarise()
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
