@@ -1,50 +1,126 @@
-"""The ``gearloss`` command line: one console script with sub-command groups.
+"""The gearloss command line: one console script with sub-command groups.
 
 Each group lives in its own module (``cli_contact``, ``cli_dataset``, ``cli_surrogate``, ``cli_gear``, ...) that
 exposes ``register(subparsers)``; heavy imports happen inside the handlers so ``gearloss --help`` stays fast.
-Output goes through :func:`workflows.cli_output.emit`.
-Bad input raises :class:`ehl_dataset.validation.InputError`, which is printed as one line with exit status 2.
+Output goes through :func:`workflows.cli_output.emit`; every error goes through :func:`workflows.cli_output.fail`
+(one line on stderr naming the option as typed, and with ``--json`` a JSON object on stdout), with the exit codes
+of :mod:`workflows.exit_codes`.
 """
 
 from __future__ import annotations
 
 import argparse
+import shlex
+import signal
 import sys
+from contextlib import contextmanager
 
 from ehl_dataset.validation import InputError, SolverError
 
-from . import cli_accuracy, cli_contact, cli_dataset, cli_gear, cli_pipeline, cli_surrogate
+from . import (cli_accuracy, cli_contact, cli_dataset, cli_gear, cli_pipeline, cli_report, cli_surrogate,
+               exit_codes)
+from .cli_help import GearlossParser, UsageError
 
-GROUP_MODULES = (cli_contact, cli_dataset, cli_surrogate, cli_gear, cli_pipeline, cli_accuracy)
+GROUP_MODULES = (cli_contact, cli_dataset, cli_surrogate, cli_gear, cli_pipeline, cli_report, cli_accuracy)
 """The command groups, in the order of ``gearloss --help``; each module adds its sub-commands (``register``)."""
+
+DESCRIPTION = """\
+gearloss: mixed-EHL line contacts -> a fitted friction surrogate -> helical gear power loss and efficiency
+(after Li & Kahraman 2009). Every command accepts --json (one JSON object, SI units); '<command> --help' lists
+its options with their defaults."""
+
+
+def version_text() -> str:
+    """``gearloss --version``: the package version and the EHL solver version (the one datasets record)."""
+    from ehl_dataset.dataset.store import package_version
+    from ehl_dataset.solver import MODELS, SOLVER_VERSION
+
+    return f"gearloss {package_version()} (EHL solver {SOLVER_VERSION}; contact models {', '.join(MODELS)})"
+
+
+class _VersionAction(argparse.Action):
+    def __init__(self, option_strings, dest=argparse.SUPPRESS, default=argparse.SUPPRESS, help=None):
+        super().__init__(option_strings=option_strings, dest=dest, default=default, nargs=0, help=help)
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        print(version_text())
+        parser.exit(0)
 
 
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(prog="gearloss", description=__doc__.splitlines()[0])
+    parser = GearlossParser(prog="gearloss", description=DESCRIPTION,
+                            epilog="exit codes (every command):\n" + exit_codes.table_text())
+    parser.add_argument("--version", action=_VersionAction,
+                        help="print the package and EHL solver versions and exit")
     subparsers = parser.add_subparsers(dest="group", metavar="GROUP")
     for module in GROUP_MODULES:
         module.register(subparsers)
     return parser
 
 
+class _Terminated(Exception):
+    """SIGTERM outside a runner (which handles it itself and stops cleanly)."""
+
+
+@contextmanager
+def _sigterm_raises():
+    """SIGTERM raises :class:`_Terminated` in the main thread (exit 143 with a message, not a silent death)."""
+
+    def handle(signum, frame):
+        raise _Terminated()
+
+    try:
+        previous = signal.signal(signal.SIGTERM, handle)
+    except ValueError:  # not the main thread (e.g. a test runner's worker thread)
+        yield
+        return
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+
+
 def main(argv: list[str] | None = None) -> int:
+    from .cli_output import fail
+
+    argv = list(sys.argv[1:] if argv is None else argv)
+    as_json = "--json" in argv
     parser = build_parser()
-    args = parser.parse_args(argv)
+    try:
+        args = parser.parse_args(argv)
+    except UsageError as err:
+        return fail(exit_codes.BAD_INPUT, str(err), as_json, prog=err.prog, option=err.option, value=err.value,
+                    accepted=err.accepted)
+    except SystemExit as err:  # --help, --version
+        return int(err.code or 0)
     handler = getattr(args, "handler", None)
     if handler is None:
         parser.print_help()
-        return 2
+        return exit_codes.BAD_INPUT
+    args.argv = argv
+    args.command_line = "gearloss " + shlex.join(argv)
     try:
-        return int(handler(args) or 0)
+        with _sigterm_raises():
+            return int(handler(args) or 0)
     except InputError as err:
-        print(f"gearloss: error: {err}", file=sys.stderr)
-        return 2
+        from .cli_errors import translate
+
+        err = translate(err, args)
+        return fail(exit_codes.BAD_INPUT, str(err), as_json, parameter=err.parameter, value=err.value,
+                    accepted=err.accepted)
     except SolverError as err:
-        print(f"gearloss: solver error: {err}", file=sys.stderr)
-        return 3
+        return fail(exit_codes.STAGE_FAILED, f"solver error: {err}", as_json)
+    except exit_codes.Interrupted as err:
+        return fail(err.exit_code, str(err), as_json, resume_command=err.resume_command)
+    except KeyboardInterrupt:
+        return fail(exit_codes.SIGINT, f"interrupted by SIGINT: {args.command_line} stopped", as_json)
+    except _Terminated:
+        return fail(exit_codes.SIGTERM, f"terminated by SIGTERM: {args.command_line} stopped", as_json)
     except FileNotFoundError as err:
-        print(f"gearloss: error: file not found: {err.filename or err}", file=sys.stderr)
-        return 2
+        return fail(exit_codes.BAD_INPUT, f"file not found: {err.filename or err}", as_json, value=err.filename)
+    except (IsADirectoryError, NotADirectoryError, PermissionError) as err:
+        return fail(exit_codes.BAD_INPUT, f"cannot use {err.filename or err}: {err.strerror or err}", as_json,
+                    value=err.filename)
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -9,6 +9,8 @@ from __future__ import annotations
 import argparse
 import os
 
+from .cli_help import model_help
+
 _EXIT_SIGNAL = {"SIGINT": 130, "SIGTERM": 143}
 
 
@@ -23,6 +25,7 @@ def register(subparsers) -> None:
     run.add_argument("--lubricant", help="lubricant NAME or FILE (default: the factorial's)")
     run.add_argument("--level", help="solver accuracy level (default: the factorial's)")
     run.add_argument("--effects", choices=("auto", "full"), help="effect plan (default: the factorial's)")
+    run.add_argument("--model", help=model_help("default: the factorial's, auto for the shipped ones except smoke"))
     run.add_argument("--overwrite", action="store_true", help="replace an existing file instead of continuing it")
     _execution_options(run)
     run.set_defaults(handler=_run)
@@ -33,6 +36,8 @@ def register(subparsers) -> None:
     resume.add_argument("--lubricant", help="refuse unless the file records this lubricant")
     resume.add_argument("--level", help="refuse unless the file records this level")
     resume.add_argument("--effects", choices=("auto", "full"), help="refuse unless the file records this plan")
+    resume.add_argument("--model", help=model_help("refuse unless the file records this model; a file that records "
+                                                   "none ran auto"))
     resume.add_argument("--retry-not-converged", action="store_true",
                         help="also recompute the rows stored not converged (e.g. stopped by an earlier "
                              "--time-limit-s), overwriting their earlier result")
@@ -98,8 +103,9 @@ def _run(args) -> int:
     from ehl_dataset.dataset.runner import DEFAULT_SOLVER, run_factorial
 
     summary = run_factorial(args.out, args.factorial, lubricant=args.lubricant, level=args.level,
-                            effects=args.effects, workers=args.workers, scheduler=args.scheduler,
-                            solver=args.solver or DEFAULT_SOLVER, overwrite=args.overwrite, **_options(args))
+                            effects=args.effects, model=args.model, workers=args.workers,
+                            scheduler=args.scheduler, solver=args.solver or DEFAULT_SOLVER,
+                            overwrite=args.overwrite, **_options(args))
     return _finish(summary, args.json)
 
 
@@ -108,7 +114,8 @@ def _resume(args) -> int:
 
     summary = resume_run(args.file, workers=args.workers, scheduler=args.scheduler, solver=args.solver,
                          factorial=args.factorial, lubricant=args.lubricant, level=args.level,
-                         effects=args.effects, retry_not_converged=args.retry_not_converged, **_options(args))
+                         effects=args.effects, model=args.model, retry_not_converged=args.retry_not_converged,
+                         **_options(args))
     return _finish(summary, args.json)
 
 
@@ -131,7 +138,7 @@ def _human_info(p: dict) -> str:
         f"git {p['git_revision'] or 'unknown'})",
         f"factorial  {fac.get('name')}: {p['n_points']} points = {shape}",
         f"solver     {sol.get('function')} version {sol.get('version')}, level {sol.get('level')}, "
-        f"effects {sol.get('effects')}",
+        f"effects {sol.get('effects')}, model {sol.get('model', 'auto')}",
         f"lubricant  {p['lubricant_name']}",
         f"status     ok {counts['ok']}, failed {counts['failed']}, pending {counts['pending']}; "
         f"not converged {p['non_converged']}; most computations of one point {p['max_attempts']}",

@@ -22,3 +22,26 @@ def _json_default(value: Any):
     if isinstance(value, np.ndarray):
         return value.tolist()
     raise TypeError(f"not JSON serialisable: {type(value).__name__}")
+
+
+def fail(code: int, message: str, as_json: bool, *, prog: str = "gearloss", **fields) -> int:
+    """Report an error: one line on stderr (``PROG: error: MESSAGE`` for bad input, ``PROG: MESSAGE`` otherwise)
+    and, with ``--json``, the JSON object of :func:`workflows.exit_codes.error_payload` on stdout. Returns ``code``
+    (the exit status, :mod:`workflows.exit_codes`)."""
+    import sys
+
+    from .exit_codes import BAD_INPUT, error_payload
+
+    print(f"{prog}: {'error: ' if code == BAD_INPUT else ''}{message}", file=sys.stderr, flush=True)
+    if as_json:
+        print(json.dumps(error_payload(code, message, **fields), default=_safe_default), flush=True)
+    return code
+
+
+def _safe_default(value: Any):
+    if hasattr(value, "as_json"):
+        return value.as_json()
+    try:
+        return _json_default(value)
+    except TypeError:
+        return repr(value)

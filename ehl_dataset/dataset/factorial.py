@@ -6,6 +6,7 @@ A factorial is data (``data/factorials/*.toml``, docs/dataset_format.md), writte
     lubricant = "atf"            # default lubricant (NAME or FILE), overridable at run time
     level = "standard"           # default accuracy level of the solver
     effects = "auto"             # "auto" (the planner decides) or "full"
+    model = "auto"               # default contact model, one of ehl_dataset.solver.MODELS (optional)
 
     [axes]
     p_h_gpa = [0.5, 1.0]         # maximum Hertz pressure [GPa]
@@ -57,7 +58,7 @@ _SCALAR_AXES: dict[str, tuple[float, float, str, bool]] = {
 }
 _ROUGHNESS_AXIS = "roughness_um"
 AXIS_KEYS: tuple[str, ...] = (*_SCALAR_AXES, _ROUGHNESS_AXIS)
-_TOP_KEYS = {"name", "description", "source", "lubricant", "level", "effects", "axes"}
+_TOP_KEYS = {"name", "description", "source", "lubricant", "level", "effects", "model", "axes"}
 EFFECTS_MODES = ("auto", "full")
 
 
@@ -80,6 +81,7 @@ class Factorial:
     lubricant: str = "atf"
     level: str = "standard"
     effects: str = "auto"
+    model: str = "auto"
     description: str = ""
     source: str = ""
     origin: str = field(default="<dict>", compare=False)
@@ -127,6 +129,7 @@ class Factorial:
             "lubricant": self.lubricant,
             "level": self.level,
             "effects": self.effects,
+            "model": self.model,
             "axes": {
                 "p_h_gpa": list(self.p_h_gpa),
                 "r_eq_mm": list(self.r_eq_mm),
@@ -178,7 +181,7 @@ def _roughness_pairs(axes: dict, where: str) -> tuple[tuple[float, float], ...]:
 
 def _string(data: dict, key: str, default: str, where: str) -> str:
     value = data.get(key, default)
-    if not isinstance(value, str) or (key in ("name", "lubricant", "level") and not value.strip()):
+    if not isinstance(value, str) or (key in ("name", "lubricant", "level", "model") and not value.strip()):
         raise InputError(f"{where}{key}", value, "a non-empty string")
     return value
 
@@ -213,6 +216,7 @@ def factorial_from_dict(data: dict[str, Any], origin: str = "<dict>") -> Factori
         lubricant=_string(data, "lubricant", "atf", ""),
         level=_string(data, "level", "standard", ""),
         effects=effects,
+        model=_string(data, "model", "auto", ""),
         description=_string(data, "description", "", ""),
         source=_string(data, "source", "", ""),
         origin=origin,

@@ -58,9 +58,11 @@ from ..solvers.planner import plan_effects
 from ..validation import InputError, check_time_limit as check_positive_seconds
 from .executors import make_executor
 from .factorial import EFFECTS_MODES, Factorial, canonical_json, load_factorial
-from .store import FAILED, OK, DatasetStore, package_version
+from .store import FAILED, OK, SOLVER_DEFAULTS, DatasetStore, package_version
 
 DEFAULT_SOLVER = "ehl_dataset.solver:solve_contact"
+DEFAULT_MODEL = SOLVER_DEFAULTS["model"]
+"""The contact model of a file that records none (files written before the model entered the configuration)."""
 _FLOAT_CHECKED = ("mu", "mu_std", "h_min", "h_central", "asperity_load_share", "p_max")
 
 
@@ -71,8 +73,10 @@ _FLOAT_CHECKED = ("mu", "mu_std", "h_min", "h_central", "asperity_load_share", "
 class PointTask:
     """Everything a worker needs for one point (picklable): row ``index``, SI ``point`` (p_h, r_eq, u_r, sr,
     temperature, rq1, rq2), the lubricant as JSON, level, effects, the solver (``"module:function"`` or a
-    top-level function) and the wall-time budget of the solve ``time_limit_s`` [s] (None: no limit; passed to the
-    solver only when set, so solvers without that keyword work without a budget)."""
+    top-level function), the wall-time budget of the solve ``time_limit_s`` [s] (None: no limit; passed to the
+    solver only when set, so solvers without that keyword work without a budget) and the contact ``model`` (a name
+    of :data:`ehl_dataset.solver.MODELS`; passed to every solver that accepts a ``model`` keyword, and a solver
+    without it is accepted only for ``"auto"``, :func:`check_model`)."""
 
     index: int
     point: tuple[float, ...]
@@ -81,6 +85,7 @@ class PointTask:
     effects: str
     solver: str | Callable = DEFAULT_SOLVER
     time_limit_s: float | None = None
+    model: str = DEFAULT_MODEL
 
 
 _SOLVER_CACHE: dict[str, Callable] = {}
@@ -169,6 +174,8 @@ def compute_point(task: PointTask) -> dict[str, Any]:
     caught: Counter = Counter()
     try:
         solve = resolve_solver(task.solver)
+        if task.model != DEFAULT_MODEL or accepts_keyword(solve, "model"):
+            budget["model"] = task.model
         case = ContactCase(*task.point)
         with warnings.catch_warnings(), _one_blas_thread():
             warnings.simplefilter("always")
@@ -193,8 +200,9 @@ def compute_point(task: PointTask) -> dict[str, Any]:
 # ---------------------------------------------------------------------------------------------------------------
 # Configuration
 # ---------------------------------------------------------------------------------------------------------------
-def solver_config(solver: str | Callable, level: str, effects: str) -> dict[str, Any]:
-    """What identifies the computation of a point: function, its version, level (and its definition), effects.
+def solver_config(solver: str | Callable, level: str, effects: str, model: str = DEFAULT_MODEL) -> dict[str, Any]:
+    """What identifies the computation of a point: function, its version, level (and its definition), effects and
+    contact model (:func:`check_model`).
 
     The version is the function's ``solver_version`` attribute, else its module's ``SOLVER_VERSION`` or
     ``__version__``, else ``gearloss <package version>``. The level definition comes from
@@ -212,7 +220,38 @@ def solver_config(solver: str | Callable, level: str, effects: str) -> dict[str,
         "level": level,
         "level_definition": _level_definition(level),
         "effects": effects,
+        "model": check_model(model, solver),
     }
+
+
+def recorded_model(recorded_solver: dict) -> str:
+    """The contact model a file's solver configuration records; files written before the model was recorded ran
+    the default (``"auto"``)."""
+    return str(recorded_solver.get("model", DEFAULT_MODEL))
+
+
+def check_model(model, solver: str | Callable | None = None) -> str:
+    """``model`` if it is one of :data:`ehl_dataset.solver.MODELS` (read there, so a model added to the solver is
+    accepted here without a change); with a ``solver`` that has no ``model`` keyword only ``"auto"`` is accepted
+    (the run is refused at the start instead of failing every point)."""
+    from ..solver import MODELS
+
+    if model not in MODELS:
+        raise InputError("model", model, f"one of {list(MODELS)} (ehl_dataset.solver.MODELS)")
+    if model != DEFAULT_MODEL and solver is not None and not accepts_keyword(resolve_solver(solver), "model"):
+        raise InputError("model", model, f"'{DEFAULT_MODEL}' for a solver without a model parameter",
+                         f"{solver_reference(solver)} does not accept it")
+    return model
+
+
+def accepts_keyword(function: Callable, name: str) -> bool:
+    """Whether ``function`` takes the keyword ``name`` (or ``**kwargs``); True when it has no inspectable
+    signature (let the call decide)."""
+    try:
+        parameters = inspect.signature(function).parameters.values()
+    except (TypeError, ValueError):
+        return True
+    return any(p.name == name or p.kind is p.VAR_KEYWORD for p in parameters)
 
 
 def _level_definition(level: str):
@@ -337,11 +376,13 @@ class RunSummary:
 def run_factorial(out, factorial: Factorial | str | os.PathLike, *, lubricant=None, level: str | None = None,
                   effects: str | None = None, workers: int = 1, scheduler: str | None = None,
                   solver: str | Callable = DEFAULT_SOLVER, overwrite: bool = False, time_limit_s: float | None = None,
-                  **options) -> RunSummary:
+                  model: str | None = None, **options) -> RunSummary:
     """Compute ``factorial`` into the HDF5 file ``out``.
 
-    ``lubricant`` (name, file or :class:`~ehl_dataset.model.lubricant.Lubricant`), ``level`` and ``effects`` default to
-    the factorial's. If ``out`` exists and records the same factorial, solver and lubricant, the run continues it
+    ``lubricant`` (name, file or :class:`~ehl_dataset.model.lubricant.Lubricant`), ``level``, ``effects`` and the
+    contact ``model`` (:data:`ehl_dataset.solver.MODELS`, recorded in the solver configuration and passed to the
+    solver) default to the factorial's. If ``out`` exists and records the same factorial, solver (model included)
+    and lubricant, the run continues it
     (like :func:`resume_run`); if it records something else the call is refused (``InputError``) unless
     ``overwrite``. ``time_limit_s``: wall-time budget of each point's solve [s] (None: none), an execution option
     that does not enter the solver configuration (see :func:`execute`). ``options``: see :func:`execute` (window,
@@ -351,7 +392,7 @@ def run_factorial(out, factorial: Factorial | str | os.PathLike, *, lubricant=No
     time_limit_s = check_time_limit(time_limit_s, solver)
     plan = factorial if isinstance(factorial, Factorial) else load_factorial(factorial)
     lub = lubricant if isinstance(lubricant, Lubricant) else load_lubricant(lubricant or plan.lubricant)
-    config = solver_config(solver, level or plan.level, effects or plan.effects)
+    config = solver_config(solver, level or plan.level, effects or plan.effects, model or plan.model)
     lubricant_dict = json.loads(canonical_json(lub.to_json_dict()))
     factorial_dict = plan.to_dict()
     out = Path(out)
@@ -375,13 +416,15 @@ def run_factorial(out, factorial: Factorial | str | os.PathLike, *, lubricant=No
 
 def resume_run(path, *, workers: int = 1, scheduler: str | None = None, solver: str | Callable | None = None,
                factorial=None, lubricant=None, level: str | None = None, effects: str | None = None,
-               time_limit_s: float | None = None, retry_not_converged: bool = False, **options) -> RunSummary:
+               model: str | None = None, time_limit_s: float | None = None, retry_not_converged: bool = False,
+               **options) -> RunSummary:
     """Continue the run recorded in ``path``: compute every row that is not ``ok`` (and, with
     ``retry_not_converged``, the ``ok`` rows whose solve did not converge).
 
-    The solver, level, effects and lubricant are those recorded in the file. The solver's current version (and
-    level definition) must equal the recorded ones; ``factorial``, ``lubricant``, ``level``, ``effects`` and
-    ``solver``, when given, must match the file too — otherwise the resume is refused with ``InputError``.
+    The solver, level, effects, contact model and lubricant are those recorded in the file (a file that records no
+    model ran ``"auto"``). The solver's current version (and level definition) must equal the recorded ones;
+    ``factorial``, ``lubricant``, ``level``, ``effects``, ``model`` and ``solver``, when given, must match the file
+    too — otherwise the resume is refused with ``InputError``.
     ``time_limit_s`` (wall-time budget per point [s]) may differ from the earlier sessions' budgets: it is not part
     of the solver configuration. It applies to the rows computed now (pending and failed, plus the non-converged
     ones with ``retry_not_converged``); otherwise rows stored not converged — including those stopped by an earlier
@@ -392,7 +435,8 @@ def resume_run(path, *, workers: int = 1, scheduler: str | None = None, solver: 
     with DatasetStore.open(path, "r+") as store:
         recorded = store.solver
         solver_used = solver if solver is not None else recorded.get("function", DEFAULT_SOLVER)
-        config = solver_config(solver_used, level or recorded.get("level"), effects or recorded.get("effects"))
+        config = solver_config(solver_used, level or recorded.get("level"), effects or recorded.get("effects"),
+                               model or recorded_model(recorded))
         lubricant_dict = None
         if lubricant is not None:
             lub = lubricant if isinstance(lubricant, Lubricant) else load_lubricant(lubricant)
@@ -446,12 +490,7 @@ def check_time_limit(time_limit_s, solver: str | Callable | None = None) -> floa
     """
     time_limit_s = check_positive_seconds(time_limit_s)
     if time_limit_s is not None and solver is not None:
-        try:
-            parameters = inspect.signature(resolve_solver(solver)).parameters.values()
-        except (TypeError, ValueError):  # no signature to inspect (a builtin): let the solve itself decide
-            parameters = None
-        if parameters is not None and not any(p.name == "time_limit_s" or p.kind is p.VAR_KEYWORD
-                                              for p in parameters):
+        if not accepts_keyword(resolve_solver(solver), "time_limit_s"):
             raise InputError("time_limit_s", time_limit_s, "None for a solver without a time_limit_s parameter",
                              f"{solver_reference(solver)} does not accept it")
     return time_limit_s
@@ -503,11 +542,11 @@ def execute(store: DatasetStore, *, solver: str | Callable = DEFAULT_SOLVER, wor
         raise InputError("dataset file", str(store.path), "input columns matching the recorded factorial hash",
                          "the input columns were modified or are corrupt")
     lubricant_json = canonical_json(store.lubricant)
-    level, effects = recorded["level"], recorded["effects"]
+    level, effects, model = recorded["level"], recorded["effects"], check_model(recorded_model(recorded), solver)
 
     def task(index: int) -> PointTask:
         return PointTask(int(index), tuple(float(v) for v in points[index]), lubricant_json, level, effects, solver,
-                         time_limit_s)
+                         time_limit_s, model)
 
     if not isinstance(retry_not_converged, bool):
         raise InputError("retry_not_converged", retry_not_converged, "True or False")

@@ -238,6 +238,10 @@ def _open_h5(path, mode: str):
 # ---------------------------------------------------------------------------------------------------------------
 # The store
 # ---------------------------------------------------------------------------------------------------------------
+SOLVER_DEFAULTS = {"model": "auto"}
+"""Solver-configuration entries that files written before they existed lack, with the value those files ran."""
+
+
 class DatasetStore:
     """A dataset file opened for reading (``mode="r"``) or by the single writer (``mode="r+"``).
 
@@ -472,7 +476,7 @@ class DatasetStore:
                              f"the factorial recorded in {self.path} "
                              f"({self.factorial.get('name')!r}, points_sha256 {recorded_hash[:16]}...)", hint)
         if solver is not None:
-            recorded = self.solver
+            recorded, solver = {**SOLVER_DEFAULTS, **self.solver}, {**SOLVER_DEFAULTS, **solver}
             for key in sorted(set(recorded) | set(solver)):
                 if canonical_json(recorded.get(key)) != canonical_json(solver.get(key)):
                     raise InputError(f"solver.{key}", solver.get(key),

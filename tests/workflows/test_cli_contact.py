@@ -38,13 +38,13 @@ def test_validation_fluid_by_name_and_by_file(capsys, tmp_path):
 
 
 @pytest.mark.parametrize("args, parameter", [
-    (["--p-h-gpa", "nan"], "p_h_gpa"),
-    (["--p-h-gpa", "-1"], "p_h_gpa"),
-    (["--p-h-gpa", "0"], "p_h_gpa"),
-    (["--temp-c", "200"], "temperature"),
+    (["--p-h-gpa", "nan"], "invalid --p-h-gpa=nan: accepted a finite number"),
+    (["--p-h-gpa", "-1"], "invalid --p-h-gpa=-1: accepted (0, 10] GPa"),
+    (["--p-h-gpa", "0"], "invalid --p-h-gpa=0: accepted (0, 10] GPa"),
+    (["--temp-c", "200"], "invalid --temp-c=200: accepted [0, 150] °C for lubricant atf"),
     (["--lubricant", "no_such_oil"], "lubricant"),
     (["--level", "ultra"], "level"),
-    (["--time-limit-s", "-3"], "time_limit_s"),
+    (["--time-limit-s", "-3"], "invalid --time-limit-s=-3"),
 ])
 def test_bad_input_one_line_nonzero_exit(capsys, args, parameter):
     argv = list(BASE)

@@ -76,28 +76,28 @@ def test_running_the_same_command_again_continues_and_a_different_one_is_refused
     assert json.loads(capsys.readouterr().out.splitlines()[-1])["computed"] == 1  # only the failed row again
     assert main(args + ["--lubricant", "gear_oil_75w90"]) == 2
     err = capsys.readouterr().err.strip()
-    assert len(err.splitlines()) == 1 and "invalid lubricant='gear_oil_75w90'" in err and str(out) in err
+    assert len(err.splitlines()) == 1 and "invalid --lubricant=gear_oil_75w90" in err and str(out) in err
     assert main(args + ["--level", "standard"]) == 2
-    assert "solver.level" in capsys.readouterr().err
+    assert "invalid --level=standard" in capsys.readouterr().err
     # the shipped smoke plan lists the same points in the same order: it may continue the file (hash identity)
     assert main(["dataset", "run", "--factorial", "smoke", "--out", str(out), "--solver", SOLVER, "--workers", "0",
                  "--progress", "none"]) == 0
     assert main(["dataset", "run", "--factorial", "quick", "--out", str(out), "--solver", SOLVER]) == 2
-    assert "invalid factorial=" in capsys.readouterr().err
+    assert "invalid --factorial=" in capsys.readouterr().err
     assert main(args + ["--overwrite", "--level", "standard", "--json"]) == 0
     assert json.loads(capsys.readouterr().out)["computed"] == 16
 
 
 @pytest.mark.parametrize("argv, fragment", [
-    (["dataset", "run", "--factorial", "nope", "--out", "{tmp}/a.h5"], "invalid factorial='nope'"),
+    (["dataset", "run", "--factorial", "nope", "--out", "{tmp}/a.h5"], "invalid --factorial=nope"),
     (["dataset", "run", "--factorial", "smoke", "--out", "{tmp}/a.h5", "--workers", "-1", "--solver", SOLVER],
-     "invalid workers=-1"),
+     "invalid --workers=-1"),
     (["dataset", "run", "--factorial", "smoke", "--out", "{tmp}/a.h5", "--level", "bogus", "--solver", SOLVER],
-     "invalid level='bogus'"),
+     "invalid --level=bogus"),
     (["dataset", "run", "--factorial", "smoke", "--out", "{tmp}/a.h5", "--solver", "no_module:f"],
-     "invalid solver='no_module:f'"),
+     "invalid --solver=no_module:f"),
     (["dataset", "run", "--factorial", "smoke", "--out", "{tmp}/a.h5", "--lubricant", "water"],
-     "invalid lubricant='water'"),
+     "invalid --lubricant=water"),
     (["dataset", "info", "{tmp}/missing.h5"], "file not found"),
     (["dataset", "info", "{tmp}/plan.toml"], "not a readable HDF5 file"),
 ])
@@ -142,13 +142,13 @@ def test_a_bad_time_limit_is_one_line_and_exit_2(tmp_path, plan_file, capsys, va
     assert main(["dataset", "run", "--factorial", str(plan_file), "--out", str(out), "--workers", "0",
                  "--time-limit-s", value]) == 2
     err = capsys.readouterr().err.strip()
-    assert len(err.splitlines()) == 1 and "invalid time_limit_s=" in err, err
+    assert len(err.splitlines()) == 1 and "invalid --time-limit-s=" in err, err
     assert not out.exists()
     assert main(["dataset", "run", "--factorial", str(plan_file), "--out", str(out), "--workers", "0", "--solver",
                  SOLVER, "--progress", "none"]) == 0
     assert main(["dataset", "resume", str(out), "--workers", "0", "--time-limit-s", value]) == 2
     err = capsys.readouterr().err.strip()
-    assert len(err.splitlines()) == 1 and "invalid time_limit_s=" in err, err
+    assert len(err.splitlines()) == 1 and "invalid --time-limit-s=" in err, err
     # the stand-in solver has no time_limit_s parameter: a valid budget is refused for it, in one line
     assert main(["dataset", "resume", str(out), "--workers", "0", "--time-limit-s", "5"]) == 2
     assert "film_solve does not accept it" in capsys.readouterr().err
