@@ -41,13 +41,21 @@ def register(gear_subparsers) -> None:
     load.add_argument("--tip-relief-length-mm", type=float, help="roll length of the tip relief per gear [mm]")
     model = parser.add_argument_group("model and resolution")
     model.add_argument("--slices", type=int, default=30, help="slices across the face (default 30)")
-    model.add_argument("--positions", type=int, default=24, help="mesh positions per cycle (default 24)")
+    model.add_argument("--positions", type=int, default=None,
+                       help="mesh positions per cycle (default: chosen per design, 24-48, so that the load-sharing "
+                            "breakpoints fall on sampling-cell boundaries)")
     model.add_argument("--outputs", default="te,stresses",
                        help="comma-separated subset of te,stresses to compute (default both; '' for loads only)")
     model.add_argument("--contact-model", choices=("weber", "linear"), default="weber",
                        help="Hertzian contact compliance (default weber)")
-    model.add_argument("--coupling-length-factor", type=float, default=1.0,
-                       help="face-coupling length in tooth depths (default 1)")
+    model.add_argument("--coupling-length-factor", type=float, default=None,
+                       help="face-coupling length of the tooth in tooth depths (default 0.6, from a 3-D FE check)")
+    model.add_argument("--foundation-coupling-length-factor", type=float, default=None,
+                       help="face-coupling length of the gear body in tooth depths (default: as the tooth)")
+    model.add_argument("--load-sharing", choices=("elastic", "rigid-uniform", "independent-slices"),
+                       default="elastic",
+                       help="elastic (default), rigid-uniform (uniform load per contact length: Wimmer's H_VL; "
+                            "unmodified flanks only) or independent-slices (no face coupling)")
     friction = parser.add_argument_group("friction power loss (computed only with --friction)")
     friction.add_argument("--friction", metavar="MODEL",
                           help="friction model: a coefficient file (surrogate), xu2007, benedict_kelley, iso14179, "
@@ -106,8 +114,14 @@ def run_evaluate(args: argparse.Namespace) -> int:
     speed = check_range("speed-rpm", args.speed_rpm, 0.0, 1e6, low_inclusive=False, unit="rpm")
     outputs = frozenset(o.strip() for o in args.outputs.split(",") if o.strip())
     mods = _modifications(args)
+    from efficiency.loss_factor import ohlendorf_loss_factor, wimmer_loss_factor
+    from efficiency.mesh_cycle import DEFAULT_COUPLING_LENGTH_FACTOR
+
+    coupling = DEFAULT_COUPLING_LENGTH_FACTOR if args.coupling_length_factor is None else args.coupling_length_factor
     options = MeshOptions(positions=args.positions, slices=args.slices, outputs=outputs,
-                          contact_model=args.contact_model, coupling_length_factor=args.coupling_length_factor)
+                          contact_model=args.contact_model, coupling_length_factor=coupling,
+                          foundation_coupling_length_factor=args.foundation_coupling_length_factor,
+                          load_sharing=args.load_sharing)
     result = evaluate_mesh(pair, torque, speed_rad_s=speed * math.pi / 30.0, modifications=mods, options=options)
 
     kin = result.kinematics
@@ -115,6 +129,9 @@ def run_evaluate(args: argparse.Namespace) -> int:
         "torque_nm": torque, "speed_rpm": speed,
         "profile_crown_m": mods.profile_crown, "lead_crown_m": mods.lead_crown, "lead_slope_m": mods.lead_slope,
         "positions": int(kin.shape[0]), "slices": int(kin.shape[2]), "contact_model": options.contact_model,
+        "load_sharing": options.load_sharing,
+        "loss_factor": result.loss_factor, "loss_factor_ohlendorf": ohlendorf_loss_factor(pair),
+        "loss_factor_wimmer": wimmer_loss_factor(pair),
         "normal_load_n": result.normal_load,
         "mesh_stiffness_mean_n_per_m": float(np.mean(result.mesh_stiffness)),
         "mesh_stiffness_per_width_n_per_m2": result.mesh_stiffness_per_width,
@@ -202,6 +219,8 @@ def _human(p: dict) -> str:
         f"{p['positions']} positions × {p['slices']} slices, contact model {p['contact_model']}",
         f"normal load W = {p['normal_load_n']:.1f} N, max line load {p['max_load_per_length_n_per_m'] / 1e3:.1f} N/mm",
         f"mesh stiffness (cycle mean) {p['mesh_stiffness_per_width_n_per_m2'] / 1e9:.2f} N/(mm·µm)",
+        f"loss factor H_V = P/(μ P_in) of this load sharing ({p['load_sharing']}) {p['loss_factor']:.5f}; "
+        f"Ohlendorf H_V {p['loss_factor_ohlendorf']:.5f}, Wimmer H_VL (rigid, uniform) {p['loss_factor_wimmer']:.5f}",
     ]
     if "te_pp_m" in p:
         lines.append(f"transmission error peak-to-peak {p['te_pp_m'] * 1e6:.3f} µm (mean {p['te_mean_m'] * 1e6:.2f} µm)")
