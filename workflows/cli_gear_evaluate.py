@@ -67,6 +67,19 @@ def register(gear_subparsers) -> None:
     friction.add_argument("--lubricant", default="atf",
                           help="lubricant name or TOML file for the EHL and published models (default atf; a "
                                "coefficient file carries its own)")
+    iso = parser.add_argument_group("ISO/TR 14179-2 mean friction and mesh loss (with --iso14179-2)")
+    iso.add_argument("--iso14179-2", dest="iso14179_2", action="store_true",
+                     help="also report the standard's μ_mz, H_V and P_VZP (uses --oil-temp-c)")
+    iso.add_argument("--oil-type", default="mineral",
+                     help="base oil for X_L: mineral (0.846), pao (0.65), ester (0.65), polyglycol (0.585), "
+                          "reference (1.0, the formula as printed)")
+    iso.add_argument("--ra-um", type=float, nargs="+", metavar="RA",
+                     help="arithmetic mean roughness Ra [µm] of the flanks (one or two values); default "
+                          "√(2/π)·Rq from --rq-um (Gaussian surface)")
+    iso.add_argument("--nu40-cst", type=float, help="oil kinematic viscosity at 40 °C [cSt] (with --nu100-cst; "
+                                                    "default: from --lubricant)")
+    iso.add_argument("--nu100-cst", type=float, help="oil kinematic viscosity at 100 °C [cSt]")
+    iso.add_argument("--density-kg-m3", type=float, default=880.0, help="oil density at 15 °C [kg/m³] (880)")
     parser.add_argument("--per-position", action="store_true", help="include per-position arrays in the output")
     parser.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
     parser.set_defaults(handler=run_evaluate)
@@ -160,12 +173,46 @@ def run_evaluate(args: argparse.Namespace) -> int:
         if result.transmission_error is not None:
             payload["transmission_error_m"] = result.transmission_error
         payload["loaded_points"] = (result.loads > 0).sum(axis=(1, 2))
+    if args.iso14179_2:
+        payload["iso14179_2"] = _iso14179(pair, torque, speed * math.pi / 30.0, args)
     payload["model_time_s"] = result.wall_time_s
     if args.friction is not None:
         payload.update(_power_loss(result, args))
     payload["wall_time_s"] = time.perf_counter() - started
     emit(payload, args.json, _human)
     return 0 if result.converged else 3
+
+
+def _iso14179(pair, torque, omega, args) -> dict:
+    """ISO/TR 14179-2 μ_mz, H_V, P_VZP (efficiency.iso14179) from the oil and roughness options."""
+    from ehl_dataset.validation import InputError, check_range
+    from efficiency.iso14179 import SimpleOil, iso_14179_2_mesh, lubricant_factor
+    from surrogate.published import RA_PER_RQ
+
+    temperature, rq1, rq2 = _friction_inputs(args)
+    if args.ra_um:
+        if len(args.ra_um) not in (1, 2):
+            raise InputError("ra-um", args.ra_um, "one value (both flanks) or two values RA1 RA2 [µm]")
+        ra1 = check_range("ra-um", args.ra_um[0], 0.0, 100.0, low_inclusive=False, unit="µm") * 1e-6
+        ra2 = check_range("ra-um", args.ra_um[-1], 0.0, 100.0, low_inclusive=False, unit="µm") * 1e-6
+    else:
+        ra1, ra2 = RA_PER_RQ * rq1, RA_PER_RQ * rq2
+    x_l = lubricant_factor(args.oil_type)
+    if (args.nu40_cst is None) != (args.nu100_cst is None):
+        raise InputError("nu40-cst/nu100-cst", (args.nu40_cst, args.nu100_cst), "both or neither")
+    if args.nu40_cst is not None:
+        oil = SimpleOil(nu40=args.nu40_cst * 1e-6, nu100=args.nu100_cst * 1e-6, density15=args.density_kg_m3,
+                        oil_type=args.oil_type)
+        eta, source = oil.dynamic_viscosity(temperature), "nu40/nu100 (Walther)"
+    else:
+        from ehl_dataset.lubricants import load_lubricant
+        from surrogate.features import lubricant_properties
+
+        eta, _ = lubricant_properties(load_lubricant(args.lubricant), temperature)
+        eta, source = float(eta), f"lubricant {args.lubricant}"
+    out = iso_14179_2_mesh(pair, torque, omega, eta, ra1, ra2, x_l)
+    out.update(oil_type=args.oil_type, viscosity_source=source, oil_temperature_k=temperature)
+    return out
 
 
 def _friction_inputs(args) -> tuple[float, float, float]:
@@ -245,6 +292,11 @@ def _human(p: dict) -> str:
                      f"({p['power_loss_time_s'] * 1e3:.0f} ms)")
         for message in p.get("friction_warnings", []):
             lines.append(f"warning: {message}")
+    if "iso14179_2" in p:
+        q = p["iso14179_2"]
+        lines.append(f"ISO/TR 14179-2: μ_mz {q['mu_mz']:.4f} (X_L {q['x_l']:.3g} {q['oil_type']}, η "
+                     f"{q['eta_oil_mpas']:.3g} mPa·s, Ra {q['ra_um']:.3g} µm), H_V {q['loss_factor_ohlendorf']:.4f}, "
+                     f"P_VZP {q['p_vzp_w']:.1f} W")
     lines.append(f"converged {p['converged']} (equilibrium residual {p['equilibrium_residual']:.1e}, "
                  f"{p['active_set_iterations']} active-set iterations), {p['wall_time_s'] * 1e3:.0f} ms")
     return "\n".join(lines)

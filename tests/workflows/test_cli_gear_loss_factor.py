@@ -1,0 +1,41 @@
+"""`gear evaluate`: --load-sharing, the loss factors and the ISO/TR 14179-2 block (issue 17)."""
+
+import json
+import math
+import subprocess
+import sys
+
+import pytest
+
+from efficiency.geometry import GearPair
+from efficiency.loss_factor import ohlendorf_loss_factor
+
+FZG_C = ["--teeth1", "16", "--teeth2", "24", "--module-mm", "4.5", "--pressure-angle-deg", "20",
+         "--helix-angle-deg", "0", "--face-width-mm", "14", "--shift1", "0.1817", "--shift2", "0.1715",
+         "--center-distance-mm", "91.5"]
+
+
+def run(*args):
+    out = subprocess.run([sys.executable, "-m", "workflows.cli", "gear", "evaluate", *FZG_C, *args, "--json"],
+                         capture_output=True, text=True, timeout=300)
+    return out.returncode, out.stdout, out.stderr
+
+
+def test_rigid_uniform_reports_ohlendorf_for_a_spur_pair_and_iso14179_block():
+    code, stdout, stderr = run("--torque-nm", "200", "--speed-rpm", "1500", "--load-sharing", "rigid-uniform",
+                               "--outputs", "", "--iso14179-2", "--oil-temp-c", "60", "--nu40-cst", "32",
+                               "--nu100-cst", "5.4", "--ra-um", "0.5")
+    assert code == 0, stderr
+    payload = json.loads(stdout)
+    pair = GearPair(16, 24, 4.5e-3, math.radians(20), 0.0, 0.014, 0.1817, 0.1715, center_distance=0.0915)
+    assert payload["load_sharing"] == "rigid-uniform"
+    assert payload["loss_factor"] == pytest.approx(ohlendorf_loss_factor(pair), rel=5e-4)
+    assert payload["loss_factor_ohlendorf"] == pytest.approx(ohlendorf_loss_factor(pair), rel=1e-12)
+    iso = payload["iso14179_2"]
+    assert iso["x_l"] == 0.846 and iso["ra_um"] == pytest.approx(0.5)
+    assert iso["p_vzp_w"] == pytest.approx(iso["mu_mz"] * iso["loss_factor_ohlendorf"] * iso["input_power_w"])
+
+
+def test_bad_oil_type_is_one_clear_error():
+    code, _, stderr = run("--iso14179-2", "--oil-type", "castor")
+    assert code == 2 and "oil_type" in stderr and "mineral" in stderr
