@@ -28,6 +28,7 @@ import time
 from dataclasses import dataclass, field
 
 import numpy as np
+from numba import njit
 
 from ehl_dataset.materials import STEEL, Material, reduced_modulus
 from ehl_dataset.validation import InputError, SolverError, check_range
@@ -204,8 +205,11 @@ def evaluate_mesh(pair, torque: float, speed_rad_s: float = 1.0, modifications: 
     # Tooth part (bending, shear, compression) and gear-body part (foundation) are coupled across the face with
     # their own lengths; C_ij = cos²ψ_b Σ_gear Σ_part √(c_i c_j) G_part,ij / Δz (Schur products: SPD).
     parts = []  # (root factors of gear 1, of gear 2, coupling matrix)
-    comp1 = tooth_compliance(pair, 1, kin.rho1[inside], options.material1, options.hub_ratio)
-    comp2 = tooth_compliance(pair, 2, kin.rho2[inside], options.material2, options.hub_ratio)
+    comp1 = _on_path(lambda r: tooth_compliance(pair, 1, r, options.material1, options.hub_ratio),
+                     kin.rho1[inside], kin.contact_start, kin.contact_end)
+    comp2 = _on_path(lambda r: tooth_compliance(pair, 2, r, options.material2, options.hub_ratio),
+                     kin.rho2[inside], kin.line_of_action_length - kin.contact_end,
+                     kin.line_of_action_length - kin.contact_start)
     depth = whole_depth(pair, 1)
     if options.load_sharing == "independent-slices":
         lengths = {"tooth": None, "foundation": None}
@@ -219,7 +223,12 @@ def evaluate_mesh(pair, torque: float, speed_rad_s: float = 1.0, modifications: 
         c1[inside] = comp1["foundation"] if part == "foundation" else comp1["total"] - comp1["foundation"]
         c2[inside] = comp2["foundation"] if part == "foundation" else comp2["total"] - comp2["foundation"]
         length = lengths[part]
-        coupling = np.eye(n_slices) if length is None else face_coupling(kin.z, width, length)
+        if length is None:
+            coupling = np.eye(n_slices)
+        elif parts and length == lengths["tooth"]:
+            coupling = parts[0][2] * dz
+        else:
+            coupling = face_coupling(kin.z, width, length)
         parts.append((np.sqrt(c1) * cos_b, np.sqrt(c2) * cos_b, coupling / dz))
     # Contact compliance per point [m/N] = c_H(w) cos ψ_b / Δz (per unit contact-line length → per slice load).
     nominal_w = normal_load * cos_b / (float(pair.contact_ratio) * width)
@@ -227,8 +236,11 @@ def evaluate_mesh(pair, torque: float, speed_rad_s: float = 1.0, modifications: 
     if options.contact_model == "weber":
         depth1 = np.zeros(kin.shape)
         depth2 = np.zeros(kin.shape)
-        depth1[inside] = centreline_depth(pair, 1, kin.rho1[inside])
-        depth2[inside] = centreline_depth(pair, 2, kin.rho2[inside])
+        depth1[inside] = _on_path(lambda r: {"d": centreline_depth(pair, 1, r)}, kin.rho1[inside],
+                                  kin.contact_start, kin.contact_end)["d"]
+        depth2[inside] = _on_path(lambda r: {"d": centreline_depth(pair, 2, r)}, kin.rho2[inside],
+                                  kin.line_of_action_length - kin.contact_end,
+                                  kin.line_of_action_length - kin.contact_start)["d"]
         log1, log2, k1, k2, q1, q2 = weber_log_terms(np.where(inside, kin.r_eq_normal, 1.0),
                                                      np.where(inside, depth1, 1.0), np.where(inside, depth2, 1.0),
                                                      options.material1, options.material2)
@@ -262,12 +274,9 @@ def evaluate_mesh(pair, torque: float, speed_rad_s: float = 1.0, modifications: 
             continue
         k_idx = line.ravel()[flat]
         j_idx = slc.ravel()[flat]
-        tooth = np.zeros((flat.size, flat.size))
-        for root1, root2, coupling in parts:
-            a = root1[m].ravel()[flat]
-            b = root2[m].ravel()[flat]
-            tooth += (np.outer(a, a) + np.outer(b, b)) * coupling[np.ix_(j_idx, j_idx)]
-        tooth *= k_idx[:, None] == k_idx[None, :]
+        (t1, t2, g_t), (f1, f2, g_f) = parts
+        tooth = _tooth_matrix(t1[m].ravel()[flat], t2[m].ravel()[flat], f1[m].ravel()[flat], f2[m].ravel()[flat],
+                              j_idx, k_idx, g_t, g_f)
         eps = separation[m].ravel()[flat]
         warm = None if previous is None else previous.ravel()[flat]
         if options.contact_model == "weber":
@@ -316,6 +325,44 @@ def evaluate_mesh(pair, torque: float, speed_rad_s: float = 1.0, modifications: 
                       root_stress=sigma, sigma_b_max=float(sigma.max()), sigma_b_position=(g_b + 1, m_b))
     result["wall_time_s"] = time.perf_counter() - started
     return MeshCycleResult(**result)
+
+
+_CHEBYSHEV_NODES = 24
+
+
+def _on_path(function, rho, low: float, high: float) -> dict:
+    """``function`` (a dict of arrays of ρ) at the points ``rho`` by Chebyshev interpolation from 24 nodes on
+    [low, high] (the gear's active profile): the compliances are smooth in ρ, and the interpolation (relative error
+    < 1e-7, checked in tests) replaces thousands of quadratures per cycle by 24."""
+    rho = np.asarray(rho, dtype=float)
+    if rho.size <= _CHEBYSHEV_NODES:
+        return function(rho)
+    k = np.arange(_CHEBYSHEV_NODES)
+    nodes = np.cos(np.pi * (k + 0.5) / _CHEBYSHEV_NODES)
+    half, mid = 0.5 * (high - low), 0.5 * (high + low)
+    values = function(mid + half * nodes)
+    t = np.clip((rho - mid) / half, -1.0, 1.0)
+    keys = list(values)
+    coefficients = np.polynomial.chebyshev.chebfit(nodes, np.stack([values[k] for k in keys], axis=1),
+                                                   _CHEBYSHEV_NODES - 1)
+    evaluated = np.polynomial.chebyshev.chebval(t, coefficients)
+    return {k: evaluated[i] for i, k in enumerate(keys)}
+
+
+@njit(cache=True)
+def _tooth_matrix(t1, t2, f1, f2, j_idx, k_idx, g_t, g_f):
+    """C_ij = [(t1_i t1_j + t2_i t2_j) G_t + (f1_i f1_j + f2_i f2_j) G_f]_{slices j_i, j_j} on the same contact line
+    (k_i = k_j), 0 between lines (different tooth pairs are not coupled)."""
+    n = t1.size
+    out = np.zeros((n, n))
+    for i in range(n):
+        for j in range(i, n):
+            if k_idx[i] == k_idx[j]:
+                a, b = j_idx[i], j_idx[j]
+                v = (t1[i] * t1[j] + t2[i] * t2[j]) * g_t[a, b] + (f1[i] * f1[j] + f2[i] * f2[j]) * g_f[a, b]
+                out[i, j] = v
+                out[j, i] = v
+    return out
 
 
 def single_pair_outer_points(pair) -> tuple[float, float]:
