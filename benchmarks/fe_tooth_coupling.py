@@ -158,6 +158,78 @@ class ToothFE:
         return 0.5 * (C + C.T)
 
 
+
+class ToothBodyFE(ToothFE):
+    """One tooth on a gear-body sector: the annular sector r_int ≤ r ≤ r_f over ±``pitches`` circular pitches
+    (r_int = r_f / hub_ratio, the bore of efficiency.compliance's foundation term), clamped at the bore and at its
+    two radial cut faces, with the tooth (no fillet: it stands on the root circle) on top. Same flank-load and
+    centreline-displacement interface as :class:`ToothFE`."""
+
+    def __init__(self, pair, gear, n_tooth=16, n_t=8, n_z=46, n_body=10, n_side=10, pitches=1.5, hub_ratio=2.0,
+                 E=206e9, nu=0.3):
+        i = gear - 1
+        self.pair = pair
+        rb = float(pair.base_radii[i]); rf = float(pair.root_radii[i]); ra = float(pair.tip_radii[i])
+        r_ref = float(pair.reference_radii[i]); st = float(pair.transverse_thicknesses[i])
+        at = float(pair.transverse_pressure_angle); z_teeth = (pair.z1, pair.z2)[i]
+        self.rb, self.rf, self.ra = rb, rf, ra
+        b = float(pair.face_width)
+
+        def psi(r):
+            r = np.maximum(r, rb)
+            return st / (2 * r_ref) + involute(at) - involute(np.arccos(rb / r))
+
+        def theta(r):
+            return np.where(r >= rb, psi(r), psi(rb) * rb / r)
+
+        theta_f = float(theta(np.array(rf)))
+        self.rs = np.linspace(rf, ra, n_tooth + 1)
+        self.ts = np.linspace(-1, 1, n_t + 1)
+        self.zs = np.linspace(0, b, n_z + 1)
+        big = pitches * 2 * math.pi / z_teeth
+        # graded side angles: fine next to the tooth, coarse towards the cut faces
+        g = np.linspace(0, 1, n_side + 1)[1:] ** 1.6
+        side = theta_f + (big - theta_f) * g
+        phis = np.concatenate([-side[::-1], theta_f * self.ts, side])
+        r_int = rf / hub_ratio
+        rb_nodes = rf - (rf - r_int) * (np.linspace(0, 1, n_body + 1)[::-1] ** 1.6)  # fine near r_f
+        nzn = len(self.zs)
+        # body nodes
+        RB, PB, ZB = np.meshgrid(rb_nodes, phis, self.zs, indexing="ij")
+        body_nodes = np.stack([(RB * np.sin(PB)).ravel(), (RB * np.cos(PB)).ravel(), ZB.ravel()], axis=1)
+        nrb, nph = len(rb_nodes), len(phis)
+        body_idx = np.arange(nrb * nph * nzn).reshape(nrb, nph, nzn)
+        # tooth nodes above r_f (row 0 of the tooth = body top row, shared)
+        RT, TT, ZT = np.meshgrid(self.rs[1:], self.ts, self.zs, indexing="ij")
+        th = theta(RT) * TT
+        tooth_nodes = np.stack([(RT * np.sin(th)).ravel(), (RT * np.cos(th)).ravel(), ZT.ravel()], axis=1)
+        nt_nodes = len(self.ts)
+        tooth_idx = np.empty((len(self.rs), nt_nodes, nzn), dtype=int)
+        tooth_idx[0] = body_idx[-1, n_side:n_side + nt_nodes]
+        tooth_idx[1:] = body_idx.size + np.arange(tooth_nodes.shape[0]).reshape(len(self.rs) - 1, nt_nodes, nzn)
+        nodes = np.concatenate([body_nodes, tooth_nodes])
+        self.idx = tooth_idx
+        conns = []
+        for idx in (body_idx, tooth_idx):
+            a = idx[:-1, :-1, :-1]; b_ = idx[1:, :-1, :-1]; c = idx[1:, 1:, :-1]; d = idx[:-1, 1:, :-1]
+            conns.append(np.stack([a, b_, c, d, a + 1, b_ + 1, c + 1, d + 1], axis=-1).reshape(-1, 8))
+        conn = np.concatenate(conns)
+        ke = hex8_stiffness(nodes[conn], E, nu)
+        dofs = (3 * conn[:, :, None] + np.arange(3)).reshape(-1, 24)
+        rows = np.repeat(dofs, 24, axis=1).ravel()
+        cols = np.tile(dofs, (1, 24)).ravel()
+        n = nodes.shape[0] * 3
+        K = sp.csr_matrix((ke.ravel(), (rows, cols)), shape=(n, n))
+        fixed = np.zeros(n, bool)
+        clamped = np.concatenate([body_idx[0].ravel(), body_idx[:, 0].ravel(), body_idx[:, -1].ravel()])
+        for k in range(3):
+            fixed[3 * clamped + k] = True
+        self.free = np.flatnonzero(~fixed)
+        self.K = K[self.free][:, self.free].tocsc()
+        self.lu = spla.splu(self.K)
+        self.nodes = nodes
+        self.ndof = n
+
 def _loss_factor_run(pair, kin, tooth_matrix, torque=300.0):
     """Elastic load distribution over the cycle with a given tooth compliance builder; returns (H, profile)."""
     from efficiency.compliance import centreline_depth, weber_log_terms
