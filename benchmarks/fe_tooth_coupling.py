@@ -8,7 +8,8 @@ the Hertzian approach to the centre line is added separately, as in the model). 
 tooth part (bending, shear, compression: √(c_i c_j) G_ij/Δz) in the same complementarity solve with Weber's
 contact compliance, and the loss factor over a cycle is compared with the model at several coupling lengths and
 with the rigid-uniform H_VL. Writes benchmarks/results/fe_tooth_coupling.json. Run:
-``python benchmarks/fe_tooth_coupling.py`` (about 2 minutes, 2 GB).
+``python benchmarks/fe_tooth_coupling.py [--body]`` (about 2 minutes and 2 GB; with ``--body``, teeth on a gear-body
+sector down to the bore, about 10 minutes and 7 GB).
 """
 import math
 import numpy as np
@@ -277,13 +278,22 @@ def main(argv=None) -> int:
     from _common import machine_info  # noqa: E402
 
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--out", default=str(Path(__file__).parent / "results" / "fe_tooth_coupling.json"))
+    parser.add_argument("--out", default=None, help="default benchmarks/results/fe_tooth_coupling[_body].json")
+    parser.add_argument("--body", action="store_true",
+                        help="teeth on a gear-body sector (bore r_f/2 clamped, cut faces at ±1.5 pitches clamped) "
+                             "compared with the model's tooth + foundation compliance (about 10 min, 7 GB)")
     args = parser.parse_args(argv)
+    if args.out is None:
+        args.out = str(Path(__file__).parent / "results" / ("fe_tooth_coupling_body.json" if args.body
+                                                            else "fe_tooth_coupling.json"))
     deg = math.pi / 180
     pair = GearPair(20, 30, 3.5e-3, 20 * deg, 15 * deg, 23e-3, 0.1809, 0.0891, center_distance=0.0915)
     slices, positions = 23, 24
     started = time.perf_counter()
-    fe = [ToothFE(pair, g, body_depth_modules=1.0, n_body=4, fix_sides=True, n_z=2 * slices) for g in (1, 2)]
+    if args.body:
+        fe = [ToothBodyFE(pair, g, n_z=2 * slices) for g in (1, 2)]
+    else:
+        fe = [ToothFE(pair, g, body_depth_modules=1.0, n_body=4, fix_sides=True, n_z=2 * slices) for g in (1, 2)]
     build_s = time.perf_counter() - started
     kin = mesh_kinematics(pair, positions, slices, 100.0)
     cos2 = math.cos(kin.base_helix_angle) ** 2
@@ -295,17 +305,23 @@ def main(argv=None) -> int:
         z = kin.z[j]
         return cos2 * (fe[0].compliance(r1, z) + fe[1].compliance(r2, z))
 
-    def model_part(part, factor):
+    def model_part(part, factor, foundation_factor=None):
         g = face_coupling(kin.z, b, factor * depth) / dz
+        g_f = None if foundation_factor is None else face_coupling(kin.z, b, foundation_factor * depth) / dz
 
         def build(r1, r2, j):
             out = 0.0
             for gear, r in ((1, r1), (2, r2)):
                 c = tooth_compliance(pair, gear, r)
+                if g_f is not None:  # tooth and foundation parts with their own coupling
+                    t, f = c["total"] - c["foundation"], c["foundation"]
+                    out = out + (np.outer(np.sqrt(t), np.sqrt(t)) * g[np.ix_(j, j)]
+                                 + np.outer(np.sqrt(f), np.sqrt(f)) * g_f[np.ix_(j, j)])
+                    continue
                 c = c["foundation"] if part == "foundation" else (c["total"] - c["foundation"] if part == "tooth"
                                                                   else c["total"])
-                out = out + np.outer(np.sqrt(c), np.sqrt(c))
-            return cos2 * out * g[np.ix_(j, j)]
+                out = out + np.outer(np.sqrt(c), np.sqrt(c)) * g[np.ix_(j, j)]
+            return cos2 * out
         return build
 
     # influence of a concentrated load along the face at mid-path, mid-face (FE tooth) against the kernel
@@ -317,10 +333,16 @@ def main(argv=None) -> int:
     mid = slices
     effective_width = float((influence @ weights)[mid] / influence[mid, mid])
 
-    cases = {"fe_tooth": fe_tooth}
-    for factor in (0.3, 0.6, 1.0):
-        cases[f"model_tooth_l{factor}"] = model_part("tooth", factor)
-    cases["model_total_l1.0_old_default"] = model_part("total", 1.0)
+    if args.body:
+        cases = {"fe_tooth_on_body": fe_tooth}
+        for ft, ff in ((0.6, 0.3), (0.6, 0.6), (0.6, 1.0)):
+            cases[f"model_tooth_l{ft}_foundation_l{ff}"] = model_part("split", ft, ff)
+        cases["model_total_l1.0_old_default"] = model_part("total", 1.0)
+    else:
+        cases = {"fe_tooth": fe_tooth}
+        for factor in (0.3, 0.6, 1.0):
+            cases[f"model_tooth_l{factor}"] = model_part("tooth", factor)
+        cases["model_total_l1.0_old_default"] = model_part("total", 1.0)
     results = {}
     for name, builder in cases.items():
         h, profile = _loss_factor_run(pair, kin, builder)
