@@ -146,8 +146,11 @@ def run_evaluate(args: argparse.Namespace) -> int:
         "loss_factor": result.loss_factor, "loss_factor_ohlendorf": ohlendorf_loss_factor(pair),
         "loss_factor_wimmer": wimmer_loss_factor(pair),
         "normal_load_n": result.normal_load,
-        "mesh_stiffness_mean_n_per_m": float(np.mean(result.mesh_stiffness)),
-        "mesh_stiffness_per_width_n_per_m2": result.mesh_stiffness_per_width,
+        # rigid teeth have no finite mesh stiffness: null in the JSON
+        "mesh_stiffness_mean_n_per_m": (float(np.mean(result.mesh_stiffness))
+                                        if np.isfinite(result.mesh_stiffness_per_width) else None),
+        "mesh_stiffness_per_width_n_per_m2": (result.mesh_stiffness_per_width
+                                              if np.isfinite(result.mesh_stiffness_per_width) else None),
         "max_load_per_length_n_per_m": float(result.load_per_length.max()),
         "converged": result.converged, "active_set_iterations": int(result.iterations.sum()),
         "equilibrium_residual": result.equilibrium_residual, "max_penetration_m": result.max_penetration,
@@ -169,7 +172,8 @@ def run_evaluate(args: argparse.Namespace) -> int:
         payload["iso6336"] = {"error": str(err)}
     if args.per_position:
         payload["mesh_angle_rad"] = kin.mesh_angle
-        payload["mesh_stiffness_n_per_m"] = result.mesh_stiffness
+        payload["mesh_stiffness_n_per_m"] = (result.mesh_stiffness if np.all(np.isfinite(result.mesh_stiffness))
+                                             else None)
         if result.transmission_error is not None:
             payload["transmission_error_m"] = result.transmission_error
         payload["loaded_points"] = (result.loads > 0).sum(axis=(1, 2))
@@ -265,7 +269,8 @@ def _human(p: dict) -> str:
         f"M_L {p['lead_crown_m'] * 1e6:.3g} µm, lead slope {p['lead_slope_m'] * 1e6:.3g} µm; "
         f"{p['positions']} positions × {p['slices']} slices, contact model {p['contact_model']}",
         f"normal load W = {p['normal_load_n']:.1f} N, max line load {p['max_load_per_length_n_per_m'] / 1e3:.1f} N/mm",
-        f"mesh stiffness (cycle mean) {p['mesh_stiffness_per_width_n_per_m2'] / 1e9:.2f} N/(mm·µm)",
+        ("mesh stiffness: rigid teeth" if p['mesh_stiffness_per_width_n_per_m2'] is None else
+         f"mesh stiffness (cycle mean) {p['mesh_stiffness_per_width_n_per_m2'] / 1e9:.2f} N/(mm·µm)"),
         f"loss factor H_V = P/(μ P_in) of this load sharing ({p['load_sharing']}) {p['loss_factor']:.5f}; "
         f"Ohlendorf H_V {p['loss_factor_ohlendorf']:.5f}, Wimmer H_VL (rigid, uniform) {p['loss_factor_wimmer']:.5f}",
     ]

@@ -39,3 +39,10 @@ def test_rigid_uniform_reports_ohlendorf_for_a_spur_pair_and_iso14179_block():
 def test_bad_oil_type_is_one_clear_error():
     code, _, stderr = run("--iso14179-2", "--oil-type", "castor")
     assert code == 2 and "oil_type" in stderr and "mineral" in stderr
+
+
+def test_rigid_uniform_json_is_strict_json():
+    code, stdout, stderr = run("--load-sharing", "rigid-uniform", "--per-position")
+    assert code == 0, stderr
+    payload = json.loads(stdout, parse_constant=lambda c: pytest.fail(f"non-standard JSON constant {c}"))
+    assert payload["mesh_stiffness_per_width_n_per_m2"] is None and payload["mesh_stiffness_n_per_m"] is None
