@@ -75,3 +75,17 @@ def test_rigid_uniform_with_modifications_is_refused():
                       MeshOptions(load_sharing="rigid-uniform"))
     with pytest.raises(InputError, match="load_sharing"):
         MeshOptions(load_sharing="uniform")
+
+
+def test_position_rule_puts_spur_breakpoints_on_cell_boundaries():
+    """FZG C: all slices leave the path together at the cycle fraction frac(ε_α) = 0.43766; at M = 24 that falls
+    0.496 cells from a boundary (estimate 0.496/24), at M = 32 0.005 cells: the rule picks 32. Helical H501 (30
+    scattered breakpoints per side) keeps 24."""
+    from efficiency.kinematics import choose_positions, sampling_error_estimate
+
+    pair = fzg("C")
+    frac = float(pair.contact_ratio) % 1.0
+    expected = abs(frac * 24 - round(frac * 24)) / 24
+    assert sampling_error_estimate(pair, 24, 30) == pytest.approx(expected, rel=1e-6)
+    assert choose_positions(pair, 30) == 32
+    assert choose_positions(fzg("H501"), 30) == 24
