@@ -328,6 +328,8 @@ def evaluate_mesh(pair, torque: float, speed_rad_s: float = 1.0, modifications: 
 
 
 _CHEBYSHEV_NODES = 24
+_CHEB_NODES = np.cos(np.pi * (np.arange(_CHEBYSHEV_NODES) + 0.5) / _CHEBYSHEV_NODES)
+_CHEB_FIT = np.linalg.inv(np.polynomial.chebyshev.chebvander(_CHEB_NODES, _CHEBYSHEV_NODES - 1))
 
 
 def _on_path(function, rho, low: float, high: float) -> dict:
@@ -337,14 +339,11 @@ def _on_path(function, rho, low: float, high: float) -> dict:
     rho = np.asarray(rho, dtype=float)
     if rho.size <= _CHEBYSHEV_NODES:
         return function(rho)
-    k = np.arange(_CHEBYSHEV_NODES)
-    nodes = np.cos(np.pi * (k + 0.5) / _CHEBYSHEV_NODES)
     half, mid = 0.5 * (high - low), 0.5 * (high + low)
-    values = function(mid + half * nodes)
+    values = function(mid + half * _CHEB_NODES)
     t = np.clip((rho - mid) / half, -1.0, 1.0)
     keys = list(values)
-    coefficients = np.polynomial.chebyshev.chebfit(nodes, np.stack([values[k] for k in keys], axis=1),
-                                                   _CHEBYSHEV_NODES - 1)
+    coefficients = _CHEB_FIT @ np.stack([values[k] for k in keys], axis=1)  # exact interpolant at the nodes
     evaluated = np.polynomial.chebyshev.chebval(t, coefficients)
     return {k: evaluated[i] for i, k in enumerate(keys)}
 
