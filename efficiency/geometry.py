@@ -126,6 +126,7 @@ class GearPair:
     root_diameters_given: tuple[float, float] | None = None
     normal_thicknesses_given: tuple[float, float] | None = None
     zero_backlash_center: bool = field(default=False, init=False, compare=False)
+    _alpha_zero_backlash: object = field(default=None, init=False, compare=False, repr=False)
 
     def __post_init__(self):
         _validate("z1", self.z1, 5, 10000)
@@ -248,6 +249,12 @@ class GearPair:
         return r1 + r2
 
     def _zero_backlash_working_pressure_angle(self):
+        """α_wt of the nominal teeth at zero backlash (cached: the properties ask for it on every access)."""
+        if self._alpha_zero_backlash is None:
+            object.__setattr__(self, "_alpha_zero_backlash", self._solve_zero_backlash_angle())
+        return self._alpha_zero_backlash
+
+    def _solve_zero_backlash_angle(self):
         inv = involute(self.transverse_pressure_angle) + 2.0 * np.tan(self.normal_pressure_angle) * (
             np.asarray(self.x1, float) + np.asarray(self.x2, float)) / (np.asarray(self.z1, float) + self.z2)
         return inverse_involute(inv)
