@@ -61,7 +61,14 @@ def hex8_stiffness(coords, E, nu):
 
 
 class ToothFE:
-    def __init__(self, pair, gear, n_tooth=16, n_body=5, n_t=8, n_z=46, E=206e9, nu=0.3, body_depth_modules=1.5, fix_sides=False):
+    """One tooth of ``gear`` (1 or 2) of ``pair`` as a straight extrusion of its transverse section, SI units: the
+    involute flank above the base circle, constant thickness between root and base circle (as the slice model), a
+    rim ``body_depth_modules`` transverse modules deep below the root circle whose half-angle widens to 0.9 of the
+    half pitch, clamped at its bottom (and at its sides with ``fix_sides``). ``n_tooth``, ``n_body``, ``n_t``,
+    ``n_z``: elements along the radius in the tooth and the rim, across the thickness and across the face."""
+
+    def __init__(self, pair, gear, n_tooth=16, n_body=5, n_t=8, n_z=46, E=206e9, nu=0.3, body_depth_modules=1.5,
+                 fix_sides=False):
         i = gear - 1
         self.pair = pair
         rb = float(pair.base_radii[i]); rf = float(pair.root_radii[i]); ra = float(pair.tip_radii[i])
