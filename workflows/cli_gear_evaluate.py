@@ -80,6 +80,8 @@ def register(gear_subparsers) -> None:
                                                     "default: from --lubricant)")
     iso.add_argument("--nu100-cst", type=float, help="oil kinematic viscosity at 100 °C [cSt]")
     iso.add_argument("--density-kg-m3", type=float, default=880.0, help="oil density at 15 °C [kg/m³] (880)")
+    iso.add_argument("--eta-oil-mpas", type=float,
+                     help="oil dynamic viscosity at the oil temperature [mPa·s] (instead of ν40/ν100 or a lubricant)")
     parser.add_argument("--per-position", action="store_true", help="include per-position arrays in the output")
     parser.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
     parser.set_defaults(handler=run_evaluate)
@@ -204,7 +206,12 @@ def _iso14179(pair, torque, omega, args) -> dict:
     x_l = lubricant_factor(args.oil_type)
     if (args.nu40_cst is None) != (args.nu100_cst is None):
         raise InputError("nu40-cst/nu100-cst", (args.nu40_cst, args.nu100_cst), "both or neither")
-    if args.nu40_cst is not None:
+    if args.eta_oil_mpas is not None:
+        if args.nu40_cst is not None:
+            raise InputError("eta-oil-mpas", args.eta_oil_mpas, "either --eta-oil-mpas or --nu40-cst/--nu100-cst")
+        eta = check_range("eta-oil-mpas", args.eta_oil_mpas, 0.01, 1e5, unit="mPa·s") * 1e-3
+        source = "eta-oil-mpas"
+    elif args.nu40_cst is not None:
         oil = SimpleOil(nu40=args.nu40_cst * 1e-6, nu100=args.nu100_cst * 1e-6, density15=args.density_kg_m3,
                         oil_type=args.oil_type)
         eta, source = oil.dynamic_viscosity(temperature), "nu40/nu100 (Walther)"

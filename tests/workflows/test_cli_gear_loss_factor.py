@@ -46,3 +46,17 @@ def test_rigid_uniform_json_is_strict_json():
     assert code == 0, stderr
     payload = json.loads(stdout, parse_constant=lambda c: pytest.fail(f"non-standard JSON constant {c}"))
     assert payload["mesh_stiffness_per_width_n_per_m2"] is None and payload["mesh_stiffness_n_per_m"] is None
+
+
+def test_iso14179_with_a_given_viscosity_reproduces_the_module():
+    """--eta-oil-mpas gives the standard's μ_mz for that viscosity (efficiency.iso14179, FZG C, 200 N·m, 1500 rpm)."""
+    from efficiency.iso14179 import iso_14179_2_mesh
+
+    code, stdout, stderr = run("--torque-nm", "200", "--speed-rpm", "1500", "--outputs", "", "--iso14179-2",
+                               "--eta-oil-mpas", "12.5", "--oil-type", "pao", "--ra-um", "0.4", "0.6")
+    assert code == 0, stderr
+    iso = json.loads(stdout)["iso14179_2"]
+    pair = GearPair(16, 24, 4.5e-3, math.radians(20), 0.0, 0.014, 0.1817, 0.1715, center_distance=0.0915)
+    expected = iso_14179_2_mesh(pair, 200.0, 1500 * math.pi / 30, 12.5e-3, 0.4e-6, 0.6e-6, 0.65)
+    assert iso["mu_mz"] == pytest.approx(expected["mu_mz"], rel=1e-12)
+    assert iso["viscosity_source"] == "eta-oil-mpas"
