@@ -286,19 +286,29 @@ def main(argv=None) -> int:
 
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--out", default=None, help="default benchmarks/results/fe_tooth_coupling[_body].json")
+    parser.add_argument("--pair", choices=("H501", "H701"), default="H501", help="FZG pair (gear_cases.md)")
+    parser.add_argument("--coarse", action="store_true",
+                        help="coarser body mesh (12 × 6 tooth, 8 + 2 × 8 body elements per face layer; on H501 it "
+                             "changes the FE loss factor by 2e-4 relative)")
     parser.add_argument("--body", action="store_true",
                         help="teeth on a gear-body sector (bore r_f/2 clamped, cut faces at ±1.5 pitches clamped) "
                              "compared with the model's tooth + foundation compliance (about 10 min, 7 GB)")
     args = parser.parse_args(argv)
     if args.out is None:
-        args.out = str(Path(__file__).parent / "results" / ("fe_tooth_coupling_body.json" if args.body
-                                                            else "fe_tooth_coupling.json"))
+        suffix = ("_body" if args.body else "") + ("" if args.pair == "H501" else f"_{args.pair}")
+        args.out = str(Path(__file__).parent / "results" / f"fe_tooth_coupling{suffix}.json")
     deg = math.pi / 180
-    pair = GearPair(20, 30, 3.5e-3, 20 * deg, 15 * deg, 23e-3, 0.1809, 0.0891, center_distance=0.0915)
-    slices, positions = 23, 24
+    if args.pair == "H501":
+        pair = GearPair(20, 30, 3.5e-3, 20 * deg, 15 * deg, 23e-3, 0.1809, 0.0891, center_distance=0.0915)
+        slices = 23
+    else:
+        pair = GearPair(28, 42, 2.5e-3, 20 * deg, 15 * deg, 17e-3, 0.2290, 0.1489, center_distance=0.0915)
+        slices = 17
+    positions = 24
     started = time.perf_counter()
     if args.body:
-        fe = [ToothBodyFE(pair, g, n_z=2 * slices) for g in (1, 2)]
+        mesh = dict(n_tooth=12, n_t=6, n_body=8, n_side=8) if args.coarse else {}
+        fe = [ToothBodyFE(pair, g, n_z=2 * slices, **mesh) for g in (1, 2)]
     else:
         fe = [ToothFE(pair, g, body_depth_modules=1.0, n_body=4, fix_sides=True, n_z=2 * slices) for g in (1, 2)]
     build_s = time.perf_counter() - started
@@ -331,7 +341,7 @@ def main(argv=None) -> int:
             return cos2 * out
         return build
 
-    # influence of a concentrated load along the face at mid-path, mid-face (FE tooth) against the kernel
+    # influence of a concentrated load along the face at mid-path, mid-face (FE tooth)
     rho_mid = 0.5 * (float(pair.contact_start) + float(pair.contact_end))
     z_nodes = np.linspace(0.0, b, 2 * slices + 1)
     influence = fe[0].compliance(np.full(z_nodes.size, rho_mid), z_nodes)
@@ -358,7 +368,8 @@ def main(argv=None) -> int:
                                                                       outputs=frozenset()))
     results["model_default_tooth_and_foundation_l0.6"] = {"loss_factor": default.loss_factor}
     payload = {
-        "benchmark": "3-D FE check of the slice model's face coupling (FZG H501, 300 N·m)",
+        "benchmark": f"3-D FE check of the slice model's face coupling (FZG {args.pair}, 300 N·m)",
+        "body": bool(args.body), "coarse": bool(args.coarse),
         "machine": machine_info(), "fe_build_s": build_s, "positions": positions, "slices": slices,
         "whole_depth_m": depth, "fe_effective_width_mid_m": effective_width,
         "wimmer_h_vl": wimmer_loss_factor(pair),
