@@ -56,7 +56,7 @@ _PAPER_KEYS = {"kind", "name", "teeth", "normal_pressure_angle_deg", "helix_angl
 _GENERAL_KEYS = {"kind", "name", "teeth", "normal_module_mm", "normal_pressure_angle_deg", "helix_angle_deg",
                  "face_width_mm", "profile_shift", "center_distance_mm", "addendum_coefficient",
                  "dedendum_coefficient", "root_fillet_coefficient", "thickness_allowance_mm", "tip_reduction",
-                 "tip_diameter_mm"}
+                 "tip_diameter_mm", "root_diameter_mm", "normal_thickness_mm"}
 
 
 def read_toml(path: str | os.PathLike) -> dict:
@@ -153,6 +153,11 @@ def design_from_mapping(table: Mapping[str, Any], where: str = "design") -> Gear
     x1, x2 = _pair_of(table, "profile_shift", where, (0.0, 0.0))
     a1, a2 = _pair_of(table, "thickness_allowance_mm", where, (0.0, 0.0))
     tips = _pair_of(table, "tip_diameter_mm", where, (None, None))
+    roots = _pair_of(table, "root_diameter_mm", where, (None, None))
+    thick = _pair_of(table, "normal_thickness_mm", where, (None, None))
+    if thick[0] is not None and "thickness_allowance_mm" in table:
+        raise InputError(f"{where}.normal_thickness_mm", thick, "either normal_thickness_mm or "
+                         "thickness_allowance_mm, not both")
     tip_reduction = table.get("tip_reduction", True)
     if not isinstance(tip_reduction, bool):
         raise InputError(f"{where}.tip_reduction", tip_reduction, "true or false")
@@ -168,7 +173,9 @@ def design_from_mapping(table: Mapping[str, Any], where: str = "design") -> Gear
         root_fillet_coefficient=_number(table, "root_fillet_coefficient", where, 0.38),
         center_distance=None if a is None else _number(table, "center_distance_mm", where) * 1e-3,
         thickness_allowance1=a1 * 1e-3, thickness_allowance2=a2 * 1e-3, tip_reduction=tip_reduction,
-        tip_diameters=None if tips[0] is None else (tips[0] * 1e-3, tips[1] * 1e-3))
+        tip_diameters=None if tips[0] is None else (tips[0] * 1e-3, tips[1] * 1e-3),
+        root_diameters_given=None if roots[0] is None else (roots[0] * 1e-3, roots[1] * 1e-3),
+        normal_thicknesses_given=None if thick[0] is None else (thick[0] * 1e-3, thick[1] * 1e-3))
 
 
 def load_design(path: str | os.PathLike) -> GearPair:

@@ -48,6 +48,14 @@ class FeasibilityLimits:
     min_contact_ratio: float = 1.0
     backlash_kind: str = "normal"
 
+    @classmethod
+    def physical(cls) -> "FeasibilityLimits":
+        """Limits of a pair that can be made and run at all, for any pair outside the paper's study: backlash ≥ 0
+        (within 1 µm, the effect of rounding published profile shifts to 4 decimals: no jamming), tip thickness ≥ 0 (not pointed), root clearance ≥ 0 (no tip–root interference),
+        ε_γ ≥ 1. The paper's 0.04 mm backlash and 0.2 m_n tip thickness and root clearance (Li & Kahraman 2009 §3)
+        are design-study choices and apply only inside that study."""
+        return cls(min_backlash=-1e-6, min_tip_thickness=0.0, min_root_clearance=0.0, min_contact_ratio=1.0)
+
     def __post_init__(self):
         check_range("min_backlash", self.min_backlash, -1e-3, 1e-2, unit="m")
         check_range("min_tip_thickness", self.min_tip_thickness, 0.0, 2.0)

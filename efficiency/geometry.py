@@ -100,6 +100,11 @@ class GearPair:
     tip_reduction : apply the tip (addendum) reduction k m_n with k = x1 + x2 − (a − a0)/m_n when k > 0
         (ISO 21771 §5.4), which keeps the standard root clearance of shifted gears.
     tip_diameters : explicit tip diameters (d_a1, d_a2) [m] overriding the basic-rack values (real gears).
+    root_diameters_given : explicit root diameters (d_f1, d_f2) [m] overriding the basic-rack values (manufacturing
+        data: the root of the real gear; used by the root clearance and the tooth compliance).
+    normal_thicknesses_given : explicit normal tooth thicknesses on the reference circle (s_n1, s_n2) [m]
+        (manufacturing data); they set the thickness allowances A_sn = m_n(π/2 + 2 x tan α_n) − s_n (negative for
+        teeth thicker than nominal) and replace ``thickness_allowance1/2``.
     """
 
     z1: int
@@ -118,7 +123,10 @@ class GearPair:
     thickness_allowance2: float = 0.0
     tip_reduction: bool = True
     tip_diameters: tuple[float, float] | None = None
+    root_diameters_given: tuple[float, float] | None = None
+    normal_thicknesses_given: tuple[float, float] | None = None
     zero_backlash_center: bool = field(default=False, init=False, compare=False)
+    _alpha_zero_backlash: object = field(default=None, init=False, compare=False, repr=False)
 
     def __post_init__(self):
         _validate("z1", self.z1, 5, 10000)
@@ -135,8 +143,21 @@ class GearPair:
         _validate("addendum_coefficient", self.addendum_coefficient, 0.0, 5.0, low_inclusive=False)
         _validate("dedendum_coefficient", self.dedendum_coefficient, 0.0, 5.0, low_inclusive=False)
         _validate("root_fillet_coefficient", self.root_fillet_coefficient, 0.0, 1.0)
-        _validate("thickness_allowance1", self.thickness_allowance1, 0.0, 0.01, unit="m")
-        _validate("thickness_allowance2", self.thickness_allowance2, 0.0, 0.01, unit="m")
+        if self.normal_thicknesses_given is not None:
+            if len(self.normal_thicknesses_given) != 2:
+                raise InputError("normal_thicknesses_given", self.normal_thicknesses_given, "a pair (s_n1, s_n2) [m]")
+            m, t = self.normal_module, np.tan(self.normal_pressure_angle)
+            for i, (s_n, x) in enumerate(zip(self.normal_thicknesses_given, (self.x1, self.x2)), start=1):
+                _validate(f"normal_thickness{i}", s_n, 0.0, 1.0, low_inclusive=False, unit="m")
+                value = m * (math.pi / 2 + 2 * np.asarray(x, float) * t) - s_n
+                object.__setattr__(self, f"thickness_allowance{i}", value if np.ndim(value) else float(value))
+        _validate("thickness_allowance1", self.thickness_allowance1, -0.01, 0.01, unit="m")
+        _validate("thickness_allowance2", self.thickness_allowance2, -0.01, 0.01, unit="m")
+        if self.root_diameters_given is not None:
+            if len(self.root_diameters_given) != 2:
+                raise InputError("root_diameters_given", self.root_diameters_given, "a pair (d_f1, d_f2) [m]")
+            for i, (d_f, rb) in enumerate(zip(self.root_diameters_given, self.base_radii), start=1):
+                _validate(f"root_diameter{i}", d_f, 0.0, 20.0, low_inclusive=False, unit="m")
         if self.tip_diameters is not None:
             for i, d in enumerate(self.tip_diameters, start=1):
                 _validate(f"tip_diameter{i}", d, 0.0, 20.0, low_inclusive=False, unit="m")
@@ -228,6 +249,12 @@ class GearPair:
         return r1 + r2
 
     def _zero_backlash_working_pressure_angle(self):
+        """α_wt of the nominal teeth at zero backlash (cached: the properties ask for it on every access)."""
+        if self._alpha_zero_backlash is None:
+            object.__setattr__(self, "_alpha_zero_backlash", self._solve_zero_backlash_angle())
+        return self._alpha_zero_backlash
+
+    def _solve_zero_backlash_angle(self):
         inv = involute(self.transverse_pressure_angle) + 2.0 * np.tan(self.normal_pressure_angle) * (
             np.asarray(self.x1, float) + np.asarray(self.x2, float)) / (np.asarray(self.z1, float) + self.z2)
         return inverse_involute(inv)
@@ -275,7 +302,10 @@ class GearPair:
 
     @property
     def root_radii(self):
-        """r_f = r − m_n (h_fP* − x) [m] (nominal generating shift; allowances are finished off the flanks)."""
+        """r_f = r − m_n (h_fP* − x) [m] (nominal generating shift; allowances are finished off the flanks), or half
+        the explicit root diameters."""
+        if self.root_diameters_given is not None:
+            return _pair((self.root_diameters_given[0] / 2.0, self.root_diameters_given[1] / 2.0))
         r1, r2 = self.reference_radii
         m, hf = self.normal_module, self.dedendum_coefficient
         return _pair((r1 - m * (hf - self.x1), r2 - m * (hf - self.x2)))
@@ -400,14 +430,21 @@ class GearPair:
 
         The generating rack's straight flank, at depth u = h_FfP − x m_n below the generating pitch line, touches
         the gear on the generating line of action at distance u / sin α_t from the pitch point, i.e. at roll
-        distance r sin α_t − u / sin α_t. A negative value means the rack flank cuts below the base circle:
+        distance r sin α_t − u / sin α_t. With explicit root diameters the rack dedendum is the one that cuts that
+        root, h_fP = r − r_f + x m_n. A negative value means the rack flank cuts below the base circle:
         undercut (ISO 21771 / DIN 3960 undercut limit u > r sin² α_t).
         """
         at = self.transverse_pressure_angle
         s = np.sin(at)
         out = []
-        for r, shift in zip(self.reference_radii, self.generating_shifts):
-            u = self.rack_form_depth - shift
+        for i, (r, shift) in enumerate(zip(self.reference_radii, self.generating_shifts)):
+            depth = self.rack_form_depth
+            if self.root_diameters_given is not None:
+                # the given root is cut by the rack tip: its dedendum is h_fP = r − r_f + x m_n
+                dedendum = r - self.root_diameters_given[i] / 2.0 + shift
+                depth = dedendum - self.normal_module * self.root_fillet_coefficient * (
+                    1.0 - np.sin(self.normal_pressure_angle))
+            u = depth - shift
             out.append(r * s - u / s)
         return _pair(out)
 

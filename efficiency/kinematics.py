@@ -12,7 +12,9 @@ where φ is the rotation of gear 1 and p_bt the transverse base pitch. The face 
 slices (the paper's "thin slices of spur gears staggered according to the helix angle", Li & Kahraman 2009 §2.1);
 each slice centre on each contact line is a contact point. A point is loaded only if it lies on the active path of
 contact, ``contact_start ≤ s ≤ contact_end``. One mesh cycle is one transverse base pitch of roll, sampled at M
-positions φ_m = m p_bt / (M r_b1), m = 0 … M − 1.
+positions φ_m = (m + ½) p_bt / (M r_b1), m = 0 … M − 1 (midpoints: the reference position φ = 0, where a contact
+line enters the path exactly at the face end, is a discontinuity of the load sharing; sampling on it biased the
+cycle mean, e.g. +1.5 % in the loss factor of spur FZG C at M = 24).
 
 At a contact point (DESIGN §6):
 - transverse radii of curvature ρ1 = s, ρ2 = T1T2 − s (involute radius = roll distance from the tangent point),
@@ -99,7 +101,8 @@ def contact_line_count(pair) -> int:
     return int(math.ceil(float(pair.total_contact_ratio))) + 1
 
 
-def mesh_kinematics(pair, positions: int = 24, slices: int = 30, speed_rad_s: float = 1.0) -> MeshKinematics:
+def mesh_kinematics(pair, positions: int = 24, slices: int = 30, speed_rad_s: float = 1.0,
+                    phase: float = 0.5) -> MeshKinematics:
     """Contact points, radii and velocities of ``pair`` (an :class:`efficiency.geometry.GearPair`) over a mesh cycle.
 
     Parameters
@@ -108,6 +111,7 @@ def mesh_kinematics(pair, positions: int = 24, slices: int = 30, speed_rad_s: fl
     positions : M mesh positions per cycle (≥ 1)
     slices : S slices across the face width (≥ 1)
     speed_rad_s : angular speed ω1 of gear 1 [rad/s] (> 0)
+    phase : sample offset in units of the position step, φ_m = (m + phase) p_bt/(M r_b1), in [0, 1) (default ½)
     """
     if np.ndim(pair.normal_module) or np.ndim(pair.z1) or np.ndim(pair.helix_angle):
         raise InputError("pair", "vectorised GearPair", "a single design")
@@ -130,7 +134,8 @@ def mesh_kinematics(pair, positions: int = 24, slices: int = 30, speed_rad_s: fl
     dz = width / slices
     z = (np.arange(slices) + 0.5) * dz
     k_lines = contact_line_count(pair)
-    offset = np.arange(positions) * p_bt / positions
+    phase = check_range("phase", phase, 0.0, 1.0, high_inclusive=False)
+    offset = (np.arange(positions) + phase) * p_bt / positions
     # Lowest intercept: a line that just touches the start of the path at the far face end z = b.
     s0 = start - width * math.tan(psi_b)
     roll = (s0 + offset[:, None, None] + p_bt * np.arange(k_lines)[None, :, None]
@@ -153,3 +158,44 @@ def mesh_kinematics(pair, positions: int = 24, slices: int = 30, speed_rad_s: fl
         u_r=0.5 * (u1 + u2), u_s=u1 - u2, omega1=omega1, omega2=omega2, base_helix_angle=psi_b,
         line_of_action_length=length, contact_start=start, contact_end=end, transverse_base_pitch=p_bt,
     )
+
+
+def sampling_error_estimate(pair, positions: int, slices: int) -> float:
+    """Relative bias estimate of the midpoint rule over a mesh cycle from the load-sharing breakpoints [-].
+
+    A slice centre z_j enters the path of contact at the cycle fraction f_e,j = frac((b − z_j) tan ψ_b / p_bt) and
+    leaves it at f_x,j = frac(ε_α + (b − z_j) tan ψ_b / p_bt); at each such breakpoint the load sharing (and the
+    instantaneous loss) jumps. The midpoint rule on M cells is exact for a jump on a cell boundary and errs by up to
+    half a cell otherwise. Breakpoints shared by n slices (all S of them for spur gears) jump together, so the
+    estimate is Σ_i (n_i/S)² d(f_i M) / M with d the distance to the nearest integer; scattered single-slice
+    breakpoints (helical gears) weigh 1/S² each because their errors largely cancel.
+    """
+    if np.ndim(pair.normal_module) or np.ndim(pair.z1) or np.ndim(pair.helix_angle):
+        raise InputError("pair", "vectorised GearPair", "a single design")
+    width = float(pair.face_width)
+    dz = width / slices
+    z = (np.arange(slices) + 0.5) * dz
+    shift = (width - z) * math.tan(float(pair.base_helix_angle)) / float(pair.transverse_base_pitch)
+    fractions = np.concatenate([np.mod(shift, 1.0), np.mod(float(pair.contact_ratio) + shift, 1.0)])
+    values, counts = np.unique(np.round(fractions, 9) % 1.0, return_counts=True)
+    scaled = values * positions
+    distance = np.abs(scaled - np.round(scaled))
+    return float(np.sum((counts / slices) ** 2 * distance) / positions)
+
+
+def choose_positions(pair, slices: int, minimum: int = 24, maximum: int = 48, tolerance: float = 1e-3) -> int:
+    """Number of mesh positions M: the smallest M in [minimum, maximum] whose :func:`sampling_error_estimate` is
+    ≤ ``tolerance`` (default 0.1 %), else the M with the smallest estimate.
+
+    Measured effect (docs/gear_validation.md): spur FZG C gets M = 32, where its rigid-uniform loss factor is
+    within 0.02 % of Ohlendorf's exact H_V (24 positions: +1.6 %); helical FZG pairs keep M = 24 (within 0.1 % of
+    400 positions).
+    """
+    best, best_error = minimum, math.inf
+    for m in range(minimum, maximum + 1):
+        error = sampling_error_estimate(pair, m, slices)
+        if error <= tolerance:
+            return m
+        if error < best_error:
+            best, best_error = m, error
+    return best

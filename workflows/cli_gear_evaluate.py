@@ -43,13 +43,21 @@ def register(gear_subparsers) -> None:
     load.add_argument("--tip-relief-length-mm", type=float, help="roll length of the tip relief per gear [mm]")
     model = parser.add_argument_group("model and resolution")
     model.add_argument("--slices", type=int, default=30, help="slices across the face (default 30)")
-    model.add_argument("--positions", type=int, default=24, help="mesh positions per cycle (default 24)")
+    model.add_argument("--positions", type=int, default=None,
+                       help="mesh positions per cycle (default: chosen per design, 24-48, so that the load-sharing "
+                            "breakpoints fall on sampling-cell boundaries)")
     model.add_argument("--outputs", default="te,stresses",
                        help="comma-separated subset of te,stresses to compute (default both; '' for loads only)")
     model.add_argument("--contact-model", choices=("weber", "linear"), default="weber",
                        help="Hertzian contact compliance (default weber)")
-    model.add_argument("--coupling-length-factor", type=float, default=1.0,
-                       help="face-coupling length in tooth depths (default 1)")
+    model.add_argument("--coupling-length-factor", type=float, default=None,
+                       help="face-coupling length of the tooth in tooth depths (default 0.6, from a 3-D FE check)")
+    model.add_argument("--foundation-coupling-length-factor", type=float, default=None,
+                       help="face-coupling length of the gear body in tooth depths (default: as the tooth)")
+    model.add_argument("--load-sharing", choices=("elastic", "rigid-uniform", "independent-slices"),
+                       default="elastic",
+                       help="elastic (default), rigid-uniform (uniform load per contact length: Wimmer's H_VL; "
+                            "unmodified flanks only) or independent-slices (no face coupling)")
     friction = parser.add_argument_group("friction power loss (computed only with --friction)")
     friction.add_argument("--friction", metavar="MODEL",
                           help="friction model: a coefficient file (surrogate), xu2007, benedict_kelley, iso14179, "
@@ -61,6 +69,21 @@ def register(gear_subparsers) -> None:
     friction.add_argument("--lubricant", default="atf",
                           help="lubricant name or TOML file for the EHL and published models (default atf; a "
                                "coefficient file carries its own)")
+    iso = parser.add_argument_group("ISO/TR 14179-2 mean friction and mesh loss (with --iso14179-2)")
+    iso.add_argument("--iso14179-2", dest="iso14179_2", action="store_true",
+                     help="also report the standard's μ_mz, H_V and P_VZP (uses --oil-temp-c)")
+    iso.add_argument("--oil-type", default="mineral",
+                     help="base oil for X_L: mineral (0.846), pao (0.65), ester (0.65), polyglycol (0.585), "
+                          "reference (1.0, the formula as printed)")
+    iso.add_argument("--ra-um", type=float, nargs="+", metavar="RA",
+                     help="arithmetic mean roughness Ra [µm] of the flanks (one or two values); default "
+                          "√(2/π)·Rq from --rq-um (Gaussian surface)")
+    iso.add_argument("--nu40-cst", type=float, help="oil kinematic viscosity at 40 °C [cSt] (with --nu100-cst; "
+                                                    "default: from --lubricant)")
+    iso.add_argument("--nu100-cst", type=float, help="oil kinematic viscosity at 100 °C [cSt]")
+    iso.add_argument("--density-kg-m3", type=float, default=880.0, help="oil density at 15 °C [kg/m³] (880)")
+    iso.add_argument("--eta-oil-mpas", type=float,
+                     help="oil dynamic viscosity at the oil temperature [mPa·s] (instead of ν40/ν100 or a lubricant)")
     parser.add_argument("--per-position", action="store_true", help="include per-position arrays in the output")
     parser.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
     parser.set_defaults(handler=run_evaluate)
@@ -108,8 +131,14 @@ def run_evaluate(args: argparse.Namespace) -> int:
     speed = check_range("speed-rpm", args.speed_rpm, 0.0, 1e6, low_inclusive=False, unit="rpm")
     outputs = frozenset(o.strip() for o in args.outputs.split(",") if o.strip())
     mods = _modifications(args)
+    from efficiency.loss_factor import ohlendorf_loss_factor, wimmer_loss_factor
+    from efficiency.mesh_cycle import DEFAULT_COUPLING_LENGTH_FACTOR
+
+    coupling = DEFAULT_COUPLING_LENGTH_FACTOR if args.coupling_length_factor is None else args.coupling_length_factor
     options = MeshOptions(positions=args.positions, slices=args.slices, outputs=outputs,
-                          contact_model=args.contact_model, coupling_length_factor=args.coupling_length_factor)
+                          contact_model=args.contact_model, coupling_length_factor=coupling,
+                          foundation_coupling_length_factor=args.foundation_coupling_length_factor,
+                          load_sharing=args.load_sharing)
     result = evaluate_mesh(pair, torque, speed_rad_s=speed * math.pi / 30.0, modifications=mods, options=options)
 
     kin = result.kinematics
@@ -117,9 +146,15 @@ def run_evaluate(args: argparse.Namespace) -> int:
         "torque_nm": torque, "speed_rpm": speed,
         "profile_crown_m": mods.profile_crown, "lead_crown_m": mods.lead_crown, "lead_slope_m": mods.lead_slope,
         "positions": int(kin.shape[0]), "slices": int(kin.shape[2]), "contact_model": options.contact_model,
+        "load_sharing": options.load_sharing,
+        "loss_factor": result.loss_factor, "loss_factor_ohlendorf": ohlendorf_loss_factor(pair),
+        "loss_factor_wimmer": wimmer_loss_factor(pair),
         "normal_load_n": result.normal_load,
-        "mesh_stiffness_mean_n_per_m": float(np.mean(result.mesh_stiffness)),
-        "mesh_stiffness_per_width_n_per_m2": result.mesh_stiffness_per_width,
+        # rigid teeth have no finite mesh stiffness: null in the JSON
+        "mesh_stiffness_mean_n_per_m": (float(np.mean(result.mesh_stiffness))
+                                        if np.isfinite(result.mesh_stiffness_per_width) else None),
+        "mesh_stiffness_per_width_n_per_m2": (result.mesh_stiffness_per_width
+                                              if np.isfinite(result.mesh_stiffness_per_width) else None),
         "max_load_per_length_n_per_m": float(result.load_per_length.max()),
         "converged": result.converged, "active_set_iterations": int(result.iterations.sum()),
         "equilibrium_residual": result.equilibrium_residual, "max_penetration_m": result.max_penetration,
@@ -141,16 +176,56 @@ def run_evaluate(args: argparse.Namespace) -> int:
         payload["iso6336"] = {"error": str(err)}
     if args.per_position:
         payload["mesh_angle_rad"] = kin.mesh_angle
-        payload["mesh_stiffness_n_per_m"] = result.mesh_stiffness
+        payload["mesh_stiffness_n_per_m"] = (result.mesh_stiffness if np.all(np.isfinite(result.mesh_stiffness))
+                                             else None)
         if result.transmission_error is not None:
             payload["transmission_error_m"] = result.transmission_error
         payload["loaded_points"] = (result.loads > 0).sum(axis=(1, 2))
+    if args.iso14179_2:
+        payload["iso14179_2"] = _iso14179(pair, torque, speed * math.pi / 30.0, args)
     payload["model_time_s"] = result.wall_time_s
     if args.friction is not None:
         payload.update(_power_loss(result, args))
     payload["wall_time_s"] = time.perf_counter() - started
     emit(payload, args.json, _human)
     return 0 if result.converged else 3
+
+
+def _iso14179(pair, torque, omega, args) -> dict:
+    """ISO/TR 14179-2 μ_mz, H_V, P_VZP (efficiency.iso14179) from the oil and roughness options."""
+    from ehl_dataset.validation import InputError, check_range
+    from efficiency.iso14179 import SimpleOil, iso_14179_2_mesh, lubricant_factor
+    from surrogate.published import RA_PER_RQ
+
+    temperature, rq1, rq2 = _friction_inputs(args)
+    if args.ra_um:
+        if len(args.ra_um) not in (1, 2):
+            raise InputError("ra-um", args.ra_um, "one value (both flanks) or two values RA1 RA2 [µm]")
+        ra1 = check_range("ra-um", args.ra_um[0], 0.0, 100.0, low_inclusive=False, unit="µm") * 1e-6
+        ra2 = check_range("ra-um", args.ra_um[-1], 0.0, 100.0, low_inclusive=False, unit="µm") * 1e-6
+    else:
+        ra1, ra2 = RA_PER_RQ * rq1, RA_PER_RQ * rq2
+    x_l = lubricant_factor(args.oil_type)
+    if (args.nu40_cst is None) != (args.nu100_cst is None):
+        raise InputError("nu40-cst/nu100-cst", (args.nu40_cst, args.nu100_cst), "both or neither")
+    if args.eta_oil_mpas is not None:
+        if args.nu40_cst is not None:
+            raise InputError("eta-oil-mpas", args.eta_oil_mpas, "either --eta-oil-mpas or --nu40-cst/--nu100-cst")
+        eta = check_range("eta-oil-mpas", args.eta_oil_mpas, 0.01, 1e5, unit="mPa·s") * 1e-3
+        source = "eta-oil-mpas"
+    elif args.nu40_cst is not None:
+        oil = SimpleOil(nu40=args.nu40_cst * 1e-6, nu100=args.nu100_cst * 1e-6, density15=args.density_kg_m3,
+                        oil_type=args.oil_type)
+        eta, source = oil.dynamic_viscosity(temperature), "nu40/nu100 (Walther)"
+    else:
+        from ehl_dataset.lubricants import load_lubricant
+        from surrogate.features import lubricant_properties
+
+        eta, _ = lubricant_properties(load_lubricant(args.lubricant), temperature)
+        eta, source = float(eta), f"lubricant {args.lubricant}"
+    out = iso_14179_2_mesh(pair, torque, omega, eta, ra1, ra2, x_l)
+    out.update(oil_type=args.oil_type, viscosity_source=source, oil_temperature_k=temperature)
+    return out
 
 
 def _friction_inputs(args) -> tuple[float, float, float]:
@@ -207,7 +282,10 @@ def _human(p: dict) -> str:
         f"M_L {p['lead_crown_m'] * 1e6:.3g} µm, lead slope {p['lead_slope_m'] * 1e6:.3g} µm; "
         f"{p['positions']} positions × {p['slices']} slices, contact model {p['contact_model']}",
         f"normal load W = {p['normal_load_n']:.1f} N, max line load {p['max_load_per_length_n_per_m'] / 1e3:.1f} N/mm",
-        f"mesh stiffness (cycle mean) {p['mesh_stiffness_per_width_n_per_m2'] / 1e9:.2f} N/(mm·µm)",
+        ("mesh stiffness: rigid teeth" if p['mesh_stiffness_per_width_n_per_m2'] is None else
+         f"mesh stiffness (cycle mean) {p['mesh_stiffness_per_width_n_per_m2'] / 1e9:.2f} N/(mm·µm)"),
+        f"loss factor H_V = P/(μ P_in) of this load sharing ({p['load_sharing']}) {p['loss_factor']:.5f}; "
+        f"Ohlendorf H_V {p['loss_factor_ohlendorf']:.5f}, Wimmer H_VL (rigid, uniform) {p['loss_factor_wimmer']:.5f}",
     ]
     if "te_pp_m" in p:
         lines.append(f"transmission error peak-to-peak {p['te_pp_m'] * 1e6:.3f} µm (mean {p['te_mean_m'] * 1e6:.2f} µm)")
@@ -236,6 +314,11 @@ def _human(p: dict) -> str:
                          "loaded points")
         for message in p.get("friction_warnings", []):
             lines.append(f"warning: {message}")
+    if "iso14179_2" in p:
+        q = p["iso14179_2"]
+        lines.append(f"ISO/TR 14179-2: μ_mz {q['mu_mz']:.4f} (X_L {q['x_l']:.3g} {q['oil_type']}, η "
+                     f"{q['eta_oil_mpas']:.3g} mPa·s, Ra {q['ra_um']:.3g} µm), H_V {q['loss_factor_ohlendorf']:.4f}, "
+                     f"P_VZP {q['p_vzp_w']:.1f} W")
     lines.append(f"converged {p['converged']} (equilibrium residual {p['equilibrium_residual']:.1e}, "
                  f"{p['active_set_iterations']} active-set iterations), {p['wall_time_s'] * 1e3:.0f} ms")
     return "\n".join(lines)

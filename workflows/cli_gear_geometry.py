@@ -44,6 +44,11 @@ def add_design_options(parser) -> None:
                         help="generating rack tip radius ρ_fP/m_n (paper default 0.25, general 0.38)")
     common.add_argument("--thickness-allowance-mm", type=float,
                         help="normal tooth thinning A_sn of each gear [mm] (paper default: ISO/TR 10064-2 backlash)")
+    mfg = parser.add_argument_group("manufacturing data of a general pair (override the basic-rack values)")
+    mfg.add_argument("--tip-diameter-mm", type=float, nargs=2, metavar=("DA1", "DA2"), help="tip diameters [mm]")
+    mfg.add_argument("--root-diameter-mm", type=float, nargs=2, metavar=("DF1", "DF2"), help="root diameters [mm]")
+    mfg.add_argument("--tooth-thickness-mm", type=float, nargs=2, metavar=("SN1", "SN2"),
+                     help="normal tooth thicknesses on the reference circle [mm] (instead of an allowance)")
 
 
 def register(gear_subparsers) -> None:
@@ -55,6 +60,10 @@ def register(gear_subparsers) -> None:
     common.add_argument("--torque-nm", type=float,
                         help="pinion torque [N·m]: also print the ISO 6336 reference values at this torque")
     common.add_argument("--strict", action="store_true", help="exit status 1 when the design is infeasible")
+    common.add_argument("--study-limits", action="store_true",
+                        help="judge with the paper study's limits (backlash 0.04 mm, tip thickness and root "
+                             "clearance 0.2 m_n) even for a pair outside it (default: only for the paper "
+                             "parametrisation; other pairs get the physical limits)")
     common.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
     geometry.set_defaults(handler=run_geometry)
 
@@ -103,6 +112,13 @@ def build_pair(args: argparse.Namespace):
         if getattr(args, name) is None:
             raise InputError(name.replace("_", "-"), None, "required for a general pair")
     allowance = 0.0 if args.thickness_allowance_mm is None else args.thickness_allowance_mm * 1e-3
+    if args.tooth_thickness_mm is not None and args.thickness_allowance_mm is not None:
+        raise InputError("tooth-thickness-mm", args.tooth_thickness_mm, "either --tooth-thickness-mm or "
+                         "--thickness-allowance-mm, not both")
+
+    def mm_pair(values):
+        return None if values is None else (values[0] * 1e-3, values[1] * 1e-3)
+
     return GearPair(
         z1=args.teeth1, z2=args.teeth2, normal_module=args.module_mm * 1e-3,
         normal_pressure_angle=math.radians(args.pressure_angle_deg),
@@ -111,19 +127,24 @@ def build_pair(args: argparse.Namespace):
         dedendum_coefficient=args.dedendum_coefficient,
         root_fillet_coefficient=0.38 if args.root_fillet_coefficient is None else args.root_fillet_coefficient,
         center_distance=None if args.center_distance_mm is None else args.center_distance_mm * 1e-3,
-        thickness_allowance1=allowance, thickness_allowance2=allowance, tip_reduction=not args.no_tip_reduction)
+        thickness_allowance1=allowance, thickness_allowance2=allowance, tip_reduction=not args.no_tip_reduction,
+        tip_diameters=mm_pair(args.tip_diameter_mm), root_diameters_given=mm_pair(args.root_diameter_mm),
+        normal_thicknesses_given=mm_pair(args.tooth_thickness_mm))
 
 
 def run_geometry(args: argparse.Namespace) -> int:
     import time
 
     from efficiency import iso6336
-    from efficiency.feasibility import check_design
+    from efficiency.feasibility import FeasibilityLimits, check_design
 
     start = time.perf_counter()
     pair = build_pair(args)
-    report = check_design(pair)
+    in_study = args.teeth is not None or args.working_depth is not None or args.study_limits
+    limits = FeasibilityLimits() if in_study else FeasibilityLimits.physical()
+    report = check_design(pair, limits)
     payload = pair.summary()
+    payload["feasibility_limits"] = "paper study" if in_study else "physical"
     payload["feasible"] = report.feasible
     payload["violations"] = [v.as_dict() for v in report.violations]
     if args.torque_nm is not None:

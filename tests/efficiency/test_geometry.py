@@ -200,7 +200,7 @@ def test_vectorised_pairs_match_scalar_pairs():
 
 @pytest.mark.parametrize("field, value", [
     ("normal_module", -2e-3), ("normal_module", float("nan")), ("helix_angle", rad(50.0)),
-    ("normal_pressure_angle", 0.0), ("face_width", 0.0), ("z1", 3), ("x1", 5.0), ("thickness_allowance1", -1e-5)])
+    ("normal_pressure_angle", 0.0), ("face_width", 0.0), ("z1", 3), ("x1", 5.0), ("thickness_allowance1", -0.02)])
 def test_bad_input_names_the_parameter(field, value):
     kwargs = dict(z1=20, z2=30, normal_module=2e-3, normal_pressure_angle=rad(20.0), helix_angle=rad(15.0),
                   face_width=0.02)

