@@ -84,6 +84,9 @@ def register(gear_subparsers) -> None:
     iso.add_argument("--density-kg-m3", type=float, default=880.0, help="oil density at 15 °C [kg/m³] (880)")
     iso.add_argument("--eta-oil-mpas", type=float,
                      help="oil dynamic viscosity at the oil temperature [mPa·s] (instead of ν40/ν100 or a lubricant)")
+    from .cli_validity import add_validity_options
+
+    add_validity_options(parser)
     parser.add_argument("--per-position", action="store_true", help="include per-position arrays in the output")
     parser.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
     parser.set_defaults(handler=run_evaluate)
@@ -187,8 +190,14 @@ def run_evaluate(args: argparse.Namespace) -> int:
     if args.friction is not None:
         payload.update(_power_loss(result, args))
     payload["wall_time_s"] = time.perf_counter() - started
-    emit(payload, args.json, _human)
-    return 0 if result.converged else 3
+    from efficiency.validity import mesh_checks
+
+    from .cli_validity import finish
+
+    checks = mesh_checks(result, pair) + payload.pop("friction_checks", [])
+    return finish(payload, checks, args, _human, converged=result.converged,
+                  options={"contact_pressure": "torque-nm", "root_stress": "torque-nm", "deflection": "torque-nm",
+                           "friction_surrogate_range": "friction"})
 
 
 def _iso14179(pair, torque, omega, args) -> dict:
@@ -252,7 +261,7 @@ def _power_loss(mesh, args) -> dict:
     from efficiency.power_loss import mesh_power_loss
 
     temperature, rq1, rq2 = _friction_inputs(args)
-    friction = friction_from_spec(args.friction, args.lubricant)
+    friction = friction_from_spec(args.friction, args.lubricant, clip_to_fitted_ranges=not args.no_clip)
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         loss = mesh_power_loss(mesh, friction, temperature, rq1, rq2)
@@ -273,6 +282,9 @@ def _power_loss(mesh, args) -> dict:
     messages = sorted({str(w.message) for w in caught})
     if messages:
         out["friction_warnings"] = messages
+    from efficiency.validity import friction_checks
+
+    out["friction_checks"] = friction_checks(loss, mesh, friction, temperature, rq1, rq2, clip=not args.no_clip)
     return out
 
 

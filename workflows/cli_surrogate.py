@@ -32,6 +32,9 @@ def register(subparsers) -> None:
     pred.add_argument("--temp-c", type=float, required=True, help="oil inlet temperature [°C]")
     pred.add_argument("--rq1-um", type=float, required=True, help="RMS roughness of surface 1 [µm]")
     pred.add_argument("--rq2-um", type=float, required=True, help="RMS roughness of surface 2 [µm]")
+    from .cli_validity import add_validity_options
+
+    add_validity_options(pred)
     pred.add_argument("--json", action="store_true", help="print one JSON object")
     pred.set_defaults(handler=_predict)
 
@@ -124,7 +127,9 @@ def _predict(args) -> int:
 
     from ehl_dataset.validation import check_range
     from surrogate.evaluate import FrictionSurrogate
-    from workflows.cli_output import emit
+    from surrogate.validity import clipping_note, judge
+
+    from .cli_validity import finish
 
     start = time.perf_counter()
     check_range("p_h_gpa", args.p_h_gpa, 0.0, 10.0, low_inclusive=False, unit="GPa")
@@ -134,16 +139,18 @@ def _predict(args) -> int:
     check_range("temp_c", args.temp_c, -273.15, 726.0, low_inclusive=False, unit="C")
     check_range("rq1_um", args.rq1_um, 0.0, 100.0, low_inclusive=False, unit="um")
     check_range("rq2_um", args.rq2_um, 0.0, 100.0, low_inclusive=False, unit="um")
-    surrogate = FrictionSurrogate.load(args.coefficients)
+    surrogate = FrictionSurrogate.load(args.coefficients, clip_to_fitted_ranges=not args.no_clip)
     inputs = (args.p_h_gpa * 1e9, args.r_eq_mm * 1e-3, args.u_r, args.sr, args.temp_c + 273.15,
               args.rq1_um * 1e-6, args.rq2_um * 1e-6)
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        feats = surrogate.features(*inputs)
+        feats = surrogate.features(*inputs, warn=False)
         mu = float(np.ravel(surrogate.mu(*inputs, warn=False))[0])
     notes = [str(w.message) for w in caught]
-    for note in notes:
-        print(f"gearloss: warning: {note}", file=sys.stderr)
+    # the policy of gear evaluate (surrogate.validity): inputs clipped to the fitted ranges, counted per input
+    arrays = surrogate.validate(*inputs)
+    _, outside = surrogate.clip(arrays)
+    check = judge(1.0 if any(outside.values()) else 0.0, outside, 1, clip=not args.no_clip)
     doc = surrogate.coefficients.document
     lam = float(np.ravel(feats["lam"])[0])
     payload = {
@@ -151,17 +158,26 @@ def _predict(args) -> int:
         "lambda_bar": lam,
         "branch": "mixed" if lam <= surrogate.formula.lambda_threshold else "full_film",
         "h_min_dh_m": float(np.ravel(feats["h_min_dh"])[0]),
-        "extrapolated": bool(notes),
+        "clipped_inputs": outside if not args.no_clip else {k: 0 for k in outside},
+        "extrapolated_inputs": outside if args.no_clip else {k: 0 for k in outside},
+        "note": clipping_note(outside, 1, clipped=not args.no_clip) if any(outside.values()) else "",
         "warnings": notes,
         "formula": doc["formula"]["name"],
         "lubricant": surrogate.lubricant.name,
         "coefficients": surrogate.coefficients.path,
         "wall_time_s": time.perf_counter() - start,
     }
-    emit(payload, args.json, lambda p: (f"mu = {p['mu']:.5f}  (lambda_bar = {p['lambda_bar']:.3f}, branch "
-                                        f"{p['branch']}, {p['formula']}, lubricant {p['lubricant']})"
-                                        + ("  [extrapolated]" if p["extrapolated"] else "")))
-    return 0
+    options = {"p_h": "p-h-gpa", "r_eq": "r-eq-mm", "u_r": "u-r", "sr": "sr", "temperature": "temp-c",
+               "rq1": "rq1-um", "rq2": "rq2-um"}
+    first = next((k for k, v in outside.items() if v), None)
+    return finish(payload, [check], args, _predict_text,
+                  options={"friction_surrogate_range": options.get(first, "p-h-gpa")})
+
+
+def _predict_text(p) -> str:
+    text = (f"mu = {p['mu']:.5f}  (lambda_bar = {p['lambda_bar']:.3f}, branch {p['branch']}, {p['formula']}, "
+            f"lubricant {p['lubricant']})")
+    return text
 
 
 def _compare(args) -> int:

@@ -54,19 +54,30 @@ def test_fit_writes_a_file_and_reports_exclusions(dataset, tmp_path, capsys):
     assert doc["source"]["accuracy_level"] == "synthetic" and len(doc["source"]["sha256"]) == 64
 
 
-def test_predict_matches_the_library_and_flags_extrapolation(fitted, capsys):
+def test_predict_matches_the_library_and_flags_inputs_outside_the_fitted_ranges(fitted, capsys):
+    """Inside the fitted ranges: the library's μ, valid, exit 0. Outside (u_r 40 m/s, fitted up to 20): the policy
+    of gear evaluate (issue 16, finding 5): μ of the surrogate with its inputs clipped, the clipped input counted,
+    valid false and exit 1; --no-clip gives the raw regression, flagged the same way."""
     from surrogate.evaluate import FrictionSurrogate
 
     assert main(["surrogate", "predict", str(fitted), *PREDICT, "--json"]) == 0
     out = _json(capsys)
     expected = FrictionSurrogate.load(fitted).mu(1e9, 0.02, 5.0, 0.2, 348.15, 0.2e-6, 0.2e-6)
     assert out["mu"] == pytest.approx(float(expected), rel=1e-12)
-    assert out["extrapolated"] is False
+    assert out["valid"] is True and not any(out["clipped_inputs"].values())
     args = [str(fitted), *PREDICT]
     args[args.index("--u-r") + 1] = "40"
-    assert main(["surrogate", "predict", *args, "--json"]) == 0
+    assert main(["surrogate", "predict", *args, "--json"]) == 1
     out = _json(capsys)
-    assert out["extrapolated"] is True and "u_r" in out["warnings"][0]
+    clipped = FrictionSurrogate.load(fitted, clip_to_fitted_ranges=True).mu(1e9, 0.02, 40.0, 0.2, 348.15, 0.2e-6,
+                                                                             0.2e-6, warn=False)
+    assert out["mu"] == pytest.approx(float(clipped), rel=1e-12)
+    assert out["valid"] is False and out["clipped_inputs"]["u_r"] == 1
+    assert out["note"].startswith("surrogate inputs clipped to the fitted ranges: u_r 1 of 1 point")
+    assert main(["surrogate", "predict", *args, "--no-clip", "--json"]) == 1
+    raw = _json(capsys)
+    expected = FrictionSurrogate.load(fitted).mu(1e9, 0.02, 40.0, 0.2, 348.15, 0.2e-6, 0.2e-6, warn=False)
+    assert raw["mu"] == pytest.approx(float(expected), rel=1e-12) and raw["extrapolated_inputs"]["u_r"] == 1
 
 
 def test_bad_input_and_tampered_file_exit_2_with_one_line(fitted, tmp_path, capsys):
