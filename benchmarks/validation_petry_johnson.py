@@ -51,7 +51,7 @@ def main(argv=None) -> int:
     parser.add_argument("--routes", default="xu2007,iso14179-2,ehl-grid:fast")
     args = parser.parse_args(argv)
 
-    from ehl_dataset.lubricant import load_lubricant
+    from ehl_dataset.model.lubricant import load_lubricant
     from efficiency.friction_accuracy import friction_from_name
     from efficiency.iso14179 import iso_14179_2_mesh, lubricant_factor
     from efficiency.mesh_cycle import MeshOptions, evaluate_mesh
