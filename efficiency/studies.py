@@ -49,7 +49,7 @@ DESIGN_COLUMNS = ("teeth", "normal_pressure_angle_deg", "helix_angle_deg", "work
 GEOMETRY_COLUMNS = ("normal_module_m", "tip_diameter_m", "root_diameter_m", "thickness_allowance_m", "eps_alpha",
                     "eps_beta", "eps_gamma")
 OUTPUT_COLUMNS = ("power_loss_w", "efficiency", "te_pp_m", "sigma_c_pa", "sigma_b_pa", "mu_mean", "converged",
-                  "error", "warning", "wall_time_s")
+                  "valid", "not_valid_because", "error", "warning", "wall_time_s")
 
 SEARCH_CRITERIA = {
     "max_power_loss_w": "power_loss_w",
@@ -149,7 +149,9 @@ def evaluate_design(pair: GearPair, friction: Callable, point: StudyPoint,
     """P, η, TE p-p, σ_c, σ_b (SI) of one design at one operating point; the row of a study table.
 
     ``options.outputs`` is forced to {"te", "stresses"} (the studies need both). Errors are raised, not caught
-    (:func:`design_sweep` records them per design).
+    (:func:`design_sweep` records them per design). ``valid``: the result lies inside the validity of the load
+    distribution and of a surrogate's fitted ranges (:mod:`efficiency.validity`); ``not_valid_because``: the
+    reasons when it does not.
     """
     started = time.perf_counter()
     if options.outputs != frozenset({"te", "stresses"}):
@@ -164,16 +166,22 @@ def evaluate_design(pair: GearPair, friction: Callable, point: StudyPoint,
                           f"{loss.p_h[at]:.4g} Pa, SR = {loss.sr[at]:.4g}; a surrogate far outside its fitted ranges?")
     loads = mesh.loads
     mu_mean = float(np.nansum(np.nan_to_num(loss.mu) * loads) / loads.sum()) if loads.sum() > 0 else math.nan
+    from .validity import friction_checks, mesh_checks, summarize
+
+    valid, reasons = summarize(mesh_checks(mesh, pair) + friction_checks(
+        loss, mesh, friction, point.oil_temperature, point.rq1, point.rq2,
+        clip=getattr(friction, "clip_to_fitted_ranges", True)))
     return {
         "power_loss_w": loss.power_loss, "efficiency": loss.efficiency, "te_pp_m": mesh.te_peak_to_peak,
         "sigma_c_pa": mesh.sigma_c_max, "sigma_b_pa": mesh.sigma_b_max, "mu_mean": mu_mean,
-        "converged": bool(mesh.converged), "error": "", "warning": "", "wall_time_s": time.perf_counter() - started,
+        "converged": bool(mesh.converged), "valid": valid, "not_valid_because": "; ".join(reasons), "error": "",
+        "warning": "", "wall_time_s": time.perf_counter() - started,
     }
 
 
 def _failed_row(err: Exception, started: float) -> dict:
     row = {name: math.nan for name in OUTPUT_COLUMNS}
-    row.update(converged=False, error=f"{type(err).__name__}: {err}", warning="",
+    row.update(converged=False, valid=False, not_valid_because="", error=f"{type(err).__name__}: {err}", warning="",
                wall_time_s=time.perf_counter() - started)
     return row
 

@@ -268,24 +268,97 @@ def _points_sha256(points: np.ndarray) -> str:
 # ---------------------------------------------------------------------------------------------------------------
 # Progress
 # ---------------------------------------------------------------------------------------------------------------
+class CostModel:
+    """Predicted computing time of the points still to do, from the measured cost of the points done.
+
+    A point's cost is predicted by the mean measured cost of the done points that share its roughness pair, r_eq and
+    p_h (the drivers of a solve's cost: smooth or rough, and the Hertz half width ∝ p_h·r_eq that sets the grid);
+    failing that, of those sharing the roughness pair and r_eq, then the roughness pair, then all done points. The
+    time to go is the predicted cost of the remaining points divided by the parallel speed-up measured in this
+    session (computing seconds finished per wall second), or by ``workers`` before the session has finished a point.
+    """
+
+    KEYS = ((6, 5, 1, 0), (6, 5, 1), (6, 5), ())
+    """Column groups of a point (indices into p_h, r_eq, u_r, sr, T, rq1, rq2), finest first."""
+
+    def __init__(self, points: np.ndarray, workers: int = 1):
+        table = np.column_stack([np.asarray(points[name], dtype=float) for name in points.dtype.names]) \
+            if points.dtype.names else np.asarray(points, dtype=float)
+        self.table = table
+        self.workers = max(int(workers), 1)
+        self.sums: list[dict] = [dict() for _ in self.KEYS]
+        self.remaining: set[int] = set()
+        self.session_cost = 0.0
+
+    def _key(self, level: int, index: int) -> tuple:
+        return tuple(self.table[index, c] for c in self.KEYS[level])
+
+    def observe(self, index: int, cost: float, in_session: bool = True) -> None:
+        if not math.isfinite(cost) or cost < 0:
+            return
+        for level in range(len(self.KEYS)):
+            total, n = self.sums[level].get(self._key(level, index), (0.0, 0))
+            self.sums[level][self._key(level, index)] = (total + cost, n + 1)
+        if in_session:
+            self.session_cost += cost
+        self.remaining.discard(index)
+
+    def predict(self, index: int) -> float:
+        for level in range(len(self.KEYS)):
+            total, n = self.sums[level].get(self._key(level, index), (0.0, 0))
+            if n:
+                return total / n
+        return math.nan
+
+    def seconds_to_go(self, elapsed: float) -> float:
+        """Wall seconds until the remaining points are done (inf before any cost is known)."""
+        if not self.remaining:
+            return 0.0
+        cost = sum(self.predict(i) for i in self.remaining)
+        if not math.isfinite(cost):
+            return math.inf
+        speed_up = self.session_cost / elapsed if (elapsed > 0 and self.session_cost > 0) else self.workers
+        return cost / max(speed_up, 1e-9)
+
+
 class Progress:
-    """A tqdm bar (rate, ETA) on a terminal, or a log line every ``log_every_s`` seconds; ``mode="none"`` silent."""
+    """A tqdm bar on a terminal, or a log line every ``log_every_s`` seconds; ``mode="none"`` silent.
+
+    Counts are of the whole file: a resumed run starts at the ``initial`` points already done (``60/324``, not
+    ``0/264``). The time to go comes from ``cost`` (:class:`CostModel`: the measured cost of the points done,
+    earlier sessions included), not from the rate of the first points, which differ in cost from the rest.
+    """
 
     def __init__(self, total: int, name: str, mode: str = "auto", stream: TextIO | None = None,
-                 log_every_s: float = 30.0):
+                 log_every_s: float = 30.0, initial: int = 0, cost: CostModel | None = None):
         self.stream = stream if stream is not None else sys.stderr
         if mode == "auto":
             mode = "bar" if getattr(self.stream, "isatty", lambda: False)() else "log"
         if mode not in ("bar", "log", "none"):
             raise InputError("progress", mode, "'auto', 'bar', 'log' or 'none'")
         self.mode, self.total, self.name, self.log_every_s = mode, total, name, log_every_s
+        self.initial = initial
+        self.cost = cost
         self.done = self.ok = self.failed = self.non_converged = 0
         self.start = self._last_log = time.monotonic()
         self._bar = None
         if mode == "bar":
             from tqdm import tqdm
 
-            self._bar = tqdm(total=total, unit="pt", desc=name, file=self.stream, dynamic_ncols=True, smoothing=0.05)
+            self._bar = tqdm(total=total, initial=initial, unit="pt", desc=name, file=self.stream,
+                             dynamic_ncols=True, bar_format="{desc}: {percentage:3.0f}%|{bar}| {n_fmt}/{total_fmt} "
+                                                            "[{elapsed}, {rate_fmt}, {postfix}]")
+            self._bar.set_postfix_str(self._postfix(), refresh=False)
+
+    def eta_s(self) -> float:
+        elapsed = time.monotonic() - self.start
+        if self.cost is not None:
+            return self.cost.seconds_to_go(elapsed)
+        rate = self.done / elapsed if elapsed > 0 else 0.0
+        return (self.total - self.initial - self.done) / rate if rate > 0 else math.inf
+
+    def _postfix(self) -> str:
+        return f"ok {self.ok}, failed {self.failed}, ETA {_hms(self.eta_s())}"
 
     def advance(self, status: int, converged: bool = True) -> None:
         self.done += 1
@@ -293,8 +366,8 @@ class Progress:
         self.failed += status == FAILED
         self.non_converged += status == OK and not converged
         if self._bar is not None:
+            self._bar.set_postfix_str(self._postfix(), refresh=False)
             self._bar.update(1)
-            self._bar.set_postfix(ok=self.ok, failed=self.failed, refresh=False)
         elif self.mode == "log" and time.monotonic() - self._last_log >= self.log_every_s:
             self.log()
 
@@ -304,16 +377,16 @@ class Progress:
         self._last_log = now = time.monotonic()
         elapsed = now - self.start
         rate = self.done / elapsed if elapsed > 0 else 0.0
-        eta = (self.total - self.done) / rate if rate > 0 else math.inf
-        print(f"{time.strftime('%Y-%m-%dT%H:%M:%S')} {prefix}{self.name}: {self.done}/{self.total} points "
-              f"(ok {self.ok}, failed {self.failed}, not converged {self.non_converged}), {rate:.3g} points/s, "
-              f"elapsed {_hms(elapsed)}, ETA {_hms(eta)}", file=self.stream, flush=True)
+        print(f"{time.strftime('%Y-%m-%dT%H:%M:%S')} {prefix}{self.name}: {self.initial + self.done}/{self.total} "
+              f"points (this session: ok {self.ok}, failed {self.failed}, not converged {self.non_converged}), "
+              f"{rate:.3g} points/s, elapsed {_hms(elapsed)}, ETA {_hms(self.eta_s())}", file=self.stream,
+              flush=True)
 
     def close(self) -> None:
         if self._bar is not None:
             self._bar.close()
         else:
-            self.log("done " if self.done == self.total else "stopped ")
+            self.log("done " if self.initial + self.done == self.total else "stopped ")
 
 
 def _hms(seconds: float) -> str:
@@ -559,7 +632,16 @@ def execute(store: DatasetStore, *, solver: str | Callable = DEFAULT_SOLVER, wor
     failures: dict[int, int] = {}
     in_flight: dict[Any, int] = {}
     name = f"{store.factorial.get('name', 'dataset')}"
-    reporter = Progress(len(pending), name, progress, stream, log_every_s)
+    cost = CostModel(points, workers)
+    worker_time = store.column("worker_time")
+    for index in np.flatnonzero(~todo):
+        cost.observe(int(index), float(worker_time[index]), in_session=False)
+    cost.remaining = set(pending)
+    if kind != "run" and progress != "none" and len(pending) < store.n_points:
+        print(f"resuming {store.path}: {store.n_points - len(pending)} of {store.n_points} points done, "
+              f"{len(pending)} to compute", file=stream if stream is not None else sys.stderr, flush=True)
+    reporter = Progress(store.n_points, name, progress, stream, log_every_s, initial=store.n_points - len(pending),
+                        cost=cost)
     computed = 0
     store_time = 0.0
     started = time.perf_counter()
@@ -578,6 +660,7 @@ def execute(store: DatasetStore, *, solver: str | Callable = DEFAULT_SOLVER, wor
         store_time += time.perf_counter() - t0
         computed += 1
         converged = bool(result["record"] and result["record"].get("converged"))
+        cost.observe(int(result["index"]), float(result["worker_time"]))
         reporter.advance(result["status"], converged)
 
     def task_failed(index: int, err: BaseException, retry_alone: bool) -> None:
@@ -587,6 +670,7 @@ def execute(store: DatasetStore, *, solver: str | Callable = DEFAULT_SOLVER, wor
             store.record(index, status=FAILED, error=f"task failed {failures[index]} times, last: "
                          f"{describe_exception(err)}", attempts=failures[index], worker="")
             computed += 1
+            cost.remaining.discard(index)
             reporter.advance(FAILED)
         elif retry_alone:
             suspects.append(index)

@@ -181,7 +181,7 @@ def test_progress_log_lines_report_rate_and_eta(tmp_path, plan):
                   log_every_s=0.0)
     lines = stream.getvalue().splitlines()
     assert len(lines) == 17  # one per point, and the final line
-    assert "test: 16/16 points (ok 16, failed 0" in lines[-1] and "points/s" in lines[-1] and "ETA" in lines[0]
+    assert "test: 16/16 points (this session: ok 16, failed 0" in lines[-1] and "points/s" in lines[-1] and "ETA" in lines[0]
 
 
 def test_resume_is_refused_for_another_factorial_solver_version_or_lubricant(tmp_path, plan, monkeypatch):
@@ -370,7 +370,7 @@ def test_progress_bar_shows_rate_and_counts(tmp_path, plan):
     stream = io.StringIO()
     run_factorial(tmp_path / "r.h5", plan, workers=0, solver=raising_solve, progress="bar", stream=stream)
     text = stream.getvalue()
-    assert "16/16" in text and "pt/s" in text and "failed=4" in text
+    assert "16/16" in text and "pt/s" in text and "failed 4" in text and "ETA" in text
 
 
 def test_each_solve_runs_on_one_blas_thread(tmp_path, plan):
