@@ -1,33 +1,62 @@
-"""``gearloss pipeline quick|paper``: factorial → friction surrogate → Design D, in one process.
+"""``gearloss pipeline quick|paper|smoke``: factorial → friction surrogate → Design D, in one process.
 
-``quick`` runs the 324-point ``quick`` factorial at the fast level, ``paper`` the 42,000-point
-``paper2009`` factorial (the long run; ``--scheduler ADDRESS`` sends the points to a Dask cluster). Both write
-``DIR/dataset.h5`` (continued if present), ``DIR/<lubricant>_<factorial>.json`` (+ ``.summary.txt``) and print
-Design D's P [kW], η, TE, σ_c, σ_b at the study's operating point and the time of each stage. See
-:mod:`workflows.pipeline` and docs/pipeline.md.
+``quick`` runs the 324-point ``quick`` factorial at the fast level, ``paper`` the 42,000-point ``paper2009``
+factorial (the long run; ``--scheduler ADDRESS`` sends the points to a Dask cluster), ``smoke`` the 96-point
+``smoke`` factorial with smooth-surface solves (every stage in seconds; its fit is not a friction model). Each run
+writes ``DIR/dataset.h5`` and ``DIR/<lubricant>_<factorial>.json`` (+ ``.summary.txt``), DIR named after the
+factorial, level and model (``gearloss_quick_fast``; ``--out-dir`` chooses another), and prints Design D's P [kW], η,
+TE, σ_c, σ_b at the study's operating point and the time of each stage. Running the same command again resumes an
+interrupted run. See :mod:`workflows.pipeline` and docs/pipeline.md.
 """
 
 from __future__ import annotations
 
 import argparse
+import sys
 
+from .cli_help import model_help
 from .cli_output import emit
+
+COMMANDS = (
+    ("quick", "quick", "quick factorial (324 points, fast level): the main job, about 35 min with 2 workers"),
+    ("paper", "paper2009", "the paper's 42,000-point factorial (standard level): the long run (many CPU-hours; "
+                           "Dask for clusters)"),
+    ("smoke", "smoke", "smoke factorial (96 points, smooth-surface solves): every stage end to end in seconds, to "
+                       "check an installation; its fit is not a friction model"),
+)
+
+EPILOG = """\
+resuming: a run stopped by Ctrl-C (exit 130), SIGTERM (exit 143) or a crash keeps every finished point in
+DIR/dataset.h5; the same command again continues it (only points not yet ok are computed). Runs of another
+factorial, level or model go to their own directory; --overwrite starts a run afresh.
+accuracy: the fast level runs rough (λ̄ ≤ 1) friction a median 36 % above the standard level
+(docs/accuracy_random_levels.md); gearloss contact solve defaults to standard."""
 
 
 def register(subparsers) -> None:
-    parser = subparsers.add_parser("pipeline", help="end-to-end: EHL factorial -> surrogate -> gear Design D")
+    parser = subparsers.add_parser("pipeline", help="end-to-end: EHL factorial -> surrogate -> gear Design D",
+                                   description=__doc__.split("\n\n")[1], epilog=EPILOG)
     sub = parser.add_subparsers(dest="pipeline_command", metavar="COMMAND")
     parser.set_defaults(handler=lambda args: parser.print_help() or 2)
-    for name, default, help_text in (
-            ("quick", "quick", "quick factorial (324 points, fast level): the demo run"),
-            ("paper", "paper2009", "the paper's 42,000-point factorial: the long run (many CPU-hours; Dask for clusters)")):
-        p = sub.add_parser(name, help=help_text, description=help_text)
-        p.add_argument("--out-dir", default=f"gearloss_{name}",
-                       help=f"directory for dataset.h5 and the coefficient file (default gearloss_{name})")
-        p.add_argument("--workers", type=int, default=1, help="local worker processes for stage 1 (default 1)")
-        p.add_argument("--factorial", default=default,
-                       help=f"factorial name or TOML file (default {default})")
-        p.add_argument("--design", default="D", help="published design of the study to evaluate (default D)")
+    for name, default, help_text in COMMANDS:
+        p = sub.add_parser(name, help=help_text, description=help_text, epilog=EPILOG)
+        p.add_argument("--out-dir", default=None, metavar="DIR",
+                       help="directory for dataset.h5 and the coefficient file (default: gearloss_<factorial>_"
+                            "<level>[_<model>], e.g. " + ("gearloss_smoke_fast_smooth" if name == "smoke" else
+                                                          f"gearloss_{default}_" + ("fast" if name == "quick"
+                                                                                    else "standard")) + ")")
+        p.add_argument("--overwrite", action="store_true",
+                       help="start afresh: replace the dataset and coefficient file in the output directory "
+                            "instead of resuming them")
+        p.add_argument("--workers", type=int, default=1, help="local worker processes for stage 1")
+        p.add_argument("--factorial", default=default, help="factorial name or TOML file")
+        p.add_argument("--level", default=None,
+                       help="EHL accuracy level of stage 1 (default: the factorial's: fast for quick and smoke, "
+                            "standard for paper); fast runs rough μ a median 36 %% above standard")
+        p.add_argument("--model", default=None, help=model_help("default: the factorial's (smooth for smoke, auto "
+                                                                "otherwise)"))
+        p.add_argument("--design", default="D",
+                       help="published design of the study to evaluate (A, B, C, D) or a design TOML file")
         p.add_argument("--progress", choices=("auto", "bar", "log", "none"), default="auto",
                        help="stage-1 progress on stderr (default auto: a bar on a terminal, log lines otherwise)")
         p.add_argument("--time-limit-s", type=float, default=None, metavar="SECONDS",
@@ -46,33 +75,61 @@ def register(subparsers) -> None:
 
 
 def run_pipeline_command(args: argparse.Namespace) -> int:
-    from ehl_dataset.dataset.runner import check_time_limit
     from ehl_dataset.validation import check_range
 
-    from .pipeline import run_pipeline
+    from . import exit_codes
+    from .pipeline import check_inputs, run_pipeline
 
     check_range("workers", args.workers, 1, 1024)
-    check_time_limit(args.time_limit_s)
-    result = run_pipeline(args.out_dir, args.factorial, workers=args.workers,
-                          scheduler=getattr(args, "scheduler", None), progress=args.progress, design=args.design,
-                          allow_unstable=args.allow_unstable, clip_to_fitted_ranges=not args.no_clip,
-                          time_limit_s=args.time_limit_s)
+    run = check_inputs(args.factorial, out_dir=args.out_dir, level=args.level, model=args.model,
+                       design=args.design, overwrite=args.overwrite, workers=args.workers,
+                       time_limit_s=args.time_limit_s)
+    resume = _resume_command(args, run)
+    n = run.factorial.size
+    state = (f"resuming: {run.resumable} of {n} points done" if run.resumable and not args.overwrite
+             else f"new run of {n} points")
+    print(f"gearloss pipeline {args.pipeline_command}: factorial {run.factorial.name}, level {run.level}, model "
+          f"{run.model}; {state}\n  output: {run.dataset} and {run.coefficients}\n  Ctrl-C stops and keeps the "
+          f"finished points; resume with: {resume}", file=sys.stderr, flush=True)
+    if run.smoke:
+        from .pipeline import SMOKE_LABEL
+
+        print(f"  {SMOKE_LABEL}", file=sys.stderr, flush=True)
+    result = run_pipeline(run.out_dir, run.factorial, workers=args.workers,
+                          scheduler=getattr(args, "scheduler", None), progress=args.progress, level=run.level,
+                          model=run.model, design=args.design, allow_unstable=args.allow_unstable,
+                          clip_to_fitted_ranges=not args.no_clip, time_limit_s=args.time_limit_s,
+                          overwrite=args.overwrite, resume_command=resume, checked=run)
     payload = result.to_dict()
     design = result.stage("design").details
     payload.update({k: design[k] for k in ("power_loss_w", "efficiency", "te_pp_m", "sigma_c_pa", "sigma_b_pa",
-                                           "converged")})
+                                           "converged", "valid")})
+    payload["resume_command"] = resume
     emit(payload, args.json, _human)
-    return 0 if design["converged"] else 3
+    return exit_codes.OK if (design["converged"] and design["valid"]) else exit_codes.NOT_VALID
+
+
+def _resume_command(args, run) -> str:
+    """The command that continues this run: the one typed, without --overwrite (a resume must not start afresh)."""
+    import shlex
+
+    argv = [a for a in getattr(args, "argv", []) if a != "--overwrite"]
+    if not argv:
+        argv = ["pipeline", args.pipeline_command, "--out-dir", str(run.out_dir)]
+    return "gearloss " + shlex.join(argv)
 
 
 def _human(p: dict) -> str:
     s = p["stages"]
     data, fit, design = s["dataset"], s["fit"], s["design"]
-    lines = [
-        f"stage 1 dataset   {data['artefact']}: factorial {data['factorial']}, {data['n_points']} points, "
-        f"{data['computed']} computed{' (resumed)' if data['resumed'] else ''}; ok {data['ok']}, failed "
-        f"{data['failed']}, non-converged {data['non_converged']} — {data['wall_time_s']:.1f} s",
-    ]
+    lines = []
+    if p.get("label"):
+        lines.append(p["label"])
+    lines.append(
+        f"stage 1 dataset   {data['artefact']}: factorial {data['factorial']} (level {data['level']}, model "
+        f"{data['model']}), {data['n_points']} points, {data['computed']} computed"
+        f"{' (resumed)' if data['resumed'] else ''}; ok {data['ok']}, failed {data['failed']}, non-converged "
+        f"{data['non_converged']} — {data['wall_time_s']:.1f} s")
     for message, count in (data.get("failures") or {}).items():
         lines.append(f"                  {count} failed: {message}")
     branches = ", ".join(f"{b}: n={v['n_obs']}, adj R² {v['adj_r2']:.3f}" for b, v in fit["branches"].items())
@@ -85,12 +142,14 @@ def _human(p: dict) -> str:
     lines.append(f"  P = {design['power_loss_w'] / 1e3:.3f} kW, η = {design['efficiency'] * 100:.3f} %, "
                  f"TE p-p = {design['te_pp_m'] * 1e6:.3f} µm, σ_c = {design['sigma_c_pa'] / 1e9:.3f} GPa, "
                  f"σ_b = {design['sigma_b_pa'] / 1e6:.0f} MPa, mean μ = {design['mu_mean']:.4f}, "
-                 f"converged {design['converged']}")
+                 f"converged {design['converged']}, valid {design['valid']}")
     clipped = design.get("clipped_to_fitted_range")
     if clipped:
         moved = ", ".join(f"{k} {v}" for k, v in clipped.items() if k != "contact_points" and v)
-        lines.append(f"  surrogate inputs clipped to the fitted ranges at {moved or 'no'} of "
-                     f"{clipped['contact_points']} contact points")
+        lines.append(f"  surrogate inputs clipped to the fitted ranges: {moved or 'none'} of "
+                     f"{clipped['contact_points']} points")
+    if design.get("not_valid_because"):
+        lines.append(f"  NOT VALID: {design['not_valid_because']}")
     for warning in fit["warnings"] + design["warnings"]:
         lines.append(f"  warning: {warning}")
     lines.append(f"total {p['wall_time_s']:.1f} s")

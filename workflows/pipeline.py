@@ -14,8 +14,13 @@ reporting), and :func:`run_pipeline` that chains them in one process (docs/pipel
 
 Nothing is hidden: stage 1 reports how many points failed or did not converge; stage 2 raises
 :class:`~ehl_dataset.validation.SolverError` naming the stage when the data cannot determine the regression (too few
-``ok`` rows in a branch, rank deficiency, an unstable fit); stage 3 reports the surrogate's extrapolation warnings
-and whether the load distribution converged.
+``ok`` rows in a branch, rank deficiency, an unstable fit); stage 3 reports the surrogate's clipped inputs, whether
+the load distribution converged and whether the result lies inside the models' validity (:mod:`efficiency.validity`).
+
+Every input (factorial, level, model, design, output directory) is checked by :func:`check_inputs` before stage 1
+starts. Each run writes its own directory, named after its factorial, level and model (:func:`default_out_dir`), so
+runs of different factorials never meet in one file. A run stopped by SIGINT/SIGTERM raises
+:class:`workflows.exit_codes.Interrupted` with the command that resumes it.
 """
 
 from __future__ import annotations
@@ -29,9 +34,15 @@ from typing import Any
 
 from ehl_dataset.validation import InputError, SolverError
 
+from .exit_codes import Interrupted
+
 QUICK_FACTORIAL = "quick"
 PAPER_FACTORIAL = "paper2009"
+SMOKE_FACTORIAL = "smoke"
 DATASET_FILE = "dataset.h5"
+SMOKE_LABEL = ("SMOKE RUN: smooth-surface solves (model smooth) of the smoke factorial, to check that every stage "
+               "runs; its fit and loss are not a friction model of the lubricant")
+"""Printed with, and recorded in, the result of a run whose stage 1 solves smooth surfaces only."""
 
 
 @dataclass
@@ -55,6 +66,7 @@ class PipelineResult:
     out_dir: str
     stages: list[StageResult]
     wall_time_s: float
+    label: str = ""
 
     def stage(self, name: str) -> StageResult:
         for stage in self.stages:
@@ -63,7 +75,7 @@ class PipelineResult:
         raise KeyError(name)
 
     def to_dict(self) -> dict[str, Any]:
-        return {"out_dir": self.out_dir, "wall_time_s": self.wall_time_s,
+        return {"out_dir": self.out_dir, "wall_time_s": self.wall_time_s, "label": self.label,
                 "stages": {s.name: s.to_dict() for s in self.stages}}
 
 
@@ -71,6 +83,94 @@ def _factorial(factorial):
     from ehl_dataset.dataset.factorial import Factorial, load_factorial
 
     return factorial if isinstance(factorial, Factorial) else load_factorial(factorial)
+
+
+def default_out_dir(factorial_name: str, level: str, model: str = "auto") -> str:
+    """``gearloss_<factorial>_<level>`` (``_<model>`` appended unless auto): one directory per kind of run."""
+    safe = "".join(c if c.isalnum() or c in "-_" else "_" for c in factorial_name)
+    return f"gearloss_{safe}_{level}" + ("" if model == "auto" else f"_{model}")
+
+
+@dataclass
+class PipelinePlan:
+    """The checked inputs of a run (:func:`check_inputs`): the factorial, its level, contact model and lubricant
+    name, the design, and the files it will write."""
+
+    factorial: Any
+    level: str
+    model: str
+    lubricant_name: str
+    study: str
+    design: str
+    out_dir: Path
+    resumable: int  # points already done in an existing dataset file of the same run (0: new run)
+
+    @property
+    def dataset(self) -> Path:
+        return self.out_dir / DATASET_FILE
+
+    @property
+    def coefficients(self) -> Path:
+        return self.out_dir / coefficients_file_name(self.lubricant_name, self.factorial.name)
+
+    @property
+    def smoke(self) -> bool:
+        return self.model == "smooth"
+
+
+def check_inputs(factorial=QUICK_FACTORIAL, *, out_dir=None, level: str | None = None, model: str | None = None,
+                 lubricant=None, study: str = "paper2009", design: str = "D", overwrite: bool = False,
+                 workers: int = 1, time_limit_s: float | None = None) -> PipelinePlan:
+    """Check everything a run needs before stage 1 computes anything (a typo in ``design`` must not cost the
+    stage-1 run): factorial, level, model, lubricant, the design (a name of ``study`` or a design TOML file),
+    workers, time limit, and that ``out_dir`` either holds nothing of this run or the same run (then it resumes)."""
+    from ehl_dataset.dataset.runner import check_model, check_time_limit, recorded_model
+    from ehl_dataset.dataset.store import SOLVER_DEFAULTS, read_metadata
+    from ehl_dataset.model.lubricant import load_lubricant
+    from ehl_dataset.solvers.levels import get_level
+    from ehl_dataset.validation import check_range
+
+    check_range("workers", workers, 0, 1024)
+    check_time_limit(time_limit_s)
+    plan = _factorial(factorial)
+    level = get_level(level or plan.level).name
+    model = check_model(model or plan.model)
+    lub = load_lubricant(lubricant or plan.lubricant)
+    _check_design(study, design)
+    out = Path(out_dir) if out_dir is not None else Path(default_out_dir(plan.name, level, model))
+    if out.exists() and not out.is_dir():
+        raise InputError("out-dir", str(out), "a directory (this path is a file)")
+    resumable = 0
+    dataset = out / DATASET_FILE
+    if dataset.exists() and not overwrite:
+        meta = read_metadata(dataset)
+        recorded = {**SOLVER_DEFAULTS, **meta["solver"]}
+        hint = "another --out-dir, or --overwrite to replace it"
+        if meta["factorial_sha256"] != plan.points_hash():
+            raise InputError("factorial", plan.name, f"the factorial of the run in {out} "
+                             f"({meta['factorial'].get('name')!r})", hint)
+        for key, value in (("level", level), ("model", model)):
+            if str(recorded.get(key)) != value:
+                raise InputError(key, value, f"{recorded_model(recorded) if key == 'model' else recorded.get(key)!r}"
+                                 f" as recorded in {dataset}", hint)
+        if meta["lubricant"].get("name") != lub.name:
+            raise InputError("lubricant", lub.name, f"{meta['lubricant'].get('name')!r} as recorded in {dataset}",
+                             hint)
+        resumable = int(meta["counts"]["ok"])
+    return PipelinePlan(plan, level, model, lub.name, study, design, out, resumable)
+
+
+def _check_design(study: str, design: str) -> None:
+    from efficiency.design_io import load_design, load_study
+
+    paper = load_study(study)
+    if design in paper.designs:
+        return
+    if Path(design).suffix.lower() == ".toml" or Path(design).exists():
+        load_design(design)
+        return
+    raise InputError("design", design, f"a published design of study {paper.name} ({', '.join(paper.designs)}) or "
+                                       "a design TOML file")
 
 
 def coefficients_file_name(lubricant_name: str, factorial_name: str) -> str:
@@ -82,7 +182,7 @@ def coefficients_file_name(lubricant_name: str, factorial_name: str) -> str:
 # ---------------------------------------------------------------------- stage 1
 def dataset_stage(out_dir: str | Path, factorial, *, workers: int = 1, scheduler: str | None = None,
                   lubricant=None, level: str | None = None, progress: str = "auto", overwrite: bool = False,
-                  time_limit_s: float | None = None, **runner_options) -> StageResult:
+                  time_limit_s: float | None = None, model: str | None = None, **runner_options) -> StageResult:
     """Compute ``factorial`` (a :class:`~ehl_dataset.dataset.factorial.Factorial`, a shipped name or a TOML path) into
     ``out_dir/dataset.h5``; continue the file if it holds the same run. ``time_limit_s``: wall-time budget per
     point [s] (None: none; a point that spends it is stored not converged with its message; an execution option, so
@@ -97,8 +197,13 @@ def dataset_stage(out_dir: str | Path, factorial, *, workers: int = 1, scheduler
     out.parent.mkdir(parents=True, exist_ok=True)
     resumed = out.exists() and not overwrite
     summary = run_factorial(out, plan, lubricant=lubricant, level=level, workers=workers, scheduler=scheduler,
-                            progress=progress, overwrite=overwrite, time_limit_s=time_limit_s, **runner_options)
-    details = {"factorial": plan.name, "n_points": summary.n_points, "computed": summary.computed,
+                            progress=progress, overwrite=overwrite, time_limit_s=time_limit_s, model=model,
+                            **runner_options)
+    from ehl_dataset.dataset.store import read_metadata
+
+    solver = read_metadata(out)["solver"]
+    details = {"factorial": plan.name, "level": solver.get("level"), "model": solver.get("model", "auto"),
+               "n_points": summary.n_points, "computed": summary.computed,
                "time_limit_s": time_limit_s,
                "ok": summary.ok, "failed": summary.failed, "pending": summary.pending,
                "non_converged": summary.non_converged, "resumed": resumed, "interrupted": summary.interrupted,
@@ -136,11 +241,10 @@ def fit_stage(dataset_path: str | Path, coefficients_path: str | Path, *, allow_
             fit = fit_surrogate(data.table, data.lubricant, data.e_reduced, allow_unstable=allow_unstable,
                                 blend_half_width=blend_half_width)
         except SolverError as err:
-            raise SolverError(f"fit stage ({dataset_path}): {err}") from err
+            raise SolverError(f"fit stage ({dataset_path}): {err}; {_row_digest(data)}") from err
         except (InputError, ValueError, IndexError) as err:
-            counts = data.source.get("counts")
-            raise SolverError(f"fit stage ({dataset_path}, rows by status {counts}): the data cannot determine "
-                              f"the regression: {type(err).__name__}: {err}") from err
+            raise SolverError(f"fit stage ({dataset_path}): the data cannot determine the regression: "
+                              f"{type(err).__name__}: {err}; {_row_digest(data)}") from err
     path = write_coefficients(fit, coefficients_path, source=data.source)
     cv = fit.cv["overall"]
     details = {
@@ -153,6 +257,23 @@ def fit_stage(dataset_path: str | Path, coefficients_path: str | Path, *, allow_
         "warnings": sorted({str(w.message)[:200] for w in caught}),
     }
     return StageResult("fit", str(path), time.perf_counter() - started, details)
+
+
+def _row_digest(data) -> str:
+    """Which rows the fit could use and why the others were excluded, and what each branch of Eq. 9 needs."""
+    from surrogate.fit import branch_masks
+    from surrogate.fit import prepare_table
+    from surrogate.forms import LI_KAHRAMAN_2009
+
+    try:
+        prepared = prepare_table(data.table, data.lubricant, data.e_reduced)
+    except (InputError, ValueError) as err:
+        return f"rows could not be prepared: {err}"
+    excluded = ", ".join(f"{reason.replace('_', ' ')} {n}" for reason, n in prepared.exclusions.items() if n)
+    masks = branch_masks(prepared.features["lam"], LI_KAHRAMAN_2009.lambda_threshold)
+    usable = ", ".join(f"{b} {int(m.sum())} (needs {len(LI_KAHRAMAN_2009.terms[b])})" for b, m in masks.items())
+    return (f"rows: {prepared.n_input_rows} in the file; excluded: {excluded or 'none'}; usable by branch "
+            f"(λ̄ ≤ {LI_KAHRAMAN_2009.lambda_threshold:g} mixed, above full_film): {usable}")
 
 
 # ---------------------------------------------------------------------- stage 3
@@ -175,7 +296,12 @@ def design_stage(friction, *, study: str = "paper2009", design: str = "D", optio
         friction = friction_from_spec(artefact, clip_to_fitted_ranges=clip_to_fitted_ranges)
     paper = load_study(study)
     point = StudyPoint.from_operating_point(paper.operating_point)
-    pair = paper.design(design)
+    if design in paper.designs:
+        pair = paper.design(design)
+    else:
+        from efficiency.design_io import load_design
+
+        pair = load_design(design)
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         row = evaluate_design(pair, friction, point, options or MeshOptions())
@@ -186,7 +312,7 @@ def design_stage(friction, *, study: str = "paper2009", design: str = "D", optio
         "profile_crown_m": point.modifications.profile_crown, "lead_crown_m": point.modifications.lead_crown,
         "input_power_w": point.input_torque * point.input_speed,
         **{k: row[k] for k in ("power_loss_w", "efficiency", "te_pp_m", "sigma_c_pa", "sigma_b_pa", "mu_mean",
-                               "converged")},
+                               "converged", "valid", "not_valid_because")},
         "model_time_s": row["wall_time_s"],
         "warnings": sorted({str(w.message)[:300] for w in caught}),
     }
@@ -197,27 +323,45 @@ def design_stage(friction, *, study: str = "paper2009", design: str = "D", optio
 
 
 # ---------------------------------------------------------------------- the chain
-def run_pipeline(out_dir: str | Path, factorial=QUICK_FACTORIAL, *, workers: int = 1, scheduler: str | None = None,
-                 lubricant=None, level: str | None = None, progress: str = "auto", study: str = "paper2009",
-                 design: str = "D", allow_unstable: bool = False, mesh_options=None,
-                 clip_to_fitted_ranges: bool = True, time_limit_s: float | None = None,
+def run_pipeline(out_dir: str | Path | None = None, factorial=QUICK_FACTORIAL, *, workers: int = 1,
+                 scheduler: str | None = None, lubricant=None, level: str | None = None, model: str | None = None,
+                 progress: str = "auto", study: str = "paper2009", design: str = "D", allow_unstable: bool = False,
+                 mesh_options=None, clip_to_fitted_ranges: bool = True, time_limit_s: float | None = None,
+                 overwrite: bool = False, resume_command: str | None = None, checked: PipelinePlan | None = None,
                  **runner_options) -> PipelineResult:
     """Stages 1–3 in one process: dataset → coefficient file → design evaluation (see the module docstring).
-    ``time_limit_s``: stage 1's wall-time budget per point [s] (:func:`dataset_stage`)."""
+
+    ``out_dir`` None: :func:`default_out_dir`. ``time_limit_s``: stage 1's wall-time budget per point [s]
+    (:func:`dataset_stage`). ``overwrite``: start the run afresh (the directory's dataset and coefficient file
+    are replaced). ``resume_command``: the command that continues this run, named in the
+    :class:`~workflows.exit_codes.Interrupted` raised when a signal stops stage 1. ``checked``: the result of
+    :func:`check_inputs` for these arguments (computed here when None).
+    """
     started = time.perf_counter()
-    plan = _factorial(factorial)
-    out = Path(out_dir)
-    stages = [dataset_stage(out, plan, workers=workers, scheduler=scheduler, lubricant=lubricant, level=level,
-                            progress=progress, time_limit_s=time_limit_s, **runner_options)]
+    run = checked or check_inputs(factorial, out_dir=out_dir, level=level, model=model, lubricant=lubricant,
+                                  study=study, design=design, overwrite=overwrite, workers=workers,
+                                  time_limit_s=time_limit_s)
+    out = run.out_dir
+    if overwrite:
+        for path in (run.dataset, run.coefficients, run.coefficients.with_suffix(".summary.txt")):
+            path.unlink(missing_ok=True)
+    try:
+        stages = [dataset_stage(out, run.factorial, workers=workers, scheduler=scheduler, lubricant=lubricant,
+                                level=run.level, model=run.model, progress=progress, time_limit_s=time_limit_s,
+                                **runner_options)]
+    except InputError as err:  # the store names dataset-run options; the pipeline's are --out-dir / --overwrite
+        if "start a new file" in str(err):
+            raise InputError(err.parameter, err.value, err.accepted,
+                             f"another --out-dir, or --overwrite to replace {run.dataset}") from None
+        raise
     dataset = stages[0]
     if dataset.details["interrupted"]:
-        raise SolverError(f"dataset stage interrupted ({dataset.details['interrupted']}); run the pipeline again "
-                          f"to resume {dataset.artefact}")
-    from ehl_dataset.dataset.store import read_metadata
-
-    lubricant_name = str(read_metadata(dataset.artefact)["lubricant"].get("name", "lubricant"))
-    coefficients = out / coefficients_file_name(lubricant_name, plan.name)
-    stages.append(fit_stage(dataset.artefact, coefficients, allow_unstable=allow_unstable))
+        raise Interrupted(dataset.details["interrupted"], f"pipeline stage 1 ({dataset.details['computed']} points "
+                          f"computed, {dataset.details['pending']} pending in {dataset.artefact})", resume_command)
+    stages.append(fit_stage(dataset.artefact, run.coefficients, allow_unstable=allow_unstable))
     stages.append(design_stage(stages[1].artefact, study=study, design=design, options=mesh_options,
                                clip_to_fitted_ranges=clip_to_fitted_ranges))
-    return PipelineResult(str(out), stages, time.perf_counter() - started)
+    result = PipelineResult(str(out), stages, time.perf_counter() - started)
+    if run.smoke:
+        result.label = SMOKE_LABEL
+    return result

@@ -79,9 +79,14 @@ def test_running_the_same_command_again_continues_and_a_different_one_is_refused
     assert len(err.splitlines()) == 1 and "invalid --lubricant=gear_oil_75w90" in err and str(out) in err
     assert main(args + ["--level", "standard"]) == 2
     assert "invalid --level=standard" in capsys.readouterr().err
-    # the shipped smoke plan lists the same points in the same order: it may continue the file (hash identity)
-    assert main(["dataset", "run", "--factorial", "smoke", "--out", str(out), "--solver", SOLVER, "--workers", "0",
+    # a copy of the plan under another name lists the same points in the same order: it may continue the file
+    copy = tmp_path / "copy.toml"
+    copy.write_text(PLAN.replace('name = "cli"', 'name = "copy"'))
+    assert main(["dataset", "run", "--factorial", str(copy), "--out", str(out), "--solver", SOLVER, "--workers", "0",
                  "--progress", "none"]) == 0
+    # another model is refused like another level (the stand-in solver takes no model: refused at the start)
+    assert main(args + ["--model", "smooth"]) == 2
+    assert "invalid --model=smooth" in capsys.readouterr().err
     assert main(["dataset", "run", "--factorial", "quick", "--out", str(out), "--solver", SOLVER]) == 2
     assert "invalid --factorial=" in capsys.readouterr().err
     assert main(args + ["--overwrite", "--level", "standard", "--json"]) == 0

@@ -108,9 +108,14 @@ def test_pipeline_stops_at_the_fit_when_the_factorial_cannot_determine_eq9(tmp_p
     assert not list((tmp_path / "run").glob("*.json"))
     code = main(["pipeline", "quick", "--out-dir", str(tmp_path / "run"), "--factorial", str(tiny),
                  "--progress", "none", "--json"])
-    err = capsys.readouterr().err
+    captured = capsys.readouterr()
     assert code == 3
-    assert "fit stage" in err and len(err.strip().splitlines()) == 1
+    error = [line for line in captured.err.splitlines() if "fit stage" in line]
+    assert len(error) == 1 and captured.err.strip().splitlines()[-1] == error[0]
+    # issue 16, finding 7: the error says which rows were usable and what each branch needs
+    assert "rows: 4 in the file; excluded: none" in error[0] and "mixed 0 (needs 10)" in error[0]
+    assert "full_film 4 (needs 14)" in error[0]
+    assert json.loads(captured.out)["error"]["exit_code"] == 3
 
 
 def test_pipeline_cli_rejects_bad_input(tmp_path, capsys):
@@ -122,7 +127,7 @@ def test_pipeline_cli_rejects_bad_input(tmp_path, capsys):
     for value in ("0", "-1", "nan", "inf"):
         assert main(["pipeline", "quick", "--out-dir", str(tmp_path / "run"), "--time-limit-s", value]) == 2
         err = capsys.readouterr().err.strip()
-        assert len(err.splitlines()) == 1 and "invalid time_limit_s=" in err, err
+        assert len(err.splitlines()) == 1 and "invalid --time-limit-s=" in err, err
         assert not (tmp_path / "run").exists()
 
 
