@@ -1,7 +1,7 @@
 """``gearloss accuracy``: each EHL accuracy level's error against the reference level versus wall time.
 
 Writes ``<stem>.md`` (tables), ``<stem>.png`` (error vs time, log axes) and ``<stem>.json`` (raw runs) into
-``--out-dir`` (default ``docs``), stem ``accuracy_levels_rough`` unless ``--stem`` says otherwise (docs/accuracy.md is
+``--out`` (default ``gearloss_accuracy``, outside ``docs/``; ``--out docs`` regenerates the shipped reports), stem ``accuracy_levels_rough`` unless ``--stem`` says otherwise (docs/accuracy.md is
 the hand-written summary of all accuracy results). See :mod:`workflows.accuracy`.
 """
 
@@ -9,6 +9,8 @@ from __future__ import annotations
 
 import sys
 
+DEFAULT_OUT = "gearloss_accuracy"
+"""Default report directory: outside docs/, so a trial run never overwrites the shipped reports."""
 CONVERGENCE_CASES = ("gear-typical", "full-film-9")
 """Cases of the convergence study: one the planner solves rough and transient, one smooth and steady."""
 
@@ -37,7 +39,9 @@ def register(subparsers) -> None:
                         help="level refined by factors 0.5, 1, 2, 4 in the convergence study (default fast)")
     parser.add_argument("--note", action="append", default=[], metavar="TEXT",
                         help="a remark printed under the report's header (repeatable)")
-    parser.add_argument("--out-dir", default="docs", metavar="DIR")
+    parser.add_argument("--out", "--out-dir", dest="out_dir", default=DEFAULT_OUT, metavar="DIR",
+                        help="directory of the report (default gearloss_accuracy; the shipped reports in docs/ are "
+                             "regenerated with --out docs)")
     parser.add_argument("--json", action="store_true", help="print one JSON object")
     parser.set_defaults(handler=run_accuracy)
 
@@ -85,7 +89,7 @@ def run_accuracy(args) -> int:
                 progress(f"convergence {name} {kind}: order mu {result['order_mu']:.2f}")
     command = (f"gearloss accuracy --levels {' '.join(levels)} --reference {args.reference} --effects {args.effects}"
                f" --reference-effects {args.reference_effects} --lubricant {args.lubricant} --stem {args.stem}"
-               f" --out-dir {args.out_dir}")
+               f" --out {args.out_dir}")
     if args.cases is not None:
         command += f" --cases {args.cases}"
     if args.only:

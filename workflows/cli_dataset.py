@@ -1,7 +1,8 @@
 """``gearloss dataset run|resume|info``: a factorial of EHL contacts into one HDF5 file (docs/dataset_format.md).
 
-Exit status: 0 when the session ends with no pending rows (failed rows are reported, not an error), 2 for bad
-input, 130 / 143 when interrupted by SIGINT / SIGTERM (finished points are on disk; ``resume`` continues).
+Exit status (workflows.exit_codes): 0 when the session ends with no pending rows (failed rows are reported, not an
+error), 2 for bad input, 130 / 143 when interrupted by SIGINT / SIGTERM (finished points are on disk; the resume
+command is printed).
 """
 
 from __future__ import annotations
@@ -11,7 +12,6 @@ import os
 
 from .cli_help import model_help
 
-_EXIT_SIGNAL = {"SIGINT": 130, "SIGTERM": 143}
 
 
 def register(subparsers) -> None:
@@ -79,13 +79,21 @@ def _options(args) -> dict:
 
 
 def _finish(summary, as_json: bool) -> int:
+    import sys
+
     from workflows.cli_output import emit
 
+    from .exit_codes import NOT_VALID, OK, SIGNAL_EXIT
+
     payload = summary.to_dict()
+    if summary.interrupted:
+        payload["resume_command"] = f"gearloss dataset resume {summary.path}"
     emit(payload, as_json, _human_summary)
     if summary.interrupted:
-        return _EXIT_SIGNAL.get(summary.interrupted, 1)
-    return 0 if summary.pending == 0 else 1
+        print(f"gearloss: interrupted by {summary.interrupted}: finished points are in {summary.path}; resume with: "
+              f"{payload['resume_command']}", file=sys.stderr, flush=True)
+        return SIGNAL_EXIT.get(summary.interrupted, NOT_VALID)
+    return OK if summary.pending == 0 else NOT_VALID
 
 
 def _human_summary(p: dict) -> str:

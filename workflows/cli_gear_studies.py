@@ -179,6 +179,7 @@ def run_sweep(args: argparse.Namespace) -> int:
         "sigma_c_pa_range": [float(table["sigma_c_pa"].min()), float(table["sigma_c_pa"].max())],
         "sigma_b_pa_range": [float(table["sigma_b_pa"].min()), float(table["sigma_b_pa"].max())],
         "designs_with_warnings": int((table["warning"].fillna("").astype(str) != "").sum()),
+        "designs_not_valid": int((valid & ~table["valid"].fillna(False).astype(bool)).sum()),
         "warnings": _warning_digest(table),
         "search_limits": limits, "matches": int(len(matches)),
         "best_matches": [_design_record(r) for _, r in matches.head(args.show).iterrows()],
@@ -188,7 +189,9 @@ def run_sweep(args: argparse.Namespace) -> int:
         payload["out"] = _write_csv(table, args.out)
     payload["wall_time_s"] = time.perf_counter() - started
     emit(payload, args.json, _human_sweep)
-    return 0 if not math.isnan(payload["time_per_design_s"]) and payload["failed"] == 0 else 3
+    # exit 1: designs that raised or did not converge (issue 16 exit codes); designs outside the validity are
+    # counted and flagged per row (valid, not_valid_because), part of a study's result
+    return 0 if not math.isnan(payload["time_per_design_s"]) and payload["failed"] == 0 else 1
 
 
 def _warning_digest(table, keep: int = 3) -> dict[str, int]:
@@ -219,6 +222,7 @@ def _human_sweep(p: dict) -> str:
         f"{p['te_pp_m_range'][0] * 1e6:.3f}–{p['te_pp_m_range'][1] * 1e6:.3f} µm, σ_c "
         f"{p['sigma_c_pa_range'][0] / 1e9:.3f}–{p['sigma_c_pa_range'][1] / 1e9:.3f} GPa, σ_b "
         f"{p['sigma_b_pa_range'][0] / 1e6:.0f}–{p['sigma_b_pa_range'][1] / 1e6:.0f} MPa",
+        f"designs outside the models' validity (flagged in the valid column): {p['designs_not_valid']}",
         f"designs like D (all search limits met): {p['matches']}",
     ]
     lines += ["  " + _fmt_design(d) for d in p["best_matches"]]
@@ -267,15 +271,17 @@ def run_modifications(args: argparse.Namespace) -> int:
     ok = table["converged"].astype(bool) & no_error(table)
     rows = [{k: (bool(r[k]) if k == "converged" else str(r[k]) if k == "error" else float(r[k]))
              for k in ("torque_nm", "profile_crown_m", "lead_crown_m", "power_loss_w", "efficiency", "te_pp_m",
-                       "sigma_c_pa", "sigma_b_pa", "converged", "error")} for _, r in table.iterrows()]
+                       "sigma_c_pa", "sigma_b_pa", "converged", "error")} | {"valid": bool(r["valid"])}
+            for _, r in table.iterrows()]
     payload = {"study": study.name, "design": name, "friction_model": describe_friction(friction),
                "speed_rpm": point.input_speed * 30.0 / 3.141592653589793, "cases": len(table),
-               "converged": int(ok.sum()), "warnings": _warning_digest(table), "rows": rows}
+               "converged": int(ok.sum()), "not_valid": int((ok & ~table["valid"].fillna(False).astype(bool)).sum()),
+               "warnings": _warning_digest(table), "rows": rows}
     if args.out:
         payload["out"] = _write_csv(table, args.out)
     payload["wall_time_s"] = time.perf_counter() - started
     emit(payload, args.json, _human_modifications)
-    return 0 if bool(ok.all()) else 3
+    return 0 if bool(ok.all()) else 1
 
 
 def _human_modifications(p: dict) -> str:
