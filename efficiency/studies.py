@@ -174,7 +174,7 @@ def evaluate_design(pair: GearPair, friction: Callable, point: StudyPoint,
     return {
         "power_loss_w": loss.power_loss, "efficiency": loss.efficiency, "te_pp_m": mesh.te_peak_to_peak,
         "sigma_c_pa": mesh.sigma_c_max, "sigma_b_pa": mesh.sigma_b_max, "mu_mean": mu_mean,
-        "converged": bool(mesh.converged), "valid": valid, "not_valid_because": "; ".join(reasons), "error": "",
+        "converged": bool(mesh.converged), "valid": valid, "not_valid_because": " | ".join(reasons), "error": "",
         "warning": "", "wall_time_s": time.perf_counter() - started,
     }
 

@@ -1,0 +1,402 @@
+"""The figures gear engineers expect, computed and drawn (``gearloss report ...``, docs/report.md).
+
+* :func:`efficiency_map` — η and P of one design over input torque × speed, cells outside the models' validity
+  hatched (:mod:`efficiency.validity`);
+* :func:`mesh_cycle_loss` — the instantaneous friction power loss P(φ) over one mesh cycle and the cycle-mean loss
+  along the line of action (with μ and SR there), for the fitted coefficients and published formulas;
+* :func:`study_sweep` and :func:`study_modifications` — the paper's design sweep (Fig. 3–5) and modification study
+  (Fig. 6) with the project's fitted coefficients, the published formulas drawn for comparison.
+
+Each ``*_figure`` function writes one PNG (matplotlib, Agg) whose footer names the command that made it and the
+package and EHL solver versions (:func:`provenance`); the compute functions return plain tables (SI units).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+import warnings
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+FIG3_LINE = {"normal_pressure_angle_deg": 22.5, "helix_angle_deg": 20.0, "working_depth": 2.286}
+"""Paper Fig. 3a-c: the designs along N (and so m, d_o) with these fixed."""
+FIG4_LINES = {
+    "normal_pressure_angle_deg": {"teeth": 30, "helix_angle_deg": 20.0, "working_depth": 2.286},
+    "helix_angle_deg": {"teeth": 30, "normal_pressure_angle_deg": 22.5, "working_depth": 2.286},
+    "working_depth": {"teeth": 30, "normal_pressure_angle_deg": 22.5, "helix_angle_deg": 20.0},
+}
+"""Paper Fig. 4a-c: the "sole influence" lines of Φ, Ψ, Λ_wd."""
+STYLES = ("-", "--", ":", "-.")
+
+
+def provenance(command: str) -> str:
+    """The footer of every figure: the command, the package version and the EHL solver version."""
+    from ehl_dataset.dataset.store import package_version
+    from ehl_dataset.solver import SOLVER_VERSION
+
+    return f"{command}\ngearloss {package_version()}, EHL solver {SOLVER_VERSION}"
+
+
+def _pyplot():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    return plt
+
+
+def _save(fig, path, command: str) -> str:
+    fig.text(0.005, 0.003, provenance(command), fontsize=7, color="0.35", ha="left", va="bottom", family="monospace")
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=110)
+    _pyplot().close(fig)
+    return str(path)
+
+
+def _evaluate(pair, friction, point, options) -> dict:
+    """:func:`efficiency.studies.evaluate_design` with its errors kept in the row (NaN outputs, not valid)."""
+    from ehl_dataset.validation import InputError, SolverError
+    from efficiency.studies import evaluate_design
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        try:
+            return evaluate_design(pair, friction, point, options)
+        except (InputError, SolverError) as err:
+            return {"power_loss_w": math.nan, "efficiency": math.nan, "converged": False, "valid": False,
+                    "not_valid_because": f"{type(err).__name__}: {err}"}
+
+
+# ---------------------------------------------------------------------- efficiency map
+@dataclass
+class EfficiencyMap:
+    """η and P over torque × speed: ``torque_nm`` (T,), ``speed_rpm`` (N,), ``efficiency``, ``power_loss_w``,
+    ``valid`` (T, N); ``reasons`` the distinct reasons of the cells that are not valid."""
+
+    design: str
+    friction: str
+    torque_nm: np.ndarray
+    speed_rpm: np.ndarray
+    efficiency: np.ndarray
+    power_loss_w: np.ndarray
+    valid: np.ndarray
+    converged: np.ndarray
+    reasons: list[str] = field(default_factory=list)
+    wall_time_s: float = 0.0
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"design": self.design, "friction_model": self.friction, "torque_nm": self.torque_nm,
+                "speed_rpm": self.speed_rpm, "efficiency": self.efficiency, "power_loss_w": self.power_loss_w,
+                "valid": self.valid, "converged": self.converged, "not_valid_reasons": self.reasons,
+                "wall_time_s": self.wall_time_s}
+
+
+def efficiency_map(pair, friction, torques_nm, speeds_rpm, point, options, *, design: str = "",
+                   friction_name: str = "") -> EfficiencyMap:
+    """Evaluate ``pair`` at every torque × speed (the other conditions of the study point ``point``)."""
+    from efficiency.studies import StudyPoint
+
+    started = time.perf_counter()
+    torques, speeds = np.asarray(torques_nm, dtype=float), np.asarray(speeds_rpm, dtype=float)
+    shape = (len(torques), len(speeds))
+    eff, loss = np.full(shape, np.nan), np.full(shape, np.nan)
+    valid, converged = np.zeros(shape, dtype=bool), np.zeros(shape, dtype=bool)
+    reasons: dict[str, None] = {}
+    for i, torque in enumerate(torques):
+        for j, speed in enumerate(speeds):
+            here = StudyPoint(float(torque), float(speed) * math.pi / 30.0, point.oil_temperature, point.rq1,
+                              point.rq2, point.modifications)
+            row = _evaluate(pair, friction, here, options)
+            eff[i, j], loss[i, j] = row["efficiency"], row["power_loss_w"]
+            valid[i, j], converged[i, j] = bool(row["valid"]), bool(row["converged"])
+            for reason in filter(None, str(row.get("not_valid_because", "")).split(" | ")):
+                reasons[_reason_kind(reason)] = None
+    return EfficiencyMap(design, friction_name, torques, speeds, eff, loss, valid, converged, list(reasons),
+                         time.perf_counter() - started)
+
+
+def _reason_kind(reason: str) -> str:
+    """A reason without its numbers (``surrogate inputs clipped ...; they carry 20.1 % ...`` → its first words)."""
+    for key, text in (("contact pressure", "σ_c above 0.6 × flank hardness"),
+                      ("root stress", "σ_b above the static bending strength"),
+                      ("normal approach", "deflection above 5 % of m_n"),
+                      ("surrogate inputs", "more than 10 % of the loss at inputs clipped to the fitted ranges")):
+        if key in reason:
+            return text
+    return reason.split(":")[0]
+
+
+def efficiency_map_figure(result: EfficiencyMap, path, command: str, study_point: tuple[float, float] | None) -> str:
+    plt = _pyplot()
+    fig, axes = plt.subplots(1, 2, figsize=(13, 5.4))
+    t, n = result.torque_nm, result.speed_rpm
+    for ax, values, label, fmt in ((axes[0], result.efficiency * 100, "mechanical efficiency η [%]", "%.2f"),
+                                   (axes[1], result.power_loss_w / 1e3, "friction power loss P [kW]", "%.2f")):
+        finite = np.isfinite(values)
+        if finite.sum() >= 4 and len(t) > 1 and len(n) > 1:
+            filled = ax.contourf(n, t, np.ma.masked_invalid(values), levels=14, cmap="viridis")
+            lines = ax.contour(n, t, np.ma.masked_invalid(values), levels=filled.levels[::2], colors="white",
+                               linewidths=0.6)
+            ax.clabel(lines, fmt=fmt, fontsize=7)
+            fig.colorbar(filled, ax=ax, label=label)
+        else:
+            mesh = ax.pcolormesh(n, t, np.ma.masked_invalid(values), shading="nearest", cmap="viridis")
+            fig.colorbar(mesh, ax=ax, label=label)
+        bad = ~result.valid
+        if bad.any():
+            ax.contourf(n, t, bad.astype(float), levels=[0.5, 1.5], colors="none", hatches=["///"])
+            ax.plot([], [], color="0.2", lw=0, marker="s", mfc="none", label="outside validity (hatched)")
+        ax.scatter(*np.meshgrid(n, t), s=3, color="k", alpha=0.3)
+        if study_point is not None:
+            ax.plot(study_point[1], study_point[0], "r*", ms=12, label="study operating point")
+        ax.set_xlabel("input speed [rpm]")
+        ax.set_ylabel("input torque [N·m]")
+        ax.set_title(label)
+        ax.legend(loc="upper right", fontsize=8)
+    note = "; ".join(result.reasons) if result.reasons else "every cell inside the validity"
+    fig.suptitle(f"Efficiency map of design {result.design}, friction: {result.friction}\nhatched: {note}",
+                 fontsize=10)
+    fig.tight_layout(rect=(0, 0.05, 1, 1))
+    return _save(fig, path, command)
+
+
+# ---------------------------------------------------------------------- mesh cycle and line of action
+@dataclass
+class MeshCycleLoss:
+    """Per friction model: P(φ) over the cycle, and the cycle-mean loss, load-weighted μ and SR in bins of roll
+    distance along the line of action (from T1); the pitch point and the active path of contact."""
+
+    design: str
+    mesh_angle_rad: np.ndarray
+    roll_bins_m: np.ndarray
+    pitch_roll_m: float
+    contact_start_m: float
+    contact_end_m: float
+    models: dict[str, dict[str, Any]]
+    torque_nm: float = 0.0
+    speed_rpm: float = 0.0
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"design": self.design, "torque_nm": self.torque_nm, "speed_rpm": self.speed_rpm,
+                "mesh_angle_rad": self.mesh_angle_rad, "roll_bin_edges_m": self.roll_bins_m,
+                "pitch_roll_m": self.pitch_roll_m, "contact_start_m": self.contact_start_m,
+                "contact_end_m": self.contact_end_m, "models": self.models}
+
+
+def mesh_cycle_loss(pair, frictions: dict[str, Any], point, options, *, design: str = "", bins: int = 40,
+                    ) -> MeshCycleLoss:
+    """P(φ) and the loss along the line of action of ``pair`` at ``point`` for each friction model."""
+    from efficiency.mesh_cycle import evaluate_mesh
+    from efficiency.power_loss import mesh_power_loss
+
+    mesh = evaluate_mesh(pair, point.input_torque, point.input_speed, point.modifications, options)
+    kin = mesh.kinematics
+    edges = np.linspace(kin.contact_start, kin.contact_end, bins + 1)
+    width = np.diff(edges)
+    loaded = mesh.loads > 0
+    roll = np.broadcast_to(kin.roll, mesh.loads.shape)
+    which = np.clip(np.searchsorted(edges, roll, side="right") - 1, 0, bins - 1)
+    sliding = np.abs(np.broadcast_to(kin.u_s, mesh.loads.shape))
+    pitch = float(np.interp(0.0, *_sorted_pair(kin.u_s[loaded], roll[loaded])))
+    models = {}
+    m = mesh.loads.shape[0]
+    for name, friction in frictions.items():
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            loss = mesh_power_loss(mesh, friction, point.oil_temperature, point.rq1, point.rq2)
+        dissipation = np.where(loaded, np.nan_to_num(loss.mu) * mesh.loads * sliding, 0.0)
+        per_bin = np.bincount(which[loaded], weights=dissipation[loaded], minlength=bins) / m
+        load_bin = np.bincount(which[loaded], weights=mesh.loads[loaded], minlength=bins)
+        mu_bin = np.bincount(which[loaded], weights=(np.nan_to_num(loss.mu) * mesh.loads)[loaded], minlength=bins)
+        sr_bin = np.bincount(which[loaded], weights=(loss.sr * mesh.loads)[loaded], minlength=bins)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            models[name] = {"power_loss_w": loss.power_loss, "efficiency": loss.efficiency,
+                            "power_loss_instant_w": loss.power_loss_instant,
+                            "loss_per_length_w_per_m": per_bin / width,
+                            "mu_load_weighted": mu_bin / load_bin, "sr_load_weighted": sr_bin / load_bin}
+    return MeshCycleLoss(design, kin.mesh_angle, edges, pitch, float(kin.contact_start), float(kin.contact_end),
+                         models, point.input_torque, point.input_speed * 30.0 / math.pi)
+
+
+def _sorted_pair(x, y):
+    order = np.argsort(x)
+    return np.asarray(x)[order], np.asarray(y)[order]
+
+
+def mesh_cycle_figure(result: MeshCycleLoss, path, command: str) -> str:
+    plt = _pyplot()
+    fig, axes = plt.subplots(1, 3, figsize=(15, 4.6))
+    centres = 0.5 * (result.roll_bins_m[1:] + result.roll_bins_m[:-1])
+    x_mm = (centres - result.pitch_roll_m) * 1e3
+    phi = result.mesh_angle_rad * 1e3
+    for k, (name, model) in enumerate(result.models.items()):
+        style = STYLES[k % len(STYLES)]
+        axes[0].plot(phi, model["power_loss_instant_w"] / 1e3, style, color=f"C{k}", marker="o", ms=3,
+                     label=f"{name}: mean P {model['power_loss_w'] / 1e3:.3f} kW")
+        axes[0].axhline(model["power_loss_w"] / 1e3, color=f"C{k}", lw=0.8, ls=":")
+        axes[1].plot(x_mm, model["loss_per_length_w_per_m"] * 1e-3, style, color=f"C{k}", label=name)
+        axes[2].plot(x_mm, model["mu_load_weighted"], style, color=f"C{k}", label=f"μ {name}")
+    first = next(iter(result.models.values()))
+    twin = axes[2].twinx()
+    twin.plot(x_mm, first["sr_load_weighted"], color="0.4", lw=1, label="SR")
+    twin.set_ylabel("slide-to-roll ratio SR [-]", color="0.4")
+    axes[0].set_xlabel("mesh angle φ of gear 1 [mrad]")
+    axes[0].set_ylabel("instantaneous power loss P(φ) [kW]")
+    axes[0].set_title("loss over one mesh cycle (Eq. 11a)")
+    for ax in axes[1:]:
+        ax.axvline(0.0, color="k", lw=0.8, ls="--")
+        ax.set_xlim((result.contact_start_m - result.pitch_roll_m) * 1e3,
+                    (result.contact_end_m - result.pitch_roll_m) * 1e3)
+        ax.text(0.02, 0.02, "approach", transform=ax.transAxes, fontsize=8, color="0.3")
+        ax.text(0.98, 0.02, "recess", transform=ax.transAxes, fontsize=8, color="0.3", ha="right")
+        ax.set_xlabel("distance from the pitch point along the path of contact [mm]")
+    axes[1].set_ylabel("cycle-mean loss per unit length of the path [W/mm]")
+    axes[1].set_title("where the loss is made")
+    axes[2].set_ylabel("load-weighted μ [-]")
+    axes[2].set_title("friction and sliding along the line of action")
+    for ax in axes:
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=8, loc="upper left")
+    fig.suptitle(f"Design {result.design} at {result.torque_nm:.0f} N·m, {result.speed_rpm:.0f} rpm: friction power "
+                 f"loss over the mesh cycle and along the line of action", fontsize=10)
+    fig.tight_layout(rect=(0, 0.06, 1, 1))
+    return _save(fig, path, command)
+
+
+# ---------------------------------------------------------------------- the paper's studies
+def study_sweep(study, frictions: dict[str, Any], point, options, *, stride: int = 1, limit: int | None = None):
+    """The sweep table of the first friction model (scatter of the feasible designs), the paper's trend lines and
+    Table 1 designs for every model: ``(table, lines {model: {column: table}}, designs {model: {name: row}})``."""
+    from efficiency.studies import design_sweep, evaluate_design, trend_line
+
+    names = list(frictions)
+    table = design_sweep(study.space, frictions[names[0]], point, study.limits, options, stride=stride, limit=limit)
+    lines, designs = {}, {}
+    for name, friction in frictions.items():
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            lines[name] = {"teeth": trend_line(design_sweep(study.space, friction, point, study.limits, options,
+                                                            where=FIG3_LINE), "teeth", {})}
+            for column, fixed in FIG4_LINES.items():
+                lines[name][column] = trend_line(design_sweep(study.space, friction, point, study.limits, options,
+                                                              where=fixed), column, {})
+            designs[name] = {d: evaluate_design(study.design(d), friction, point, options) for d in study.designs}
+    return table, lines, designs
+
+
+def sweep_figures(table, lines, designs, study, out_dir, command: str, point_text: str) -> list[str]:
+    plt = _pyplot()
+    names = list(lines)
+    ok = table[table["converged"].astype(bool)]
+    inside = ok[ok["valid"].fillna(False).astype(bool)]
+    outside = ok[~ok["valid"].fillna(False).astype(bool)]
+    written = []
+
+    def scatter(ax, x, scale):
+        ax.scatter(inside[x] * scale, inside["power_loss_w"] / 1e3, s=2, alpha=0.25, color="0.55", rasterized=True,
+                   label=f"{len(inside)} feasible designs ({names[0]})")
+        if len(outside):
+            ax.scatter(outside[x] * scale, outside["power_loss_w"] / 1e3, s=3, alpha=0.5, color="C3", marker="x",
+                       rasterized=True, label=f"{len(outside)} outside validity")
+
+    fig, axes = plt.subplots(2, 3, figsize=(14, 8), sharey=True)
+    panels = [(axes[0, 0], "teeth", "teeth", 1.0, "N"), (axes[0, 1], "teeth", "normal_module_m", 1e3, "m_n [mm]"),
+              (axes[0, 2], "teeth", "tip_diameter_m", 1e3, "d_o [mm]"),
+              (axes[1, 0], "normal_pressure_angle_deg", "normal_pressure_angle_deg", 1.0, "Φ [deg]"),
+              (axes[1, 1], "helix_angle_deg", "helix_angle_deg", 1.0, "Ψ [deg]"),
+              (axes[1, 2], "working_depth", "working_depth", 1.0, "Λ_wd")]
+    for ax, line_key, column, scale, label in panels:
+        scatter(ax, column, scale)
+        for k, name in enumerate(names):
+            line = lines[name][line_key]
+            line = line[line["converged"].astype(bool)]
+            ax.plot(line[column] * scale, line["power_loss_w"] / 1e3, STYLES[k % len(STYLES)], color=f"C{k}",
+                    marker="o", ms=3, label=f"sole influence, {name}")
+        ax.set_xlabel(label)
+        ax.set_ylabel("P [kW]")
+        ax.grid(alpha=0.3)
+    axes[0, 0].legend(loc="upper right", fontsize=7)
+    fig.suptitle(f"Power loss of the feasible designs at {point_text} (cf. Li & Kahraman 2009, Fig. 3a-c and "
+                 f"4a-c)\nlines: Φ 22.5°, Ψ 20°, Λ_wd 2.286 for N, m, d_o; N = 30 with the other two fixed for Φ, Ψ, "
+                 f"Λ_wd; friction {names[0]} (scatter and solid line), others for comparison", fontsize=9)
+    fig.tight_layout(rect=(0, 0.05, 1, 1))
+    written.append(_save(fig, Path(out_dir) / "sweep_power_loss.png", command))
+
+    fig, axes = plt.subplots(1, 3, figsize=(14, 4.8), sharey=True)
+    for ax, column, scale, label, limit_key, limit_scale in (
+            (axes[0], "te_pp_m", 1e6, "peak-to-peak TE [µm]", "max_transmission_error_m", 1e6),
+            (axes[1], "sigma_c_pa", 1e-9, "max σ_c [GPa]", "max_contact_stress_pa", 1e-9),
+            (axes[2], "sigma_b_pa", 1e-6, "max σ_b [MPa]", "max_root_stress_pa", 1e-6)):
+        scatter(ax, column, scale)
+        limit = (study.search_limits or {}).get(limit_key)
+        if limit is not None:
+            ax.axvline(limit * limit_scale, color="C0", ls="--", lw=1, label="design-D search limit")
+        ax.axhline((study.search_limits or {}).get("max_power_loss_w", np.nan) / 1e3, color="C0", ls=":", lw=1)
+        for k, name in enumerate(names):
+            for design, row in designs[name].items():
+                ax.plot(row[column] * scale, row["power_loss_w"] / 1e3, "s", ms=7, mfc="none", color=f"C{k}",
+                        label=name if design == "A" else None)
+                ax.annotate(design, (row[column] * scale, row["power_loss_w"] / 1e3), xytext=(4, 4),
+                            textcoords="offset points", color=f"C{k}", fontsize=9, weight="bold")
+        ax.set_xlabel(label)
+        ax.set_ylabel("P [kW]")
+        ax.grid(alpha=0.3)
+    axes[0].legend(loc="upper right", fontsize=7)
+    fig.suptitle(f"P against TE, σ_c, σ_b (cf. Li & Kahraman 2009, Fig. 5); Table 1 designs A-D for each friction "
+                 f"model; {point_text}", fontsize=9)
+    fig.tight_layout(rect=(0, 0.08, 1, 1))
+    written.append(_save(fig, Path(out_dir) / "sweep_tradeoffs.png", command))
+    return written
+
+
+def study_modifications(pair, frictions: dict[str, Any], profile_crowns, lead_crowns, torques, point, options):
+    """:func:`efficiency.studies.modification_study` for every friction model: {model: table}."""
+    from efficiency.studies import modification_study
+
+    return {name: modification_study(pair, friction, profile_crowns, lead_crowns, torques, point, options)
+            for name, friction in frictions.items()}
+
+
+def modifications_figure(tables: dict, design: str, path, command: str) -> str:
+    plt = _pyplot()
+    names = list(tables)
+    first = tables[names[0]]
+    fig, axes = plt.subplots(1, 4, figsize=(17, 4.8))
+    leads = sorted(set(np.round(first["lead_crown_m"], 9)))
+    lead = leads[len(leads) // 2]
+    torques = sorted(set(first["torque_nm"]))
+    for k, torque in enumerate(torques):
+        for j, name in enumerate(names):
+            rows = tables[name]
+            rows = rows[(rows["torque_nm"] == torque) & np.isclose(rows["lead_crown_m"], lead)]
+            rows = rows.sort_values("profile_crown_m")
+            axes[0].plot(rows["profile_crown_m"] * 1e6, rows["power_loss_w"] / 1e3, STYLES[j % len(STYLES)],
+                         color=f"C{k}", marker="o" if j == 0 else None, ms=3, label=f"T = {torque:.0f} N·m, {name}")
+            bad = rows[~rows["valid"].fillna(False).astype(bool)]
+            if j == 0 and len(bad):
+                axes[0].plot(bad["profile_crown_m"] * 1e6, bad["power_loss_w"] / 1e3, "x", color="C3", ms=7)
+        for ax, (column, scale) in zip(axes[1:], (("te_pp_m", 1e6), ("sigma_c_pa", 1e-9), ("sigma_b_pa", 1e-6))):
+            for style, shown in zip(STYLES, (leads[0], lead, leads[-1])):
+                rows = first[(first["torque_nm"] == torque) & np.isclose(first["lead_crown_m"], shown)]
+                rows = rows.sort_values("profile_crown_m")
+                ax.plot(rows["profile_crown_m"] * 1e6, rows[column] * scale, style, color=f"C{k}", marker="o", ms=3,
+                        label=f"T = {torque:.0f} N·m, M_L = {shown * 1e6:.0f} µm")
+    axes[0].plot([], [], "x", color="C3", label=f"outside validity ({names[0]})")
+    for ax, label in zip(axes, (f"P [kW] (M_L = {lead * 1e6:.0f} µm)", "peak-to-peak TE [µm]", "max σ_c [GPa]",
+                                "max σ_b [MPa]")):
+        ax.set_xlabel("profile crown M_P [µm]")
+        ax.set_ylabel(label)
+        ax.grid(alpha=0.3)
+    axes[0].legend(fontsize=6)
+    axes[1].legend(fontsize=6)
+    fig.suptitle(f"Design {design}: tooth modifications (cf. Li & Kahraman 2009, Fig. 6); P with friction "
+                 f"{names[0]} (solid) and {', '.join(names[1:]) or '-'} (dashed); TE and stresses do not depend on "
+                 f"friction", fontsize=9)
+    fig.tight_layout(rect=(0, 0.06, 1, 1))
+    return _save(fig, path, command)
