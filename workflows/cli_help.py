@@ -44,10 +44,10 @@ class HelpFormatter(argparse.RawDescriptionHelpFormatter):
             text += f" (default: {str(shown).replace('%', '%%')})"
         return text
 
-    def _expand_help(self, action):
+    def _format_action(self, action):
         if isinstance(action.help, LazyHelp):
             action.help = str(action.help).replace("%", "%%")
-        return super()._expand_help(action)
+        return super()._format_action(action)
 
 
 _UNIT = re.compile(r"\[([^\]\[]+)\]")

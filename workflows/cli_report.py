@@ -171,7 +171,8 @@ def run_efficiency_map(args: argparse.Namespace) -> int:
     result = report.efficiency_map(pair, frictions[spec], torques, speeds, point, options, design=name,
                                    friction_name=spec)
     study_point = (point.input_torque, point.input_speed * 30 / math.pi)
-    figure = report.efficiency_map_figure(result, args.out, args.command_line, study_point)
+    figure = report.efficiency_map_figure(result, args.out, args.command_line, study_point,
+                                          report.coefficients_note({spec: frictions[spec]}))
     payload = {**result.to_dict(), "figure": figure, "conditions": _point_text(point)}
     emit(payload, args.json, lambda p: (f"wrote {p['figure']}: design {p['design']}, friction {p['friction_model']},"
                                         f" {len(p['torque_nm'])} torques × {len(p['speed_rpm'])} speeds, η "
@@ -194,7 +195,7 @@ def run_mesh_cycle(args: argparse.Namespace) -> int:
     study, frictions, point, options = _setup(args)
     name, pair = _study_pair(args, study)
     result = report.mesh_cycle_loss(pair, frictions, point, options, design=name)
-    figure = report.mesh_cycle_figure(result, args.out, args.command_line)
+    figure = report.mesh_cycle_figure(result, args.out, args.command_line, report.coefficients_note(frictions))
     payload = {**result.to_dict(), "figure": figure, "conditions": _point_text(point)}
 
     def human(p):
@@ -217,7 +218,8 @@ def run_sweep(args: argparse.Namespace) -> int:
     study, frictions, point, options = _setup(args)
     table, lines, designs = report.study_sweep(study, frictions, point, options, stride=args.stride,
                                                limit=args.limit)
-    figures = report.sweep_figures(table, lines, designs, study, args.out_dir, args.command_line, _point_text(point))
+    figures = report.sweep_figures(table, lines, designs, study, args.out_dir, args.command_line, _point_text(point),
+                                   report.coefficients_note(frictions))
     payload = {"figures": figures, "study": study.name, "friction_models": list(frictions),
                "designs_evaluated": int(len(table)), "designs_not_valid": int((~table["valid"].fillna(False)
                                                                                 .astype(bool)).sum()),
@@ -248,7 +250,7 @@ def run_modifications(args: argparse.Namespace) -> int:
     name, pair = _study_pair(args, study)
     tables = report.study_modifications(pair, frictions, [v * 1e-6 for v in profile], [v * 1e-6 for v in lead],
                                         torques, point, options)
-    figure = report.modifications_figure(tables, name, args.out, args.command_line)
+    figure = report.modifications_figure(tables, name, args.out, args.command_line, report.coefficients_note(frictions))
     payload = {"figure": figure, "design": name, "friction_models": list(tables),
                "cases": int(len(next(iter(tables.values())))),
                "rows": {model: table[["torque_nm", "profile_crown_m", "lead_crown_m", "power_loss_w", "te_pp_m",

@@ -33,12 +33,28 @@ FIG4_LINES = {
 STYLES = ("-", "--", ":", "-.")
 
 
-def provenance(command: str) -> str:
-    """The footer of every figure: the command, the package version and the EHL solver version."""
+def provenance(command: str, note: str = "") -> str:
+    """The footer of every figure: the command, the package and EHL solver versions, and ``note`` (e.g. the solver
+    version of a coefficient file's data)."""
+    return f"{command}\n{versions()}" + (f"; {note}" if note else "")
+
+
+def versions() -> str:
     from ehl_dataset.dataset.store import package_version
     from ehl_dataset.solver import SOLVER_VERSION
 
-    return f"{command}\ngearloss {package_version()}, EHL solver {SOLVER_VERSION}"
+    return f"gearloss {package_version()}, EHL solver {SOLVER_VERSION}"
+
+
+def coefficients_note(frictions: dict[str, Any]) -> str:
+    """Which EHL solver version and level computed the data of each coefficient file among ``frictions``."""
+    notes = []
+    for name, friction in frictions.items():
+        source = getattr(getattr(friction, "coefficients", None), "document", {}).get("source", {})
+        if source:
+            notes.append(f"{name} fitted on {source.get('factorial', '?')} data of EHL solver "
+                         f"{source.get('solver_version', '?')} at the {source.get('accuracy_level', '?')} level")
+    return "; ".join(notes)
 
 
 def _pyplot():
@@ -50,11 +66,12 @@ def _pyplot():
     return plt
 
 
-def _save(fig, path, command: str) -> str:
-    fig.text(0.005, 0.003, provenance(command), fontsize=7, color="0.35", ha="left", va="bottom", family="monospace")
+def _save(fig, path, command: str, note: str = "") -> str:
+    fig.text(0.005, 0.003, provenance(command, note), fontsize=7, color="0.35", ha="left", va="bottom",
+             family="monospace")
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=110)
+    fig.savefig(path, dpi=110, metadata={"Description": command, "Software": versions(), "Comment": note})
     _pyplot().close(fig)
     return str(path)
 
@@ -132,7 +149,8 @@ def _reason_kind(reason: str) -> str:
     return reason.split(":")[0]
 
 
-def efficiency_map_figure(result: EfficiencyMap, path, command: str, study_point: tuple[float, float] | None) -> str:
+def efficiency_map_figure(result: EfficiencyMap, path, command: str, study_point: tuple[float, float] | None,
+                          note: str = "") -> str:
     plt = _pyplot()
     fig, axes = plt.subplots(1, 2, figsize=(13, 5.4))
     t, n = result.torque_nm, result.speed_rpm
@@ -150,8 +168,10 @@ def efficiency_map_figure(result: EfficiencyMap, path, command: str, study_point
             fig.colorbar(mesh, ax=ax, label=label)
         bad = ~result.valid
         if bad.any():
-            ax.contourf(n, t, bad.astype(float), levels=[0.5, 1.5], colors="none", hatches=["///"])
-            ax.plot([], [], color="0.2", lw=0, marker="s", mfc="none", label="outside validity (hatched)")
+            if len(t) > 1 and len(n) > 1:
+                ax.contourf(n, t, bad.astype(float), levels=[0.5, 1.5], colors="none", hatches=["///"])
+            grid_n, grid_t = np.meshgrid(n, t)
+            ax.plot(grid_n[bad], grid_t[bad], "x", color="0.15", ms=4, label="outside validity (x, hatched)")
         ax.scatter(*np.meshgrid(n, t), s=3, color="k", alpha=0.3)
         if study_point is not None:
             ax.plot(study_point[1], study_point[0], "r*", ms=12, label="study operating point")
@@ -163,7 +183,7 @@ def efficiency_map_figure(result: EfficiencyMap, path, command: str, study_point
     fig.suptitle(f"Efficiency map of design {result.design}, friction: {result.friction}\nhatched: {note}",
                  fontsize=10)
     fig.tight_layout(rect=(0, 0.05, 1, 1))
-    return _save(fig, path, command)
+    return _save(fig, path, command, note)
 
 
 # ---------------------------------------------------------------------- mesh cycle and line of action
@@ -229,7 +249,7 @@ def _sorted_pair(x, y):
     return np.asarray(x)[order], np.asarray(y)[order]
 
 
-def mesh_cycle_figure(result: MeshCycleLoss, path, command: str) -> str:
+def mesh_cycle_figure(result: MeshCycleLoss, path, command: str, note: str = "") -> str:
     plt = _pyplot()
     fig, axes = plt.subplots(1, 3, figsize=(15, 4.6))
     centres = 0.5 * (result.roll_bins_m[1:] + result.roll_bins_m[:-1])
@@ -266,7 +286,7 @@ def mesh_cycle_figure(result: MeshCycleLoss, path, command: str) -> str:
     fig.suptitle(f"Design {result.design} at {result.torque_nm:.0f} N·m, {result.speed_rpm:.0f} rpm: friction power "
                  f"loss over the mesh cycle and along the line of action", fontsize=10)
     fig.tight_layout(rect=(0, 0.06, 1, 1))
-    return _save(fig, path, command)
+    return _save(fig, path, command, note)
 
 
 # ---------------------------------------------------------------------- the paper's studies
@@ -290,7 +310,7 @@ def study_sweep(study, frictions: dict[str, Any], point, options, *, stride: int
     return table, lines, designs
 
 
-def sweep_figures(table, lines, designs, study, out_dir, command: str, point_text: str) -> list[str]:
+def sweep_figures(table, lines, designs, study, out_dir, command: str, point_text: str, note: str = "") -> list[str]:
     plt = _pyplot()
     names = list(lines)
     ok = table[table["converged"].astype(bool)]
@@ -326,7 +346,7 @@ def sweep_figures(table, lines, designs, study, out_dir, command: str, point_tex
                  f"4a-c)\nlines: Φ 22.5°, Ψ 20°, Λ_wd 2.286 for N, m, d_o; N = 30 with the other two fixed for Φ, Ψ, "
                  f"Λ_wd; friction {names[0]} (scatter and solid line), others for comparison", fontsize=9)
     fig.tight_layout(rect=(0, 0.05, 1, 1))
-    written.append(_save(fig, Path(out_dir) / "sweep_power_loss.png", command))
+    written.append(_save(fig, Path(out_dir) / "sweep_power_loss.png", command, note))
 
     fig, axes = plt.subplots(1, 3, figsize=(14, 4.8), sharey=True)
     for ax, column, scale, label, limit_key, limit_scale in (
@@ -351,7 +371,7 @@ def sweep_figures(table, lines, designs, study, out_dir, command: str, point_tex
     fig.suptitle(f"P against TE, σ_c, σ_b (cf. Li & Kahraman 2009, Fig. 5); Table 1 designs A-D for each friction "
                  f"model; {point_text}", fontsize=9)
     fig.tight_layout(rect=(0, 0.08, 1, 1))
-    written.append(_save(fig, Path(out_dir) / "sweep_tradeoffs.png", command))
+    written.append(_save(fig, Path(out_dir) / "sweep_tradeoffs.png", command, note))
     return written
 
 
@@ -363,7 +383,7 @@ def study_modifications(pair, frictions: dict[str, Any], profile_crowns, lead_cr
             for name, friction in frictions.items()}
 
 
-def modifications_figure(tables: dict, design: str, path, command: str) -> str:
+def modifications_figure(tables: dict, design: str, path, command: str, note: str = "") -> str:
     plt = _pyplot()
     names = list(tables)
     first = tables[names[0]]
@@ -399,4 +419,4 @@ def modifications_figure(tables: dict, design: str, path, command: str) -> str:
                  f"{names[0]} (solid) and {', '.join(names[1:]) or '-'} (dashed); TE and stresses do not depend on "
                  f"friction", fontsize=9)
     fig.tight_layout(rect=(0, 0.06, 1, 1))
-    return _save(fig, path, command)
+    return _save(fig, path, command, note)
