@@ -153,10 +153,17 @@ def provenance() -> dict[str, Any]:
         "python": sys.version.split()[0],
         "numpy": np.__version__,
         "gearloss": package_version,
+        "solver_version": _solver_version(),
         "git_commit": commit,
         "solver_files_modified": dirty,
         "date_utc": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()),
     }
+
+
+def _solver_version() -> str:
+    from ehl_dataset.solver import SOLVER_VERSION
+
+    return SOLVER_VERSION
 
 
 def _default_solver():
@@ -363,7 +370,9 @@ def markdown_report(study: AccuracyStudy, convergence: Sequence[dict] = (), png_
             f"{'—' if is_ref else _fmt_err(row['h_min_error_median'])} | "
             f"{'—' if is_ref else _fmt_err(row['h_min_error_max'])} | "
             f"{row['wall_time_mean_s']:.3g} | {row['wall_time_median_s']:.3g} |")
-    lines += ["", f"![error versus time]({png_name})", "", "## Per case", "",
+    lines += ["", f"![error versus time]({png_name})", "",
+              f"*Made by `{prov.get('command', 'gearloss accuracy')}` (gearloss {prov.get('gearloss')}, EHL solver "
+              f"{prov.get('solver_version', 'unknown')}).*", "", "## Per case", "",
               "| case | p_h [GPa] | r_eq [mm] | u_r [m/s] | SR | T [°C] | Rq1/Rq2 [µm] | λ̄ | level | plan | μ |"
               " h_min [nm] | err μ | err h_min | time [s] | converged |",
               "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]

@@ -58,7 +58,7 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
-class _Terminated(Exception):
+class _Terminated(BaseException):
     """SIGTERM outside a runner (which handles it itself and stops cleanly)."""
 
 

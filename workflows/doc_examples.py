@@ -9,8 +9,9 @@ marker comment that says what it is:
   ``--all``;
 * ``<!-- synopsis -->`` — option syntax with placeholders (``[--json]``, ``FILE``), not a command.
 
-The commands of a block are its lines that start with ``gearloss`` or ``$ gearloss`` (a trailing backslash continues
-a line; ``cmd && gearloss ...`` runs the gearloss part). The blocks of one page run in order in one temporary
+The commands of a block are its lines that start with ``gearloss`` — or, in a block that shows output after a ``$ ``
+prompt, its lines that start with ``$ gearloss`` (a trailing backslash continues a line; ``cmd && gearloss ...`` runs
+the gearloss part). The blocks of one page run in order in one temporary
 directory, so an example may use the files an earlier one wrote. Figures made by ``gearloss report`` carry their
 command under them (``*Made by `gearloss report ...` ...*``); ``--figures`` re-runs those commands from the
 repository root (after a change of the solver or of the coefficients the figures are regenerated this way).
@@ -37,7 +38,7 @@ from pathlib import Path
 REPO = Path(__file__).resolve().parents[1]
 MARKER = re.compile(r"<!--\s*(example|synopsis)\b([^>]*)-->\s*$")
 FENCE = re.compile(r"^```")
-CAPTION = re.compile(r"\*Made by `(gearloss [^`]+)`")
+CAPTION = re.compile(r"\*Made by `([^`]+)`")
 
 
 @dataclass
@@ -64,15 +65,21 @@ def _commands(block: list[str]) -> list[list[str]]:
         if not line.rstrip().endswith("\\"):
             joined.append(current)
             current = ""
+    prompted = any(line.strip().startswith("$ ") for line in joined)
     out = []
     for line in joined:
         text = line.strip()
+        if prompted and not text.startswith("$ "):
+            continue  # output of a command shown with a prompt
         if text.startswith("$ "):
             text = text[2:]
         if "&& gearloss " in text:
             text = "gearloss " + text.split("&& gearloss ", 1)[1]
         if text.startswith("gearloss "):
-            out.append(shlex.split(text)[1:])
+            try:
+                out.append(shlex.split(text)[1:])
+            except ValueError:  # a synopsis with unbalanced quotes: not run, only listed
+                out.append(text.split()[1:])
     return out
 
 
@@ -142,15 +149,21 @@ def run_pages(include_slow: bool = False, verbose: bool = True) -> list[str]:
 
 
 def figure_captions(root: Path = REPO) -> list[tuple[str, str, str]]:
-    """(page, figure path, caption line) of every image in the docs; the caption is the first non-empty line after
-    the image (empty when the image has none)."""
+    """(page, figure path, caption) of every image in the docs; the caption is the first line starting with
+    ``*Made by`` among the lines after the image up to the next image or heading (empty when there is none)."""
     out = []
     for path in pages(root):
         lines = path.read_text().splitlines()
         for i, line in enumerate(lines):
             for image in re.findall(r"!\[[^\]]*\]\(([^)]+\.png)\)", line):
-                following = [x for x in lines[i + 1:i + 4] if x.strip() and not x.strip().startswith("![")]
-                out.append((str(path.relative_to(root)), image, following[0] if following else ""))
+                caption = ""
+                for following in lines[i + 1:i + 12]:
+                    if following.strip().startswith(("![", "#")):
+                        break
+                    if following.strip().startswith("*Made by"):
+                        caption = following.strip()
+                        break
+                out.append((str(path.relative_to(root)), image, caption))
     return out
 
 

@@ -6,8 +6,8 @@ code   meaning
 0      ok: the result is computed, converged and inside the model's validity
 1      a result is computed but did not converge, or lies outside the model's validity (it is printed,
        flagged ``"valid": false`` with the reasons, or ``"converged": false``)
-2      bad input: an option outside its accepted range, an unknown name, a file that cannot be read, or an
-       input refused because it lies outside the model (``--strict``); nothing is computed
+2      bad input: an option outside its accepted range, an unknown name, a file that cannot be read (nothing
+       is computed), or with ``--strict`` a result outside the model's validity (refused, not printed)
 3      a stage cannot produce its result (e.g. the fit when the data cannot determine the regression)
 130    interrupted by SIGINT (Ctrl-C); what is finished is kept and the command that resumes is printed
 143    terminated by SIGTERM; as 130
@@ -32,8 +32,8 @@ TABLE: tuple[tuple[int, str, str], ...] = (
     (OK, "ok", "result computed, converged and inside the model's validity"),
     (NOT_VALID, "not_valid", "result computed but not converged or outside the model's validity (flagged in the "
                              "output: \"converged\": false or \"valid\": false with the reasons)"),
-    (BAD_INPUT, "bad_input", "bad input (an option outside its range, an unknown name, an unreadable file) or an "
-                             "input refused as outside the model with --strict; nothing computed"),
+    (BAD_INPUT, "bad_input", "bad input (an option outside its range, an unknown name, an unreadable file; nothing "
+                             "is computed) or, with --strict, a result outside the model's validity (not printed)"),
     (STAGE_FAILED, "stage_failed", "a stage cannot produce its result (e.g. the fit when the data cannot "
                                    "determine the regression)"),
     (SIGINT, "interrupted", "interrupted by SIGINT (Ctrl-C): finished work is kept, the resume command is printed"),
