@@ -319,11 +319,11 @@ def sweep_figures(table, lines, designs, study, out_dir, command: str, point_tex
     written = []
 
     def scatter(ax, x, scale):
-        ax.scatter(inside[x] * scale, inside["power_loss_w"] / 1e3, s=2, alpha=0.25, color="0.55", rasterized=True,
-                   label=f"{len(inside)} feasible designs ({names[0]})")
         if len(outside):
-            ax.scatter(outside[x] * scale, outside["power_loss_w"] / 1e3, s=3, alpha=0.5, color="C3", marker="x",
-                       rasterized=True, label=f"{len(outside)} outside validity")
+            ax.scatter(outside[x] * scale, outside["power_loss_w"] / 1e3, s=2, alpha=0.25, color="C3",
+                       rasterized=True, label=f"{len(outside)} feasible designs outside the validity ({names[0]})")
+        ax.scatter(inside[x] * scale, inside["power_loss_w"] / 1e3, s=2, alpha=0.5, color="0.3", rasterized=True,
+                   label=f"{len(inside)} feasible designs inside the validity ({names[0]})")
 
     fig, axes = plt.subplots(2, 3, figsize=(14, 8), sharey=True)
     panels = [(axes[0, 0], "teeth", "teeth", 1.0, "N"), (axes[0, 1], "teeth", "normal_module_m", 1e3, "m_n [mm]"),
