@@ -1,0 +1,213 @@
+"""Homogenised (two-scale) mixed-EHL line contact: the production model of the rough regime (docs/homogenised_model.md).
+
+Where a contact is many roughness correlation lengths wide, the roughness is a statistically homogeneous micro-scale
+inside a smooth macro-contact (Patir & Cheng 1978; Johnson, Greenwood & Poon 1972; Gelinck & Schipper 2000; Masjedi &
+Khonsari 2012). The macro problem is the steady smooth line contact of :mod:`ehl_dataset.solvers.steady` (same grid,
+same Newton solver and continuation) with
+
+* the total pressure P = p_f + p_a(d) as unknown, d = h0 + x²/(2 r_eq) + V(P) the mean gap (macro film);
+* p_a(d), the contact fraction and the gap distribution from the dry-contact table of the actual roughness pair
+  (:mod:`ehl_dataset.model.dry_contact`: elastic–perfectly-plastic contact of the two profiles);
+* the averaged Reynolds equation ∂/∂x(ρ C_p ∂p_f/∂x /(12η)) = ∂/∂x(ρ[u_m h_T + (u1 − u2)/2·S_φ]) with the flow
+  factors of :mod:`ehl_dataset.model.flow_factors` (``closure="transverse"``: the exact 1-D cell average of the
+  paper's model, no side leakage; ``"isotropic"``: Patir–Cheng / Wilson–Marsault with side leakage — the choice
+  that decides the λ̄ → 0 limit) and the Eyring flow factor at the mean gap;
+* cavitation p_f ≥ 0 (Reynolds condition, as the smooth steady solver);
+* traction: the Eyring shear of the lubricated fraction, the rolling part (h_T/2)∂p_f/∂x, and μ_d·p_a.
+
+μ is a steady value (no time average, no sampling error): the homogenisation takes the ensemble average of the
+roughness configurations that a deterministic run samples over time.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+
+import numpy as np
+
+from ..discretisation.deflection import influence_matrix
+from ..discretisation.reynolds import BAND, assemble
+from ..model.contact import ContactCase
+from ..model.dry_contact import dry_contact_table
+from ..model.effects import Effects
+from ..model.flow_factors import isotropic_flow_factors, lubricated_shear_stress, transverse_flow_factors
+from ..model.lubricant import LubricantState
+from ..model.roughness import RoughnessProfile
+from ..model.traction import full_film_mask
+from ..validation import InputError
+from .levels import AccuracyLevel
+from .newton import EXPONENT_CAP, EXPONENT_FLOOR, ReynoldsProblem, newton_solve
+from .result import ContactResult
+from .steady import ContactScales, dowson_higginson_lambda, moes_h_c, solve_steady, solve_steady_problem, steady_grid
+
+CLOSURES = ("transverse", "isotropic")
+"""Flow-factor closures: ``transverse`` (1-D roughness as in the paper's model, no side leakage) and ``isotropic``
+(side leakage around contacts)."""
+BOUNDARY_FILM_M = 5e-9
+"""Film-breakdown thickness h_b [m], the floor of the micro gaps in the 1-D flow factors (the deterministic model's
+default, :data:`ehl_dataset.solvers.deterministic.BOUNDARY_FILM_M`)."""
+
+
+PSEUDO_DT = 0.3
+"""Initial pseudo time step [a/u_r] of the Newton solve started from the smooth solution."""
+MAX_ITERATIONS = 300
+"""Newton iterations allowed for that solve (the rough film may be several times the smooth one)."""
+
+
+class HomogenisedProblem(ReynoldsProblem):
+    """The steady averaged-Reynolds problem (module docstring) in the interface of
+    :class:`~ehl_dataset.solvers.newton.ReynoldsProblem`: the unknown ``p`` is the total pressure P [p_h], the film
+    ``h`` the mean gap d [a²/r_eq]; ``cavitation_offset`` makes Newton's cavitation condition act on P − p_a(d)."""
+
+    def __init__(self, *args, table=None, film_scale: float = 1.0, sr: float = 0.0, closure: str = "transverse",
+                 h_b_m: float = BOUNDARY_FILM_M, transport="variance", **kwargs):
+        super().__init__(*args, **kwargs)
+        self.table = table
+        self.film_scale = film_scale
+        self.sr = sr
+        self.closure = closure
+        self.h_b_m = h_b_m
+        self.transport = transport
+        self.h_closed = 1e-300  # the mean gap may close (plastic asperities): no open-film check in Newton
+
+    def asperity(self, h):
+        """(p_a [p_h], ∂p_a/∂H) at mean gaps H."""
+        d = h * self.film_scale
+        return (np.asarray(self.table.asperity_pressure(d)) / self.p_h,
+                np.asarray(self.table.d_asperity_pressure(d)) * self.film_scale / self.p_h)
+
+    def cavitation_offset(self, h):
+        return self.asperity(h)
+
+    def flow_factors(self, h):
+        d = h * self.film_scale
+        if self.closure == "transverse":
+            return transverse_flow_factors(self.table, d, self.h_b_m, self.transport)
+        return isotropic_flow_factors(self.table, d, self.transport)
+
+    def fluid(self, p_fluid, h, homotopy: float = 1.0):
+        """ε, ∂ε/∂p_f, ∂ε/∂H (at fixed p_f), m = ρ̄(h_T + SR/2·S_φ), ∂m/∂p_f, ∂m/∂H, dimensionless."""
+        fs = self.film_scale
+        pa = p_fluid * self.p_h
+        law = self.state.law
+        negative = pa < 0.0
+        slope_phi0 = float(law.exponent_derivative(np.array([0.0]))[0]) if negative.any() else 0.0
+        phi = homotopy * np.where(negative, slope_phi0 * pa, law.exponent(pa))
+        phi_p = homotopy * np.where(negative, slope_phi0, law.exponent_derivative(pa)) * self.p_h
+        clipped = (phi > EXPONENT_CAP) | (phi < -EXPONENT_FLOOR)
+        phi = np.clip(phi, -EXPONENT_FLOOR, EXPONENT_CAP)
+        phi_p = np.where(clipped, 0.0, phi_p)
+        if self.compressible:
+            rho = self.state.density(pa) / self.state.rho0
+            rho_p = self.state.density_derivative(pa) * self.p_h / self.state.rho0
+            if negative.any():
+                slope_rho0 = float(self.state.density_derivative(np.array([0.0]))[0]) * self.p_h / self.state.rho0
+                rho = np.where(negative, 1.0 + slope_rho0 * p_fluid, rho)
+                rho_p = np.where(negative, slope_rho0, rho_p)
+        else:
+            rho = np.ones_like(p_fluid)
+            rho_p = np.zeros_like(p_fluid)
+        ff = self.flow_factors(h)
+        cond = np.maximum(ff.conductance / fs**3, 1e-300)
+        d_cond = ff.d_conductance / fs**2
+        h_t = np.maximum(ff.mean_gap / fs, 1e-12)
+        d_h_t = ff.d_mean_gap
+        carried = h_t + 0.5 * self.sr * ff.shear_flow / fs
+        d_carried = d_h_t + 0.5 * self.sr * ff.d_shear_flow
+        inv_eta2 = np.exp(-2.0 * phi)
+        shear2 = (self.shear / h_t) ** 2
+        g2 = np.maximum(inv_eta2 + shear2, 1e-300)
+        g = np.sqrt(g2)
+        eps = rho * cond * g / self.lam
+        eps_p = eps * (rho_p / rho - phi_p * inv_eta2 / g2)
+        eps_h = eps * (d_cond / cond - shear2 * d_h_t / (h_t * g2))
+        return eps, eps_p, eps_h, rho * carried, rho_p * carried, rho * d_carried
+
+    def residual(self, p, h, homotopy=1.0):
+        """The residual of the averaged Reynolds equation in the fluid pressure p_f = P − p_a(H), with the bands
+        ∂R/∂P and ∂R/∂H converted by the chain rule (∂p_f/∂P = 1, ∂p_f/∂H = −p_a'(H))."""
+        p_a, p_a_h = self.asperity(h)
+        p_fluid = p - p_a
+        eps, eps_p, eps_h, m, m_p, m_h = self.fluid(p_fluid, h, homotopy)
+        res, dp, dh = assemble(self.x, p_fluid, eps, eps_p, eps_h, m, m_p, m_h, self.squeeze, self.m_old,
+                               self.face_order(), self.face_poiseuille())
+        n = self.x.size
+        nodes = np.arange(n)
+        for o in range(BAND):
+            j = nodes + o - 2
+            valid = (j >= 0) & (j < n)
+            dh[valid, o] -= dp[valid, o] * p_a_h[j[valid]]
+        return res, dp, dh, (m, m_p, m_h - m_p * p_a_h), None
+
+
+def solve_homogenised(case: ContactCase, state: LubricantState, lvl: AccuracyLevel, plan: Effects,
+                      roughness: RoughnessProfile | None = None, closure: str = "transverse",
+                      h_b_m: float = BOUNDARY_FILM_M, transport="variance") -> ContactResult:
+    """Steady homogenised mixed solve of a rough contact (module docstring) on the level's steady grid."""
+    if closure not in CLOSURES:
+        raise InputError("closure", closure, f"one of {list(CLOSURES)}")
+    start = time.perf_counter()
+    table = dry_contact_table(roughness, case.rq1, case.rq2, case.e_reduced)
+    scales = ContactScales.of(case, state, plan.shear_thinning)
+    smooth_plan = Effects(False, False, plan.shear_thinning, plan.compressibility, plan.mode, {})
+    smooth = solve_steady(case, state, lvl, smooth_plan)
+    x = smooth.x / scales.a
+    problem = HomogenisedProblem(x=x, kmat=influence_matrix(x), gap=0.5 * x**2, lam=scales.lam, p_h=case.p_h,
+                                 state=state, compressible=plan.compressibility and state.compressible,
+                                 shear=scales.shear, table=table, film_scale=scales.film_scale, sr=case.sr,
+                                 closure=closure, h_b_m=h_b_m, transport=transport)
+    iterations = smooth.iterations
+    p0 = smooth.pressure / case.p_h
+    h00 = smooth.extra["h0_m"] / scales.film_scale
+    # from the smooth solution, globalised by pseudo-time (the rough film grows from the smooth one); the steady
+    # solver's continuations if that fails
+    outcome = newton_solve(problem, p0, h00, pseudo_dt=PSEUDO_DT, tol_residual=lvl.tol_residual,
+                           tol_load=lvl.tol_load, tol_step=lvl.tol_step, max_iterations=MAX_ITERATIONS)
+    iterations += outcome.iterations
+    if not outcome.converged:
+        outcome, its, _ = solve_steady_problem(problem, p0, h00, lvl)
+        iterations += its
+    return _result(case, state, lvl, plan, scales, problem, outcome, iterations, start, smooth, closure, table)
+
+
+def _result(case, state, lvl, plan, scales, problem: HomogenisedProblem, outcome, iterations, start, smooth, closure,
+            table) -> ContactResult:
+    _, lambda_bar = dowson_higginson_lambda(case, state)
+    x_m = problem.x * scales.a
+    p_total = outcome.p * case.p_h
+    d = outcome.h * scales.film_scale
+    p_a = np.asarray(table.asperity_pressure(d))
+    p_f = np.maximum(p_total - p_a, 0.0)
+    ff = problem.flow_factors(outcome.h)
+    h_t = np.asarray(ff.mean_gap)
+    eta = state.viscosity(p_f)
+    film = full_film_mask(p_f)
+    shear = np.where(film, lubricated_shear_stress(table, d, eta, case.u_s, state.tau0, problem.h_b_m), 0.0)
+    rolling = np.where(film, 0.5 * h_t * np.gradient(p_f, x_m), 0.0)
+    asperity = math.copysign(1.0, case.u_s) * (case.u_s != 0.0) * state.mu_d * p_a
+    load = case.load_per_length
+
+    def integral(f):
+        return float(np.sum(0.5 * (f[1:] + f[:-1]) * np.diff(x_m)))
+
+    parts = {"mu_couette": integral(shear) / load, "mu_poiseuille": integral(rolling) / load,
+             "mu_asperity": integral(asperity) / load}
+    mu = sum(parts.values())
+    converged = bool(outcome.converged) and all(np.isfinite([mu, *d]))
+    recorded = plan.to_dict()
+    recorded["reasons"] = dict(recorded.get("reasons") or {})
+    recorded["reasons"]["model"] = f"homogenised mixed EHL ({closure} flow factors, dry-contact table)"
+    return ContactResult(
+        mu=float(mu), h_min=float(np.min(h_t)), h_central=float(np.interp(0.0, x_m, h_t)), p_max=float(np.max(p_total)),
+        converged=converged, iterations=int(iterations), wall_time=time.perf_counter() - start, level=lvl.name,
+        effects=recorded, lambda_bar=lambda_bar, asperity_load_share=integral(p_a) / load,
+        residuals={"reynolds": outcome.residual, "load": outcome.load, "step": outcome.step,
+                   "complementarity": outcome.complementarity},
+        message=outcome.message if converged else f"not converged: {outcome.message}", x=x_m, pressure=p_total,
+        film=h_t,
+        extra={"model": "homogenised", "closure": closure, "n_nodes": int(x_m.size), **parts,
+               "smooth_mu": smooth.mu, "smooth_h_min_m": smooth.h_min, "boundary_film_m": problem.h_b_m,
+               "contact_fraction_max": float(np.max(table.contact_fraction(d))),
+               "dry_contact_table": table.meta.get("key", "")},
+    )

@@ -1,0 +1,43 @@
+"""The homogenised mixed-EHL model (issue 15, prototype): limits against the smooth solver and conservation of the
+load. Its validation against the deterministic reference is in docs/homogenised_model.md (not yet reached)."""
+
+import numpy as np
+import pytest
+
+from ehl_dataset.model.contact import ContactCase
+from ehl_dataset.model.effects import Effects
+from ehl_dataset.model.lubricant import load_lubricant
+from ehl_dataset.solvers.homogenised import solve_homogenised
+from ehl_dataset.solvers.levels import get_level
+from ehl_dataset.validation import InputError
+
+ATF = load_lubricant("atf")
+
+
+@pytest.mark.parametrize("closure", ["transverse", "isotropic"])
+def test_full_film_roughness_leaves_the_smooth_friction(closure):
+    """λ̄ = 3.7 (Rq 0.05/0.05 µm, shipped dry-contact table): asperities carry nothing and μ stays within 2 % of
+    the smooth steady solution (Patir & Cheng: flow factors → 1 for h/σ ≫ 3)."""
+    case = ContactCase.from_engineering(1.0, 5, 20, 0.7, 100, 0.05, 0.05)
+    result = solve_homogenised(case, ATF.state(case.temperature), get_level("fast"), Effects.full(), closure=closure)
+    assert result.converged, result.message
+    assert result.asperity_load_share < 1e-3
+    assert result.mu == pytest.approx(result.extra["smooth_mu"], rel=0.02)
+
+
+def test_load_is_shared_between_fluid_and_asperities():
+    """λ̄ = 0.33 with the isotropic closure: the load balance holds for the total pressure and the asperity
+    share lies in (0, 1); μ lies between the smooth value and μ_d."""
+    case = ContactCase.from_engineering(0.5, 5, 5, 0.3, 90, 0.3, 0.3)
+    state = ATF.state(case.temperature)
+    result = solve_homogenised(case, state, get_level("fast"), Effects.full(), closure="isotropic")
+    assert result.converged, result.message
+    assert abs(result.residuals["load"]) <= 1e-5
+    assert 0.0 < result.asperity_load_share < 1.0
+    assert result.extra["smooth_mu"] < result.mu < state.mu_d
+
+
+def test_unknown_closure_is_refused():
+    case = ContactCase.from_engineering(0.5, 5, 5, 0.3, 90, 0.3, 0.3)
+    with pytest.raises(InputError, match="closure"):
+        solve_homogenised(case, ATF.state(case.temperature), get_level("fast"), Effects.full(), closure="2d")
