@@ -5,8 +5,8 @@
 * ``case`` — :class:`~ehl_dataset.model.contact.ContactCase` (SI).
 * ``lubricant`` — :class:`~ehl_dataset.model.lubricant.Lubricant` (or a shipped name / TOML path).
 * ``level`` — accuracy level name (:mod:`ehl_dataset.solvers.levels`).
-* ``effects`` — ``"auto"`` (ask :func:`ehl_dataset.solvers.planner.plan_effects`), ``"full"`` or an
-  :class:`~ehl_dataset.model.effects.Effects` used as given.
+* ``effects`` — ``"auto"`` (ask :func:`ehl_dataset.solvers.planner.plan_effects`), ``"isothermal"`` (the same
+  plan without the thermal correction), ``"full"`` or an :class:`~ehl_dataset.model.effects.Effects` used as given.
 
 Smooth cases (no roughness effect, or S_c = 0) go to the steady solver (:mod:`ehl_dataset.solvers.steady`: a smooth
 contact under constant load and speed has a steady solution, which is what a transient run would settle to, so the
@@ -30,13 +30,13 @@ from .model.lubricant import Lubricant, load_lubricant
 from .model.roughness import RoughnessProfile
 from .solvers.deterministic import DeterministicOptions, deterministic_options, solve_deterministic
 from .solvers.levels import AccuracyLevel, get_level
-from .solvers.planner import resolve_effects
+from .solvers.planner import resolve_effects, without_thermal
 from .solvers.result import ContactResult
 from .solvers.steady import solve_steady
 from .solvers.transient import TransientOptions, solve_transient
 from .validation import InputError, check_time_limit
 
-SOLVER_VERSION = "ehl-2026.11-7"
+SOLVER_VERSION = "ehl-2026.11-8"
 """Version of the numerics behind :func:`solve_contact`. The dataset store records it and refuses to resume a file
 computed with another version: bump it with every change that can alter a solved value."""
 
@@ -99,9 +99,18 @@ def solve_contact(case: ContactCase, lubricant: Lubricant | str, level: str | Ac
     # one BLAS thread per solve: the dense solves are small, and workers run one case per core
     with threadpool_limits(limits=1):
         if model == "deterministic":
-            return solve_deterministic(case, state, plan, deterministic or deterministic_options(lvl.name),
-                                       roughness, time_limit_s, lvl.name)
+            return solve_deterministic(case, state, _isothermal(plan, "deterministic"),
+                                       deterministic or deterministic_options(lvl.name), roughness, time_limit_s,
+                                       lvl.name)
         if plan.roughness and case.s_c > 0.0:
-            return solve_transient(case, state, lvl, plan, roughness, time_limit_s,
+            return solve_transient(case, state, lvl, _isothermal(plan, "transient"), roughness, time_limit_s,
                                    transient_options or TransientOptions())
         return solve_steady(case, state, lvl, plan)
+
+
+def _isothermal(plan: Effects, solver: str) -> Effects:
+    """The plan a solver without a thermal model runs: ``thermal`` off, with the reason, if it was asked for."""
+    if not plan.thermal:
+        return plan
+    return without_thermal(plan, f"thermal correction requested but the {solver} solver has no thermal model: "
+                                 f"isothermal traction")

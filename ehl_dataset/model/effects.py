@@ -9,6 +9,13 @@ everything. The solver honours each flag:
 * ``shear_thinning`` — the Eyring factor cosh(τ_m/τ0) in the Poiseuille flow coefficient (paper Eq. 1b). Off:
   Newtonian flow (traction always uses the Eyring stress).
 * ``compressibility`` — Dowson–Higginson density (paper Eq. 6). Off: ρ = ρ0.
+* ``thermal`` — thermal correction of the Couette traction: shear heating of the film and flash temperature of the
+  surfaces (:mod:`ehl_dataset.model.thermal`), applied to the film of the isothermal solve by the steady smooth
+  solver. Off: isothermal traction at the inlet temperature. The rough (transient, deterministic) solvers have no
+  thermal model: :func:`ehl_dataset.solver.solve_contact` records ``thermal`` off for them, with the reason.
+
+``thermal`` comes after ``reasons`` and defaults to False, so plans built positionally and results recorded before
+the flag existed read as isothermal. ``Effects.full()`` includes it: "full" is every effect the solvers model.
 """
 
 from __future__ import annotations
@@ -27,11 +34,12 @@ class Effects:
     compressibility: bool = True
     mode: str = "full"
     reasons: dict[str, Any] = field(default_factory=dict, compare=False)
+    thermal: bool = False
 
     @classmethod
     def full(cls) -> "Effects":
-        """Every effect on (``--effects full``)."""
-        return cls(True, True, True, True, "full", {"forced": "effects=full"})
+        """Every effect on (``--effects full``), the thermal correction included."""
+        return cls(True, True, True, True, "full", {"forced": "effects=full"}, thermal=True)
 
     @classmethod
     def smooth_steady(cls, **reasons: Any) -> "Effects":

@@ -13,6 +13,9 @@ Laws implemented
   ``η0 exp(α p)`` and Roelands ``η0 exp{(ln η0 + 9.67)[(1 + p/p0)^z − 1]}``, ``p0 = 1.96e8 Pa``.
 * Density–pressure (paper Eq. 6, Dowson–Higginson): ``ρ = ρ0 (1 + γ p)/(1 + λ p)``.
 * Eyring shear: reference stress τ0; boundary (dry contact) friction coefficient μ_d.
+* Thermal properties (optional ``[thermal]`` table; defaults and the model in :mod:`ehl_dataset.model.thermal`) and
+  the temperature–viscosity coefficient β(p) = −∂ln η(p, T)/∂T of the laws above
+  (:meth:`LubricantState.viscosity_temperature_coefficient`).
 """
 
 from __future__ import annotations
@@ -21,12 +24,13 @@ import math
 import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Literal
+from typing import Any, Callable, Literal
 
 import numpy as np
 
 from ..data_files import resolve_named_file
 from ..validation import InputError, check_range
+from .thermal import THERMAL_RISES_K, TemperatureTable, ThermalProperties, thermal_properties_from_table
 
 ROELANDS_P0_PA = 1.96e8
 """Roelands reference pressure p0 [Pa]."""
@@ -35,6 +39,8 @@ DH_GAMMA_PER_PA = 2.266e-9
 DH_LAMBDA_PER_PA = 1.683e-9
 """Dowson–Higginson density constant λ [1/Pa] (paper Eq. 6)."""
 CELSIUS_ZERO_K = 273.15
+BETA_STEP_K = 1.0
+"""Temperature step [K] of the difference quotient β(p) = −∂ln η/∂T (:meth:`LubricantState.viscosity_temperature_coefficient`)."""
 
 PressureLawName = Literal["two_slope", "barus", "roelands"]
 
@@ -150,7 +156,10 @@ class LubricantState:
 
     ``eta0`` [Pa·s], ``rho0`` [kg/m³], ``alpha1`` [1/Pa] (for the dimensionless groups), ``law`` the
     viscosity–pressure law, ``tau0`` [Pa] Eyring stress, ``mu_d`` [-] boundary friction, ``compressible``
-    whether Dowson–Higginson density applies (False: ρ = ρ0).
+    whether Dowson–Higginson density applies (False: ρ = ρ0), ``thermal`` the thermal properties
+    (:mod:`ehl_dataset.model.thermal`), ``log_viscosity_at`` (p, T) → ln η of the lubricant's laws at any
+    temperature (not range-checked: the thermal correction extrapolates; None: β = 0 unless
+    ``thermal.beta_override`` gives it).
     """
 
     temperature: float
@@ -161,10 +170,39 @@ class LubricantState:
     tau0: float
     mu_d: float
     compressible: bool = True
+    thermal: ThermalProperties = field(default_factory=ThermalProperties)
+    log_viscosity_at: Callable | None = field(default=None, compare=False, repr=False)
 
     def viscosity(self, p):
         """η(p) [Pa·s]."""
         return self.law.viscosity(p)
+
+    def temperature_table(self, p, rises=THERMAL_RISES_K) -> TemperatureTable:
+        """ln η(p, T + ΔT) on the rises ΔT [K] (rows) for the pressures ``p`` [Pa] (columns): the lubricant's own
+        laws (Walther, the temperature dependence of its pressure–viscosity law) extrapolated beyond its range where
+        the contact gets hotter, or ln η(p, T) − β ΔT with the lubricant file's constant β
+        (``thermal.viscosity_temperature_coefficient_per_k``); β = 0 for a state built without the lubricant."""
+        p_arr = np.atleast_1d(np.asarray(p, dtype=float))
+        rises = np.asarray(rises, dtype=float)
+        base = np.log(self.law.viscosity(p_arr))
+        if self.thermal.beta_override is not None or self.log_viscosity_at is None:
+            beta = self.thermal.beta_override or 0.0
+            return TemperatureTable(rises, base[None, :] - beta * rises[:, None])
+        rows = [base if r == 0.0 else self.log_viscosity_at(p_arr, self.temperature + r) for r in rises]
+        return TemperatureTable(rises, np.vstack(rows))
+
+    def viscosity_temperature_coefficient(self, p):
+        """β(p) = −∂ln η(p, T)/∂T [1/K] at this temperature: the lubricant file's constant if it gives one, else the
+        central difference (± :data:`BETA_STEP_K`) of the lubricant's ln η(p, T) (it includes the temperature
+        dependence of α)."""
+        p_arr = np.asarray(p, dtype=float)
+        if self.thermal.beta_override is not None:
+            return np.full_like(p_arr, self.thermal.beta_override)
+        if self.log_viscosity_at is None:
+            return np.zeros_like(p_arr)
+        t = self.temperature
+        return (self.log_viscosity_at(p_arr, t - BETA_STEP_K) - self.log_viscosity_at(p_arr, t + BETA_STEP_K)) / (
+            2.0 * BETA_STEP_K)
 
     def density(self, p):
         """ρ(p) [kg/m³] (Dowson–Higginson, or constant if incompressible)."""
@@ -209,6 +247,7 @@ class Lubricant:
     compressible: bool = True
     sources: dict[str, str] = field(default_factory=dict)
     definition: dict[str, Any] = field(default_factory=dict, compare=False, repr=False)
+    thermal: ThermalProperties = field(default_factory=ThermalProperties)
 
     def check_temperature(self, temperature_k: float) -> float:
         """Return the temperature [K] or raise :class:`InputError` if it is outside the lubricant's data."""
@@ -241,6 +280,17 @@ class Lubricant:
     def state(self, temperature_k: float) -> LubricantState:
         """All properties at one temperature [K] (validated against the lubricant's range)."""
         t = self.check_temperature(temperature_k)
+        eta0, alpha1, law = self._pressure_law(t)
+        return LubricantState(t, eta0, float(self.density_at(t)), alpha1, law, self.tau0, self.mu_d, self.compressible,
+                              self.thermal, self.log_viscosity)
+
+    def log_viscosity(self, p, temperature_k: float):
+        """ln η(p, T) of the lubricant's laws at ``temperature_k`` [K] for pressures ``p`` [Pa], **not** checked
+        against its temperature range (the thermal correction extrapolates the laws to the contact temperature)."""
+        return np.log(self._pressure_law(float(temperature_k))[2].viscosity(p))
+
+    def _pressure_law(self, t: float) -> tuple[float, float, ViscosityPressureLaw]:
+        """(η0, α1, viscosity–pressure law) at temperature ``t`` [K] (not range-checked)."""
         eta0 = float(self.dynamic_viscosity(t))
         alpha1 = float(self.alpha1(t))
         if self.pressure_law == "two_slope":
@@ -254,7 +304,7 @@ class Lubricant:
             law = ViscosityPressureLaw("roelands", eta0, alpha1, z=z)
         else:
             law = ViscosityPressureLaw("barus", eta0, alpha1)
-        return LubricantState(t, eta0, float(self.density_at(t)), alpha1, law, self.tau0, self.mu_d, self.compressible)
+        return eta0, alpha1, law
 
     def to_json_dict(self) -> dict[str, Any]:
         """The definition as read from its file (for provenance in HDF5 and coefficient files)."""
@@ -345,11 +395,12 @@ def lubricant_from_dict(data: dict[str, Any], origin: str = "<dict>") -> Lubrica
     sources = data.get("sources", {})
     if not isinstance(sources, dict):
         raise InputError("sources", sources, "a table of field = 'source or representative'")
+    thermal = thermal_properties_from_table(data.get("thermal"), sources.get("thermal"), origin)
     return Lubricant(
         name=data["name"], t_min=t_min, t_max=t_max, rho_ref=rho_ref, t_ref=t_ref, beta=beta,
         alpha_points=tuple(alpha_points), pressure_law=law, tau0=tau0, mu_d=mu_d, walther_a=walther_a,
         walther_b=walther_b, eta0_fixed=eta0_fixed, compressible=compressible, sources=dict(sources),
-        definition=data, **kwargs,
+        definition=data, thermal=thermal, **kwargs,
     )
 
 

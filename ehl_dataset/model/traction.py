@@ -48,12 +48,14 @@ def _integrate(x, f):
 
 
 def friction_components(x, pressure, film, eta, u_s: float, tau0: float, load_per_length: float,
-                        mu_d: float = 0.0, contact=None) -> dict[str, float]:
+                        mu_d: float = 0.0, contact=None, couette_stress=None) -> dict[str, float]:
     """Friction coefficient and its parts from profiles (SI arrays on nodes ``x`` [m]).
 
     Returns ``mu`` and ``mu_poiseuille`` (rolling, pressure-gradient part), ``mu_couette`` (Eyring shear part),
     ``mu_asperity`` (μ_d share), all divided by ``load_per_length`` W' [N/m]. ``contact`` marks asperity-contact
     nodes (None: none). The pressure gradient is the second-order finite difference on the (non-uniform) nodes.
+    ``couette_stress`` [Pa] on the nodes replaces the isothermal Eyring stress where given (the thermal correction,
+    :func:`ehl_dataset.model.thermal.thermal_couette_traction`; None: isothermal).
     """
     x = np.asarray(x, dtype=float)
     p = np.asarray(pressure, dtype=float)
@@ -65,7 +67,8 @@ def friction_components(x, pressure, film, eta, u_s: float, tau0: float, load_pe
     dpdx = np.gradient(p, x)
     safe_h = np.where(liquid, np.maximum(h, 1e-300), 1.0)
     poiseuille = np.where(liquid, 0.5 * h * dpdx, 0.0)
-    couette = np.where(liquid, eyring_shear_stress(eta, u_s, safe_h, tau0), 0.0)
+    stress = eyring_shear_stress(eta, u_s, safe_h, tau0) if couette_stress is None else np.asarray(couette_stress)
+    couette = np.where(liquid, stress, 0.0)
     asperity = np.where(contact, mu_d * np.sign(u_s) * p, 0.0)
     parts = {
         "mu_poiseuille": _integrate(x, poiseuille) / load_per_length,

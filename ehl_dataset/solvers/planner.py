@@ -18,6 +18,13 @@ threshold says it does not change the result beyond the level's tolerance (the c
 * **compressibility** — Dowson–Higginson density change ρ(p_h)/ρ0 − 1 (paper Eq. 6) is recorded; compressibility
   costs nothing to simulate and moves h_c by 13–19 % at the factorial's loads (docs/ehl_solver.md), so the planner always
   keeps it (a lubricant file may declare itself incompressible; the solver then uses ρ = ρ0).
+* **thermal** — the predicted relative reduction of the Couette traction at the Hertz centre by shear heating of
+  the film and the flash temperature of the surfaces (:func:`ehl_dataset.model.thermal.centre_estimate`: η(p_h) and
+  β(p_h) of the lubricant, Moes' central film, Blok's maximum flash temperature of a Hertzian heat flux, the
+  film's conduction solution). At or below ``thermal_change`` the isothermal traction is kept. u_s = 0 or a
+  lubricant whose viscosity does not depend on temperature (β = 0) give exactly 0: skipped at every level. The
+  Nahme number Na = β τ |u_s| h_c/k of the film, the flash and film-centre temperature rises and the Péclet numbers
+  of the surfaces and of the film are recorded.
 
 Also recorded (they choose no flag but tell the user which regime the case is in): SR, Moes M and L, p_h/p_a for
 the two-slope viscosity law (above p_a the high-pressure branch α2 is active), S_c, h_min,DH, the thresholds used and
@@ -28,11 +35,12 @@ measures the planner's approximations as part of each level's error.
 from __future__ import annotations
 
 import math
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, replace
 
 from ..model.effects import Effects
-from ..model.film_formulas import dimensionless_groups, dowson_higginson_min_film
+from ..model.film_formulas import dimensionless_groups, dowson_higginson_min_film, moes_central_film
 from ..model.lubricant import dowson_higginson_density
+from ..model.thermal import centre_estimate
 from ..validation import InputError
 from .levels import get_level
 
@@ -44,18 +52,21 @@ class PlannerThresholds:
     ``lambda_smooth`` λ̄ at or above which roughness and the transient are skipped [-];
     ``eyring_newtonian`` inlet Eyring number X_in at or below which the flow is taken as Newtonian [-];
     ``tolerance`` the relative change of μ and h_min a skipped effect may cause at this level [-] — what the
-    planned-versus-full tests assert on cases straddling the thresholds.
+    planned-versus-full tests assert on cases straddling the thresholds;
+    ``thermal_change`` predicted relative reduction of the centre Couette traction at or below which the thermal
+    correction is skipped [-].
     """
 
     lambda_smooth: float
     eyring_newtonian: float
     tolerance: float
+    thermal_change: float = 0.0
 
 
 THRESHOLDS: dict[str, PlannerThresholds] = {
-    "fast": PlannerThresholds(lambda_smooth=3.5, eyring_newtonian=0.01, tolerance=0.05),
-    "standard": PlannerThresholds(lambda_smooth=5.0, eyring_newtonian=0.003, tolerance=0.02),
-    "reference": PlannerThresholds(lambda_smooth=math.inf, eyring_newtonian=0.0, tolerance=0.0),
+    "fast": PlannerThresholds(lambda_smooth=3.5, eyring_newtonian=0.01, tolerance=0.05, thermal_change=0.04),
+    "standard": PlannerThresholds(lambda_smooth=5.0, eyring_newtonian=0.003, tolerance=0.02, thermal_change=0.016),
+    "reference": PlannerThresholds(lambda_smooth=math.inf, eyring_newtonian=0.0, tolerance=0.0, thermal_change=0.0),
 }
 """Thresholds per level (levels not listed use ``standard``). Justification and measurements: docs/planner.md."""
 
@@ -70,7 +81,10 @@ def dimensionless_numbers(case, lubricant) -> dict[str, float]:
 
     Returns ``lambda_bar``, ``h_min_dh_m``, ``s_c_m``, ``sr``, ``eyring_inlet`` (X_in), ``eyring_number`` (X_h at
     the Hertz pressure), ``tau_m_over_tau0`` (asinh X_h), ``eta_hertz_pa_s``, ``density_change`` (ρ(p_h)/ρ0 − 1), ``p_h_over_p_a`` (NaN if the law has no
-    p_a), ``moes_m``, ``moes_l``.
+    p_a), ``moes_m``, ``moes_l``, and the thermal estimate at the Hertz centre: ``thermal_change`` (predicted
+    relative reduction of the Couette traction), ``flash_rise_k``, ``film_centre_rise_k``, ``nahme_number``,
+    ``beta_hertz_per_k`` (β(p_h)), ``surface_peclet`` (u_i a/(2κ) of the slower surface), ``film_peclet``
+    (ρ c u_r h_c²/(k a): convection against conduction across the film; the model assumes ≲ 1).
     """
     state = lubricant.state(case.temperature)
     e_red = case.e_reduced
@@ -86,6 +100,11 @@ def dimensionless_numbers(case, lubricant) -> dict[str, float]:
     moes_l = g * (2 * u) ** 0.25
     density_change = float(dowson_higginson_density(case.p_h, 1.0)) - 1.0 if state.compressible else 0.0
     p_a = getattr(state.law, "p_a", 0.0) if state.law.kind == "two_slope" else 0.0
+    h_c = float(moes_central_film(state.eta0, case.u_r, state.alpha1, e_red, case.r_eq, w))
+    beta_h = float(state.viscosity_temperature_coefficient(case.p_h))
+    thermal = centre_estimate(state.temperature_table(case.p_h), h_c, case.half_width, case.u1, case.u2, state.tau0,
+                              state.thermal)
+    props = state.thermal
     return {
         "lambda_bar": lambda_bar,
         "h_min_dh_m": h_dh,
@@ -99,6 +118,14 @@ def dimensionless_numbers(case, lubricant) -> dict[str, float]:
         "p_h_over_p_a": case.p_h / p_a if p_a > 0 else math.nan,
         "moes_m": moes_m,
         "moes_l": moes_l,
+        "thermal_change": thermal["thermal_change"],
+        "flash_rise_k": thermal["flash_rise_k"],
+        "film_centre_rise_k": thermal["film_centre_rise_k"],
+        "nahme_number": thermal["nahme_number"],
+        "beta_hertz_per_k": beta_h,
+        "surface_peclet": min(case.u1, case.u2) * case.half_width / (2.0 * props.solid_diffusivity),
+        "film_peclet": state.rho0 * props.oil_heat_capacity * case.u_r * h_c ** 2 / (props.oil_conductivity
+                                                                                    * case.half_width),
     }
 
 
@@ -115,6 +142,8 @@ def plan_effects(case, lubricant, level="standard") -> Effects:
     rough = not lam >= limits.lambda_smooth
     x_in = nums["eyring_inlet"]
     newtonian = x_in <= limits.eyring_newtonian
+    change = nums["thermal_change"]
+    thermal = change > limits.thermal_change
     decisions = {
         "roughness": (f"lambda_bar={lam:.3g} < {limits.lambda_smooth:g}: asperities and moving roughness matter"
                       if rough else
@@ -129,23 +158,43 @@ def plan_effects(case, lubricant, level="standard") -> Effects:
                            f"inlet Eyring number X_in={x_in:.3g} > {limits.eyring_newtonian:g}: shear thinning in "
                            f"the inlet flow"),
         "compressibility": f"density change {nums['density_change']:.3g} at p_h: always simulated (costs nothing)",
+        "thermal": (f"predicted thermal reduction of the traction {change:.3g} > {limits.thermal_change:g} "
+                    f"(flash {nums['flash_rise_k']:.3g} K, film centre {nums['film_centre_rise_k']:.3g} K at the "
+                    f"Hertz centre): thermal correction of the traction"
+                    if thermal else
+                    f"predicted thermal reduction of the traction {change:.3g} <= {limits.thermal_change:g}: "
+                    f"isothermal traction"),
     }
     level_name = getattr(level, "name", level)
     reasons = {"level": str(level_name), "numbers": _json_safe(nums), "thresholds": _json_safe(asdict(limits)),
                "decisions": decisions}
     return Effects(roughness=rough, transient=rough, shear_thinning=not newtonian, compressibility=True,
-                   mode="auto", reasons=reasons)
+                   mode="auto", reasons=reasons, thermal=thermal)
+
+
+def without_thermal(plan: Effects, why: str) -> Effects:
+    """``plan`` with the thermal correction off and ``why`` recorded as its decision (the plan's reasons kept)."""
+    reasons = dict(plan.reasons)
+    reasons["decisions"] = {**reasons.get("decisions", {}), "thermal": why}
+    return replace(plan, thermal=False, reasons=reasons)
+
+
+EFFECT_PLANS = ("auto", "isothermal", "full")
+"""Named plans :func:`resolve_effects` accepts besides an :class:`Effects` instance."""
 
 
 def resolve_effects(effects, case, lubricant, level="standard") -> Effects:
-    """``"auto"`` → :func:`plan_effects`; ``"full"`` → :meth:`Effects.full`; an :class:`Effects` as given."""
+    """``"auto"`` → :func:`plan_effects`; ``"isothermal"`` → the same plan with the thermal correction off;
+    ``"full"`` → :meth:`Effects.full`; an :class:`Effects` as given."""
     if isinstance(effects, Effects):
         return effects
     if effects == "auto":
         return plan_effects(case, lubricant, level)
+    if effects == "isothermal":
+        return without_thermal(plan_effects(case, lubricant, level), "effects=isothermal: isothermal traction")
     if effects == "full":
         return Effects.full()
-    raise InputError("effects", effects, "'auto', 'full' or an Effects instance")
+    raise InputError("effects", effects, "'auto', 'isothermal', 'full' or an Effects instance")
 
 
 def _json_safe(values: dict) -> dict:

@@ -20,7 +20,8 @@ from ..model.contact import ContactCase
 from ..model.effects import Effects
 from ..model.film_formulas import dowson_higginson_min_film, moes_central_film
 from ..model.lubricant import LubricantState
-from ..model.traction import friction_components
+from ..model.thermal import thermal_couette_traction
+from ..model.traction import friction_components, full_film_mask
 from ..validation import SolverError
 from .levels import AccuracyLevel
 from .newton import NewtonOutcome, ReynoldsProblem, newton_solve
@@ -182,7 +183,10 @@ def moes_h_c(case: ContactCase, state: LubricantState, scales: ContactScales) ->
 
 
 def solve_steady(case: ContactCase, state: LubricantState, lvl: AccuracyLevel, plan: Effects) -> ContactResult:
-    """Steady, isothermal, smooth line contact (paper Eq. 1, 3–6 without the time term and roughness).
+    """Steady, isothermal, smooth line contact (paper Eq. 1, 3–6 without the time term and roughness); with
+    ``plan.thermal`` the Couette traction of the isothermal film is corrected for shear heating and the flash
+    temperature (:mod:`ehl_dataset.model.thermal`; pressure and film stay isothermal), the isothermal μ kept in
+    ``extra["thermal"]["mu_isothermal"]``.
 
     Two grids: the continuation (which may take tens of Newton iterations) runs on a grid
     :data:`COARSENING` times coarser, and its interpolated solution starts the Newton iteration on the level's
@@ -230,16 +234,32 @@ def _result_from_steady(case, state, lvl, plan, scales: ContactScales, x, outcom
         raise SolverError(f"non-finite pressure or film for case {case.to_dict()}")
     eta = state.viscosity(p_pa)
     parts = friction_components(x_m, p_pa, h_m, eta, case.u_s, state.tau0, case.load_per_length)
+    extra_thermal = {}
+    converged, message = bool(outcome.converged), outcome.message
+    if plan.thermal:
+        thermal = thermal_couette_traction(x_m, h_m, state.temperature_table(p_pa), full_film_mask(p_pa), case.u1,
+                                           case.u2, state.tau0, state.thermal)
+        isothermal = parts
+        parts = friction_components(x_m, p_pa, h_m, eta, case.u_s, state.tau0, case.load_per_length,
+                                    couette_stress=thermal.shear_stress)
+        extra_thermal = {"thermal": {**thermal.summary(), "mu_isothermal": isothermal["mu"],
+                                     "properties": state.thermal.to_dict()},
+                         "surface_temperature_rise_k": thermal.surface_rise,
+                         "film_centre_temperature_rise_k": thermal.film_centre_rise}
+        if not thermal.converged:
+            converged = False
+            message = (f"thermal correction not converged after {thermal.iterations} iterations (relative change "
+                       f"{thermal.change:.2g}); {message}")
     h_dh, lambda_bar = dowson_higginson_lambda(case, state)
     residuals = {"reynolds": outcome.residual, "load": outcome.load, "step": outcome.step,
                  "complementarity": outcome.complementarity}
-    message = outcome.message if outcome.converged else f"not converged: {outcome.message}"
+    message = message if converged else f"not converged: {message}"
     return ContactResult(
         mu=parts["mu"], h_min=float(np.min(h_m)), h_central=float(np.interp(0.0, x_m, h_m)),
-        p_max=float(np.max(p_pa)), converged=bool(outcome.converged), iterations=int(iterations),
+        p_max=float(np.max(p_pa)), converged=converged, iterations=int(iterations),
         wall_time=0.0, level=lvl.name, effects=plan.to_dict(), mu_std=0.0, lambda_bar=lambda_bar,
         asperity_load_share=0.0, residuals=residuals, message=message, x=x_m, pressure=p_pa, film=h_m,
         extra={"mu_poiseuille": parts["mu_poiseuille"], "mu_couette": parts["mu_couette"], "n_nodes": int(x.size),
                "h0_m": outcome.h0 * scales.film_scale, "h_min_dowson_higginson_m": h_dh,
-               "domain_a": (lvl.x_start, lvl.x_end)},
+               "domain_a": (lvl.x_start, lvl.x_end), **extra_thermal},
     )

@@ -1,0 +1,458 @@
+"""Thermal correction of the EHL traction: shear heating of the film and flash temperature of the surfaces.
+
+The Couette (sliding) traction of an isothermal solve, τ = τ0 asinh(η u_s/(τ0 h)), takes the viscosity at the inlet
+(bulk) temperature T0. In a sliding contact the film dissipates q = τ |u_s| per unit area; the heat is conducted
+across the film into the two surfaces, which carry it away as they move through the contact. The film and the
+surfaces get hotter, the viscosity falls and so does τ. This module corrects τ for that, node by node along the
+contact, **on the film of the isothermal solve** (the approximation: pressure and film shape stay isothermal; only
+the shear stress is corrected; the inlet shear heating that would thin the film, e.g. Gupta et al. 1992, is not
+modelled). The structure is that of Olver & Spikes, Proc. IMechE J 212 (1998) 321 and of Evans & Johnson,
+Proc. IMechE C 200 (1986) 313: surface temperature from the moving-heat-source (flash temperature) theory of Blok
+(1937) and Jaeger (1942), plus the temperature rise across the film from conduction of the heat generated in it
+(Crook 1961). The equations below are derived here; the constants they give are checked in
+``tests/ehl_dataset/test_thermal.py`` against Blok's published 1.11 and against exact limits.
+
+1. **Viscosity–temperature law.** At the surfaces, η_s = η(p, T0 + ΔT_s) of the lubricant's own laws (Walther and
+   the temperature dependence of its pressure–viscosity law, extrapolated beyond the lubricant's range where the
+   contact is hotter), tabulated in ΔT (:class:`TemperatureTable`, :data:`THERMAL_RISES_K`); or, if the lubricant
+   file gives a constant temperature–viscosity coefficient β, η(p, T0) exp(−β ΔT_s). Across the film the
+   exponential law η = η_s exp(−β (T − T_s)), with β the secant of the lubricant's ln η between the wall and the
+   film centre temperature (:func:`film_with_secant_beta`; the tangent at the wall for small rises): the
+   closed-form film solution needs an exponential law, and the secant keeps β falling with temperature.
+
+2. **Film** (Eyring fluid, conduction across the film only, both walls at the surface temperature T_s, the shear
+   stress τ uniform across the film). With θ = β (T − T_s) and the shear rate γ̇ = (τ0/η_s) sinh(τ/τ0) e^θ, the
+   energy equation k θ'' = −β τ γ̇ has the closed-form solution (z from the film centre)
+
+       e^θ = cosh²X · sech²(2X z/h),   centre rise ΔT_c = 2 ln cosh X / β,
+
+   and the sliding speed u_s = ∫γ̇ dz gives the traction τ = τ0 asinh(S g(X)), g(X) = 2X/sinh 2X, with S =
+   η_s |u_s|/(τ0 h) the isothermal Eyring argument at the wall temperature and X the root of
+
+       X tanh X = A asinh(S g(X)),        A = β |u_s| h τ0 / (8 k).
+
+   The left side rises and the right side falls with X, so the root is unique for every A ≥ 0 (velocity-controlled
+   Couette flow has no thermal runaway). Limits: A = 0 (β = 0 or u_s = 0) gives X = 0 and the isothermal τ; for
+   small X, X² = β τ u_s h/(8k) = β ΔT_c with Crook's centre rise ΔT_c = τ u_s h/(8k), and g ≈ exp(−β ΔT̄) with
+   the mean film rise ΔT̄ = τ u_s h/(12 k): the "mean film temperature" rule of the simplified models. This is the
+   analysis of Johnson & Greenwood, Wear 61 (1980) 353, in its conduction-only form (derived here, not copied).
+
+3. **Surfaces** (Blok 1937; Jaeger 1942, high Péclet number u a/(2κ) ≫ 1: heat conducted into each solid only
+   normal to its surface). A surface point moving at u_i through the heat flux q_i(x) heats up as
+
+       ΔT_i(x) = 1/(B_i √(π u_i)) ∫_{x_in}^{x} q_i(ξ) (x − ξ)^(−1/2) dξ,     B_i = √(k_i ρ_i c_i),
+
+   and Blok's partition (both surfaces at the same temperature where they meet the film) splits q = τ |u_s| so
+   that ΔT_1 = ΔT_2 = ΔT_s:
+
+       ΔT_s(x) = 1/(√π (B_1 √u_1 + B_2 √u_2)) ∫_{x_in}^{x} q(ξ) (x − ξ)^(−1/2) dξ.
+
+   For a Hertzian (semi-elliptic) flux q = q0 √(1 − x²/a²) the maximum is 1.2346 q0 √a/(B_1√u_1 + B_2√u_2) at
+   x = 0.652 a, i.e. Blok's maximum flash temperature 1.11 μ w' |u_s| / (√(2a) (B_1√u_1 + B_2√u_2))
+   (:data:`BLOK_MAX_COEFFICIENT`).
+
+The coupled problem (T_s depends on τ upstream, τ on T_s) is solved by a damped fixed-point iteration
+(:func:`thermal_couette_traction`). The bulk temperature of the surfaces entering the contact is taken equal to
+the oil inlet temperature T0.
+
+Property defaults (overridable in a lubricant file's ``[thermal]`` table, with a source): oil conductivity
+0.14 W/(m·K) and heat capacity 2000 J/(kg·K) — ambient-pressure values typical of mineral and PAO base oils
+(0.13–0.165 W/(m·K), about 2 kJ/(kg·K)); the conductivity rises with pressure (by tens of per cent at 1 GPa), which
+the default ignores, so the film rise is on the high side. Steel 46 W/(m·K), 7850 kg/m³, 470 J/(kg·K) (bearing and
+gear steels, e.g. AISI 52100), B = 13.0 kW·s^½/(m²·K). All REPRESENTATIVE, like the other property defaults of
+the shipped lubricants.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import asdict, dataclass
+from typing import Any
+
+import numpy as np
+from scipy.linalg import solve_triangular
+from scipy.optimize import brentq
+
+from ..validation import InputError, check_range
+
+OIL_CONDUCTIVITY_W_MK = 0.14
+"""Default lubricant thermal conductivity [W/(m·K)] (representative, module docstring)."""
+OIL_HEAT_CAPACITY_J_KGK = 2000.0
+"""Default lubricant specific heat [J/(kg·K)] (representative)."""
+STEEL_CONDUCTIVITY_W_MK = 46.0
+"""Default solid thermal conductivity [W/(m·K)] (bearing/gear steel, representative)."""
+STEEL_DENSITY_KG_M3 = 7850.0
+"""Default solid density [kg/m³]."""
+STEEL_HEAT_CAPACITY_J_KGK = 470.0
+"""Default solid specific heat [J/(kg·K)]."""
+
+BLOK_MAX_COEFFICIENT = 1.2346
+"""max over x of ΔT_s (B_1√u_1 + B_2√u_2)/(q0 √a) for a semi-elliptic flux q0 √(1 − x²/a²): 1.23462 at x = 0.6522 a
+(quadrature of the Jaeger integral); × (2/π)·√2 = 1.1116, Blok's 1.11 when written with w' = π a q0/(2 μ |u_s|)
+and the contact width 2a."""
+BLOK_CENTRE_COEFFICIENT = 0.98623
+"""The same at the contact centre x = 0 (the planner's estimate uses the maximum, which is conservative)."""
+
+THERMAL_RISES_K = np.arange(0.0, 402.0, 2.0)
+"""Temperature rises [K] at which :class:`TemperatureTable` tabulates ln η (linear interpolation between them: error
+in η below 0.1 %; beyond 400 K the last slope is extrapolated)."""
+
+FIXED_POINT_TOLERANCE = 1e-9
+"""Tolerance of the coupled solutions: max |ΔT_s − J q| ≤ 1e-9 (1 + max ΔT_s) K (:func:`thermal_couette_traction`),
+relative change of τ (:func:`centre_estimate`)."""
+FIXED_POINT_MAX_ITERATIONS = 400
+NEWTON_STEPS = 100
+"""Most safeguarded Newton steps of the film equation (:func:`film_parameter`; it converges in about 5–10)."""
+
+
+@dataclass(frozen=True)
+class ThermalProperties:
+    """Thermal properties of a lubricated contact (SI). ``oil_conductivity`` k [W/(m·K)], ``oil_heat_capacity``
+    [J/(kg·K)]; ``solid_conductivity`` [W/(m·K)], ``solid_density`` [kg/m³], ``solid_heat_capacity`` [J/(kg·K)] of
+    both bodies; ``beta_override`` a constant temperature–viscosity coefficient [1/K] replacing the one derived from
+    the lubricant's viscosity data (None: derived); ``source`` where the values come from."""
+
+    oil_conductivity: float = OIL_CONDUCTIVITY_W_MK
+    oil_heat_capacity: float = OIL_HEAT_CAPACITY_J_KGK
+    solid_conductivity: float = STEEL_CONDUCTIVITY_W_MK
+    solid_density: float = STEEL_DENSITY_KG_M3
+    solid_heat_capacity: float = STEEL_HEAT_CAPACITY_J_KGK
+    beta_override: float | None = None
+    source: str = "defaults of ehl_dataset.model.thermal (representative)"
+
+    def __post_init__(self):
+        check_range("thermal.oil_conductivity_w_mk", self.oil_conductivity, 0.01, 10.0, unit="W/(m K)")
+        check_range("thermal.oil_heat_capacity_j_kgk", self.oil_heat_capacity, 100.0, 1e4, unit="J/(kg K)")
+        check_range("thermal.solid_conductivity_w_mk", self.solid_conductivity, 0.1, 1000.0, unit="W/(m K)")
+        check_range("thermal.solid_density_kg_m3", self.solid_density, 100.0, 3e4, unit="kg/m3")
+        check_range("thermal.solid_heat_capacity_j_kgk", self.solid_heat_capacity, 10.0, 1e4, unit="J/(kg K)")
+        if self.beta_override is not None:
+            check_range("thermal.viscosity_temperature_coefficient_per_k", self.beta_override, 0.0, 1.0,
+                        unit="1/K")
+
+    @property
+    def effusivity(self) -> float:
+        """Thermal effusivity of the solids B = √(k ρ c) [W·s^½/(m²·K)]."""
+        return math.sqrt(self.solid_conductivity * self.solid_density * self.solid_heat_capacity)
+
+    @property
+    def solid_diffusivity(self) -> float:
+        """κ = k/(ρ c) of the solids [m²/s]."""
+        return self.solid_conductivity / (self.solid_density * self.solid_heat_capacity)
+
+    def to_dict(self) -> dict[str, Any]:
+        return asdict(self)
+
+
+THERMAL_KEYS = {"oil_conductivity_w_mk": "oil_conductivity", "oil_heat_capacity_j_kgk": "oil_heat_capacity",
+                "solid_conductivity_w_mk": "solid_conductivity", "solid_density_kg_m3": "solid_density",
+                "solid_heat_capacity_j_kgk": "solid_heat_capacity",
+                "viscosity_temperature_coefficient_per_k": "beta_override"}
+"""Keys of a lubricant file's ``[thermal]`` table → :class:`ThermalProperties` fields (all optional)."""
+
+
+def thermal_properties_from_table(table: dict | None, source: str | None, origin: str = "<dict>"
+                                  ) -> ThermalProperties:
+    """:class:`ThermalProperties` from a lubricant file's optional ``[thermal]`` table (defaults for missing keys).
+
+    A table with any value needs ``sources.thermal`` naming where the values come from."""
+    if table is None:
+        return ThermalProperties()
+    if not isinstance(table, dict):
+        raise InputError("thermal", table, f"a [thermal] table in {origin}")
+    unknown = sorted(set(table) - set(THERMAL_KEYS))
+    if unknown:
+        raise InputError(f"thermal.{unknown[0]}", table[unknown[0]], f"one of {sorted(THERMAL_KEYS)}")
+    if table and not (isinstance(source, str) and source.strip()):
+        raise InputError("sources.thermal", source if source is not None else "<missing>",
+                         f"a text naming the source of the [thermal] values in {origin}")
+    values = {}
+    for key, name in THERMAL_KEYS.items():
+        if key in table:
+            value = table[key]
+            if isinstance(value, bool) or not isinstance(value, (int, float)):
+                raise InputError(f"thermal.{key}", value, "a number")
+            values[name] = float(value)
+    return ThermalProperties(**values, source=source.strip() if table else ThermalProperties.source)
+
+
+@dataclass(frozen=True)
+class TemperatureTable:
+    """ln η(p_i, T0 + ΔT_j) [ln Pa·s] on the rises ``rises`` ΔT_j [K] (increasing from 0; rows) for the pressures of
+    one contact (columns). Built by :meth:`ehl_dataset.model.lubricant.LubricantState.temperature_table`."""
+
+    rises: np.ndarray
+    log_eta: np.ndarray
+
+    def __post_init__(self):
+        if self.rises.ndim != 1 or self.rises.size < 2 or self.rises[0] != 0.0 or np.any(np.diff(self.rises) <= 0):
+            raise InputError("rises", self.rises, "increasing temperature rises from 0 K (at least two)")
+        if self.log_eta.shape[0] != self.rises.size:
+            raise InputError("log_eta", self.log_eta.shape, f"({self.rises.size}, N) rows per rise")
+
+    def at(self, rise) -> tuple[np.ndarray, np.ndarray]:
+        """(η, β) at the rises ``rise`` [K] per column: η interpolated linearly in ln η, β = −∂ln η/∂T of the
+        bracketing interval (the last one beyond the table; the first one at ΔT = 0)."""
+        rise = np.broadcast_to(np.asarray(rise, dtype=float), self.log_eta.shape[1:])
+        j = np.clip(np.searchsorted(self.rises, rise, side="right") - 1, 0, self.rises.size - 2)
+        cols = np.arange(self.log_eta.shape[1]) if self.log_eta.ndim > 1 else None
+        lo = self.log_eta[j, cols] if cols is not None else self.log_eta[j]
+        hi = self.log_eta[j + 1, cols] if cols is not None else self.log_eta[j + 1]
+        slope = (hi - lo) / (self.rises[j + 1] - self.rises[j])
+        return np.exp(lo + slope * (rise - self.rises[j])), -slope
+
+    def column(self, index: int) -> "TemperatureTable":
+        return TemperatureTable(self.rises, self.log_eta[:, index:index + 1])
+
+
+# ---------------------------------------------------------------------------------------------------------------
+# The film: Eyring fluid with an exponential viscosity–temperature law, conduction across the film
+# ---------------------------------------------------------------------------------------------------------------
+def _g(x):
+    """g(X) = 2X/sinh(2X), stable for large X (→ 4X e^(−2X)) and X → 0 (→ 1)."""
+    x = np.asarray(x, dtype=float)
+    two = 2.0 * x
+    with np.errstate(over="ignore", under="ignore", invalid="ignore"):
+        big = two * 2.0 * np.exp(-two) / (1.0 - np.exp(-2.0 * two))
+        small = two / np.sinh(np.where(two > 0.0, two, 1.0))
+    return np.where(two < 1e-8, 1.0 - two**2 / 6.0, np.where(two > 30.0, big, small))
+
+
+def film_parameter(eta_wall, u_s: float, h, tau0: float, beta, conductivity: float) -> np.ndarray:
+    """The root X ≥ 0 of φ(X) = X tanh X − A asinh(S g(X)) = 0 (module docstring, item 2), vectorised.
+
+    ``eta_wall`` η(p, T_s) [Pa·s], ``u_s`` sliding velocity [m/s], ``h`` film [m], ``tau0`` Eyring stress [Pa],
+    ``beta`` [1/K], ``conductivity`` of the oil [W/(m·K)]. φ increases with X from φ(0) = −A asinh S: Newton steps
+    kept inside a bracket [lo, hi] that shrinks with the sign of φ (a bisection step where Newton leaves it), until
+    the step is below 1e-13 (1 + X)."""
+    eta_wall, h, beta = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (eta_wall, h, beta)))
+    s = eta_wall * abs(u_s) / (tau0 * h)
+    a = beta * abs(u_s) * h * tau0 / (8.0 * conductivity)
+    rhs0 = a * np.arcsinh(s)
+    lo = np.zeros_like(s)
+    hi = 2.0 * rhs0 + 2.0          # X tanh X ≥ 0.96 X > A asinh(S) ≥ A asinh(S g) there
+    x = np.minimum(np.sqrt(rhs0), 0.5 * hi)   # small-X solution X² = A asinh S
+    for _ in range(NEWTON_STEPS):
+        g = _g(x)
+        sg = s * g
+        phi = x * np.tanh(x) - a * np.arcsinh(sg)
+        lo = np.where(phi < 0.0, x, lo)
+        hi = np.where(phi > 0.0, x, hi)
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+            dg = np.where(x > 1e-4, g * (1.0 / np.where(x > 0, x, 1.0) - 2.0 / np.tanh(np.maximum(2.0 * x, 1e-300))),
+                          -4.0 * x / 3.0)
+            dphi = np.tanh(x) + x / np.cosh(np.minimum(x, 350.0)) ** 2 - a * s * dg / np.sqrt(1.0 + sg**2)
+            new = x - phi / dphi
+        bad = ~np.isfinite(new) | (new < lo) | (new > hi)
+        new = np.where(bad, 0.5 * (lo + hi), new)
+        done = np.all(np.abs(new - x) <= 1e-13 * (1.0 + x))
+        x = new
+        if done:
+            break
+    return np.where(rhs0 > 0.0, x, 0.0)
+
+
+def film_shear_stress(eta_wall, u_s: float, h, tau0: float, beta, conductivity: float):
+    """Thermal Couette shear stress τ [Pa] (sign of u_s) and the film parameter X of a film whose walls are at the
+    temperature where η = ``eta_wall`` (module docstring, item 2)."""
+    x = film_parameter(eta_wall, u_s, h, tau0, beta, conductivity)
+    s = np.asarray(eta_wall, dtype=float) * abs(u_s) / (tau0 * np.asarray(h, dtype=float))
+    return math.copysign(1.0, u_s) * tau0 * np.arcsinh(s * _g(x)), x
+
+
+def film_centre_rise(x, beta, tau, u_s: float, h, conductivity: float) -> np.ndarray:
+    """Temperature rise of the film centre above the walls [K]: 2 ln cosh X / β; Crook's τ u_s h/(8k) where β = 0."""
+    x, beta, tau, h = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (x, beta, tau, h)))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        log_cosh = x + np.log1p(np.exp(-2.0 * x)) - math.log(2.0)
+        thermal = 2.0 * log_cosh / beta
+    crook = np.abs(tau * u_s) * h / (8.0 * conductivity)
+    return np.where(beta > 0.0, thermal, crook)
+
+
+SECANT_ITERATIONS = 30
+"""Iterations of the secant β of :func:`film_with_secant_beta` (it converges to 1e-10 within a few)."""
+
+
+def film_with_secant_beta(table: TemperatureTable, rise, u_s: float, h, tau0: float, conductivity: float):
+    """Film traction at the wall rise ``rise`` [K] with the exponential law across the film fitted as the secant of
+    the lubricant's ln η between the wall and the film centre: β = [ln η(T_s) − ln η(T_s + ΔT_c)]/ΔT_c with ΔT_c =
+    2 ln cosh X/β (iterated from the tangent β at the wall). For small rises it is the tangent; for a hot film
+    it follows β falling with temperature. Returns (τ, X, β)."""
+    rise = np.asarray(rise, dtype=float)
+    eta_s, beta = table.at(rise)
+    log_eta_s = np.log(eta_s)
+    beta = np.maximum(beta, 0.0)
+    for _ in range(SECANT_ITERATIONS):
+        tau, xpar = film_shear_stress(eta_s, u_s, h, tau0, beta, conductivity)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            centre = np.where(beta > 0.0, 2.0 * (xpar + np.log1p(np.exp(-2.0 * xpar)) - math.log(2.0)) / beta, 0.0)
+        hot = centre > 1e-6
+        eta_c, _ = table.at(rise + centre)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            secant = np.where(hot, (log_eta_s - np.log(eta_c)) / np.where(hot, centre, 1.0), beta)
+        secant = np.maximum(secant, 0.0)
+        done = np.all(np.abs(secant - beta) <= 1e-10 * np.maximum(beta, 1e-300))
+        beta = secant
+        if done:
+            break
+    tau, xpar = film_shear_stress(eta_s, u_s, h, tau0, beta, conductivity)
+    return tau, xpar, beta
+
+
+# ---------------------------------------------------------------------------------------------------------------
+# The surfaces: Jaeger's moving heat source at high Péclet number, Blok's partition
+# ---------------------------------------------------------------------------------------------------------------
+def jaeger_operator(x) -> np.ndarray:
+    """Matrix J with (J q)_i = ∫_{x_0}^{x_i} q(ξ) (x_i − ξ)^(−1/2) dξ [m^½] for q piecewise linear on the nodes ``x``
+    [m] (increasing, the direction of motion of both surfaces). Exact for piecewise-linear q; lower triangular.
+
+    On a segment [ξ_j, ξ_j+1] ≤ x_i with s0 = √(x_i − ξ_j), s1 = √(x_i − ξ_j+1), d = s0 − s1 = Δ/(s0 + s1):
+    ∫ (x_i − ξ)^(−½) dξ = 2d and ∫ (ξ − ξ_j)/Δ (x_i − ξ)^(−½) dξ = (2/3) d (2 s0 + s1)/(s0 + s1)."""
+    x = np.asarray(x, dtype=float)
+    if x.ndim != 1 or x.size < 2 or not np.all(np.diff(x) > 0.0):
+        raise InputError("x", f"{x.shape} nodes", "at least two strictly increasing nodes")
+    dist = x[:, None] - x[None, :]                     # x_i − ξ_j
+    s0 = np.sqrt(np.clip(dist[:, :-1], 0.0, None))
+    s1 = np.sqrt(np.clip(dist[:, 1:], 0.0, None))
+    active = dist[:, 1:] >= 0.0                        # segment j ends at or before x_i
+    width = np.diff(x)[None, :]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        d = np.where(active, width / (s0 + s1), 0.0)
+        i1 = np.where(active, (2.0 / 3.0) * d * (2.0 * s0 + s1) / (s0 + s1), 0.0)
+    i0 = 2.0 * d
+    out = np.zeros((x.size, x.size))
+    out[:, :-1] += i0 - i1
+    out[:, 1:] += i1
+    return out
+
+
+def blok_denominator(u1: float, u2: float, properties: ThermalProperties) -> float:
+    """√π (B_1 √u_1 + B_2 √u_2) [W/(m²·K)·m^½] for two bodies of the same material (Blok's partition)."""
+    return math.sqrt(math.pi) * properties.effusivity * (math.sqrt(max(u1, 0.0)) + math.sqrt(max(u2, 0.0)))
+
+
+def surface_temperature_rise(x, heat_flux, u1: float, u2: float, properties: ThermalProperties,
+                             operator: np.ndarray | None = None) -> np.ndarray:
+    """Flash temperature rise ΔT_s(x) [K] of both surfaces (Blok's partition) for the heat flux ``heat_flux`` q(x)
+    [W/m²] generated on nodes ``x`` [m]; ``u1``, ``u2`` surface velocities [m/s] (≥ 0, not both 0)."""
+    if not (u1 >= 0.0 and u2 >= 0.0 and u1 + u2 > 0.0):
+        raise InputError("surface velocities", (u1, u2), "u1, u2 >= 0 with u1 + u2 > 0 (|SR| <= 2)")
+    op = jaeger_operator(x) if operator is None else operator
+    return op @ np.asarray(heat_flux, dtype=float) / blok_denominator(u1, u2, properties)
+
+
+# ---------------------------------------------------------------------------------------------------------------
+# The coupled correction along a contact, and the planner's estimate at its centre
+# ---------------------------------------------------------------------------------------------------------------
+@dataclass
+class ThermalTraction:
+    """Outcome of :func:`thermal_couette_traction` on the nodes of a solve (SI): ``shear_stress`` τ [Pa] (0 outside
+    the liquid nodes), ``surface_rise`` ΔT_s [K], ``film_centre_rise`` [K] above the surfaces, ``iterations``,
+    ``converged`` and ``change`` the final max |G| / (1 + max ΔT_s) of the flash-temperature equation."""
+
+    shear_stress: np.ndarray
+    surface_rise: np.ndarray
+    film_centre_rise: np.ndarray
+    iterations: int
+    converged: bool
+    change: float
+
+    def summary(self) -> dict[str, Any]:
+        total = self.surface_rise + self.film_centre_rise
+        return {"max_surface_rise_k": float(np.max(self.surface_rise, initial=0.0)),
+                "max_film_centre_rise_k": float(np.max(self.film_centre_rise, initial=0.0)),
+                "max_film_temperature_rise_k": float(np.max(total, initial=0.0)),
+                "iterations": int(self.iterations), "converged": bool(self.converged),
+                "relative_change": float(self.change)}
+
+
+def thermal_couette_traction(x, film, table: TemperatureTable, liquid, u1: float, u2: float, tau0: float,
+                             properties: ThermalProperties) -> ThermalTraction:
+    """Couette shear stress with shear heating and flash temperature (module docstring) on the nodes of an
+    isothermal solve: ``x`` [m] increasing, ``film`` h [m], ``table`` ln η(p, T0 + ΔT) of the nodes' pressures,
+    ``liquid`` the nodes that carry a sheared liquid film (the heat sources), ``u1``, ``u2`` surface velocities
+    [m/s], ``tau0`` [Pa].
+
+    Newton's method on G(ΔT_s) = ΔT_s − J q(ΔT_s) = 0 with J the (lower-triangular) flash-temperature operator and
+    q = |u_s τ(ΔT_s)|: the Jacobian I − J diag(dq/dΔT_s) is lower triangular (dq/dΔT_s by a forward difference of
+    0.01 K), steps halved until |G| falls. Stops at max |G| ≤ 1e-9 (1 + max ΔT_s) K."""
+    x = np.asarray(x, dtype=float)
+    h = np.asarray(film, dtype=float)
+    liquid = np.asarray(liquid, dtype=bool)
+    u_s = u1 - u2
+    k = properties.oil_conductivity
+    zeros = np.zeros(x.size)
+    if u_s == 0.0 or not liquid.any():
+        return ThermalTraction(zeros, zeros.copy(), zeros.copy(), 0, True, 0.0)
+    idx = np.flatnonzero(liquid)
+    sub = slice(idx[0], idx[-1] + 1)       # heat sources lie from the first to the last liquid node
+    xs, hs, live = x[sub], np.where(liquid, h, 1.0)[sub], liquid[sub]
+    tab = TemperatureTable(table.rises, table.log_eta[:, sub])
+    op = jaeger_operator(xs) / blok_denominator(u1, u2, properties)
+
+    def traction(rise):
+        tau, xpar, beta_s = film_with_secant_beta(tab, rise, u_s, hs, tau0, k)
+        return np.where(live, tau, 0.0), xpar, beta_s
+
+    def residual(rise):
+        tau, xpar, beta_s = traction(rise)
+        return rise - op @ np.abs(tau * u_s), tau, xpar, beta_s
+
+    rise = np.zeros(xs.size)
+    g, tau, xpar, beta_s = residual(rise)
+    norm = float(np.max(np.abs(g)))
+    iterations, converged, step = 0, False, 0.01
+    for iterations in range(1, FIXED_POINT_MAX_ITERATIONS + 1):
+        if norm <= FIXED_POINT_TOLERANCE * (1.0 + float(np.max(rise))):
+            converged = True
+            break
+        dq = (np.abs(traction(rise + step)[0] * u_s) - np.abs(tau * u_s)) / step
+        jacobian = np.eye(xs.size) - op * dq[None, :]
+        delta = -solve_triangular(jacobian, g, lower=True, check_finite=False)
+        factor = 1.0
+        while True:
+            trial = np.maximum(rise + factor * delta, 0.0)
+            g_new, tau_new, xpar_new, beta_new = residual(trial)
+            norm_new = float(np.max(np.abs(g_new)))
+            if norm_new < norm or factor < 1e-6:
+                break
+            factor *= 0.5
+        rise, g, tau, xpar, beta_s, norm = trial, g_new, tau_new, xpar_new, beta_new, norm_new
+    change = norm / (1.0 + float(np.max(rise)))
+    centre = np.where(live, film_centre_rise(xpar, beta_s, tau, u_s, hs, k), 0.0)
+    full_tau, full_rise, full_centre = zeros.copy(), zeros.copy(), zeros.copy()
+    full_tau[sub], full_centre[sub], full_rise[sub] = tau, centre, rise
+    full_rise[idx[-1] + 1:] = rise[-1]     # behind the film: no more heating (cooling not modelled)
+    return ThermalTraction(full_tau, full_rise, full_centre, iterations, converged, change)
+
+
+def centre_estimate(table: TemperatureTable, h_central: float, half_width: float, u1: float, u2: float,
+                    tau0: float, properties: ThermalProperties) -> dict[str, float]:
+    """The planner's a-priori estimate at the Hertz centre (SI): ``table`` ln η(p_h, T0 + ΔT) (one column), Moes'
+    central film ``h_central``; the Couette stress with and without the thermal correction, with the flash
+    temperature of a Hertzian (semi-elliptic) heat flux q0 √(1 − x²/a²), q0 = τ_c |u_s|, taken at its maximum
+    (:data:`BLOK_MAX_COEFFICIENT`; conservative: it is the downstream peak), the film centre rise, and the Nahme
+    number Na = β τ |u_s| h/k of the film at the inlet temperature. ``thermal_change`` = 1 − τ_thermal/τ_isothermal."""
+    u_s = u1 - u2
+    eta_h, beta_h = (float(v[0]) for v in table.at(np.zeros(1)))
+    tau_iso = tau0 * math.asinh(eta_h * abs(u_s) / (tau0 * h_central))
+    if u_s == 0.0 or tau_iso == 0.0:
+        return {"tau_isothermal_pa": tau_iso, "tau_thermal_pa": tau_iso, "thermal_change": 0.0, "flash_rise_k": 0.0,
+                "film_centre_rise_k": 0.0, "nahme_number": 0.0}
+    coefficient = BLOK_MAX_COEFFICIENT * math.sqrt(half_width) * math.sqrt(math.pi) / blok_denominator(u1, u2,
+                                                                                                       properties)
+    def film(flash):
+        return film_with_secant_beta(table, np.full(1, flash), u_s, h_central, tau0, properties.oil_conductivity)
+
+    def excess(flash):  # decreasing in the flash rise: one root in [0, C |u_s| τ_iso]
+        return coefficient * abs(u_s) * abs(float(np.ravel(film(flash)[0])[0])) - flash
+
+    upper = coefficient * abs(u_s) * tau_iso
+    flash = brentq(excess, 0.0, upper, xtol=1e-9 * (1.0 + upper), rtol=1e-12) if excess(upper) < 0.0 else upper
+    t, xpar, beta_s = film(flash)
+    tau = abs(float(np.ravel(t)[0]))
+    centre = float(np.ravel(film_centre_rise(xpar, beta_s, tau, u_s, h_central, properties.oil_conductivity))[0])
+    return {"tau_isothermal_pa": tau_iso, "tau_thermal_pa": tau, "thermal_change": 1.0 - tau / tau_iso,
+            "flash_rise_k": coefficient * tau * abs(u_s), "film_centre_rise_k": centre,
+            "nahme_number": max(beta_h, 0.0) * tau_iso * abs(u_s) * h_central / properties.oil_conductivity}
