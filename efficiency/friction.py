@@ -33,16 +33,17 @@ import numpy as np
 from ehl_dataset.model.materials import STEEL, Material, reduced_modulus
 from ehl_dataset.validation import InputError, SolverError, check_range
 
-EHL_EFFECTS = ("auto", "full")
-"""Effect plans an EHL friction model accepts (``ehl:LEVEL:EFFECTS``)."""
+EHL_EFFECTS = ("auto", "isothermal", "full")
+"""Effect plans an EHL friction model accepts (``ehl:LEVEL:EFFECTS``; ``isothermal``: the planner's plan without the
+thermal correction); the Python classes also take an :class:`ehl_dataset.model.effects.Effects` used as given."""
 SR_FLOOR = 1e-3
 """Below this slide-to-roll ratio :class:`EhlGridFriction` interpolates linearly in SR towards the pitch point."""
 PUBLISHED_NAMES = {"xu2007": "xu_2007", "xu_2007": "xu_2007", "benedict_kelley": "benedict_kelley_1961",
                    "benedict_kelley_1961": "benedict_kelley_1961", "iso14179": "iso_tr_14179_2",
                    "iso_tr_14179_2": "iso_tr_14179_2"}
 """Spec names of the published formulas → their names in :mod:`surrogate.published`."""
-SPEC_FORMS = ("constant:MU, xu2007, benedict_kelley, iso14179, a coefficient file (shipped name or path), "
-              "ehl:LEVEL[:auto|full] or ehl-grid:LEVEL[:auto|full][:NSxNP]")
+SPEC_FORMS = ("constant:MU, xu2007, benedict_kelley, iso14179[:OIL_TYPE], a coefficient file (shipped name or "
+              "path), ehl:LEVEL[:auto|isothermal|full] or ehl-grid:LEVEL[:auto|isothermal|full][:NSxNP]")
 """What :func:`friction_from_spec` accepts (named in its errors)."""
 
 
@@ -66,16 +67,36 @@ class ConstantFriction:
 
 @dataclass(frozen=True)
 class PublishedFriction:
-    """A published friction formula (``xu2007``, ``benedict_kelley``, ``iso14179``) from :mod:`surrogate.published`."""
+    """A published friction formula (``xu2007``, ``benedict_kelley``, ``iso14179``) from :mod:`surrogate.published`.
+
+    ISO/TR 14179-2 takes the lubricant factor X_L of ``oil_type`` (:data:`efficiency.iso14179.LUBRICANT_FACTOR`);
+    None: the ``oil_type`` the lubricant file declares, else ``mineral``."""
 
     name: str
     lubricant: Any
     e_reduced: float = reduced_modulus(STEEL, STEEL)
+    oil_type: str | None = None
+
+    def __post_init__(self):
+        if self.oil_type is not None:
+            from .iso14179 import lubricant_factor
+
+            lubricant_factor(self.oil_type)
+
+    @property
+    def lubricant_factor(self) -> float:
+        """X_L of ISO/TR 14179-2 for this model's oil type."""
+        from .iso14179 import lubricant_factor
+
+        declared = (getattr(self.lubricant, "definition", None) or {}).get("oil_type", "mineral")
+        return lubricant_factor(self.oil_type if self.oil_type is not None else declared)
 
     def __call__(self, p_h, r_eq, u_r, sr, temperature, rq1, rq2):
         from surrogate.published import published_mu
 
-        return published_mu(self.name, p_h, r_eq, u_r, sr, temperature, rq1, rq2, self.lubricant, self.e_reduced)
+        x_l = self.lubricant_factor if self.name == "iso_tr_14179_2" else 1.0
+        return published_mu(self.name, p_h, r_eq, u_r, sr, temperature, rq1, rq2, self.lubricant, self.e_reduced,
+                             x_l=x_l)
 
 
 def _significant(values: np.ndarray, digits: int) -> np.ndarray:
@@ -136,6 +157,21 @@ class EhlFriction:
         return dict(self._stats)
 
 
+def _check_effects(effects) -> None:
+    from ehl_dataset.model.effects import Effects
+
+    if not (isinstance(effects, Effects) or effects in EHL_EFFECTS):
+        raise InputError("effects", effects, f"one of {list(EHL_EFFECTS)} or an Effects instance")
+
+
+def _effects_name(effects) -> str:
+    """A plan name for reports: the string, or a forced plan as ``forced(flags on)``."""
+    if isinstance(effects, str):
+        return effects
+    flags = ("roughness", "transient", "shear_thinning", "compressibility", "thermal")
+    return f"{effects.mode}({','.join(f for f in flags if getattr(effects, f))})"
+
+
 # ---------------------------------------------------------------------- Chebyshev–Lobatto interpolation (the grid)
 def lobatto_nodes(low: float, high: float, n: int) -> np.ndarray:
     """n Chebyshev–Lobatto (second kind) points on [low, high], both ends included, ascending."""
@@ -186,19 +222,18 @@ class EhlGridFriction:
 
     lubricant: Any
     level: str = "fast"
-    effects: str = "auto"
+    effects: Any = "auto"
     roll_nodes: int = 5
     load_nodes: int = 9
 
     def __post_init__(self):
         check_range("roll_nodes", self.roll_nodes, 2, 64)
         check_range("load_nodes", self.load_nodes, 2, 64)
-        if self.effects not in EHL_EFFECTS:
-            raise InputError("effects", self.effects, f"one of {list(EHL_EFFECTS)}")
+        _check_effects(self.effects)
 
     def describe(self) -> str:
-        return (f"EHL solver level={self.level} effects={self.effects} on a grid of {self.roll_nodes} (ln SR) x "
-                f"{self.load_nodes} (p_h) nodes per side of the pitch point")
+        return (f"EHL solver level={self.level} effects={_effects_name(self.effects)} on a grid of "
+                f"{self.roll_nodes} (ln SR) x {self.load_nodes} (p_h) nodes per side of the pitch point")
 
     def __call__(self, *args):
         raise InputError("friction", "ehl-grid", "a mesh: use it through efficiency.power_loss.mesh_power_loss "
@@ -340,12 +375,14 @@ class PathOfContact:
 
 
 # ---------------------------------------------------------------------- one constructor from a spec string
-def friction_from_spec(spec: str, lubricant="atf", *, clip_to_fitted_ranges: bool = True) -> Callable:
+def friction_from_spec(spec: str, lubricant="atf", *, clip_to_fitted_ranges: bool = True,
+                       oil_type: str | None = None) -> Callable:
     """A friction model from its short specification (the ``--friction`` option):
 
     * ``constant:0.05`` → :class:`ConstantFriction`;
-    * ``xu2007``, ``benedict_kelley``, ``iso14179`` → :class:`PublishedFriction` with ``lubricant`` (name, file or
-      :class:`~ehl_dataset.model.lubricant.Lubricant`) for the inlet viscosity;
+    * ``xu2007``, ``benedict_kelley``, ``iso14179[:OIL_TYPE]`` → :class:`PublishedFriction` with ``lubricant``
+      (name, file or :class:`~ehl_dataset.model.lubricant.Lubricant`) for the inlet viscosity; ISO/TR 14179-2's
+      X_L from OIL_TYPE, else ``oil_type``, else the lubricant file's ``oil_type``, else mineral;
     * ``ehl:LEVEL[:EFFECTS]`` → :class:`EhlFriction` (the EHL solver at every point; EFFECTS ``auto`` or ``full``);
     * ``ehl-grid:LEVEL[:EFFECTS][:NSxNP]`` → :class:`EhlGridFriction` (NS roll × NP load nodes per side);
     * anything else is a coefficient file path or shipped coefficient name →
@@ -365,8 +402,10 @@ def friction_from_spec(spec: str, lubricant="atf", *, clip_to_fitted_ranges: boo
         except ValueError:
             raise InputError("friction", text, "constant:MU with a number MU in [0, 1]") from None
         return ConstantFriction(mu)
+    if text.lower().startswith("iso14179:"):
+        return PublishedFriction("iso_tr_14179_2", _lubricant(lubricant), oil_type=text.split(":", 1)[1].strip())
     if text.lower() in PUBLISHED_NAMES:
-        return PublishedFriction(PUBLISHED_NAMES[text.lower()], _lubricant(lubricant))
+        return PublishedFriction(PUBLISHED_NAMES[text.lower()], _lubricant(lubricant), oil_type=oil_type)
     from surrogate.evaluate import FrictionSurrogate
 
     return FrictionSurrogate.load(text, clip_to_fitted_ranges=clip_to_fitted_ranges)
@@ -420,6 +459,6 @@ def describe_friction(friction, short: bool = False) -> str:
         return f"published {friction.name}" + ("" if short else
                                                f" ({getattr(friction.lubricant, 'name', 'lubricant')})")
     if isinstance(friction, EhlFriction):
-        return f"EHL solver level={friction.level} effects={friction.effects}"
+        return f"EHL solver level={friction.level} effects={_effects_name(friction.effects)}"
     path = getattr(getattr(friction, "coefficients", None), "path", "")
     return f"surrogate {path}" if (path and not short) else type(friction).__name__

@@ -120,8 +120,10 @@ ALIASES = {"xu2007": "xu_2007", "benedict_kelley": "benedict_kelley_1961", "iso1
 """Short names accepted by :func:`published_mu` (used by :mod:`efficiency.power_loss`)."""
 
 
-def published_mu(name: str, p_h, r_eq, u_r, sr, temperature, rq1, rq2, lubricant, e_reduced: float):
-    """μ of a published formula for the surrogate's inputs (SI); η0 from ``lubricant`` at ``temperature`` [K]."""
+def published_mu(name: str, p_h, r_eq, u_r, sr, temperature, rq1, rq2, lubricant, e_reduced: float,
+                 x_l: float = 1.0):
+    """μ of a published formula for the surrogate's inputs (SI); η0 from ``lubricant`` at ``temperature`` [K];
+    ``x_l`` the lubricant factor of ISO/TR 14179-2 (1.0: the formula as printed; ignored by the others)."""
     from .features import load_per_length, lubricant_properties
 
     name = ALIASES.get(name, name)
@@ -133,4 +135,4 @@ def published_mu(name: str, p_h, r_eq, u_r, sr, temperature, rq1, rq2, lubricant
         return xu_2007_mu(p_h, r_eq, u_r, sr, eta0, rq1, rq2)
     if name == "benedict_kelley_1961":
         return benedict_kelley_mu(w_prime, u_r, sr, eta0, rq1, rq2, mu_cap=lubricant.mu_d)
-    return iso_14179_2_mu(w_prime, r_eq, u_r, eta0, rq1, rq2)
+    return iso_14179_2_mu(w_prime, r_eq, u_r, eta0, rq1, rq2, x_l=x_l)

@@ -73,8 +73,9 @@ def register(gear_subparsers) -> None:
     iso.add_argument("--iso14179-2", dest="iso14179_2", action="store_true",
                      help="also report the standard's μ_mz, H_V and P_VZP (uses --oil-temp-c)")
     iso.add_argument("--oil-type", default="mineral",
-                     help="base oil for X_L: mineral (0.846), pao (0.65), ester (0.65), polyglycol (0.585), "
-                          "reference (1.0, the formula as printed)")
+                     help="base oil for X_L of ISO/TR 14179-2 (this block and --friction iso14179): mineral "
+                          "(0.846), pao (0.65), ester (0.65), polyglycol (0.585), reference (1.0, the formula as "
+                          "printed)")
     iso.add_argument("--ra-um", type=float, nargs="+", metavar="RA",
                      help="arithmetic mean roughness Ra [µm] of the flanks (one or two values); default "
                           "√(2/π)·Rq from --rq-um (Gaussian surface)")
@@ -227,7 +228,7 @@ def _iso14179(pair, torque, omega, args) -> dict:
                         oil_type=args.oil_type)
         eta, source = oil.dynamic_viscosity(temperature), "nu40/nu100 (Walther)"
     else:
-        from ehl_dataset.lubricants import load_lubricant
+        from ehl_dataset.model.lubricant import load_lubricant
         from surrogate.features import lubricant_properties
 
         eta, _ = lubricant_properties(load_lubricant(args.lubricant), temperature)
@@ -261,7 +262,8 @@ def _power_loss(mesh, args) -> dict:
     from efficiency.power_loss import mesh_power_loss
 
     temperature, rq1, rq2 = _friction_inputs(args)
-    friction = friction_from_spec(args.friction, args.lubricant, clip_to_fitted_ranges=not args.no_clip)
+    friction = friction_from_spec(args.friction, args.lubricant, clip_to_fitted_ranges=not args.no_clip,
+                                  oil_type=args.oil_type)
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         loss = mesh_power_loss(mesh, friction, temperature, rq1, rq2)

@@ -84,3 +84,31 @@ def test_bad_oil_inputs_name_the_parameter():
         SimpleOil(nu40=5e-6, nu100=32e-6)
     with pytest.raises(InputError, match="ra1"):
         iso_14179_2_mesh(fzg_c(), 200.0, 157.0, 0.02, 0.0, 0.5e-6, 1.0)
+
+
+def test_point_by_point_route_uses_the_oil_types_lubricant_factor():
+    """`--friction iso14179` (efficiency.friction.PublishedFriction) multiplies the standard's formula by X_L of the
+    oil type (Fernandes et al., Tribol. Int. 88 (2015) 309: mineral 0.846, PAO 0.65; efficiency.iso14179), was 1.0:
+    from the spec (iso14179:pao), the oil_type argument (the CLI's --oil-type), the lubricant file's oil_type, else
+    mineral."""
+    import numpy as np
+
+    from ehl_dataset.model.lubricant import load_lubricant, lubricant_from_dict
+    from efficiency.friction import PublishedFriction, friction_from_spec
+    from surrogate.published import iso_14179_2_mu
+
+    atf = load_lubricant("atf")
+    args = (np.array([1.2e9]), np.array([0.012]), np.array([8.0]), np.array([0.3]), np.array([353.15]),
+            np.array([0.4e-6]), np.array([0.4e-6]))
+    as_printed = PublishedFriction("iso_tr_14179_2", atf, oil_type="reference")(*args)
+    assert friction_from_spec("iso14179", atf)(*args) == pytest.approx(0.846 * as_printed, rel=1e-12)
+    assert friction_from_spec("iso14179:pao", atf)(*args) == pytest.approx(0.65 * as_printed, rel=1e-12)
+    assert friction_from_spec("iso14179", atf, oil_type="ester")(*args) == pytest.approx(0.65 * as_printed,
+                                                                                         rel=1e-12)
+    declared = lubricant_from_dict({**atf.definition, "oil_type": "polyglycol"})
+    assert friction_from_spec("iso14179", declared)(*args) == pytest.approx(0.585 * as_printed, rel=1e-12)
+    w_prime = 2 * math.pi * 0.012 * 1.2e9**2 / 226.4e9
+    eta = float(atf.dynamic_viscosity(353.15))
+    assert as_printed == pytest.approx(iso_14179_2_mu(w_prime, 0.012, 8.0, eta, 0.4e-6, 0.4e-6), rel=1e-3)
+    with pytest.raises(InputError, match="oil_type"):
+        friction_from_spec("iso14179:castor", atf)

@@ -60,3 +60,30 @@ def test_iso14179_with_a_given_viscosity_reproduces_the_module():
     expected = iso_14179_2_mesh(pair, 200.0, 1500 * math.pi / 30, 12.5e-3, 0.4e-6, 0.6e-6, 0.65)
     assert iso["mu_mz"] == pytest.approx(expected["mu_mz"], rel=1e-12)
     assert iso["viscosity_source"] == "eta-oil-mpas"
+
+
+def test_friction_iso14179_takes_x_l_of_the_oil_type():
+    """`--friction iso14179` with --oil-type pao: the loss is 0.65/0.846 of the mineral one (X_L of ISO/TR 14179-2,
+    Fernandes et al., Tribol. Int. 88 (2015) 309), the rest of the model unchanged."""
+    common = ("--torque-nm", "200", "--speed-rpm", "1500", "--outputs", "", "--positions", "8", "--slices", "5",
+              "--friction", "iso14179", "--oil-temp-c", "60")
+    code, mineral, stderr = run(*common)
+    assert code in (0, 1), stderr
+    code, pao, stderr = run(*common, "--oil-type", "pao")
+    assert code in (0, 1), stderr
+    ratio = json.loads(pao)["power_loss_w"] / json.loads(mineral)["power_loss_w"]
+    assert ratio == pytest.approx(0.65 / 0.846, rel=1e-12)
+
+
+def test_iso14179_block_with_the_viscosity_of_a_lubricant_file():
+    """Without --nu40-cst/--eta-oil-mpas the block takes η of --lubricant at --oil-temp-c (the import of that path
+    was broken after the lubricant module moved)."""
+    from ehl_dataset.model.lubricant import load_lubricant
+
+    code, stdout, stderr = run("--outputs", "", "--positions", "8", "--slices", "5", "--iso14179-2",
+                               "--oil-temp-c", "90", "--lubricant", "gear_oil_75w90")
+    assert code in (0, 1), stderr
+    iso = json.loads(stdout)["iso14179_2"]
+    assert iso["viscosity_source"] == "lubricant gear_oil_75w90"
+    eta = float(load_lubricant("gear_oil_75w90").dynamic_viscosity(363.15))
+    assert iso["eta_oil_mpas"] == pytest.approx(eta * 1e3, rel=1e-12)
