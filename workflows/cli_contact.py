@@ -28,8 +28,10 @@ def register(subparsers) -> None:
                        help="shipped lubricant name (atf, gear_oil_75w90, validation_barus, "
                             "validation_barus_incompressible, validation_roelands_huang) or a TOML file")
     solve.add_argument("--level", default="standard", help="accuracy level: fast, standard, reference")
-    solve.add_argument("--effects", default="auto", choices=["auto", "full", "smooth"],
-                       help="effect plan: auto (planner), full (everything), smooth (steady smooth solve)")
+    solve.add_argument("--effects", default="auto", choices=["auto", "isothermal", "full", "smooth"],
+                       help="effect plan: auto (planner), isothermal (the planner's plan without the thermal "
+                            "correction of the traction), full (everything), smooth (steady smooth solve, "
+                            "isothermal)")
     solve.add_argument("--model", default="auto", choices=["auto", "smooth", "deterministic"],
                        help="contact model: auto (the effect plan decides), smooth (steady smooth surfaces), "
                             "deterministic (the deterministic mixed reference solver; slow: minutes per case)")
@@ -95,6 +97,7 @@ def _solve(args) -> int:
         "dx_m": result.extra.get("dx_m"),
         "n_nodes": result.extra.get("n_nodes"),
         "n_steps": result.extra.get("n_steps"),
+        "thermal": result.extra.get("thermal"),
     }
     from workflows.cli_output import emit
 
@@ -113,6 +116,10 @@ def _human(d: dict) -> str:
         f"p_max         {d['p_max_pa'] / 1e9:.4f} GPa",
         f"lambda_bar    {lam}",
         f"status        {status} after {d['iterations']} iterations, {d['wall_time_s'] * 1e3:.1f} ms",
-        f"level         {d['level']}; effects {', '.join(k for k in ('roughness', 'transient', 'shear_thinning', 'compressibility') if d['effects'].get(k))}",
+        f"level         {d['level']}; effects {', '.join(k for k in ('roughness', 'transient', 'shear_thinning', 'compressibility', 'thermal') if d['effects'].get(k))}",
     ]
+    if d.get("thermal"):
+        t = d["thermal"]
+        lines.append(f"thermal       mu isothermal {t['mu_isothermal']:.5f}; max rise of the surfaces "
+                     f"{t['max_surface_rise_k']:.1f} K, of the film centre above them {t['max_film_centre_rise_k']:.1f} K")
     return "\n".join(lines)

@@ -24,6 +24,18 @@ def test_json_output_keys_and_units(capsys):
     assert out["lambda_bar"] is None  # smooth surfaces: λ̄ infinite, JSON null
 
 
+def test_thermal_correction_reported_and_switchable(capsys):
+    """Smooth, 5 m/s, SR 0.3: the planner corrects the traction for shear heating (docs/planner.md); the JSON
+    carries the isothermal μ and the temperature rises; --effects isothermal gives that μ without the correction."""
+    assert main(BASE + ["--json"]) == 0
+    hot = json.loads(capsys.readouterr().out)
+    assert main(BASE + ["--effects", "isothermal", "--json"]) == 0
+    cold = json.loads(capsys.readouterr().out)
+    assert hot["effects"]["thermal"] and not cold["effects"]["thermal"] and cold["thermal"] is None
+    assert hot["thermal"]["mu_isothermal"] == pytest.approx(cold["mu"], rel=1e-12)
+    assert hot["mu"] < cold["mu"] and hot["thermal"]["max_surface_rise_k"] > 0
+
+
 def test_validation_fluid_by_name_and_by_file(capsys, tmp_path):
     """A Newtonian Barus fluid can be chosen by shipped name or by a TOML file path (issue 2, deliverable 5)."""
     from ehl_dataset.data_files import data_path
