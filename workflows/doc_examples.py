@@ -127,6 +127,7 @@ def run_example(example: Example, cwd: Path, timeout: float = 900.0) -> list[tup
 def run_pages(include_slow: bool = False, verbose: bool = True) -> list[str]:
     """Run the examples of every page; the list of failures (empty: all ran as documented)."""
     failures = []
+    ran: set[tuple[str, ...]] = set()  # a command that needs no file of its page runs once, on its first page
     for path in pages():
         examples, unmarked = extract(path)
         for line, command in unmarked:
@@ -137,6 +138,9 @@ def run_pages(include_slow: bool = False, verbose: bool = True) -> list[str]:
             continue
         with tempfile.TemporaryDirectory(prefix="gearloss_doc_") as tmp:
             for example in runnable:
+                if len(example.commands) == 1 and tuple(example.commands[0]) in ran:
+                    continue
+                ran.update(tuple(c) for c in example.commands if len(example.commands) == 1)
                 for argv, code, err, seconds in run_example(example, Path(tmp)):
                     ok = code == example.exit_code
                     if verbose:
