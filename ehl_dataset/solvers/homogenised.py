@@ -37,7 +37,7 @@ from ..model.roughness import RoughnessProfile
 from ..model.traction import full_film_mask
 from ..validation import InputError
 from .levels import AccuracyLevel
-from .newton import EXPONENT_CAP, EXPONENT_FLOOR, ReynoldsProblem, newton_solve
+from .newton import ReynoldsProblem, newton_solve
 from .result import ContactResult
 from .steady import ContactScales, dowson_higginson_lambda, moes_h_c, solve_steady, solve_steady_problem, steady_grid
 
@@ -89,25 +89,7 @@ class HomogenisedProblem(ReynoldsProblem):
     def fluid(self, p_fluid, h, homotopy: float = 1.0):
         """ε, ∂ε/∂p_f, ∂ε/∂H (at fixed p_f), m = ρ̄(h_T + SR/2·S_φ), ∂m/∂p_f, ∂m/∂H, dimensionless."""
         fs = self.film_scale
-        pa = p_fluid * self.p_h
-        law = self.state.law
-        negative = pa < 0.0
-        slope_phi0 = float(law.exponent_derivative(np.array([0.0]))[0]) if negative.any() else 0.0
-        phi = homotopy * np.where(negative, slope_phi0 * pa, law.exponent(pa))
-        phi_p = homotopy * np.where(negative, slope_phi0, law.exponent_derivative(pa)) * self.p_h
-        clipped = (phi > EXPONENT_CAP) | (phi < -EXPONENT_FLOOR)
-        phi = np.clip(phi, -EXPONENT_FLOOR, EXPONENT_CAP)
-        phi_p = np.where(clipped, 0.0, phi_p)
-        if self.compressible:
-            rho = self.state.density(pa) / self.state.rho0
-            rho_p = self.state.density_derivative(pa) * self.p_h / self.state.rho0
-            if negative.any():
-                slope_rho0 = float(self.state.density_derivative(np.array([0.0]))[0]) * self.p_h / self.state.rho0
-                rho = np.where(negative, 1.0 + slope_rho0 * p_fluid, rho)
-                rho_p = np.where(negative, slope_rho0, rho_p)
-        else:
-            rho = np.ones_like(p_fluid)
-            rho_p = np.zeros_like(p_fluid)
+        phi, phi_p, rho, rho_p = self.rheology(p_fluid, homotopy)
         ff = self.flow_factors(h)
         cond = np.maximum(ff.conductance / fs**3, 1e-300)
         d_cond = ff.d_conductance / fs**2

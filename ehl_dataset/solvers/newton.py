@@ -99,8 +99,8 @@ class ReynoldsProblem:
         """Relative load-balance error Σ w P/(π/2) − 1."""
         return float(self.weights @ p) / (0.5 * math.pi) - 1.0
 
-    def fluid(self, p: np.ndarray, h: np.ndarray, homotopy: float = 1.0):
-        """ε, ∂ε/∂P, ∂ε/∂H, m = ρ̄H, ∂m/∂P, ∂m/∂H at the nodes (viscosity exponent scaled by ``homotopy``)."""
+    def rheology(self, p: np.ndarray, homotopy: float = 1.0):
+        """(φ = ln(η/η0) scaled by ``homotopy``, ∂φ/∂P, ρ̄, ∂ρ̄/∂P) at dimensionless pressures ``p``."""
         pa = p * self.p_h
         law = self.state.law
         # Below p = 0 (only in Newton iterates; the solution has p ≥ 0) the laws are continued linearly from p = 0
@@ -122,6 +122,11 @@ class ReynoldsProblem:
         else:
             rho = np.ones_like(p)
             rho_p = np.zeros_like(p)
+        return phi, phi_p, rho, rho_p
+
+    def fluid(self, p: np.ndarray, h: np.ndarray, homotopy: float = 1.0):
+        """ε, ∂ε/∂P, ∂ε/∂H, m = ρ̄H, ∂m/∂P, ∂m/∂H at the nodes (viscosity exponent scaled by ``homotopy``)."""
+        phi, phi_p, rho, rho_p = self.rheology(p, homotopy)
         hp = np.maximum(h, 1e-12)  # closed films (rough runs): the Poiseuille terms fade out there anyway
         inv_eta2 = np.exp(-2.0 * phi)
         shear2 = (self.shear / hp) ** 2
