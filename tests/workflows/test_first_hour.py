@@ -47,29 +47,26 @@ def test_1_each_kind_of_run_has_its_own_directory_and_a_foreign_one_is_refused_n
     assert read_metadata(tmp_path / "run" / "dataset.h5")["factorial"]["name"] == "tiny"  # untouched
 
 
-def test_1_overwrite_starts_the_run_afresh(tmp_path, capsys):
+def test_1_3_the_start_line_says_where_the_output_goes_how_to_resume_and_overwrite_starts_afresh(tmp_path, capsys):
+    """Finding 3: where the output goes and the resume command, then 'resuming' on the second run (nothing
+    recomputed); finding 1: --overwrite starts afresh. Finding 7: the human output opens with the smoke label."""
     out = tmp_path / "smoke"
+    assert main(["pipeline", "smoke", "--out-dir", str(out), "--progress", "none"]) == 0
+    captured = capsys.readouterr()
+    assert f"output: {out}/dataset.h5 and {out}/atf_smoke.json" in captured.err
+    assert f"resume with: gearloss pipeline smoke --out-dir {out} --progress none" in captured.err
+    assert "new run of 96 points" in captured.err and captured.out.startswith("SMOKE RUN")
     assert main(["pipeline", "smoke", "--out-dir", str(out), "--progress", "none", "--json"]) == 0
-    first = json.loads(capsys.readouterr().out)
-    assert first["stages"]["dataset"]["computed"] == 96
-    assert main(["pipeline", "smoke", "--out-dir", str(out), "--progress", "none", "--json"]) == 0
-    assert json.loads(capsys.readouterr().out)["stages"]["dataset"]["computed"] == 0  # resumed: all done
+    captured = capsys.readouterr()
+    assert "resuming: 96 of 96 points done" in captured.err
+    assert json.loads(captured.out)["stages"]["dataset"]["computed"] == 0
     assert main(["pipeline", "smoke", "--out-dir", str(out), "--overwrite", "--progress", "none", "--json"]) == 0
-    assert json.loads(capsys.readouterr().out)["stages"]["dataset"]["computed"] == 96
+    captured = capsys.readouterr()
+    assert "new run of 96 points" in captured.err and "--overwrite" not in captured.err.split("resume with:")[1]
+    assert json.loads(captured.out)["stages"]["dataset"]["computed"] == 96
 
 
-# ---------------------------------------------------------------------- 3. where output goes, how to resume
-def test_3_the_start_line_says_where_the_output_goes_and_how_to_resume(tmp_path, capsys):
-    out = tmp_path / "s"
-    assert main(["pipeline", "smoke", "--out-dir", str(out), "--progress", "none"]) == 0
-    err = capsys.readouterr().err
-    assert f"output: {out}/dataset.h5 and {out}/atf_smoke.json" in err
-    assert f"resume with: gearloss pipeline smoke --out-dir {out} --progress none" in err
-    assert "new run of 96 points" in err
-    assert main(["pipeline", "smoke", "--out-dir", str(out), "--progress", "none"]) == 0
-    assert "resuming: 96 of 96 points done" in capsys.readouterr().err
-
-
+# ---------------------------------------------------------------------- 3. resuming, in --help
 def test_3_pipeline_help_explains_resuming(capsys):
     for argv in (["pipeline", "--help"], ["pipeline", "quick", "--help"]):
         assert main(argv) == 0
@@ -144,8 +141,6 @@ def test_7_the_smoke_pipeline_runs_all_three_stages_in_seconds_and_says_it_is_a_
     assert p["stages"]["dataset"]["ok"] == 96 and p["stages"]["fit"]["n_used"] == 96
     assert set(p["stages"]) == {"dataset", "fit", "design"} and p["valid"] and 0.99 < p["efficiency"] < 1.0
     assert wall < 120  # about 10 s on an idle 2-core machine
-    assert main(["pipeline", "smoke", "--out-dir", str(tmp_path), "--progress", "none"]) == 0
-    assert capsys.readouterr().out.startswith("SMOKE RUN")
 
 
 # ---------------------------------------------------------------------- 8. inputs checked before stage 1
@@ -178,8 +173,10 @@ def test_9_accuracy_writes_outside_docs_by_default():
      "gearloss contact solve: error: invalid --p-h-gpa='abc': accepted a number [GPa]"),
     (["gear", "evaluate", *DESIGN_D, "--profile-crown-um", "-5"],
      "gearloss: error: invalid --profile-crown-um=-5: accepted [0, 1000] µm"),
-    (["contact", "solve", "--p-h-gpa", "1", "--r-eq-mm", "20", "--u-r", "5", "--effects", "most"],
-     "gearloss contact solve: error: invalid --effects='most': accepted one of auto, full, smooth"),
+    (["contact", "solve", "--p-h-gpa", "1", "--r-eq-mm", "20", "--u-r", "5", "--level", "fastest"],
+     "gearloss: error: invalid --level=fastest: accepted one of ['fast', 'reference', 'standard']"),
+    (["gear", "evaluate", *DESIGN_D, "--contact-model", "hertz"],
+     "gearloss gear evaluate: error: invalid --contact-model='hertz': accepted one of weber, linear"),
 ])
 def test_10_errors_name_the_option_as_typed_in_its_units_in_one_line(capsys, argv, message):
     assert main(argv) == 2
