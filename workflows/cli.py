@@ -62,22 +62,37 @@ class _Terminated(BaseException):
     """SIGTERM outside a runner (which handles it itself and stops cleanly)."""
 
 
-@contextmanager
-def _sigterm_raises():
-    """SIGTERM raises :class:`_Terminated` in the main thread (exit 143 with a message, not a silent death)."""
+class _CtrlC(KeyboardInterrupt):
+    """SIGINT as raised by gearloss's own handler. A subclass on purpose: CPython kills a process with SIGINT at exit
+    when an exception of exactly type KeyboardInterrupt left code run through its C-level ``PyRun_*`` calls (as
+    happens when Ctrl-C arrives during some imports), even after ``main`` caught it and returned 130."""
 
-    def handle(signum, frame):
+
+@contextmanager
+def _signals_raise():
+    """SIGTERM raises :class:`_Terminated` in the main thread (exit 143 with a message, not a silent death); SIGINT,
+    unless ignored, raises :class:`_CtrlC` (exit 130)."""
+
+    def on_sigterm(signum, frame):
         raise _Terminated()
 
+    def on_sigint(signum, frame):
+        raise _CtrlC()
+
     try:
-        previous = signal.signal(signal.SIGTERM, handle)
+        previous_term = signal.signal(signal.SIGTERM, on_sigterm)
     except ValueError:  # not the main thread (e.g. a test runner's worker thread)
         yield
         return
+    previous_int = signal.getsignal(signal.SIGINT)
+    if previous_int is signal.default_int_handler:
+        signal.signal(signal.SIGINT, on_sigint)
     try:
         yield
     finally:
-        signal.signal(signal.SIGTERM, previous)
+        signal.signal(signal.SIGTERM, previous_term)
+        if previous_int is signal.default_int_handler:
+            signal.signal(signal.SIGINT, previous_int)
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -100,7 +115,7 @@ def main(argv: list[str] | None = None) -> int:
     args.argv = argv
     args.command_line = "gearloss " + shlex.join(argv)
     try:
-        with _sigterm_raises():
+        with _signals_raise():
             return int(handler(args) or 0)
     except InputError as err:
         from .cli_errors import translate
