@@ -531,14 +531,17 @@ class DatasetStore:
         return len(self._buffer)
 
     def flush(self) -> int:
-        """Write the buffered rows (contiguous runs as slices) and flush the file; return the rows written."""
+        """Write the buffered rows (contiguous runs as slices, the status column last) and flush the file; return the
+        rows written."""
         if not self._buffer:
             return 0
         self._require_writable()
         indices = np.array(sorted(self._buffer), dtype=np.int64)
         breaks = np.flatnonzero(np.diff(indices) != 1) + 1
         group = self._h5["points"]
-        names = list(next(iter(self._buffer.values())))
+        # status last: it commits the row, so a process killed inside a flush leaves the row pending (it is
+        # computed again on resume), never "ok" with half its columns written
+        names = [name for name in next(iter(self._buffer.values())) if name != "status"] + ["status"]
         for run in np.split(indices, breaks):
             start, stop = int(run[0]), int(run[-1]) + 1
             rows = [self._buffer[int(i)] for i in run]

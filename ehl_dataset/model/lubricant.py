@@ -248,6 +248,7 @@ class Lubricant:
     sources: dict[str, str] = field(default_factory=dict)
     definition: dict[str, Any] = field(default_factory=dict, compare=False, repr=False)
     thermal: ThermalProperties = field(default_factory=ThermalProperties)
+    _laws: dict = field(default_factory=dict, init=False, compare=False, repr=False)
 
     def check_temperature(self, temperature_k: float) -> float:
         """Return the temperature [K] or raise :class:`InputError` if it is outside the lubricant's data."""
@@ -290,7 +291,16 @@ class Lubricant:
         return np.log(self._pressure_law(float(temperature_k))[2].viscosity(p))
 
     def _pressure_law(self, t: float) -> tuple[float, float, ViscosityPressureLaw]:
-        """(η0, α1, viscosity–pressure law) at temperature ``t`` [K] (not range-checked)."""
+        """(η0, α1, viscosity–pressure law) at temperature ``t`` [K] (not range-checked), remembered per temperature:
+        the thermal tables ask for the same few hundred temperatures above each factorial temperature."""
+        law = self._laws.get(t)
+        if law is None:
+            if len(self._laws) > 8192:
+                self._laws.clear()
+            law = self._laws[t] = self._build_pressure_law(t)
+        return law
+
+    def _build_pressure_law(self, t: float) -> tuple[float, float, ViscosityPressureLaw]:
         eta0 = float(self.dynamic_viscosity(t))
         alpha1 = float(self.alpha1(t))
         if self.pressure_law == "two_slope":

@@ -250,7 +250,10 @@ def test_sigkill_part_way_then_resume_completes_without_recomputing(tmp_path):
     summary = resume_run(path, workers=2, progress="none")  # the file is not locked: the workers died too
     assert summary.ok == 48 and summary.pending == 0 and summary.computed == 48 - len(ok_before)
     after = read_table(path, status=None)
-    assert (after["attempts"] == 1).all()  # no point computed twice
+    # no finished point computed twice; a row the kill caught inside a flush was never committed (its status is
+    # written last), so it is computed again and may count that uncommitted computation too
+    assert (after.loc[ok_before.index, "attempts"] == 1).all()
+    assert after["attempts"].between(1, 2).all()
     kept = after.loc[ok_before.index]
     assert (kept["finished_at"] == ok_before["finished_at"]).all() and (kept["worker"] == ok_before["worker"]).all()
 
@@ -351,9 +354,13 @@ def test_warm_up_covers_each_distinct_effect_plan_once():
     candidates = list(range(plan.size))
     chosen = warm_up_indices(points, candidates, lub.to_json_dict(), "fast", "auto", DEFAULT_SOLVER)
 
+    keys = {}
+
     def key(i):
-        e = plan_effects(ContactCase(*(float(v) for v in points[i])), lub, "fast")
-        return e.roughness, e.transient, e.shear_thinning
+        if i not in keys:
+            e = plan_effects(ContactCase(*(float(v) for v in points[i])), lub, "fast")
+            keys[i] = e.roughness, e.transient, e.shear_thinning
+        return keys[i]
 
     all_keys = {key(i) for i in candidates}
     assert len(all_keys) >= 2 and sorted(key(i) for i in chosen) == sorted(all_keys)

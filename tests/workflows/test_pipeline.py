@@ -197,7 +197,7 @@ def test_pipeline_end_to_end_with_the_ehl_solver(tmp_path, capsys):
     factorial = tmp_path / "pipeline_test.toml"
     factorial.write_text(FITTABLE_FACTORIAL)
     out = tmp_path / "run"
-    code = main(["pipeline", "quick", "--out-dir", str(out), "--factorial", str(factorial), "--workers", "1",
+    code = main(["pipeline", "quick", "--out-dir", str(out), "--factorial", str(factorial), "--workers", "2",
                  "--progress", "none", "--json"])
     captured = capsys.readouterr()
     rows = read_table(out / DATASET_FILE, status=None)
