@@ -12,12 +12,14 @@ Equations per node:
 * row 3i, mass balance of cell i (Elrod–Adams / Jakobsson–Floberg–Olsson, in flux form, so that lubricant mass is
   conserved exactly, including through cavitation and contacts):
 
-      Q_{i+½} − Q_{i−½} − w_i ∂m_i/∂T = 0,   m = ρ̄ θ H,   Q = ε_face (P_{f,i+1} − P_{f,i})/Δ − m_upwind,
+      Q_{i+½} − Q_{i−½} − w_i ∂m_i/∂T = 0,   m = ρ̄ θ max(H, H_b),   Q = ε_face (P_{f,i+1} − P_{f,i})/Δ − m_upwind,
 
   ε = ρ̄ H³ cosh(τ_m/τ0)/(η̄ λ̄) (paper Eq. 1b), the Couette flux m upwinded to second order (linear upwind,
   first order at the first face); node 0 is the flooded inlet (θ = 1), node N−1 the outflow (Couette flux
   m_{N−1} leaves the domain). Only the fluid pressure drives flow: the contact pressure P_c is absent from Q
-  (solid contact pressure drives no flow; Liu, Wang, Chung & Berkebile, Tribol. Lett. 69 (2021) 164).
+  (solid contact pressure drives no flow; Liu, Wang, Chung & Berkebile, Tribol. Lett. 69 (2021) 164). The
+  content uses max(H, H_b): where asperities interfere plastically (H < H_b at the hardness) their tips are
+  flattened and the gap that holds lubricant is the boundary film, never a negative volume;
 * row 3i+1, cavitation: 0 ≤ P_f ⊥ 1 − θ ≥ 0 as a Fischer–Burmeister equation φ(P_f, 1 − θ) = 0 (P_f = 0 at both
   ends);
 * row 3i+2, contact with a boundary film of thickness H_b and elastic–perfectly-plastic asperities:
@@ -89,10 +91,11 @@ def assemble(dx, pf, th, pc, h, eps, eps_p, eps_h, rho, rho_p, h_b, kappa, p_yie
     res = np.zeros(3 * n)
     jac = np.zeros((3 * n, OFFSETS, 3))
     dfilm = np.zeros((3 * n, OFFSETS))
-    m = rho * th * h
-    m_p = rho_p * th * h
-    m_t = rho * h
-    m_h = rho * th
+    hm = np.maximum(h, h_b)
+    m = rho * th * hm
+    m_p = rho_p * th * hm
+    m_t = rho * hm
+    m_h = np.where(h > h_b, rho * th, 0.0)
     for k in range(n - 1):
         ef, wa, wb = _face(eps[k], eps[k + 1], mean)
         grad = (pf[k + 1] - pf[k]) / dx

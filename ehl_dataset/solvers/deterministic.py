@@ -47,7 +47,7 @@ from .result import ContactResult
 from .steady import ContactScales, dowson_higginson_lambda, moes_h_c, solve_steady
 from .time_average import time_mean
 
-MODEL_VERSION = "det-2026.11-1"
+MODEL_VERSION = "det-2026.11-2"
 """Version of the deterministic model's numerics (recorded with its results; bump with any change that can alter a
 solved value). :data:`ehl_dataset.solver.SOLVER_VERSION` covers the whole solver."""
 BOUNDARY_FILM_M = 5e-9
@@ -230,9 +230,9 @@ class MixedProblem:
         return eps, eps_p, eps_h, rho, rho_p
 
     def content(self, z, h) -> np.ndarray:
-        """Lubricant content m = ρ̄ θ H per node."""
+        """Lubricant content m = ρ̄ θ max(H, H_b) per node (as in :func:`assemble`)."""
         pf, th, _, _ = self.unpack(z)
-        return self.fluid(pf, h)[3] * th * h
+        return self.fluid(pf, h)[3] * th * np.maximum(h, self.h_b)
 
     def storage(self, d_t: float | None, ratio: float, m_old, m_older):
         """(w a0/ΔT, w (a1 m^n + a2 m^{n−1})/ΔT): backward Euler for ``ratio`` = 0, variable-step BDF2 with
