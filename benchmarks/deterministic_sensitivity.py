@@ -5,7 +5,9 @@ thickness h_b, on one case at one spacing, paired with the base run of benchmark
     python benchmarks/deterministic_sensitivity.py --case A --spacing 32 --passes 11
 
 Variants: Courant 0.5 (time step halved), Newton tolerance 1e-9 (10× looser), h_b × 0.5 and × 2 (physical, reported).
-Writes benchmarks/results/deterministic_sensitivity_<case>.json.
+Writes benchmarks/results/deterministic_sensitivity_<case>.json (μ, its standard error, and for each variant the
+paired difference to the base run with its standard error) and the μ(t) series of every run in
+benchmarks/results/deterministic_sensitivity/<case>_<variant>.npz.
 """
 
 from __future__ import annotations
@@ -24,6 +26,7 @@ from ehl_dataset.model.lubricant import load_lubricant
 from ehl_dataset.model.roughness import baseline_profile
 from ehl_dataset.solvers.deterministic import (BOUNDARY_FILM_M, MODEL_VERSION, DeterministicOptions,
                                                solve_deterministic)
+from ehl_dataset.solvers.time_average import time_mean
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from deterministic_validation import CASES, LUBRICANT, MAX_PASSES  # noqa: E402
@@ -38,6 +41,25 @@ VARIANTS = {
 }
 
 
+def series_path(case: str, name: str) -> Path:
+    return RESULTS / "deterministic_sensitivity" / f"{case}_{name}.npz"
+
+
+def paired_difference(case: str, name: str):
+    """(mean, standard error) of μ_variant(t) − μ_base(t) over the times both runs covered, the variant's series
+    interpolated at the base run's times (the runs see the same roughness at the same times, so the difference
+    fluctuates less than either series); None without both series."""
+    if name == "base" or not (series_path(case, "base").exists() and series_path(case, name).exists()):
+        return None
+    base, other = np.load(series_path(case, "base")), np.load(series_path(case, name))
+    inside = (base["t_s"] >= other["t_s"][0]) & (base["t_s"] <= other["t_s"][-1])
+    if np.count_nonzero(inside) < 2:
+        return None
+    difference = np.interp(base["t_s"][inside], other["t_s"], other["mu"]) - base["mu"][inside]
+    mean = time_mean(difference)
+    return mean.mean, mean.standard_error
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--case", required=True, choices=sorted(CASES))
@@ -49,6 +71,7 @@ def main(argv=None) -> int:
     state = load_lubricant(LUBRICANT).state(case.temperature)
     beta = baseline_profile().correlation_length
     path = RESULTS / f"deterministic_sensitivity_{args.case}.json"
+    series_path(args.case, "base").parent.mkdir(parents=True, exist_ok=True)
     record = json.loads(path.read_text()) if path.exists() else {}
     if record.get("model_version") != MODEL_VERSION or record.get("spacing") != args.spacing:
         record = {"case": args.case, "inputs": CASES[args.case], "model_version": MODEL_VERSION,
@@ -62,14 +85,22 @@ def main(argv=None) -> int:
         result = solve_deterministic(case, state, Effects.full(), options)
         e = result.extra
         window = slice(e["average_from_step"], None)
-        record["runs"][name] = {"mu": float(np.mean(e["mu_series"][window])),
+        mu_window = np.asarray(e["mu_series"][window], dtype=float)
+        t_window = np.asarray(e["t_series_s"][window], dtype=float)
+        record["runs"][name] = {"mu": float(np.mean(mu_window)), "mu_sem": time_mean(mu_window).standard_error,
                                 "asperity_load_share": float(np.mean(e["share_series"][window])),
                                 "h_min_m": result.h_min, "converged": result.converged,
+                                "message": result.message, "substep_steps": e.get("substep_steps"),
                                 "wall_time_s": time.time() - start, "n_steps": e["n_steps"]}
+        np.savez_compressed(series_path(args.case, name), t_s=t_window, mu=mu_window)
         if "base" in record["runs"]:
             base = record["runs"]["base"]["mu"]
-            for run in record["runs"].values():
+            for other, run in record["runs"].items():
                 run["mu_relative_to_base"] = run["mu"] / base - 1.0
+                paired = paired_difference(args.case, other)
+                if paired is not None:
+                    run["paired_difference_relative"], run["paired_difference_sem_relative"] = (
+                        paired[0] / base, paired[1] / base)
         path.write_text(json.dumps(record, indent=1))
         print(name, record["runs"][name], flush=True)
     return 0
