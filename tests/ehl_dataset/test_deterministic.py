@@ -69,6 +69,26 @@ def test_newton_matrix_is_the_derivative_of_the_residual():
     assert abs(jv[-1] - fd[-1]) <= 1e-6 * abs(fd[-1])  # linear row: round-off of the difference only
 
 
+def test_plastically_interfering_asperities_hold_the_boundary_film_not_a_negative_volume():
+    """Where asperities interfere beyond the boundary film (H < H_b at the hardness) their tips are flattened: the
+    cell holds ρ̄θH_b of lubricant, so neither its content nor the Couette flux it passes on can turn negative (a
+    negative content at a plastic outlet node drove the film fraction to θ = −0.63 and stopped Newton in model
+    det-2026.11-1; docs/deterministic_solver.md, "Sensitivity")."""
+    problem, x = _problem()
+    z = _mixed_state(problem, x)
+    gap = 0.5 * x**2
+    gap[-3:] -= 50.0 * problem.h_b + 0.5 * x[-3:] ** 2 + 10.0  # deep interference at the outlet end
+    h = problem.film(z, gap)
+    assert np.all(h[-3:] < 0.0)
+    content = problem.content(z, h)
+    pf, th, _, _ = problem.unpack(z)
+    rho = problem.fluid(pf, h)[3]
+    assert np.all(content >= 0.0)
+    assert np.allclose(content[-3:], rho[-3:] * th[-3:] * problem.h_b, rtol=1e-12)
+    open_nodes = h > problem.h_b
+    assert np.allclose(content[open_nodes], (rho * th * h)[open_nodes], rtol=1e-12)
+
+
 def test_banded_inverse_kernel_inverts_the_deflection_at_grid_scale():
     """K·B e_j: 1 at the node, the rest small (B truncates the −1/(π m² Δ) decay of K⁻¹ at the band width)."""
     n, dx, width = 401, 0.01, 12
