@@ -85,7 +85,8 @@ def assemble(dx, pf, th, pc, h, eps, eps_p, eps_h, rho, rho_p, h_b, kappa, p_yie
     Per node: ``pf``, ``th``, ``pc``, ``h`` the state; ``eps``, ``eps_p``, ``eps_h`` ε and its partials in P_f and H;
     ``rho``, ``rho_p`` ρ̄ and ∂ρ̄/∂P_f; ``stor_coef``, ``stor_old`` the time-derivative terms (module docstring).
     Scalars: ``h_b`` H_b, ``kappa`` κ, ``p_yield`` P_Y (inf: elastic), ``mean`` the face mean code
-    (:data:`FACE_MEANS`), ``order`` 1 for the second-order Couette flux (0: first order).
+    (:data:`FACE_MEANS`), ``order`` of the Couette flux: 1 linear upwind (second order), 0 first-order upwind, 2
+    minmod-limited linear upwind (second order where smooth, never against the flow at a content jump).
     """
     n = pf.size
     res = np.zeros(3 * n)
@@ -101,12 +102,28 @@ def assemble(dx, pf, th, pc, h, eps, eps_p, eps_h, rho, rho_p, h_b, kappa, p_yie
         grad = (pf[k + 1] - pf[k]) / dx
         c = 0.5 * order if k >= 1 else 0.0
         m_km1 = m[k - 1] if k >= 1 else 0.0
-        q = ef * grad - (m[k] + c * (m[k] - m_km1))
-        q_pf_k = wa * eps_p[k] * grad - ef / dx - (1.0 + c) * m_p[k]
-        q_th_k = -(1.0 + c) * m_t[k]
-        q_h_k = wa * eps_h[k] * grad - (1.0 + c) * m_h[k]
-        q_pf_k1 = wb * eps_p[k + 1] * grad + ef / dx
-        q_h_k1 = wb * eps_h[k + 1] * grad
+        # downstream weight: the minmod-limited form (order 2) uses the smaller of the upwind and downwind
+        # differences, or none at an extremum, so that a content jump (a film closing on a contact) cannot make a
+        # face carry lubricant against the flow (TVD; second order where the content is smooth)
+        cd = 0.0
+        if order == 2.0:
+            c = 0.0
+            if k >= 1 and k + 1 < n - 1:
+                d_up = m[k] - m_km1
+                d_down = m[k + 1] - m[k]
+                if d_up * d_down > 0.0:
+                    if abs(d_up) <= abs(d_down):
+                        c = 0.5
+                    else:
+                        cd = 0.5
+        m_kp1 = m[k + 1]
+        q = ef * grad - (m[k] + c * (m[k] - m_km1) + cd * (m_kp1 - m[k]))
+        q_pf_k = wa * eps_p[k] * grad - ef / dx - (1.0 + c - cd) * m_p[k]
+        q_th_k = -(1.0 + c - cd) * m_t[k]
+        q_h_k = wa * eps_h[k] * grad - (1.0 + c - cd) * m_h[k]
+        q_pf_k1 = wb * eps_p[k + 1] * grad + ef / dx - cd * m_p[k + 1]
+        q_th_k1 = -cd * m_t[k + 1]
+        q_h_k1 = wb * eps_h[k + 1] * grad - cd * m_h[k + 1]
         for side in range(2):
             node = k if side == 0 else k + 1
             if node < 1:
@@ -119,6 +136,7 @@ def assemble(dx, pf, th, pc, h, eps, eps_p, eps_h, rho, rho_p, h_b, kappa, p_yie
             jac[r, o, 1] += sign * q_th_k
             dfilm[r, o] += sign * q_h_k
             jac[r, o + 1, 0] += sign * q_pf_k1
+            jac[r, o + 1, 1] += sign * q_th_k1
             dfilm[r, o + 1] += sign * q_h_k1
             if k >= 1:
                 jac[r, o - 1, 0] += sign * c * m_p[k - 1]

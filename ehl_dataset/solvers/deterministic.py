@@ -35,6 +35,12 @@ import scipy.fft
 
 from ..discretisation.deflection import inverse_kernel_band, uniform_kernel
 from ..discretisation.mixed_system import FACE_MEANS, assemble, local_matvec
+
+COUETTE_FLUXES = {"linear": 1.0, "first-order": 0.0, "minmod": 2.0}
+"""Couette (shear) flux of the mass rows: linear upwind (second order; the default of det-2026.11-2), first-order
+upwind, or minmod-limited linear upwind (second order where the content is smooth; at a content jump, such as a film
+closing on a contact, it never carries lubricant against the flow, where the unlimited form can drive the film
+fraction negative; docs/deterministic_solver.md)."""
 from ..model.contact import ContactCase
 from ..model.effects import Effects
 from ..model.lubricant import LubricantState
@@ -71,7 +77,8 @@ class DeterministicOptions:
     to 1 over this many passes (one pass: the domain length at u_r); ``startup_passes`` passes after the ramp before
     averaging starts; ``min_average_passes``, ``max_passes`` bounds of the averaging window, extended until the
     standard error of the time-averaged μ is ≤ ``mu_sem_target``·max(|μ|, 0.01) over ≥ 20 correlation times;
-    ``face_mean`` of the Poiseuille conductance; ``band`` half-width of the banded inverse kernel in the
+    ``face_mean`` of the Poiseuille conductance; ``couette_flux`` its shear-flux scheme (:data:`COUETTE_FLUXES`);
+    ``band`` half-width of the banded inverse kernel in the
     preconditioner; ``newton_tolerance`` max scaled residual (mass rows relative to the central Couette flux,
     complementarity rows in p_h) of every step; ``max_substeps`` largest split of a time step whose Newton solve
     failed; ``clock`` the wall clock (time.perf_counter).
@@ -90,6 +97,7 @@ class DeterministicOptions:
     max_passes: float = 12.0
     mu_sem_target: float = 0.015
     face_mean: str = "harmonic"
+    couette_flux: str = "linear"
     band: int = 12
     newton_tolerance: float = 1e-10
     newton_iterations: int = 25
@@ -106,6 +114,8 @@ class DeterministicOptions:
         check_range("mu_sem_target", self.mu_sem_target, 0.0, 1.0)
         if self.face_mean not in FACE_MEANS:
             raise InputError("face_mean", self.face_mean, f"one of {sorted(FACE_MEANS)}")
+        if self.couette_flux not in COUETTE_FLUXES:
+            raise InputError("couette_flux", self.couette_flux, f"one of {sorted(COUETTE_FLUXES)}")
         x_start, x_end = self.domain
         if not (x_start < -1.0 and x_end > 1.0):
             raise InputError("domain", self.domain, "x_start < -1 < 1 < x_end (units of the Hertz half width)")
@@ -161,7 +171,8 @@ class MixedProblem:
     [a], with the film H = H0 + gap + K(P_f + P_c) computed by FFT, and their Newton–Krylov solution."""
 
     def __init__(self, x: np.ndarray, scales: ContactScales, state: LubricantState, h_b: float, p_yield: float,
-                 compressible: bool = True, face_mean: str = "harmonic", band: int = 12):
+                 compressible: bool = True, face_mean: str = "harmonic", band: int = 12,
+                 couette_flux: str = "linear"):
         self.x = np.ascontiguousarray(x, dtype=float)
         self.n = n = self.x.size
         self.dx = float(self.x[1] - self.x[0])
@@ -173,6 +184,7 @@ class MixedProblem:
         self.p_yield = p_yield
         self.compressible = compressible and state.compressible
         self.mean = FACE_MEANS[face_mean]
+        self.order = COUETTE_FLUXES[couette_flux]
         kernel = uniform_kernel(n, self.dx)
         # circular convolution of length >= 2N - 1 holds the linear one on the N output nodes (DC-FFT)
         self.fft_size = scipy.fft.next_fast_len(2 * n - 1, real=True)
@@ -255,7 +267,7 @@ class MixedProblem:
         eps, eps_p, eps_h, rho, rho_p = self.fluid(pf, h)
         res, jac, dfilm = assemble(self.dx, np.ascontiguousarray(pf), np.ascontiguousarray(th),
                                    np.ascontiguousarray(pc), h, eps, eps_p, eps_h, rho, rho_p, self.h_b, self.kappa,
-                                   self.p_yield, storage[0], storage[1], self.mean, 1.0)
+                                   self.p_yield, storage[0], storage[1], self.mean, self.order)
         out = np.empty(3 * self.n + 1)
         out[:-1] = res
         out[-1] = float(self.weights @ (pf + pc)) - 0.5 * math.pi
@@ -382,7 +394,7 @@ def solve_deterministic(case: ContactCase, state: LubricantState, plan: Effects,
                          f"contact (at most {options.max_nodes} nodes; a = {a:.3g} m)")
     x = np.linspace(x_start, x_end, max(n, 9))
     problem = MixedProblem(x, scales, state, h_b_m / scales.film_scale, options.yield_pressure_pa / case.p_h,
-                           plan.compressibility, options.face_mean, options.band)
+                           plan.compressibility, options.face_mean, options.band, options.couette_flux)
     smooth_plan = Effects(False, False, plan.shear_thinning, plan.compressibility, plan.mode, {})
     smooth = solve_steady(case, state, get_level("standard"), smooth_plan)
     if not smooth.converged:
@@ -596,7 +608,8 @@ def _result(case, state, plan, level_name, options, problem, scales, z, h, recor
                "smooth_mu": record.smooth.get("mu"), "smooth_h_min_m": record.smooth.get("h_min_m"),
                "mu_series": np.asarray(record.mu), "share_series": np.asarray(record.share),
                "t_series_s": np.asarray(record.t), "h_min_local_m": local_min,
-               "h_min_local_series_m": np.asarray(record.h_min), "face_mean": options.face_mean, **problem.cost, **rule},
+               "h_min_local_series_m": np.asarray(record.h_min), "face_mean": options.face_mean,
+               "couette_flux": options.couette_flux, **problem.cost, **rule},
     )
 
 
