@@ -37,10 +37,10 @@ from ..discretisation.deflection import inverse_kernel_band, uniform_kernel
 from ..discretisation.mixed_system import FACE_MEANS, assemble, local_matvec
 
 COUETTE_FLUXES = {"linear": 1.0, "first-order": 0.0, "minmod": 2.0}
-"""Couette (shear) flux of the mass rows: linear upwind (second order; the default of det-2026.11-2), first-order
-upwind, or minmod-limited linear upwind (second order where the content is smooth; at a content jump, such as a film
-closing on a contact, it never carries lubricant against the flow, where the unlimited form can drive the film
-fraction negative; docs/deterministic_solver.md)."""
+"""Couette (shear) flux of the mass rows: minmod-limited linear upwind (the default since det-2026.11-3: second order
+where the content is smooth; at a content jump, such as a film closing on a contact, it never carries lubricant
+against the flow), linear upwind (unlimited; the scheme of det-2026.11-2, which can drive the film fraction
+negative at such jumps), or first-order upwind; docs/deterministic_solver.md."""
 from ..model.contact import ContactCase
 from ..model.effects import Effects
 from ..model.lubricant import LubricantState
@@ -53,7 +53,7 @@ from .result import ContactResult
 from .steady import ContactScales, dowson_higginson_lambda, moes_h_c, solve_steady
 from .time_average import time_mean
 
-MODEL_VERSION = "det-2026.11-2"
+MODEL_VERSION = "det-2026.11-3"
 """Version of the deterministic model's numerics (recorded with its results; bump with any change that can alter a
 solved value). :data:`ehl_dataset.solver.SOLVER_VERSION` covers the whole solver."""
 BOUNDARY_FILM_M = 5e-9
@@ -97,7 +97,7 @@ class DeterministicOptions:
     max_passes: float = 12.0
     mu_sem_target: float = 0.015
     face_mean: str = "harmonic"
-    couette_flux: str = "linear"
+    couette_flux: str = "minmod"
     band: int = 12
     newton_tolerance: float = 1e-10
     newton_iterations: int = 25
@@ -172,7 +172,7 @@ class MixedProblem:
 
     def __init__(self, x: np.ndarray, scales: ContactScales, state: LubricantState, h_b: float, p_yield: float,
                  compressible: bool = True, face_mean: str = "harmonic", band: int = 12,
-                 couette_flux: str = "linear"):
+                 couette_flux: str = "minmod"):
         self.x = np.ascontiguousarray(x, dtype=float)
         self.n = n = self.x.size
         self.dx = float(self.x[1] - self.x[0])

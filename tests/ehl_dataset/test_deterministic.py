@@ -140,8 +140,9 @@ def _short_rough_run(**overrides):
 
 def test_mass_and_load_are_balanced_at_every_step():
     """Σ over all cells of (flux in − flux out − storage change) and ∫p dx − W' stay ≤ 1e-10 (relative) at every
-    time step of a rough run (issue 14, conservation)."""
-    result = _short_rough_run()
+    time step of a rough run (issue 14, conservation); the averaging target is out of reach, so the run goes on to
+    its cap of 0.6 passes."""
+    result = _short_rough_run(mu_sem_target=1e-9)
     assert result.converged, result.message
     assert result.extra["n_steps"] > 50
     assert result.residuals["max_mass_error"] <= 1e-10
