@@ -60,6 +60,22 @@ def hex8_stiffness(coords, E, nu):
     return ke
 
 
+def hex_connectivity(idx):
+    """Node numbers (E, 8) of the hexahedra of a structured block whose node numbers are ``idx`` (n_r, n_t, n_z)."""
+    a = idx[:-1, :-1, :-1]; b_ = idx[1:, :-1, :-1]; c = idx[1:, 1:, :-1]; d = idx[:-1, 1:, :-1]
+    return np.stack([a, b_, c, d, a + 1, b_ + 1, c + 1, d + 1], axis=-1).reshape(-1, 8)
+
+
+def global_stiffness(nodes, conn, E, nu):
+    """Sparse global stiffness matrix (3 dof per node) of the hexahedra ``conn`` on ``nodes`` [m], E [Pa]."""
+    ke = hex8_stiffness(nodes[conn], E, nu)
+    dofs = (3 * conn[:, :, None] + np.arange(3)).reshape(-1, 24)
+    rows = np.repeat(dofs, 24, axis=1).ravel()
+    cols = np.tile(dofs, (1, 24)).ravel()
+    n = nodes.shape[0] * 3
+    return sp.csr_matrix((ke.ravel(), (rows, cols)), shape=(n, n))
+
+
 class ToothFE:
     """One tooth of ``gear`` (1 or 2) of ``pair`` as a straight extrusion of its transverse section, SI units: the
     involute flank above the base circle, constant thickness between root and base circle (as the slice model), a
@@ -106,14 +122,8 @@ class ToothFE:
         nr, nt, nz = len(rs), len(ts), len(zs)
         idx = np.arange(nr * nt * nz).reshape(nr, nt, nz)
         self.idx = idx
-        a = idx[:-1, :-1, :-1]; b_ = idx[1:, :-1, :-1]; c = idx[1:, 1:, :-1]; d = idx[:-1, 1:, :-1]
-        conn = np.stack([a, b_, c, d, a + 1, b_ + 1, c + 1, d + 1], axis=-1).reshape(-1, 8)
-        ke = hex8_stiffness(nodes[conn], E, nu)
-        dofs = (3 * conn[:, :, None] + np.arange(3)).reshape(-1, 24)
-        rows = np.repeat(dofs, 24, axis=1).ravel()
-        cols = np.tile(dofs, (1, 24)).ravel()
+        K = global_stiffness(nodes, hex_connectivity(idx), E, nu)
         n = nodes.shape[0] * 3
-        K = sp.csr_matrix((ke.ravel(), (rows, cols)), shape=(n, n))
         fixed = np.zeros(n, bool)
         bottom = idx[0].ravel()
         if fix_sides:
@@ -217,17 +227,9 @@ class ToothBodyFE(ToothFE):
         tooth_idx[1:] = body_idx.size + np.arange(tooth_nodes.shape[0]).reshape(len(self.rs) - 1, nt_nodes, nzn)
         nodes = np.concatenate([body_nodes, tooth_nodes])
         self.idx = tooth_idx
-        conns = []
-        for idx in (body_idx, tooth_idx):
-            a = idx[:-1, :-1, :-1]; b_ = idx[1:, :-1, :-1]; c = idx[1:, 1:, :-1]; d = idx[:-1, 1:, :-1]
-            conns.append(np.stack([a, b_, c, d, a + 1, b_ + 1, c + 1, d + 1], axis=-1).reshape(-1, 8))
-        conn = np.concatenate(conns)
-        ke = hex8_stiffness(nodes[conn], E, nu)
-        dofs = (3 * conn[:, :, None] + np.arange(3)).reshape(-1, 24)
-        rows = np.repeat(dofs, 24, axis=1).ravel()
-        cols = np.tile(dofs, (1, 24)).ravel()
+        conn = np.concatenate([hex_connectivity(body_idx), hex_connectivity(tooth_idx)])
+        K = global_stiffness(nodes, conn, E, nu)
         n = nodes.shape[0] * 3
-        K = sp.csr_matrix((ke.ravel(), (rows, cols)), shape=(n, n))
         fixed = np.zeros(n, bool)
         clamped = np.concatenate([body_idx[0].ravel(), body_idx[:, 0].ravel(), body_idx[:, -1].ravel()])
         for k in range(3):
