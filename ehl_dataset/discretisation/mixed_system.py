@@ -44,10 +44,15 @@ import numpy as np
 
 OFFSETS = 5
 """Node offsets −2 … 2 of the local band of the Jacobian."""
-FACE_MEANS = {"harmonic": 1, "arithmetic": 0, "logarithmic": 2}
+FACE_MEANS = {"harmonic": 1, "arithmetic": 0, "logarithmic": 2, "kirchhoff": 3}
 """Face conductance ε_{i+½} from the nodal values: harmonic (series resistances: exact for 1-D flow through a
-varying film at constant viscosity; the default), arithmetic, or logarithmic (exact for an exponentially varying
-conductance at constant film)."""
+varying film at constant viscosity), arithmetic, logarithmic (exact for an exponentially varying conductance at
+constant film), or kirchhoff: ε = A·H³ split into the film factor H³ and the fluid factor A = ρ̄ cosh(τ_m/τ0)/(η̄ λ̄),
+the face value the logarithmic mean of A times the harmonic mean of H³. Between two nodes at the same film, the
+flux of a conductance that varies exponentially with pressure is the Kirchhoff integral (1/Δ)∫ε dP, which the
+logarithmic mean of A gives exactly and which grows monotonically with the pressure difference; the harmonic mean
+of such a conductance gives a flux 2ε_a ΔP e^{−kΔP}/(1 + e^{−kΔP}) that falls again beyond ΔP = 1/k, a spurious
+maximum at which the Newton matrix is singular (docs/deterministic_solver.md, "Robustness")."""
 
 
 @numba.njit(cache=True)
@@ -78,12 +83,32 @@ def _face(ea, eb, mean):
 
 
 @numba.njit(cache=True)
+def _face_partials(k, eps, eps_p, eps_h, cube, cube_h, mean):
+    """ε at face k + ½ and its partials (∂/∂P_f,k, ∂/∂H_k, ∂/∂P_f,k+1, ∂/∂H_k+1); ``cube`` H³ per node and
+    ``cube_h`` its derivative (for the kirchhoff mean)."""
+    if mean == 3:
+        fa = eps[k] / cube[k]
+        fb = eps[k + 1] / cube[k + 1]
+        lm, la, lb = _face(fa, fb, 2)
+        hm, ha, hb = _face(cube[k], cube[k + 1], 1)
+        fa_p = eps_p[k] / cube[k]
+        fb_p = eps_p[k + 1] / cube[k + 1]
+        fa_h = (eps_h[k] - fa * cube_h[k]) / cube[k]
+        fb_h = (eps_h[k + 1] - fb * cube_h[k + 1]) / cube[k + 1]
+        return (lm * hm, la * fa_p * hm, la * fa_h * hm + lm * ha * cube_h[k], lb * fb_p * hm,
+                lb * fb_h * hm + lm * hb * cube_h[k + 1])
+    ef, wa, wb = _face(eps[k], eps[k + 1], mean)
+    return ef, wa * eps_p[k], wa * eps_h[k], wb * eps_p[k + 1], wb * eps_h[k + 1]
+
+
+@numba.njit(cache=True)
 def assemble(dx, pf, th, pc, h, eps, eps_p, eps_h, rho, rho_p, h_b, kappa, p_yield, stor_coef, stor_old, mean,
-             order):
+             order, cube, cube_h):
     """Residual (3N) and band Jacobians (A, D) of the node equations; the load row is the caller's.
 
     Per node: ``pf``, ``th``, ``pc``, ``h`` the state; ``eps``, ``eps_p``, ``eps_h`` ε and its partials in P_f and H;
-    ``rho``, ``rho_p`` ρ̄ and ∂ρ̄/∂P_f; ``stor_coef``, ``stor_old`` the time-derivative terms (module docstring).
+    ``rho``, ``rho_p`` ρ̄ and ∂ρ̄/∂P_f; ``cube``, ``cube_h`` the film factor H³ of ε and its derivative in H;
+    ``stor_coef``, ``stor_old`` the time-derivative terms (module docstring).
     Scalars: ``h_b`` H_b, ``kappa`` κ, ``p_yield`` P_Y (inf: elastic), ``mean`` the face mean code
     (:data:`FACE_MEANS`), ``order`` of the Couette flux: 1 linear upwind (second order), 0 first-order upwind, 2
     minmod-limited linear upwind (second order where smooth, never against the flow at a content jump).
@@ -98,7 +123,7 @@ def assemble(dx, pf, th, pc, h, eps, eps_p, eps_h, rho, rho_p, h_b, kappa, p_yie
     m_t = rho * hm
     m_h = np.where(h > h_b, rho * th, 0.0)
     for k in range(n - 1):
-        ef, wa, wb = _face(eps[k], eps[k + 1], mean)
+        ef, ef_pk, ef_hk, ef_pk1, ef_hk1 = _face_partials(k, eps, eps_p, eps_h, cube, cube_h, mean)
         grad = (pf[k + 1] - pf[k]) / dx
         c = 0.5 * order if k >= 1 else 0.0
         m_km1 = m[k - 1] if k >= 1 else 0.0
@@ -118,12 +143,12 @@ def assemble(dx, pf, th, pc, h, eps, eps_p, eps_h, rho, rho_p, h_b, kappa, p_yie
                         cd = 0.5
         m_kp1 = m[k + 1]
         q = ef * grad - (m[k] + c * (m[k] - m_km1) + cd * (m_kp1 - m[k]))
-        q_pf_k = wa * eps_p[k] * grad - ef / dx - (1.0 + c - cd) * m_p[k]
+        q_pf_k = ef_pk * grad - ef / dx - (1.0 + c - cd) * m_p[k]
         q_th_k = -(1.0 + c - cd) * m_t[k]
-        q_h_k = wa * eps_h[k] * grad - (1.0 + c - cd) * m_h[k]
-        q_pf_k1 = wb * eps_p[k + 1] * grad + ef / dx - cd * m_p[k + 1]
+        q_h_k = ef_hk * grad - (1.0 + c - cd) * m_h[k]
+        q_pf_k1 = ef_pk1 * grad + ef / dx - cd * m_p[k + 1]
         q_th_k1 = -cd * m_t[k + 1]
-        q_h_k1 = wb * eps_h[k + 1] * grad - cd * m_h[k + 1]
+        q_h_k1 = ef_hk1 * grad - cd * m_h[k + 1]
         for side in range(2):
             node = k if side == 0 else k + 1
             if node < 1:

@@ -53,7 +53,7 @@ from .result import ContactResult
 from .steady import ContactScales, dowson_higginson_lambda, moes_h_c, solve_steady
 from .time_average import time_mean
 
-MODEL_VERSION = "det-2026.11-3"
+MODEL_VERSION = "det-2026.11-4"
 """Version of the deterministic model's numerics (recorded with its results; bump with any change that can alter a
 solved value). :data:`ehl_dataset.solver.SOLVER_VERSION` covers the whole solver."""
 BOUNDARY_FILM_M = 5e-9
@@ -100,7 +100,7 @@ class DeterministicOptions:
     couette_flux: str = "minmod"
     band: int = 12
     newton_tolerance: float = 1e-10
-    newton_iterations: int = 25
+    newton_iterations: int = 50
     max_substeps: int = 32
     max_nodes: int = 20000
     clock: Callable[[], float] = field(default=time.perf_counter, compare=False)
@@ -146,6 +146,9 @@ def asperity_radius(profile: RoughnessProfile, rq1: float, rq2: float) -> float:
     curvature = np.diff(z, 2) / profile.spacing**2
     return 1.0 / math.sqrt(float(np.mean(curvature**2)))
 
+
+FILM_FLOOR = 1e-3
+"""The conductance ε reads films below FILM_FLOOR·H_b (interfering asperities) as that floor."""
 
 INLET_RESOLUTION = 0.1
 """Largest spacing relative to the inlet length scale a·H_c^(2/3) of the smooth EHL solution (H_c = h_c r/a²,
@@ -231,7 +234,7 @@ class MixedProblem:
         else:
             rho = np.ones_like(pf)
             rho_p = np.zeros_like(pf)
-        floor = 1e-3 * self.h_b
+        floor = FILM_FLOOR * self.h_b
         hp = np.maximum(h, floor)
         inv_eta2 = np.exp(-2.0 * phi)
         shear2 = (self.shear / hp) ** 2
@@ -265,9 +268,13 @@ class MixedProblem:
         pf, th, pc, h0 = self.unpack(z)
         h = h0 + gap + self.deflection(pf + pc)
         eps, eps_p, eps_h, rho, rho_p = self.fluid(pf, h)
+        floor = FILM_FLOOR * self.h_b  # the film factor H³ of ε, as in fluid()
+        hp = np.maximum(h, floor)
+        cube, cube_h = hp**3, np.where(h > floor, 3.0 * hp**2, 0.0)
         res, jac, dfilm = assemble(self.dx, np.ascontiguousarray(pf), np.ascontiguousarray(th),
                                    np.ascontiguousarray(pc), h, eps, eps_p, eps_h, rho, rho_p, self.h_b, self.kappa,
-                                   self.p_yield, storage[0], storage[1], self.mean, self.order)
+                                   self.p_yield, storage[0], storage[1], self.mean, self.order,
+                                   cube, cube_h)
         out = np.empty(3 * self.n + 1)
         out[:-1] = res
         out[-1] = float(self.weights @ (pf + pc)) - 0.5 * math.pi
@@ -324,7 +331,7 @@ class MixedProblem:
             merit = float(scaled @ scaled)
             accepted = False
             for attempt in range(25):
-                if attempt == 4 and forcing > 1e-6:  # slow descent: an accurate direction with a fresh LU
+                if attempt == 1 and forcing > 1e-6:  # a rejected step: an accurate direction with a fresh LU
                     self.preconditioner = None
                     forcing = 1e-6
                     step, _ = self._direction(jac, dfilm, scaled, scale, forcing)
@@ -496,19 +503,51 @@ def _settle(problem: MixedProblem, z, gap, options: DeterministicOptions, passes
     return s["z"], False, norm
 
 
+MAX_STEP_RATIO = 2.0
+"""Largest ratio ΔT_n/ΔT_{n−1} of consecutive BDF2 steps. Variable-step BDF2 is zero-stable only for ratios below
+1 + √2 ≈ 2.41 (Grigorieff 1983); at a ratio of 16, as after a time step split into sub-steps, its history term
+amplifies the content differences of the sub-steps sixteen-fold and Newton cannot converge
+(docs/deterministic_solver.md, "Robustness")."""
+
+
+def substep_sizes(d_t: float, parts: int, dt_prev: float | None, growth: float = MAX_STEP_RATIO) -> list[float]:
+    """Sub-steps covering ``d_t``: none longer than ``d_t``/``parts``, each at most ``growth`` × the one before
+    (the first relative to ``dt_prev``), the last merged with a remainder that would be shorter than a quarter of
+    it as long as the merged step keeps that ratio. Sums to ``d_t``."""
+    sizes: list[float] = []
+    target = d_t / parts
+    previous = dt_prev if dt_prev else math.inf
+    remaining = d_t
+    while remaining > 1e-12 * d_t:
+        size = min(target, growth * previous, remaining)
+        rest = remaining - size
+        if rest < 0.25 * size and remaining <= growth * previous:
+            size = remaining
+        elif 0.0 < rest < 1e-9 * d_t:
+            size = remaining
+        sizes.append(size)
+        remaining -= size
+        previous = size
+    sizes[-1] += remaining
+    return sizes
+
+
 def _advance(problem: MixedProblem, s: dict, gap_at, t: float, d_t: float, options: DeterministicOptions):
-    """One time step from t to t + d_t, split into 2, 4, … sub-steps while Newton fails. Updates ``s``; returns
-    (z, h, gap, sub-steps) or None."""
+    """One time step from t to t + d_t in sub-steps (:func:`substep_sizes`: after a split step the steps grow back
+    by at most :data:`MAX_STEP_RATIO`), split into 2, 4, … parts while Newton fails. Updates ``s``; returns
+    (z, h, gap, number of sub-steps) or None."""
     parts = 1
     while parts <= options.max_substeps:
         saved = dict(s)
         ok = True
-        for j in range(parts):
-            step = d_t / parts
-            gap = gap_at(t + (j + 1) * step)
+        sizes = substep_sizes(d_t, parts, s["dt_prev"])
+        elapsed = 0.0
+        for j, step in enumerate(sizes):
+            elapsed = d_t if j == len(sizes) - 1 else elapsed + step
+            gap = gap_at(t + elapsed)
             ratio = step / s["dt_prev"] if s["dt_prev"] else 0.0
             storage = problem.storage(step, ratio, s["m"], s["m_prev"])
-            guess = s["z"]
+            guesses = [s["z"]]
             if s["z_prev"] is not None and ratio:
                 extrapolated = s["z"] + ratio * (s["z"] - s["z_prev"])
                 extrapolated[0:-1:3] = np.maximum(extrapolated[0:-1:3], 0.0)
@@ -516,10 +555,14 @@ def _advance(problem: MixedProblem, s: dict, gap_at, t: float, d_t: float, optio
                 extrapolated[2:-1:3] = np.maximum(extrapolated[2:-1:3], 0.0)
                 scale = problem.row_scale()
                 if (np.max(np.abs(problem.evaluate(extrapolated, gap, storage)[0] * scale))
-                        < np.max(np.abs(problem.evaluate(guess, gap, storage)[0] * scale))):
-                    guess = extrapolated
-            z, converged, _, _ = problem.newton(guess, gap, storage, options.newton_tolerance,
-                                                options.newton_iterations)
+                        < np.max(np.abs(problem.evaluate(s["z"], gap, storage)[0] * scale))):
+                    guesses.insert(0, extrapolated)
+            for guess in guesses:  # the extrapolation can predict a wrong contact set: then the last state
+                z, converged, _, _ = problem.newton(guess, gap, storage, options.newton_tolerance,
+                                                    options.newton_iterations)
+                if converged:
+                    break
+                problem.preconditioner = None
             if not converged:
                 ok = False
                 break
@@ -529,7 +572,7 @@ def _advance(problem: MixedProblem, s: dict, gap_at, t: float, d_t: float, optio
             s["dt_prev"] = step
             s["last_storage"] = storage
         if ok:
-            return s["z"], h, gap, parts
+            return s["z"], h, gap, len(sizes)
         s.clear()
         s.update(saved)
         problem.preconditioner = None

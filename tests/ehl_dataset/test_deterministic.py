@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 
 from ehl_dataset.discretisation.deflection import inverse_kernel_band, uniform_kernel, deflection_fft
+from ehl_dataset.discretisation.mixed_system import FACE_MEANS, _face_partials
 from ehl_dataset.model.contact import ContactCase
 from ehl_dataset.model.effects import Effects
 from ehl_dataset.model.lubricant import load_lubricant
@@ -23,13 +24,13 @@ from ehl_dataset.validation import InputError
 ATF = load_lubricant("atf")
 
 
-def _problem(n=61, p_yield=3.0, couette_flux="linear"):
+def _problem(n=61, p_yield=3.0, couette_flux="linear", face_mean="harmonic"):
     case = ContactCase.from_engineering(1.0, 10, 5, 0.3, 90)
     state = ATF.state(case.temperature)
     scales = ContactScales.of(case, state)
     x = np.linspace(-2.5, 1.5, n)
     problem = MixedProblem(x, scales, state, h_b=5e-9 / scales.film_scale, p_yield=p_yield, band=6,
-                           couette_flux=couette_flux)
+                           couette_flux=couette_flux, face_mean=face_mean)
     return problem, x
 
 
@@ -46,12 +47,13 @@ def _mixed_state(problem, x):
     return problem.pack(pf, th, pc, -0.3)
 
 
-@pytest.mark.parametrize("couette_flux", ["linear", "minmod"])
-def test_newton_matrix_is_the_derivative_of_the_residual(couette_flux):
+@pytest.mark.parametrize("couette_flux, face_mean", [("linear", "harmonic"), ("minmod", "harmonic"),
+                                                      ("minmod", "kirchhoff"), ("minmod", "logarithmic")])
+def test_newton_matrix_is_the_derivative_of_the_residual(couette_flux, face_mean):
     """J·v (band arrays plus the FFT deflection product) equals a central difference of the residual, for a state
     with every kind of node and a BDF2 time term, on the mass rows whose stencil is pressurised (at P_f = 0 the
     viscosity law and the complementarity functions have kinks that a difference straddles)."""
-    problem, x = _problem(couette_flux=couette_flux)
+    problem, x = _problem(couette_flux=couette_flux, face_mean=face_mean)
     z = _mixed_state(problem, x)
     gap = 0.5 * x**2 - 0.02 * np.sin(40 * x)
     m_old = np.full(x.size, 0.01)
@@ -69,6 +71,26 @@ def test_newton_matrix_is_the_derivative_of_the_residual(couette_flux):
     contact = 3 * np.arange(x.size) + 2  # the contact rows: smooth away from their kinks
     assert np.allclose(jv[contact], fd[contact], rtol=1e-5, atol=1e-6 * np.max(np.abs(fd[contact])))
     assert abs(jv[-1] - fd[-1]) <= 1e-6 * abs(fd[-1])  # linear row: round-off of the difference only
+
+
+def test_kirchhoff_face_flux_is_the_exact_integral_and_grows_with_the_pressure_difference():
+    """Two nodes at the same film, conductance ε = A(P)·H³ with A = e^{−kP} (an exponential pressure-viscosity law):
+    the steady 1-D flux between them is the Kirchhoff integral ∫ε dP = H³ (A_a − A_b)/k, which the kirchhoff face
+    gives exactly and which grows monotonically with ΔP; the harmonic face's flux has a spurious maximum at
+    kΔP ≈ 1.28 (d/dΔP of 2ΔP e^{−kΔP}/(1 + e^{−kΔP}) vanishes) and then falls, where its Newton matrix is singular."""
+    k, film = 20.0, 0.3
+    cube = np.full(2, film**3)
+    zero = np.zeros(2)
+    flux = {"kirchhoff": [], "harmonic": []}
+    for dp in np.linspace(0.005, 0.5, 100):
+        eps = np.exp(-k * np.array([0.0, dp])) * cube
+        for name in flux:
+            ef = _face_partials(0, eps, zero, zero, cube, zero, FACE_MEANS[name])[0]
+            flux[name].append(ef * dp)
+        assert flux["kirchhoff"][-1] == pytest.approx(film**3 * (1.0 - math.exp(-k * dp)) / k, rel=1e-12)
+    assert np.all(np.diff(flux["kirchhoff"]) > 0.0)
+    peak = int(np.argmax(flux["harmonic"]))
+    assert 0 < peak < 99 and k * np.linspace(0.005, 0.5, 100)[peak] == pytest.approx(1.28, abs=0.05)
 
 
 def test_plastically_interfering_asperities_hold_the_boundary_film_not_a_negative_volume():
