@@ -15,8 +15,8 @@ from ehl_dataset.model.contact import ContactCase
 from ehl_dataset.model.effects import Effects
 from ehl_dataset.model.lubricant import load_lubricant
 from ehl_dataset.solver import solve_contact
-from ehl_dataset.solvers.deterministic import (DeterministicOptions, MixedProblem, deterministic_options,
-                                               solve_deterministic)
+from ehl_dataset.solvers.deterministic import (MAX_STEP_RATIO, DeterministicOptions, MixedProblem,
+                                               deterministic_options, solve_deterministic, substep_sizes)
 from ehl_dataset.solvers.krylov import BandedPreconditioner, gmres
 from ehl_dataset.solvers.steady import ContactScales
 from ehl_dataset.validation import InputError
@@ -91,6 +91,18 @@ def test_kirchhoff_face_flux_is_the_exact_integral_and_grows_with_the_pressure_d
     assert np.all(np.diff(flux["kirchhoff"]) > 0.0)
     peak = int(np.argmax(flux["harmonic"]))
     assert 0 < peak < 99 and k * np.linspace(0.005, 0.5, 100)[peak] == pytest.approx(1.28, abs=0.05)
+
+
+@pytest.mark.parametrize("parts, dt_prev", [(1, None), (1, 1 / 16), (2, 1 / 16), (4, 1 / 32), (1, 0.3), (8, 1.0)])
+def test_substeps_cover_the_step_and_never_grow_faster_than_bdf2_stays_stable(parts, dt_prev):
+    """Variable-step BDF2 is zero-stable for step ratios below 1 + √2 (Grigorieff 1983): after a split step the
+    sub-steps grow back by at most MAX_STEP_RATIO, sum to the step, and none is much longer than step/parts."""
+    sizes = substep_sizes(1.0, parts, dt_prev)
+    assert sum(sizes) == pytest.approx(1.0, abs=1e-14)
+    previous = [dt_prev or math.inf] + sizes[:-1]
+    assert all(s <= MAX_STEP_RATIO * p * (1 + 1e-12) for s, p in zip(sizes, previous))
+    assert MAX_STEP_RATIO < 1.0 + math.sqrt(2.0)
+    assert max(sizes) <= 1.25 / parts + 1e-12
 
 
 def test_plastically_interfering_asperities_hold_the_boundary_film_not_a_negative_volume():
