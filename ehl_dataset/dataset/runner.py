@@ -53,6 +53,7 @@ from threadpoolctl import threadpool_limits
 
 from ..model.contact import ContactCase
 from ..model.lubricant import Lubricant, load_lubricant, lubricant_from_dict
+from ..solvers.deterministic import MODEL_VERSION as DETERMINISTIC_MODEL_VERSION
 from ..solvers.levels import get_level
 from ..solvers.planner import plan_effects
 from ..validation import InputError, check_time_limit as check_positive_seconds
@@ -202,7 +203,8 @@ def compute_point(task: PointTask) -> dict[str, Any]:
 # ---------------------------------------------------------------------------------------------------------------
 def solver_config(solver: str | Callable, level: str, effects: str, model: str = DEFAULT_MODEL) -> dict[str, Any]:
     """What identifies the computation of a point: function, its version, level (and its definition), effects and
-    contact model (:func:`check_model`).
+    contact model (:func:`check_model`); with the deterministic model also its model version, so that a file is
+    never resumed under other deterministic numerics.
 
     The version is the function's ``solver_version`` attribute, else its module's ``SOLVER_VERSION`` or
     ``__version__``, else ``gearloss <package version>``. The level definition comes from
@@ -214,7 +216,7 @@ def solver_config(solver: str | Callable, level: str, effects: str, model: str =
     module = sys.modules.get(getattr(fn, "__module__", ""), None)
     version = (getattr(fn, "solver_version", None) or getattr(module, "SOLVER_VERSION", None)
                or getattr(module, "__version__", None) or f"gearloss {package_version()}")
-    return {
+    config = {
         "function": solver_reference(solver),
         "version": str(version),
         "level": level,
@@ -222,6 +224,9 @@ def solver_config(solver: str | Callable, level: str, effects: str, model: str =
         "effects": effects,
         "model": check_model(model, solver),
     }
+    if config["model"] == "deterministic":  # its numerics are versioned on their own (docs/deterministic_solver.md)
+        config["model_version"] = DETERMINISTIC_MODEL_VERSION
+    return config
 
 
 def recorded_model(recorded_solver: dict) -> str:

@@ -245,3 +245,19 @@ def test_files_without_the_later_warnings_column_are_read_and_resumed(tmp_path, 
         store.record(1, status=OK, record=record_of(1), warnings="RuntimeWarning x1 (a.py:1)")
     table = read_table(path)
     assert list(table["point"]) == [1] and table["warnings"][0] == "" and table["mu"][0] == record_of(1)["mu"]
+
+
+def test_a_deterministic_file_is_not_resumed_under_other_deterministic_numerics(tmp_path, plan, lubricant):
+    """The deterministic model's numerics carry their own version (det-YYYY.MM-n); the solver configuration of a
+    deterministic run records it, and a file made under another one is refused rather than mixed."""
+    from ehl_dataset.dataset.runner import solver_config
+    from ehl_dataset.solvers.deterministic import MODEL_VERSION
+
+    config = solver_config("ehl_dataset.solver:solve_contact", "fast", "auto", model="deterministic")
+    assert config["model_version"] == MODEL_VERSION
+    assert "model_version" not in solver_config("ehl_dataset.solver:solve_contact", "fast", "auto")
+    path = tmp_path / "det.h5"
+    make_store(path, plan, lubricant, **{**config, "model_version": "det-2026.11-1"}).close()
+    with DatasetStore.open(path, "r+") as store:
+        with pytest.raises(InputError, match=r"solver\.model_version.*det-2026\.11-1"):
+            store.check_compatible(solver=config)
