@@ -55,7 +55,7 @@ def run(name: str, spacings: list[int], passes: float) -> dict:
             "h_min_m": result.h_min, "h_min_local_m": e["h_min_local_m"], "wall_time_s": time.time() - start,
             "newton_iterations": e["newton_iterations"], "gmres_iterations": e["gmres_iterations"],
             "substep_steps": e["substep_steps"], "max_mass_error": result.residuals["max_mass_error"],
-            "message": result.message}
+            "round_off_stops": e.get("round_off_stops"), "message": result.message}
         path.write_text(json.dumps(record, indent=1))
         print(name, f"beta/{n}", record["runs"][str(n)], flush=True)
     keys = sorted(record["runs"], key=int)

@@ -53,7 +53,7 @@ from .result import ContactResult
 from .steady import ContactScales, dowson_higginson_lambda, moes_h_c, solve_steady
 from .time_average import time_mean
 
-MODEL_VERSION = "det-2026.11-4"
+MODEL_VERSION = "det-2026.11-5"
 """Version of the deterministic model's numerics (recorded with its results; bump with any change that can alter a
 solved value). :data:`ehl_dataset.solver.SOLVER_VERSION` covers the whole solver."""
 BOUNDARY_FILM_M = 5e-9
@@ -96,7 +96,7 @@ class DeterministicOptions:
     min_average_passes: float = 1.5
     max_passes: float = 12.0
     mu_sem_target: float = 0.015
-    face_mean: str = "harmonic"
+    face_mean: str = "kirchhoff"
     couette_flux: str = "minmod"
     band: int = 12
     newton_tolerance: float = 1e-10
@@ -147,6 +147,14 @@ def asperity_radius(profile: RoughnessProfile, rq1: float, rq2: float) -> float:
     return 1.0 / math.sqrt(float(np.mean(curvature**2)))
 
 
+ROUND_OFF_MARGIN = 100.0
+ROUND_OFF_STEP = 1e-12
+"""A Newton solve also ends when its scaled residual is within ROUND_OFF_MARGIN × the tolerance and no unknown
+would change by more than ROUND_OFF_STEP (dimensionless; P_f, P_c in p_h, θ, H0 in a²/r): the attainable balance of
+a mass row is ≈ (ε/Δ)·1e-16·max P_f, which at the flooded inlet of a heavily loaded contact (thick film, low
+viscosity, large conductance ε, reference flux ρ̄H of the thin central film) is ≈ 1e-10 (docs/deterministic_solver.md,
+"Robustness")."""
+
 FILM_FLOOR = 1e-3
 """The conductance ε reads films below FILM_FLOOR·H_b (interfering asperities) as that floor."""
 
@@ -174,7 +182,7 @@ class MixedProblem:
     [a], with the film H = H0 + gap + K(P_f + P_c) computed by FFT, and their Newton–Krylov solution."""
 
     def __init__(self, x: np.ndarray, scales: ContactScales, state: LubricantState, h_b: float, p_yield: float,
-                 compressible: bool = True, face_mean: str = "harmonic", band: int = 12,
+                 compressible: bool = True, face_mean: str = "kirchhoff", band: int = 12,
                  couette_flux: str = "minmod"):
         self.x = np.ascontiguousarray(x, dtype=float)
         self.n = n = self.x.size
@@ -201,7 +209,7 @@ class MixedProblem:
         self.binv = inverse_kernel_band(band, self.dx)
         self.m_ref = 1.0
         self.preconditioner = None
-        self.cost = {"newton_iterations": 0, "gmres_iterations": 0, "factorisations": 0}
+        self.cost = {"newton_iterations": 0, "gmres_iterations": 0, "factorisations": 0, "round_off_stops": 0}
 
     # -- state --------------------------------------------------------------------------------------------------
     def pack(self, pf, th, pc, h0) -> np.ndarray:
@@ -312,7 +320,10 @@ class MixedProblem:
     def newton(self, z, gap, storage, tol: float, max_iterations: int, max_pressure_step: float = 2.0):
         """Semismooth Newton from ``z`` with an Armijo line search on ½‖S F‖²; inexact linear solves with the
         Eisenstat–Walker-type forcing term min(0.1, ‖S F‖∞). Converged when every scaled row and the sum of the mass
-        rows (the global lubricant balance) are ≤ ``tol``. Returns (z, converged, iterations, that norm)."""
+        rows (the global lubricant balance) are ≤ ``tol``, or, at the round-off floor, when that norm is ≤
+        :data:`ROUND_OFF_MARGIN`·``tol`` and the Newton correction is below :data:`ROUND_OFF_STEP` in every unknown
+        (counted in ``cost["round_off_stops"]``; the balance reached is recorded per step as ever). Returns (z,
+        converged, iterations, that norm)."""
         scale = self.row_scale()
         res, h, jac, dfilm = self.evaluate(z, gap, storage)
         for iteration in range(max_iterations):
@@ -326,6 +337,10 @@ class MixedProblem:
                 return z, False, iteration, norm
             forcing = min(0.1, max(norm, 1e-3 * tol / norm))
             step, _ = self._direction(jac, dfilm, scaled, scale, forcing)
+            if norm <= ROUND_OFF_MARGIN * tol and float(np.max(np.abs(step))) <= ROUND_OFF_STEP:
+                self.last_residual = res  # at the round-off floor: no representable correction is left
+                self.cost["round_off_stops"] += 1
+                return z, True, iteration, norm
             largest = max(float(np.max(np.abs(step[0:-1:3]))), float(np.max(np.abs(step[2:-1:3]))), 1e-300)
             omega = min(1.0, max_pressure_step / largest)
             merit = float(scaled @ scaled)
