@@ -53,7 +53,7 @@ from .result import ContactResult
 from .steady import ContactScales, dowson_higginson_lambda, moes_h_c, solve_steady
 from .time_average import time_mean
 
-MODEL_VERSION = "det-2026.11-5"
+MODEL_VERSION = "det-2026.11-6"
 """Version of the deterministic model's numerics (recorded with its results; bump with any change that can alter a
 solved value). :data:`ehl_dataset.solver.SOLVER_VERSION` covers the whole solver."""
 BOUNDARY_FILM_M = 5e-9
@@ -149,11 +149,11 @@ def asperity_radius(profile: RoughnessProfile, rq1: float, rq2: float) -> float:
 
 ROUND_OFF_MARGIN = 100.0
 ROUND_OFF_STEP = 1e-12
-"""A Newton solve also ends when its scaled residual is within ROUND_OFF_MARGIN × the tolerance and no unknown
-would change by more than ROUND_OFF_STEP (dimensionless; P_f, P_c in p_h, θ, H0 in a²/r): the attainable balance of
-a mass row is ≈ (ε/Δ)·1e-16·max P_f, which at the flooded inlet of a heavily loaded contact (thick film, low
-viscosity, large conductance ε, reference flux ρ̄H of the thin central film) is ≈ 1e-10 (docs/deterministic_solver.md,
-"Robustness")."""
+"""A Newton solve also ends when its scaled residual is within ROUND_OFF_MARGIN × the tolerance and it has
+stalled (no pressure would change by more than ROUND_OFF_STEP p_h, or no decrease; MixedProblem.newton): the
+attainable balance of a mass row is ≈ (ε/Δ)·1e-16·max P_f, which at the flooded inlet of a heavily loaded contact
+(thick film, low viscosity, large conductance ε, reference flux ρ̄H of the thin central film) is ≈ 1e-10
+(docs/deterministic_solver.md, "Robustness")."""
 
 FILM_FLOOR = 1e-3
 """The conductance ε reads films below FILM_FLOOR·H_b (interfering asperities) as that floor."""
@@ -321,11 +321,13 @@ class MixedProblem:
         """Semismooth Newton from ``z`` with an Armijo line search on ½‖S F‖²; inexact linear solves with the
         Eisenstat–Walker-type forcing term min(0.1, ‖S F‖∞). Converged when every scaled row and the sum of the mass
         rows (the global lubricant balance) are ≤ ``tol``, or, at the round-off floor, when that norm is ≤
-        :data:`ROUND_OFF_MARGIN`·``tol`` and the Newton correction is below :data:`ROUND_OFF_STEP` in every unknown
-        (counted in ``cost["round_off_stops"]``; the balance reached is recorded per step as ever). Returns (z,
-        converged, iterations, that norm)."""
+        :data:`ROUND_OFF_MARGIN`·``tol`` and Newton has stalled: its correction is below :data:`ROUND_OFF_STEP` in
+        every pressure, the last iteration reduced the norm by less than half, or the line search found no
+        decrease (counted in ``cost["round_off_stops"]``; the balance reached is recorded per step as ever).
+        Returns (z, converged, iterations, that norm)."""
         scale = self.row_scale()
         res, h, jac, dfilm = self.evaluate(z, gap, storage)
+        previous = math.inf
         for iteration in range(max_iterations):
             scaled = res * scale
             # every row, and the sum of the mass rows (the global lubricant balance, whose terms could add up)
@@ -335,13 +337,15 @@ class MixedProblem:
                 return z, True, iteration, norm
             if not np.isfinite(norm):
                 return z, False, iteration, norm
+            floor = norm <= ROUND_OFF_MARGIN * tol
+            if floor and norm > 0.5 * previous:  # stalled at the round-off floor
+                return self._round_off_stop(z, res, iteration, norm)
+            previous = norm
             forcing = min(0.1, max(norm, 1e-3 * tol / norm))
             step, _ = self._direction(jac, dfilm, scaled, scale, forcing)
-            if norm <= ROUND_OFF_MARGIN * tol and float(np.max(np.abs(step))) <= ROUND_OFF_STEP:
-                self.last_residual = res  # at the round-off floor: no representable correction is left
-                self.cost["round_off_stops"] += 1
-                return z, True, iteration, norm
             largest = max(float(np.max(np.abs(step[0:-1:3]))), float(np.max(np.abs(step[2:-1:3]))), 1e-300)
+            if floor and largest <= ROUND_OFF_STEP:
+                return self._round_off_stop(z, res, iteration, norm)
             omega = min(1.0, max_pressure_step / largest)
             merit = float(scaled @ scaled)
             accepted = False
@@ -362,12 +366,21 @@ class MixedProblem:
                 omega *= 0.5
             self.cost["newton_iterations"] += 1
             if not accepted:
+                if floor:
+                    return self._round_off_stop(z, res, iteration + 1, norm)
                 return z, False, iteration + 1, norm
             z, res, h, jac, dfilm = trial, res_t, h_t, jac_t, dfilm_t
         scaled = res * scale
         norm = max(float(np.max(np.abs(scaled))), abs(float(np.sum(scaled[3:-1:3]))))
+        if tol < norm <= ROUND_OFF_MARGIN * tol:
+            return self._round_off_stop(z, res, max_iterations, norm)
         self.last_residual = res
         return z, norm <= tol, max_iterations, norm
+
+    def _round_off_stop(self, z, res, iterations, norm):
+        self.last_residual = res
+        self.cost["round_off_stops"] += 1
+        return z, True, iterations, norm
 
     def mass_balance_error(self) -> float:
         """|Σ_cells (flux in − flux out − storage change)| / reference flux of the last Newton solution: the global
