@@ -2,6 +2,7 @@
 at several spacings β/n (paired runs), μ and asperity share per spacing, their steps and the observed order.
 
     python benchmarks/deterministic_convergence.py --case A --spacings 16 32 64 --passes 11
+    python benchmarks/deterministic_convergence.py --case B --spacings 16 32 --face-mean harmonic   # another face
 
 Cases are those of benchmarks/deterministic_validation.py. The window is [start-up end, end of run]; every run of a
 case uses the same layout of the roughness (it is laid out for 40 passes whatever the spacing), so the differences
@@ -31,20 +32,24 @@ from deterministic_validation import CASES, LUBRICANT, MAX_PASSES  # noqa: E402
 RESULTS = Path(__file__).resolve().parent / "results"
 
 
-def run(name: str, spacings: list[int], passes: float) -> dict:
+def run(name: str, spacings: list[int], passes: float, face_mean: str | None = None) -> dict:
     lubricant = load_lubricant(LUBRICANT)
     case = ContactCase.from_engineering(*CASES[name])
     state = lubricant.state(case.temperature)
     beta = baseline_profile().correlation_length
-    path = RESULTS / f"deterministic_convergence_{name}.json"
+    default_face = DeterministicOptions().face_mean
+    face = face_mean or default_face
+    suffix = "" if face == default_face else f"_{face}"
+    path = RESULTS / f"deterministic_convergence_{name}{suffix}.json"
     record = json.loads(path.read_text()) if path.exists() else {}
     if record.get("model_version") != MODEL_VERSION or record.get("passes") != passes:
-        record = {"case": name, "inputs": CASES[name], "model_version": MODEL_VERSION, "passes": passes, "runs": {}}
+        record = {"case": name, "inputs": CASES[name], "model_version": MODEL_VERSION, "passes": passes,
+                  "face_mean": face, "runs": {}}
     for n in spacings:
         if str(n) in record["runs"]:
             continue
         options = DeterministicOptions(dx_m=beta / n, max_passes=MAX_PASSES, mu_sem_target=1.0,
-                                       min_average_passes=passes - 1.5)
+                                       min_average_passes=passes - 1.5, face_mean=face)
         start = time.time()
         result = solve_deterministic(case, state, Effects.full(), options)
         e = result.extra
@@ -74,8 +79,10 @@ def main(argv=None) -> int:
     parser.add_argument("--case", required=True, choices=sorted(CASES))
     parser.add_argument("--spacings", type=int, nargs="+", default=[16, 32, 64])
     parser.add_argument("--passes", type=float, default=11.0, help="run length in passes (start-up 1.5 included)")
+    parser.add_argument("--face-mean", default=None, help="face conductance (default: the model's; another one "
+                        "writes deterministic_convergence_<case>_<face>.json)")
     args = parser.parse_args(argv)
-    record = run(args.case, args.spacings, args.passes)
+    record = run(args.case, args.spacings, args.passes, args.face_mean)
     print(json.dumps({k: v for k, v in record.items() if k != "runs"}, indent=1))
     return 0
 
