@@ -229,6 +229,11 @@ class MixedProblem:
         pf, _, pc, h0 = self.unpack(z)
         return h0 + gap + self.deflection(pf + pc)
 
+    def conducting_film(self, h):
+        """(film the conductance ε reads, max(H, FILM_FLOOR·H_b); that floor)."""
+        floor = FILM_FLOOR * self.h_b
+        return np.maximum(h, floor), floor
+
     def fluid(self, pf, h):
         """ε, ∂ε/∂P_f, ∂ε/∂H, ρ̄, ∂ρ̄/∂P_f at the nodes (negative iterate pressures read as 0)."""
         st = self.state
@@ -242,8 +247,7 @@ class MixedProblem:
         else:
             rho = np.ones_like(pf)
             rho_p = np.zeros_like(pf)
-        floor = FILM_FLOOR * self.h_b
-        hp = np.maximum(h, floor)
+        hp, floor = self.conducting_film(h)
         inv_eta2 = np.exp(-2.0 * phi)
         shear2 = (self.shear / hp) ** 2
         g2 = inv_eta2 + shear2
@@ -276,9 +280,8 @@ class MixedProblem:
         pf, th, pc, h0 = self.unpack(z)
         h = h0 + gap + self.deflection(pf + pc)
         eps, eps_p, eps_h, rho, rho_p = self.fluid(pf, h)
-        floor = FILM_FLOOR * self.h_b  # the film factor H³ of ε, as in fluid()
-        hp = np.maximum(h, floor)
-        cube, cube_h = hp**3, np.where(h > floor, 3.0 * hp**2, 0.0)
+        hp, floor = self.conducting_film(h)
+        cube, cube_h = hp**3, np.where(h > floor, 3.0 * hp**2, 0.0)  # the film factor H³ of ε
         res, jac, dfilm = assemble(self.dx, np.ascontiguousarray(pf), np.ascontiguousarray(th),
                                    np.ascontiguousarray(pc), h, eps, eps_p, eps_h, rho, rho_p, self.h_b, self.kappa,
                                    self.p_yield, storage[0], storage[1], self.mean, self.order,
@@ -337,14 +340,14 @@ class MixedProblem:
                 return z, True, iteration, norm
             if not np.isfinite(norm):
                 return z, False, iteration, norm
-            floor = norm <= ROUND_OFF_MARGIN * tol
-            if floor and norm > 0.5 * previous:  # stalled at the round-off floor
+            at_floor = norm <= ROUND_OFF_MARGIN * tol
+            if at_floor and norm > 0.5 * previous:  # stalled at the round-off floor
                 return self._round_off_stop(z, res, iteration, norm)
             previous = norm
             forcing = min(0.1, max(norm, 1e-3 * tol / norm))
             step, _ = self._direction(jac, dfilm, scaled, scale, forcing)
             largest = max(float(np.max(np.abs(step[0:-1:3]))), float(np.max(np.abs(step[2:-1:3]))), 1e-300)
-            if floor and largest <= ROUND_OFF_STEP:
+            if at_floor and largest <= ROUND_OFF_STEP:
                 return self._round_off_stop(z, res, iteration, norm)
             omega = min(1.0, max_pressure_step / largest)
             merit = float(scaled @ scaled)
@@ -366,7 +369,7 @@ class MixedProblem:
                 omega *= 0.5
             self.cost["newton_iterations"] += 1
             if not accepted:
-                if floor:
+                if at_floor:
                     return self._round_off_stop(z, res, iteration + 1, norm)
                 return z, False, iteration + 1, norm
             z, res, h, jac, dfilm = trial, res_t, h_t, jac_t, dfilm_t
