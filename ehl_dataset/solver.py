@@ -11,7 +11,9 @@
 Smooth cases (no roughness effect, or S_c = 0) go to the steady solver (:mod:`ehl_dataset.solvers.steady`: a smooth
 contact under constant load and speed has a steady solution, which is what a transient run would settle to, so the
 ``transient`` flag changes nothing for smooth surfaces); rough surfaces with the ``roughness`` effect go to the
-transient mixed solver (:mod:`ehl_dataset.solvers.transient`).
+transient mixed solver (:mod:`ehl_dataset.solvers.transient`). ``model="homogenised"`` asks for the steady homogenised
+mixed model (:mod:`ehl_dataset.solvers.homogenised`, a prototype not yet validated: docs/homogenised_model.md), and
+``model="deterministic"`` for the deterministic mixed reference (:mod:`ehl_dataset.solvers.deterministic`).
 
 Every dataset file records ``ehl_dataset.solver:solve_contact`` and imports it on resume, and the store compares
 :data:`SOLVER_VERSION` with the recorded one: both stay here whatever moves behind them.
@@ -29,6 +31,7 @@ from .model.effects import Effects
 from .model.lubricant import Lubricant, load_lubricant
 from .model.roughness import RoughnessProfile
 from .solvers.deterministic import DeterministicOptions, deterministic_options, solve_deterministic
+from .solvers.homogenised import HomogenisedOptions, solve_homogenised
 from .solvers.levels import AccuracyLevel, get_level
 from .solvers.planner import resolve_effects, without_thermal
 from .solvers.result import ContactResult
@@ -40,11 +43,13 @@ SOLVER_VERSION = "ehl-2026.11-8"
 """Version of the numerics behind :func:`solve_contact`. The dataset store records it and refuses to resume a file
 computed with another version: bump it with every change that can alter a solved value."""
 
-MODELS = ("auto", "smooth", "deterministic")
+MODELS = ("auto", "smooth", "homogenised", "deterministic")
 """Contact models :func:`solve_contact` can be asked for: ``auto`` (the effect plan decides: steady smooth, or the
 transient mixed solver of :mod:`ehl_dataset.solvers.transient` for rough surfaces), ``smooth`` (steady smooth
-surfaces whatever the roughness), ``deterministic`` (the deterministic mixed reference solver,
-:mod:`ehl_dataset.solvers.deterministic`, for rough surfaces)."""
+surfaces whatever the roughness), ``homogenised`` (the steady two-scale mixed model,
+:mod:`ehl_dataset.solvers.homogenised`; a prototype whose error against the reference is in
+docs/homogenised_model.md, so ``auto`` never picks it yet), ``deterministic`` (the deterministic mixed reference
+solver, :mod:`ehl_dataset.solvers.deterministic`, for rough surfaces)."""
 
 __all__ = ["solve_contact", "checked_inputs", "SOLVER_VERSION", "MODELS"]
 
@@ -64,7 +69,8 @@ def checked_inputs(case, lubricant) -> Lubricant:
 def solve_contact(case: ContactCase, lubricant: Lubricant | str, level: str | AccuracyLevel = "standard",
                   effects: str | Effects = "auto", roughness=None, time_limit_s: float | None = None,
                   transient_options: TransientOptions | None = None, model: str = "auto",
-                  deterministic: DeterministicOptions | None = None) -> ContactResult:
+                  deterministic: DeterministicOptions | None = None,
+                  homogenised: HomogenisedOptions | None = None) -> ContactResult:
     """Solve one line contact; see the module docstring. Bad input raises :class:`InputError`.
 
     ``time_limit_s``: wall-time budget [s] of a transient (rough) solve; when it runs out the result is returned
@@ -79,7 +85,9 @@ def solve_contact(case: ContactCase, lubricant: Lubricant | str, level: str | Ac
     (:class:`~ehl_dataset.solvers.transient.TransientOptions`; None: the defaults, which every dataset uses).
 
     ``model``: one of :data:`MODELS`. ``deterministic``: the options of the deterministic model (None: those of the
-    level, :func:`~ehl_dataset.solvers.deterministic.deterministic_options`).
+    level, :func:`~ehl_dataset.solvers.deterministic.deterministic_options`). ``homogenised``: the closure options of
+    the homogenised model (None: :class:`~ehl_dataset.solvers.homogenised.HomogenisedOptions` defaults). Smooth
+    surfaces (S_c = 0) asked for either mixed model get the steady smooth solve, with the reason recorded.
     """
     lubricant = checked_inputs(case, lubricant)
     if roughness is not None and not isinstance(roughness, RoughnessProfile):
@@ -90,6 +98,8 @@ def solve_contact(case: ContactCase, lubricant: Lubricant | str, level: str | Ac
         raise InputError("model", model, f"one of {list(MODELS)}")
     if deterministic is not None and not isinstance(deterministic, DeterministicOptions):
         raise InputError("deterministic", type(deterministic).__name__, "a DeterministicOptions or None")
+    if homogenised is not None and not isinstance(homogenised, HomogenisedOptions):
+        raise InputError("homogenised", type(homogenised).__name__, "a HomogenisedOptions or None")
     time_limit_s = check_time_limit(time_limit_s)
     state = lubricant.state(case.temperature)
     lvl = get_level(level)
@@ -98,6 +108,9 @@ def solve_contact(case: ContactCase, lubricant: Lubricant | str, level: str | Ac
     plan = resolve_effects(effects, case, lubricant, lvl.name)
     # one BLAS thread per solve: the dense solves are small, and workers run one case per core
     with threadpool_limits(limits=1):
+        if model == "homogenised":
+            return solve_homogenised(case, state, lvl, _isothermal(plan, "homogenised"), roughness,
+                                     homogenised or HomogenisedOptions())
         if model == "deterministic":
             return solve_deterministic(case, state, _isothermal(plan, "deterministic"),
                                        deterministic or deterministic_options(lvl.name), roughness, time_limit_s,

@@ -32,9 +32,14 @@ def register(subparsers) -> None:
                        help="effect plan: auto (planner), isothermal (the planner's plan without the thermal "
                             "correction of the traction), full (everything), smooth (steady smooth solve, "
                             "isothermal)")
-    solve.add_argument("--model", default="auto", choices=["auto", "smooth", "deterministic"],
+    solve.add_argument("--model", default="auto", choices=["auto", "smooth", "homogenised", "deterministic"],
                        help="contact model: auto (the effect plan decides), smooth (steady smooth surfaces), "
-                            "deterministic (the deterministic mixed reference solver; slow: minutes per case)")
+                            "homogenised (steady two-scale mixed model; a prototype, see "
+                            "docs/homogenised_model.md), deterministic (the deterministic mixed reference solver; "
+                            "slow: minutes per case)")
+    solve.add_argument("--closure", default="transverse", choices=["transverse", "isotropic"],
+                       help="flow-factor closure of the homogenised model: transverse (1-D roughness, no side "
+                            "leakage, as the paper's model) or isotropic (side leakage); default transverse")
     solve.add_argument("--dx-um", type=float, default=None,
                        help="grid spacing of the deterministic model [µm] (default: the level's grid rule)")
     solve.add_argument("--time-limit-s", type=float, default=None,
@@ -71,8 +76,10 @@ def _solve(args) -> int:
 
         check_finite("dx_um", args.dx_um)
         deterministic = deterministic_options(level.name, dx_m=args.dx_um * 1e-6)
+    from ehl_dataset.solvers.homogenised import HomogenisedOptions
+
     result = solve_contact(case, lubricant, level.name, effects, roughness, args.time_limit_s, model=args.model,
-                           deterministic=deterministic)
+                           deterministic=deterministic, homogenised=HomogenisedOptions(closure=args.closure))
     payload = {
         "mu": result.mu,
         "mu_std": result.mu_std,

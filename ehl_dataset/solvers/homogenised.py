@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import math
 import time
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -35,7 +36,7 @@ from ..model.flow_factors import isotropic_flow_factors, lubricated_shear_stress
 from ..model.lubricant import LubricantState
 from ..model.roughness import RoughnessProfile
 from ..model.traction import full_film_mask
-from ..validation import InputError
+from ..validation import InputError, check_range
 from .levels import AccuracyLevel
 from .newton import ReynoldsProblem, newton_solve
 from .result import ContactResult
@@ -47,6 +48,22 @@ CLOSURES = ("transverse", "isotropic")
 BOUNDARY_FILM_M = 5e-9
 """Film-breakdown thickness h_b [m], the floor of the micro gaps in the 1-D flow factors (the deterministic model's
 default, :data:`ehl_dataset.solvers.deterministic.BOUNDARY_FILM_M`)."""
+
+
+@dataclass(frozen=True)
+class HomogenisedOptions:
+    """Closure choices of a homogenised solve: ``closure`` (:data:`CLOSURES`), ``boundary_film_m`` h_b [m] (the
+    floor of the micro gaps of the transverse closure), ``transport`` the roughness transport weight
+    (:func:`ehl_dataset.model.flow_factors.transport_weight`)."""
+
+    closure: str = "transverse"
+    boundary_film_m: float = BOUNDARY_FILM_M
+    transport: str | float = "variance"
+
+    def __post_init__(self):
+        if self.closure not in CLOSURES:
+            raise InputError("closure", self.closure, f"one of {list(CLOSURES)}")
+        check_range("boundary_film_m", self.boundary_film_m, 0.0, 1e-6, low_inclusive=False, unit="m")
 
 
 PSEUDO_DT = 0.3
@@ -124,12 +141,20 @@ class HomogenisedProblem(ReynoldsProblem):
 
 
 def solve_homogenised(case: ContactCase, state: LubricantState, lvl: AccuracyLevel, plan: Effects,
-                      roughness: RoughnessProfile | None = None, closure: str = "transverse",
-                      h_b_m: float = BOUNDARY_FILM_M, transport="variance") -> ContactResult:
-    """Steady homogenised mixed solve of a rough contact (module docstring) on the level's steady grid."""
-    if closure not in CLOSURES:
-        raise InputError("closure", closure, f"one of {list(CLOSURES)}")
+                      roughness: RoughnessProfile | None = None, options: HomogenisedOptions | None = None,
+                      **closure_options) -> ContactResult:
+    """Steady homogenised mixed solve of a rough contact (module docstring) on the level's steady grid.
+
+    ``options`` or, as keywords, the fields of :class:`HomogenisedOptions` (``closure=...``). Smooth surfaces
+    (S_c = 0) return the steady smooth solution with the reason recorded (no roughness to homogenise)."""
+    options = options or HomogenisedOptions(**closure_options)
+    closure, h_b_m, transport = options.closure, options.boundary_film_m, options.transport
     start = time.perf_counter()
+    if case.s_c == 0.0:
+        smooth = solve_steady(case, state, lvl, Effects.smooth_steady(model="homogenised with smooth surfaces "
+                                                                            "(S_c = 0): steady smooth solve"))
+        smooth.extra["model"] = "homogenised"
+        return smooth
     table = dry_contact_table(roughness, case.rq1, case.rq2, case.e_reduced)
     scales = ContactScales.of(case, state, plan.shear_thinning)
     smooth_plan = Effects(False, False, plan.shear_thinning, plan.compressibility, plan.mode, {})
@@ -180,6 +205,7 @@ def _result(case, state, lvl, plan, scales, problem: HomogenisedProblem, outcome
     recorded = plan.to_dict()
     recorded["reasons"] = dict(recorded.get("reasons") or {})
     recorded["reasons"]["model"] = f"homogenised mixed EHL ({closure} flow factors, dry-contact table)"
+    recorded["roughness"], recorded["transient"] = True, False  # steady: the ensemble average replaces the time one
     return ContactResult(
         mu=float(mu), h_min=float(np.min(h_t)), h_central=float(np.interp(0.0, x_m, h_t)), p_max=float(np.max(p_total)),
         converged=converged, iterations=int(iterations), wall_time=time.perf_counter() - start, level=lvl.name,

@@ -41,3 +41,26 @@ def test_unknown_closure_is_refused():
     case = ContactCase.from_engineering(0.5, 5, 5, 0.3, 90, 0.3, 0.3)
     with pytest.raises(InputError, match="closure"):
         solve_homogenised(case, ATF.state(case.temperature), get_level("fast"), Effects.full(), closure="2d")
+
+
+def test_solve_contact_routes_the_homogenised_model():
+    """``model="homogenised"`` gives the same solve as the module function, recorded as steady with roughness; the
+    options object is checked; smooth surfaces get the steady smooth solution (nothing to homogenise)."""
+    from ehl_dataset.solver import solve_contact
+    from ehl_dataset.solvers.homogenised import HomogenisedOptions
+
+    case = ContactCase.from_engineering(1.0, 5, 20, 0.7, 100, 0.05, 0.05)
+    direct = solve_homogenised(case, ATF.state(case.temperature), get_level("fast"), Effects.full(),
+                               closure="isotropic")
+    routed = solve_contact(case, ATF, "fast", "full", model="homogenised",
+                           homogenised=HomogenisedOptions(closure="isotropic"))
+    assert routed.mu == pytest.approx(direct.mu, rel=1e-12)
+    assert routed.extra["model"] == "homogenised" and routed.extra["closure"] == "isotropic"
+    assert routed.effects["roughness"] and not routed.effects["transient"]
+    smooth_case = ContactCase.from_engineering(1.0, 5, 20, 0.7, 100, 0.0, 0.0)
+    smooth = solve_contact(smooth_case, ATF, "fast", model="homogenised")
+    assert smooth.mu == pytest.approx(solve_contact(smooth_case, ATF, "fast", model="smooth").mu, rel=1e-12)
+    with pytest.raises(InputError, match="homogenised"):
+        solve_contact(case, ATF, "fast", model="homogenised", homogenised="isotropic")
+    with pytest.raises(InputError, match="boundary_film_m"):
+        HomogenisedOptions(boundary_film_m=-1e-9)
