@@ -1,10 +1,11 @@
 """The validation set of the deterministic mixed-EHL solver (issue 14): rough cases across the paper's factorial, each
-solved at three grid spacings (β/8, β/16, β/32), the grid-converged μ and asperity share with their uncertainty.
+solved at three grid spacings (β/8, β/16, β/32; β/16, β/32, β/64 where asperities carry a large share of the load,
+see ``SPACINGS``), the grid-converged μ and asperity share with their uncertainty.
 
 Estimator (multilevel, Giles, Oper. Res. 56 (2008) 607): the three runs of a case read the same roughness at the same
 times, so their differences are paired and vary little. The β/16 run carries the long averaging window (standard
 error of μ ≤ 1.5 %); the β/8 and β/32 runs last only the start-up and a short window, and enter through their mean
-difference to β/16 over that window:
+difference to β/16 over that window (written for β/8, β/16, β/32; the same with the case's own spacings):
 
     μ̂_16 = ⟨μ_16⟩_long,   μ̂_32 = μ̂_16 + ⟨μ_32 − μ_16⟩_short,   μ̂_8 = μ̂_16 + ⟨μ_8 − μ_16⟩_short,
 
@@ -60,7 +61,11 @@ CASES = {
     "L": (2.5, 5, 5, 0.1, 100, 0.4, 0.4),
 }
 POINTS_PER_BETA = (8, 16, 32)
-LONG = 16
+CONTACT_SPACINGS = (16, 32, 64)
+SPACINGS = {"A": CONTACT_SPACINGS, "B": CONTACT_SPACINGS, "C": CONTACT_SPACINGS}
+"""Points per correlation length of each case (default POINTS_PER_BETA; the middle one carries the long run).
+A, B and C: μ moves by 7–14 % between β/16 and β/32 under det-2026.11-6 (benchmarks/results/
+deterministic_convergence_<case>.json), so their finest pair has to be β/32–β/64."""
 MAX_PASSES = 40.0
 SHORT_AVERAGE_PASSES = 1.5
 LONG_TARGET = 0.015
@@ -68,9 +73,13 @@ SAFETY = 1.25
 LUBRICANT = "atf"
 
 
-def options_for(n: int) -> DeterministicOptions:
+def spacings(name: str) -> tuple[int, int, int]:
+    return SPACINGS.get(name, POINTS_PER_BETA)
+
+
+def options_for(n: int, long: bool) -> DeterministicOptions:
     beta = baseline_profile().correlation_length
-    if n == LONG:
+    if long:
         return DeterministicOptions(dx_m=beta / n, max_passes=MAX_PASSES, mu_sem_target=LONG_TARGET)
     # short runs: stop at the minimum window (a target of 100 % is met at once)
     return DeterministicOptions(dx_m=beta / n, max_passes=MAX_PASSES, mu_sem_target=1.0,
@@ -86,12 +95,13 @@ def run_case(name: str) -> None:
     case = ContactCase.from_engineering(*CASES[name])
     state = lubricant.state(case.temperature)
     RUNS.mkdir(parents=True, exist_ok=True)
-    for n in (LONG, 8, 32):
+    coarse, middle, fine = spacings(name)
+    for n in (middle, coarse, fine):
         path = run_path(name, n)
         if path.exists() and json.loads(path.read_text()).get("solver_version") == MODEL_VERSION:
             continue
         start = time.time()
-        result = solve_deterministic(case, state, Effects.full(), options_for(n))
+        result = solve_deterministic(case, state, Effects.full(), options_for(n, n == middle))
         extra = {k: (v.tolist() if isinstance(v, np.ndarray) else v) for k, v in result.extra.items()}
         record = {"case": name, "inputs": CASES[name], "points_per_beta": n, "solver_version": MODEL_VERSION,
                   "mu": result.mu, "mu_sem": result.mu_sem, "asperity_load_share": result.asperity_load_share,
@@ -135,43 +145,47 @@ def paired_difference(run: dict, base: dict, key: str) -> tuple[float, float]:
 
 
 def summarise_case(name: str) -> dict | None:
-    runs = {n: json.loads(run_path(name, n).read_text()) for n in POINTS_PER_BETA if run_path(name, n).exists()}
-    if set(runs) != set(POINTS_PER_BETA) or not all(r["converged"] for r in runs.values()):
+    coarse, middle, fine = levels = spacings(name)
+    runs = {n: json.loads(run_path(name, n).read_text()) for n in levels if run_path(name, n).exists()}
+    if set(runs) != set(levels) or not all(r["converged"] and r["solver_version"] == MODEL_VERSION
+                                           for r in runs.values()):
         return None
-    base = runs[LONG]
+    base = runs[middle]
     out = {"case": name, "inputs": dict(zip(("p_h_gpa", "r_eq_mm", "u_r_m_s", "sr", "temp_c", "rq1_um", "rq2_um"),
                                             CASES[name])),
            "lambda_bar": base["lambda_bar"], "solver_version": base["solver_version"],
            "half_width_m": ContactCase.from_engineering(*CASES[name]).half_width,
-           "wall_time_s": {f"beta/{n}": runs[n]["wall_time_s"] for n in POINTS_PER_BETA},
-           "n_nodes": {f"beta/{n}": runs[n]["extra"]["n_nodes"] for n in POINTS_PER_BETA},
-           "smooth_mu": base["extra"]["smooth_mu"]}
+           "points_per_beta": list(levels),
+           "wall_time_s": {f"beta/{n}": runs[n]["wall_time_s"] for n in levels},
+           "n_nodes": {f"beta/{n}": runs[n]["extra"]["n_nodes"] for n in levels},
+           "smooth_mu": base["extra"]["smooth_mu"],
+           "h_central_m": runs[fine]["h_central_m"], "h_central_m_middle": base["h_central_m"]}
     for key, series in (("mu", "mu_series"), ("asperity_load_share", "share_series")):
         long_mean = time_mean(np.asarray(base["extra"][series])[base["extra"]["average_from_step"]:])
-        values, errors = {LONG: long_mean.mean}, {LONG: long_mean.standard_error}
-        for n in (8, 32):
+        values, errors = {middle: long_mean.mean}, {middle: long_mean.standard_error}
+        for n in (coarse, fine):
             d, se = paired_difference(runs[n], base, series)
             values[n] = long_mean.mean + d
             errors[n] = math.hypot(long_mean.standard_error, se)
-        e_coarse = values[8] - values[16]
-        e_fine = values[16] - values[32]
+        e_coarse = values[coarse] - values[middle]
+        e_fine = values[middle] - values[fine]
         order = math.nan
         if e_coarse * e_fine > 0 and abs(e_coarse) > abs(e_fine):
             order = math.log2(e_coarse / e_fine)
         if math.isfinite(order) and order > 0.5:
-            correction = (values[32] - values[16]) / (2.0**order - 1.0)
-            extrapolated = values[32] + correction
+            correction = (values[fine] - values[middle]) / (2.0**order - 1.0)
+            extrapolated = values[fine] + correction
             grid_uncertainty = SAFETY * abs(correction)
         else:
-            extrapolated = values[32]
-            grid_uncertainty = abs(values[32] - values[16])
-        out[key] = {f"beta/{n}": values[n] for n in POINTS_PER_BETA}
-        out[key + "_sem"] = {f"beta/{n}": errors[n] for n in POINTS_PER_BETA}
+            extrapolated = values[fine]
+            grid_uncertainty = abs(values[fine] - values[middle])
+        out[key] = {f"beta/{n}": values[n] for n in levels}
+        out[key + "_sem"] = {f"beta/{n}": errors[n] for n in levels}
         out[key + "_observed_order"] = order
         out[key + "_extrapolated"] = extrapolated
-        out[key + "_uncertainty"] = math.hypot(grid_uncertainty, errors[32])
-        out[key + "_fine_step"] = values[32] - values[16]
-    out["mu_fine_step_relative"] = out["mu_fine_step"] / out["mu"]["beta/32"]
+        out[key + "_uncertainty"] = math.hypot(grid_uncertainty, errors[fine])
+        out[key + "_fine_step"] = values[fine] - values[middle]
+    out["mu_fine_step_relative"] = out["mu_fine_step"] / out["mu"][f"beta/{fine}"]
     return out
 
 
@@ -184,18 +198,20 @@ def summarise() -> None:
     lines = ["# Validation set of the deterministic solver", "",
              f"Made by `python benchmarks/deterministic_validation.py --summarise` (solver version "
              f"{rows[0]['solver_version'] if rows else '-'}); the data: `data/reference/deterministic_validation.json`.",
-             "", "| case | p_h GPa | r_eq mm | u_r m/s | SR | T °C | Rq µm | λ̄ | a/β | μ β/8 | μ β/16 | μ β/32 | "
-             "fine step | order | μ extrapolated | ± | share β/32 | share fine step | smooth μ |",
-             "|---|" + "---|" * 19]
+             "", "| case | p_h GPa | r_eq mm | u_r m/s | SR | T °C | Rq µm | λ̄ | a/β | spacings β/n | μ coarse | "
+             "μ middle | μ fine | fine step | order | μ extrapolated | ± | share fine | share fine step | smooth μ |",
+             "|---|" + "---|" * 20]
     beta = baseline_profile().correlation_length
     for r in rows:
         i = r["inputs"]
+        coarse, middle, fine = r["points_per_beta"]
         lines.append(
             f"| {r['case']} | {i['p_h_gpa']} | {i['r_eq_mm']} | {i['u_r_m_s']} | {i['sr']} | {i['temp_c']} | "
             f"{i['rq1_um']}/{i['rq2_um']} | {r['lambda_bar']:.3f} | {r['half_width_m'] / beta:.1f} | "
-            f"{r['mu']['beta/8']:.4f} | {r['mu']['beta/16']:.4f} | {r['mu']['beta/32']:.4f} | "
-            f"{100 * r['mu_fine_step_relative']:+.1f} % | {r['mu_observed_order']:.1f} | "
-            f"{r['mu_extrapolated']:.4f} | {r['mu_uncertainty']:.4f} | {r['asperity_load_share']['beta/32']:.3f} | "
+            f"{coarse}/{middle}/{fine} | {r['mu'][f'beta/{coarse}']:.4f} | {r['mu'][f'beta/{middle}']:.4f} | "
+            f"{r['mu'][f'beta/{fine}']:.4f} | {100 * r['mu_fine_step_relative']:+.1f} % | "
+            f"{r['mu_observed_order']:.1f} | {r['mu_extrapolated']:.4f} | {r['mu_uncertainty']:.4f} | "
+            f"{r['asperity_load_share'][f'beta/{fine}']:.3f} | "
             f"{r['asperity_load_share_fine_step']:+.3f} | {r['smooth_mu']:.4f} |")
     REPORT.write_text("\n".join(lines) + "\n")
     print("\n".join(lines))

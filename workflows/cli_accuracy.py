@@ -2,7 +2,8 @@
 
 Writes ``<stem>.md`` (tables), ``<stem>.png`` (error vs time, log axes) and ``<stem>.json`` (raw runs) into
 ``--out`` (default ``gearloss_accuracy``, outside ``docs/``; ``--out docs`` regenerates the shipped reports), stem ``accuracy_levels_rough`` unless ``--stem`` says otherwise (docs/accuracy.md is
-the hand-written summary of all accuracy results). See :mod:`workflows.accuracy`.
+the hand-written summary of all accuracy results). See :mod:`workflows.accuracy`. ``--mixed`` measures the contact
+models of the mixed regime against the deterministic reference set instead (:mod:`workflows.accuracy_mixed`).
 """
 
 from __future__ import annotations
@@ -42,8 +43,52 @@ def register(subparsers) -> None:
     parser.add_argument("--out", "--out-dir", dest="out_dir", default=DEFAULT_OUT, metavar="DIR",
                         help="directory of the report (default gearloss_accuracy; the shipped reports in docs/ are "
                              "regenerated with --out docs)")
+    parser.add_argument("--mixed", action="store_true",
+                        help="mixed regime: contact models against the deterministic reference set "
+                             "(data/reference/deterministic_validation.json); stem accuracy_mixed")
+    parser.add_argument("--models", nargs="+", default=None, metavar="MODEL",
+                        help="with --mixed: models to measure (default: the steady ones, smooth-standard "
+                             "homogenised-transverse-standard homogenised-isotropic-standard; also transient-fast, "
+                             "transient-standard, deterministic-fast, deterministic-standard: minutes per case)")
+    parser.add_argument("--reference-file", default=None, metavar="FILE",
+                        help="with --mixed: the reference set (default data/reference/deterministic_validation.json)")
     parser.add_argument("--json", action="store_true", help="print one JSON object")
     parser.set_defaults(handler=run_accuracy)
+
+
+def run_mixed(args) -> int:
+    """``gearloss accuracy --mixed``: :mod:`workflows.accuracy_mixed`."""
+    from pathlib import Path
+
+    from workflows import accuracy_mixed
+    from workflows.cli_output import emit
+
+    stem = args.stem or accuracy_mixed.DEFAULT_STEM
+    models = tuple(args.models) if args.models else accuracy_mixed.CHEAP_MODELS
+    reference = args.reference_file or accuracy_mixed.REFERENCE_FILE
+    Path(args.out_dir).mkdir(parents=True, exist_ok=True)
+    study = accuracy_mixed.run_mixed_study(
+        models, reference, args.lubricant, checkpoint=Path(args.out_dir) / f"{stem}.partial.json",
+        progress=lambda text: print(f"[accuracy] {text}", file=sys.stderr, flush=True))
+    command = f"gearloss accuracy --mixed --models {' '.join(models)} --lubricant {args.lubricant} --out {args.out_dir}"
+    if args.reference_file:
+        command += f" --reference-file {args.reference_file}"
+    if args.stem:
+        command += f" --stem {args.stem}"
+    paths = accuracy_mixed.write_mixed_report(study, args.out_dir, command, stem)
+    (Path(args.out_dir) / f"{stem}.partial.json").unlink(missing_ok=True)
+    payload = {"models": list(models), "n_cases": len(study["cases"]), "summary": accuracy_mixed.summary(study),
+               "markdown_path": str(paths["markdown"]), "plot_path": str(paths["plot"]),
+               "json_path": str(paths["json"])}
+
+    def human(data):
+        rows = [f"{name}: median err mu {row['mu_error_median']:.3g}, p90 {row['mu_error_p90']:.3g}; "
+                f"mean time {row['wall_time_mean_s']:.3g} s/case ({row['converged']}/{row['n_cases']} converged)"
+                for name, row in data["summary"].items()]
+        return "\n".join(rows + [f"wrote {data['markdown_path']}, {data['plot_path']}"])
+
+    emit(payload, args.json, human)
+    return 0
 
 
 def run_accuracy(args) -> int:
@@ -52,6 +97,8 @@ def run_accuracy(args) -> int:
     from workflows import accuracy
     from workflows.cli_output import emit
 
+    if args.mixed:
+        return run_mixed(args)
     args.stem = args.stem or accuracy.DEFAULT_STEM
     cases = accuracy.ACCURACY_CASES
     if args.cases is not None:

@@ -53,17 +53,21 @@ default, :data:`ehl_dataset.solvers.deterministic.BOUNDARY_FILM_M`)."""
 @dataclass(frozen=True)
 class HomogenisedOptions:
     """Closure choices of a homogenised solve: ``closure`` (:data:`CLOSURES`), ``boundary_film_m`` h_b [m] (the
-    floor of the micro gaps of the transverse closure), ``transport`` the roughness transport weight
+    floor of the micro gaps in the traction), ``flow_floor_sigma`` the floor of the micro gaps in the transverse
+    flow factors in units of σ (None: h_b), ``transport`` the roughness transport weight
     (:func:`ehl_dataset.model.flow_factors.transport_weight`)."""
 
     closure: str = "transverse"
     boundary_film_m: float = BOUNDARY_FILM_M
+    flow_floor_sigma: float | None = None
     transport: str | float = "variance"
 
     def __post_init__(self):
         if self.closure not in CLOSURES:
             raise InputError("closure", self.closure, f"one of {list(CLOSURES)}")
         check_range("boundary_film_m", self.boundary_film_m, 0.0, 1e-6, low_inclusive=False, unit="m")
+        if self.flow_floor_sigma is not None:
+            check_range("flow_floor_sigma", self.flow_floor_sigma, 0.0, 10.0, low_inclusive=False)
 
 
 PSEUDO_DT = 0.3
@@ -78,13 +82,14 @@ class HomogenisedProblem(ReynoldsProblem):
     ``h`` the mean gap d [a²/r_eq]; ``cavitation_offset`` makes Newton's cavitation condition act on P − p_a(d)."""
 
     def __init__(self, *args, table=None, film_scale: float = 1.0, sr: float = 0.0, closure: str = "transverse",
-                 h_b_m: float = BOUNDARY_FILM_M, transport="variance", **kwargs):
+                 h_b_m: float = BOUNDARY_FILM_M, transport="variance", flow_floor_m: float | None = None, **kwargs):
         super().__init__(*args, **kwargs)
         self.table = table
         self.film_scale = film_scale
         self.sr = sr
         self.closure = closure
         self.h_b_m = h_b_m
+        self.flow_floor_m = h_b_m if flow_floor_m is None else flow_floor_m
         self.transport = transport
         self.h_closed = 1e-300  # the mean gap may close (plastic asperities): no open-film check in Newton
 
@@ -100,7 +105,7 @@ class HomogenisedProblem(ReynoldsProblem):
     def flow_factors(self, h):
         d = h * self.film_scale
         if self.closure == "transverse":
-            return transverse_flow_factors(self.table, d, self.h_b_m, self.transport)
+            return transverse_flow_factors(self.table, d, self.flow_floor_m, self.transport)
         return isotropic_flow_factors(self.table, d, self.transport)
 
     def fluid(self, p_fluid, h, homotopy: float = 1.0):
@@ -163,7 +168,9 @@ def solve_homogenised(case: ContactCase, state: LubricantState, lvl: AccuracyLev
     problem = HomogenisedProblem(x=x, kmat=influence_matrix(x), gap=0.5 * x**2, lam=scales.lam, p_h=case.p_h,
                                  state=state, compressible=plan.compressibility and state.compressible,
                                  shear=scales.shear, table=table, film_scale=scales.film_scale, sr=case.sr,
-                                 closure=closure, h_b_m=h_b_m, transport=transport)
+                                 closure=closure, h_b_m=h_b_m, transport=transport,
+                                 flow_floor_m=None if options.flow_floor_sigma is None
+                                 else options.flow_floor_sigma * table.sigma)
     iterations = smooth.iterations
     p0 = smooth.pressure / case.p_h
     h00 = smooth.extra["h0_m"] / scales.film_scale
@@ -216,6 +223,7 @@ def _result(case, state, lvl, plan, scales, problem: HomogenisedProblem, outcome
         film=h_t,
         extra={"model": "homogenised", "closure": closure, "n_nodes": int(x_m.size), **parts,
                "smooth_mu": smooth.mu, "smooth_h_min_m": smooth.h_min, "boundary_film_m": problem.h_b_m,
+               "flow_floor_m": problem.flow_floor_m,
                "contact_fraction_max": float(np.max(table.contact_fraction(d))),
                "dry_contact_table": table.meta.get("key", "")},
     )

@@ -1,0 +1,283 @@
+"""What accuracy costs in time in the mixed regime: every contact model and level against the deterministic reference.
+
+The reference is the validation set of the deterministic mixed-EHL solver (``data/reference/
+deterministic_validation.json``, made by ``python benchmarks/deterministic_validation.py --summarise``: each case
+solved at three grid spacings, μ Richardson-extrapolated, with its uncertainty; docs/deterministic_solver.md). Each
+model of :data:`MIXED_MODELS` solves every reference case through :func:`ehl_dataset.solver.solve_contact`, and the
+study records
+
+    err_mu = |μ − μ_ref|/μ_ref,   err_hc = |h_c − h_c,ref|/h_c,ref,   Δshare = share − share_ref,
+
+with the central film h_c (the film at x = 0: the time-mean film of the deterministic runs, the mean gap of the
+homogenised model) because the minimum of a rough film is a contact spot (h_b) in every model that has asperity
+contact. The wall time per case is measured around the call on one core. Runs are checkpointed to JSON after each
+solve (a study of the slow models can be stopped and resumed); the report is Markdown plus a PNG of error against
+time (:func:`write_mixed_report`).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import math
+import time
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any, Callable, Sequence
+
+import numpy as np
+
+from ehl_dataset.model.contact import ContactCase
+from ehl_dataset.validation import InputError
+
+from .accuracy import provenance, relative_error
+
+REFERENCE_FILE = Path(__file__).resolve().parents[1] / "data" / "reference" / "deterministic_validation.json"
+DEFAULT_STEM = "accuracy_mixed"
+
+MIXED_MODELS: dict[str, dict[str, Any]] = {
+    "smooth-standard": {"model": "smooth", "level": "standard"},
+    "homogenised-transverse-standard": {"model": "homogenised", "level": "standard", "closure": "transverse"},
+    "homogenised-isotropic-standard": {"model": "homogenised", "level": "standard", "closure": "isotropic"},
+    "transient-fast": {"model": "auto", "level": "fast", "effects": "full"},
+    "transient-standard": {"model": "auto", "level": "standard", "effects": "full"},
+    "deterministic-fast": {"model": "deterministic", "level": "fast"},
+    "deterministic-standard": {"model": "deterministic", "level": "standard"},
+}
+"""The models measured, each a :func:`~ehl_dataset.solver.solve_contact` call: the steady smooth solve (what the
+mixed regime costs if roughness is ignored), the homogenised prototype with either closure, the transient rough
+solver of the pipeline (``model="auto"``, all effects: the rough transient path) and the deterministic solver at its
+``fast`` and ``standard`` grid rules (the reference itself is its three-spacing extrapolation)."""
+CHEAP_MODELS = ("smooth-standard", "homogenised-transverse-standard", "homogenised-isotropic-standard")
+
+
+@dataclass
+class MixedRun:
+    """One solve of the study (SI units)."""
+
+    case: str
+    model: str
+    mu: float
+    mu_sem: float
+    h_central_m: float
+    asperity_load_share: float
+    wall_time_s: float
+    converged: bool
+    message: str
+    mu_error: float = math.nan
+    h_central_error: float = math.nan
+    share_difference: float = math.nan
+
+
+def load_reference(path: str | Path = REFERENCE_FILE) -> list[dict]:
+    """The reference cases (the ``cases`` list of the validation file); InputError if missing or malformed."""
+    path = Path(path)
+    try:
+        data = json.loads(path.read_text(encoding="utf-8"))
+        cases = data["cases"]
+        for row in cases:
+            row["inputs"], row["mu_extrapolated"]  # noqa: B018 - the keys the study needs
+    except FileNotFoundError:
+        raise InputError("reference", str(path), "an existing file made by benchmarks/deterministic_validation.py "
+                                                 "--summarise") from None
+    except (ValueError, KeyError, TypeError) as err:
+        raise InputError("reference", str(path), f"a deterministic validation file ({type(err).__name__}: {err})") \
+            from None
+    if not cases:
+        raise InputError("reference", str(path), "at least one reference case")
+    return cases
+
+
+def reference_case(row: dict) -> ContactCase:
+    i = row["inputs"]
+    return ContactCase.from_engineering(i["p_h_gpa"], i["r_eq_mm"], i["u_r_m_s"], i["sr"], i["temp_c"], i["rq1_um"],
+                                        i["rq2_um"])
+
+
+def solve_model(case: ContactCase, lubricant, name: str, solve: Callable | None = None):
+    """Solve ``case`` with the model ``name`` of :data:`MIXED_MODELS`; returns the ContactResult."""
+    from ehl_dataset.solver import solve_contact
+    from ehl_dataset.solvers.homogenised import HomogenisedOptions
+
+    if name not in MIXED_MODELS:
+        raise InputError("model", name, f"one of {list(MIXED_MODELS)}")
+    spec = MIXED_MODELS[name]
+    kwargs = {"model": spec["model"]}
+    if "closure" in spec:
+        kwargs["homogenised"] = HomogenisedOptions(closure=spec["closure"])
+    return (solve or solve_contact)(case, lubricant, spec["level"], spec.get("effects", "auto"), **kwargs)
+
+
+def _run(case: ContactCase, lubricant, row: dict, name: str, solve: Callable | None) -> MixedRun:
+    start = time.perf_counter()
+    try:
+        result = solve_model(case, lubricant, name, solve)
+    except InputError:
+        raise
+    except Exception as err:  # a failed solve is a data point of the study
+        return MixedRun(row["case"], name, math.nan, math.nan, math.nan, math.nan, time.perf_counter() - start, False,
+                        f"{type(err).__name__}: {err}")
+    elapsed = time.perf_counter() - start
+    run = MixedRun(row["case"], name, float(result.mu), float(result.mu_sem or 0.0), float(result.h_central),
+                   float(result.asperity_load_share), elapsed, bool(result.converged), result.message or "")
+    run.mu_error = relative_error(run.mu, row["mu_extrapolated"])
+    if row.get("h_central_m"):
+        run.h_central_error = relative_error(run.h_central_m, row["h_central_m"])
+    share_ref = row.get("asperity_load_share_extrapolated")
+    if share_ref is not None and math.isfinite(run.asperity_load_share):
+        run.share_difference = run.asperity_load_share - share_ref
+    return run
+
+
+def run_mixed_study(models: Sequence[str] = CHEAP_MODELS, reference: str | Path = REFERENCE_FILE,
+                    lubricant: str = "atf", checkpoint: str | Path | None = None, solve: Callable | None = None,
+                    progress: Callable[[str], None] | None = None) -> dict:
+    """Solve every reference case with every model; resume from ``checkpoint`` (runs of the same case and model
+    already there are kept when the solver version matches) and rewrite it after each solve."""
+    from ehl_dataset.model.lubricant import load_lubricant
+    from ehl_dataset.solver import SOLVER_VERSION
+
+    for name in models:
+        if name not in MIXED_MODELS:
+            raise InputError("models", name, f"names from {list(MIXED_MODELS)}")
+    cases = load_reference(reference)
+    lub = load_lubricant(lubricant)
+    done: dict[tuple[str, str], MixedRun] = {}
+    if checkpoint is not None and Path(checkpoint).exists():
+        old = json.loads(Path(checkpoint).read_text(encoding="utf-8"))
+        if old.get("solver_version") == SOLVER_VERSION:
+            done = {(r["case"], r["model"]): MixedRun(**r) for r in old.get("runs", [])}
+    runs: list[MixedRun] = []
+    for row in cases:
+        case = reference_case(row)
+        for name in models:
+            run = done.get((row["case"], name)) or _run(case, lub, row, name, solve)
+            runs.append(run)
+            if progress:
+                progress(f"{row['case']}: {name} mu={run.mu:.4g} (ref {row['mu_extrapolated']:.4g}, "
+                         f"err {run.mu_error:.1%}) in {run.wall_time_s:.3g} s")
+            if checkpoint is not None:
+                Path(checkpoint).write_text(json.dumps(
+                    {"solver_version": SOLVER_VERSION, "runs": [dataclasses.asdict(r) for r in runs]
+                     + [dataclasses.asdict(r) for k, r in done.items() if k not in {(x.case, x.model) for x in runs}]},
+                    default=float), encoding="utf-8")
+    return {"runs": runs, "cases": cases, "models": list(models), "provenance": provenance(),
+            "reference_file": str(reference)}
+
+
+def summary(study: dict) -> dict[str, dict[str, float]]:
+    """Per model: cases, converged, median / 90th percentile / max of err_mu, median err_hc, median |Δshare|, mean
+    and median wall time."""
+    out = {}
+    for name in study["models"]:
+        runs = [r for r in study["runs"] if r.model == name]
+        err = np.array([r.mu_error for r in runs], dtype=float)
+        hc = np.array([r.h_central_error for r in runs], dtype=float)
+        share = np.abs(np.array([r.share_difference for r in runs], dtype=float))
+        times = np.array([r.wall_time_s for r in runs], dtype=float)
+
+        def stat(fn, v):
+            v = v[np.isfinite(v)]
+            return float(fn(v)) if v.size else math.nan
+
+        out[name] = {"n_cases": len(runs), "converged": int(sum(r.converged for r in runs)),
+                     "mu_error_median": stat(np.median, err), "mu_error_p90": stat(lambda v: np.percentile(v, 90), err),
+                     "mu_error_max": stat(np.max, err), "h_central_error_median": stat(np.median, hc),
+                     "share_difference_median": stat(np.median, share),
+                     "wall_time_mean_s": stat(np.mean, times), "wall_time_median_s": stat(np.median, times)}
+    return out
+
+
+def _pct(v: float) -> str:
+    return "n/a" if not math.isfinite(v) else f"{100 * v:.3g} %"
+
+
+def markdown_mixed(study: dict, command: str, png_name: str) -> str:
+    prov = study["provenance"]
+    lines = ["# Mixed regime: accuracy versus time against the deterministic reference", "",
+             "Generated by `gearloss accuracy --mixed` (`workflows/accuracy_mixed.py`); do not edit by hand. "
+             "Regenerate with:", "", f"    {command}", "",
+             f"Reference: `{Path(study['reference_file']).name}` (the deterministic solver's validation set, μ "
+             "Richardson-extrapolated from three grid spacings; docs/deterministic_solver.md). err μ = |μ − μ_ref|/"
+             "μ_ref; err h_c is that of the central film; Δshare the difference of the asperity load share. Wall time "
+             "per case on one core, around `solve_contact`.", "",
+             f"EHL solver {prov.get('solver_version')}, commit `{prov.get('git_commit')}`"
+             + (" (with uncommitted solver changes)" if prov.get("solver_files_modified") else "")
+             + f", {prov.get('date_utc')}; {prov.get('platform')}, {prov.get('cpu_count')} CPUs.", "",
+             "## Summary", "",
+             "| model | cases | converged | median err μ | 90th pct err μ | max err μ | median err h_c | "
+             "median \\|Δshare\\| | mean time [s] | median time [s] |", "|---|---|---|---|---|---|---|---|---|---|"]
+    for name, row in summary(study).items():
+        lines.append(f"| {name} | {row['n_cases']} | {row['converged']} | {_pct(row['mu_error_median'])} | "
+                     f"{_pct(row['mu_error_p90'])} | {_pct(row['mu_error_max'])} | "
+                     f"{_pct(row['h_central_error_median'])} | {row['share_difference_median']:.3f} | "
+                     f"{row['wall_time_mean_s']:.3g} | {row['wall_time_median_s']:.3g} |")
+    lines += ["", f"![error versus time]({png_name})", "", "## Per case", "",
+              "| case | λ̄ | a/β | μ_ref ± | h_c,ref [nm] | share_ref | model | μ | err μ | h_c [nm] | err h_c | share | "
+              "time [s] | converged |", "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    from ehl_dataset.model.roughness import baseline_profile
+
+    beta = baseline_profile().correlation_length
+    for row in study["cases"]:
+        for run in (r for r in study["runs"] if r.case == row["case"]):
+            hc_ref = row.get("h_central_m")
+            lines.append(
+                f"| {row['case']} | {row['lambda_bar']:.3g} | {row['half_width_m'] / beta:.1f} | "
+                f"{row['mu_extrapolated']:.4f} ± {row['mu_uncertainty']:.4f} | "
+                f"{'n/a' if not hc_ref else f'{hc_ref * 1e9:.0f}'} | "
+                f"{row.get('asperity_load_share_extrapolated', math.nan):.3f} | {run.model} | {run.mu:.4f} | "
+                f"{_pct(run.mu_error)} | {run.h_central_m * 1e9:.0f} | {_pct(run.h_central_error)} | "
+                f"{run.asperity_load_share:.3f} | {run.wall_time_s:.3g} | {'yes' if run.converged else 'NO'} |")
+    failures = [r for r in study["runs"] if not r.converged]
+    if failures:
+        lines += ["", "Not converged:", ""] + [f"- {r.case}, {r.model}: {r.message}" for r in failures]
+    return "\n".join(lines) + "\n"
+
+
+def plot_mixed(study: dict, path: Path, floor: float = 1e-4) -> Path:
+    """Relative error of μ against wall time per case, one colour per model (median as a star), log axes."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(7.5, 4.8), constrained_layout=True)
+    colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    for k, name in enumerate(study["models"]):
+        runs = [r for r in study["runs"] if r.model == name and math.isfinite(r.mu_error)]
+        if not runs:
+            continue
+        t = np.array([r.wall_time_s for r in runs])
+        e = np.maximum(np.array([r.mu_error for r in runs]), floor)
+        c = colours[k % len(colours)]
+        ax.scatter(t, e, s=22, color=c, alpha=0.7)
+        ax.scatter([np.median(t)], [np.median(e)], s=150, marker="*", color=c, edgecolor="black", zorder=5,
+                   label=f"{name} (median)")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.axhline(0.10, color="grey", ls=":", lw=1)
+    ax.set_xlabel("wall time per case [s]")
+    ax.set_ylabel("relative error of μ against the reference")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=7)
+    prov = study["provenance"]
+    ax.set_title(f"mixed regime, {len(study['cases'])} reference cases (EHL solver {prov.get('solver_version')}, "
+                 f"commit {prov.get('git_commit')})", fontsize=9)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
+
+
+def write_mixed_report(study: dict, out_dir: str | Path, command: str, stem: str = DEFAULT_STEM) -> dict[str, Path]:
+    """Write ``<stem>.md``, ``<stem>.png`` and ``<stem>.json`` into ``out_dir``."""
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    png = plot_mixed(study, out / f"{stem}.png")
+    md = out / f"{stem}.md"
+    md.write_text(markdown_mixed(study, command, png.name), encoding="utf-8")
+    raw = out / f"{stem}.json"
+    raw.write_text(json.dumps({"provenance": study["provenance"], "command": command, "models": study["models"],
+                               "reference_file": study["reference_file"], "summary": summary(study),
+                               "runs": [dataclasses.asdict(r) for r in study["runs"]]}, indent=1, default=float),
+                   encoding="utf-8")
+    return {"markdown": md, "plot": png, "json": raw}
