@@ -53,7 +53,7 @@ from .result import ContactResult
 from .steady import ContactScales, dowson_higginson_lambda, moes_h_c, solve_steady
 from .time_average import time_mean
 
-MODEL_VERSION = "det-2026.11-6"
+MODEL_VERSION = "det-2026.11-7"
 """Version of the deterministic model's numerics (recorded with its results; bump with any change that can alter a
 solved value). :data:`ehl_dataset.solver.SOLVER_VERSION` covers the whole solver."""
 BOUNDARY_FILM_M = 5e-9
@@ -147,7 +147,7 @@ def asperity_radius(profile: RoughnessProfile, rq1: float, rq2: float) -> float:
     return 1.0 / math.sqrt(float(np.mean(curvature**2)))
 
 
-ROUND_OFF_MARGIN = 100.0
+ROUND_OFF_MARGIN = 10.0
 ROUND_OFF_STEP = 1e-12
 """A Newton solve also ends when its scaled residual is within ROUND_OFF_MARGIN × the tolerance and it has
 stalled (no pressure would change by more than ROUND_OFF_STEP p_h, or no decrease; MixedProblem.newton): the
@@ -682,7 +682,8 @@ def _result(case, state, plan, level_name, options, problem, scales, z, h, recor
                "smooth_mu": record.smooth.get("mu"), "smooth_h_min_m": record.smooth.get("h_min_m"),
                "mu_series": np.asarray(record.mu), "share_series": np.asarray(record.share),
                "t_series_s": np.asarray(record.t), "h_min_local_m": local_min,
-               "h_min_local_series_m": np.asarray(record.h_min), "face_mean": options.face_mean,
+               "h_min_local_series_m": np.asarray(record.h_min), "mass_error_series": np.asarray(record.mass),
+               "face_mean": options.face_mean,
                "couette_flux": options.couette_flux, **problem.cost, **rule},
     )
 

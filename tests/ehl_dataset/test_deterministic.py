@@ -182,6 +182,9 @@ def test_mass_and_load_are_balanced_at_every_step():
     assert result.residuals["max_mass_error"] <= 1e-10
     assert result.residuals["max_load_error"] <= 1e-10
     assert np.all(np.isfinite(result.extra["mu_series"]))
+    series = result.extra["mass_error_series"]  # one global balance per step, as recorded
+    assert series.size == result.extra["n_steps"]
+    assert float(np.max(series)) == result.residuals["max_mass_error"]
 
 
 def test_tiny_roughness_gives_the_smooth_friction():
