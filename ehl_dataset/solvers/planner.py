@@ -9,6 +9,8 @@ threshold says it does not change the result beyond the level's tolerance (the c
   touch and μ of the transient rough solve equals that of the steady smooth solve within the level's tolerance:
   solve the steady smooth problem (the saving: one steady solve instead of hundreds of time steps). Moving
   roughness is what makes a line contact transient, so both flags go together. S_c = 0 gives λ̄ = ∞.
+  The ``model`` decision says which solver that means (steady smooth, or the transient mixed solver) and why the
+  homogenised model is not chosen yet (docs/homogenised_model.md).
 * **shear thinning** — inlet Eyring number X_in = η0·|u_s|/(τ0·h_min,DH): sinh(τ_m/τ0) of the Couette shear where
   the film is formed (the inlet, at ambient viscosity). The Eyring flow factor is √(1 + X²), and only the inlet
   flow shapes the film: in the Hertz zone the Poiseuille flow is negligible whatever its factor. The Eyring number
@@ -152,6 +154,9 @@ def plan_effects(case, lubricant, level="standard") -> Effects:
                        f"the level tolerance, steady smooth solve")),
         "transient": ("moving roughness makes the contact transient" if rough else
                       "smooth surfaces under constant load: steady"),
+        "model": ("transient mixed solver; not the homogenised model, which misses the deterministic reference by "
+                  "tens of per cent (docs/homogenised_model.md); the reference itself: model=deterministic"
+                  if rough else "steady smooth solver"),
         "shear_thinning": (f"inlet Eyring number X_in={x_in:.3g} <= {limits.eyring_newtonian:g}: Newtonian "
                            f"flow (factor sqrt(1+X^2)-1={math.sqrt(1 + x_in ** 2) - 1:.2g})"
                            if newtonian else

@@ -115,8 +115,8 @@ def test_reasons_are_json_and_complete():
                 "h_min_dh_m", "s_c_m", "thermal_change", "flash_rise_k", "film_centre_rise_k", "nahme_number",
                 "beta_hertz_per_k", "surface_peclet", "film_peclet"):
         assert key in back["reasons"]["numbers"]
-    assert set(back["reasons"]["decisions"]) == {"roughness", "transient", "shear_thinning", "compressibility",
-                                                 "thermal"}
+    assert set(back["reasons"]["decisions"]) == {"roughness", "transient", "model", "shear_thinning",
+                                                 "compressibility", "thermal"}
     assert back["thermal"] is plan.thermal
 
 
