@@ -64,3 +64,19 @@ def test_solve_contact_routes_the_homogenised_model():
         solve_contact(case, ATF, "fast", model="homogenised", homogenised="isotropic")
     with pytest.raises(InputError, match="boundary_film_m"):
         HomogenisedOptions(boundary_film_m=-1e-9)
+
+
+def test_a_higher_flow_floor_conducts_more_and_entrains_less():
+    """The transverse closure's conductance 1/⟨max(g, h_f)⁻³⟩ grows with the floor h_f; more pressure flow against
+    the inlet wedge entrains less lubricant (Patir & Cheng 1978: φ_x ↑ → film ↓), so the mean film falls and the
+    asperities carry more (case A, λ̄ = 0.33; scan in docs/homogenised_model.md)."""
+    from ehl_dataset.solvers.homogenised import HomogenisedOptions
+
+    case = ContactCase.from_engineering(0.5, 5, 5, 0.3, 90, 0.3, 0.3)
+    state = ATF.state(case.temperature)
+    low, high = (solve_homogenised(case, state, get_level("fast"), Effects.full(),
+                                   options=HomogenisedOptions(flow_floor_sigma=f)) for f in (0.05, 0.3))
+    assert low.converged and high.converged
+    assert low.extra["flow_floor_m"] == pytest.approx(0.05 * case.s_c)
+    assert high.h_central < low.h_central
+    assert high.asperity_load_share > low.asperity_load_share
