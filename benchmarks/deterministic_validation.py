@@ -205,14 +205,16 @@ def summarise() -> None:
     for r in rows:
         i = r["inputs"]
         coarse, middle, fine = r["points_per_beta"]
+        times = " / ".join(f"{r['wall_time_s'][f'beta/{n}']:.0f}" for n in (coarse, middle, fine))
         lines.append(
             f"| {r['case']} | {i['p_h_gpa']} | {i['r_eq_mm']} | {i['u_r_m_s']} | {i['sr']} | {i['temp_c']} | "
             f"{i['rq1_um']}/{i['rq2_um']} | {r['lambda_bar']:.3f} | {r['half_width_m'] / beta:.1f} | "
             f"{coarse}/{middle}/{fine} | {r['mu'][f'beta/{coarse}']:.4f} | {r['mu'][f'beta/{middle}']:.4f} | "
             f"{r['mu'][f'beta/{fine}']:.4f} | {100 * r['mu_fine_step_relative']:+.1f} % | "
             f"{r['mu_observed_order']:.1f} | {r['mu_extrapolated']:.4f} | {r['mu_uncertainty']:.4f} | "
+            f"{100 * r['mu_sem'][f'beta/{middle}'] / r['mu'][f'beta/{middle}']:.1f} % | "
             f"{r['asperity_load_share'][f'beta/{fine}']:.3f} | "
-            f"{r['asperity_load_share_fine_step']:+.3f} | {r['smooth_mu']:.4f} |")
+            f"{r['asperity_load_share_fine_step']:+.3f} | {r['smooth_mu']:.4f} | {times} |")
     REPORT.write_text("\n".join(lines) + "\n")
     print("\n".join(lines))
 
