@@ -199,8 +199,9 @@ def summarise() -> None:
              f"Made by `python benchmarks/deterministic_validation.py --summarise` (solver version "
              f"{rows[0]['solver_version'] if rows else '-'}); the data: `data/reference/deterministic_validation.json`.",
              "", "| case | p_h GPa | r_eq mm | u_r m/s | SR | T °C | Rq µm | λ̄ | a/β | spacings β/n | μ coarse | "
-             "μ middle | μ fine | fine step | order | μ extrapolated | ± | share fine | share fine step | smooth μ |",
-             "|---|" + "---|" * 20]
+             "μ middle | μ fine | fine step | order | μ extrapolated | ± | sem of μ middle | share fine | "
+             "share fine step | smooth μ | time per spacing [s] |",
+             "|---|" + "---|" * 21]
     beta = baseline_profile().correlation_length
     for r in rows:
         i = r["inputs"]
