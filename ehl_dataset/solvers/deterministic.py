@@ -155,6 +155,9 @@ attainable balance of a mass row is ≈ (ε/Δ)·1e-16·max P_f, which at the fl
 (thick film, low viscosity, large conductance ε, reference flux ρ̄H of the thin central film) is ≈ 1e-10
 (docs/deterministic_solver.md, "Robustness")."""
 
+REFACTOR_ITERATIONS = 20
+"""GMRES iterations with the stored preconditioner beyond which it is refactored from the current Jacobian."""
+
 FILM_FLOOR = 1e-3
 """The conductance ε reads films below FILM_FLOOR·H_b (interfering asperities) as that floor."""
 
@@ -311,7 +314,7 @@ class MixedProblem:
         matvec = lambda v: self.jacobian_product(jac, dfilm, v) * scale  # noqa: E731
         apply = lambda r: self.preconditioner.apply(r / scale)  # noqa: E731
         step, its, rel = gmres(matvec, apply, -scaled_residual, tol, 40)
-        if rel > tol or its >= 20:  # the stored LU has aged: refactor with this Jacobian and solve again
+        if rel > tol or its >= REFACTOR_ITERATIONS:  # the stored LU has aged: refactor with this Jacobian, solve again
             self.preconditioner = BandedPreconditioner(jac, dfilm, self.binv, self.weights)
             self.cost["factorisations"] += 1
             apply = lambda r: self.preconditioner.apply(r / scale)  # noqa: E731
