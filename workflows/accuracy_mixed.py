@@ -235,7 +235,8 @@ def markdown_mixed(study: dict, command: str, png_name: str) -> str:
 
 
 def plot_mixed(study: dict, path: Path, floor: float = 1e-4) -> Path:
-    """Relative error of μ against wall time per case, one colour per model (median as a star), log axes."""
+    """Relative error of μ against wall time per case (labelled), one colour per model (median as a star), log
+    axes."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -251,6 +252,8 @@ def plot_mixed(study: dict, path: Path, floor: float = 1e-4) -> Path:
         e = np.maximum(np.array([r.mu_error for r in runs]), floor)
         c = colours[k % len(colours)]
         ax.scatter(t, e, s=22, color=c, alpha=0.7)
+        for r, ti, ei in zip(runs, t, e):
+            ax.annotate(r.case, (ti, ei), fontsize=6, color=c, xytext=(3, 2), textcoords="offset points")
         ax.scatter([np.median(t)], [np.median(e)], s=150, marker="*", color=c, edgecolor="black", zorder=5,
                    label=f"{name} (median)")
     ax.set_xscale("log")
