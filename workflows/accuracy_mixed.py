@@ -212,7 +212,9 @@ def markdown_mixed(study: dict, command: str, png_name: str) -> str:
                      f"{_pct(row['mu_error_p90'])} | {_pct(row['mu_error_max'])} | "
                      f"{_pct(row['h_central_error_median'])} | {row['share_difference_median']:.3f} | "
                      f"{row['wall_time_mean_s']:.3g} | {row['wall_time_median_s']:.3g} |")
-    lines += ["", f"![error versus time]({png_name})", "", "## Per case", "",
+    lines += ["", f"![error versus time]({png_name})", "",
+              f"*Made by `{command}` (gearloss {prov.get('gearloss')}, EHL solver {prov.get('solver_version')}).*",
+              "", "## Per case", "",
               "| case | λ̄ | a/β | μ_ref ± | h_c,ref [nm] | share_ref | model | μ | err μ | h_c [nm] | err h_c | share | "
               "time [s] | converged |", "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     from ehl_dataset.model.roughness import baseline_profile
