@@ -75,8 +75,9 @@ def load_reference(path: str | Path = REFERENCE_FILE) -> list[dict]:
     try:
         data = json.loads(path.read_text(encoding="utf-8"))
         cases = data["cases"]
-        for row in cases:
-            row["inputs"], row["mu_extrapolated"]  # noqa: B018 - the keys the study needs
+        missing = [key for row in cases for key in ("case", "inputs", "mu_extrapolated") if key not in row]
+        if missing:
+            raise KeyError(missing[0])
     except FileNotFoundError:
         raise InputError("reference", str(path), "an existing file made by benchmarks/deterministic_validation.py "
                                                  "--summarise") from None
@@ -152,14 +153,14 @@ def run_mixed_study(models: Sequence[str] = CHEAP_MODELS, reference: str | Path 
         case = reference_case(row)
         for name in models:
             run = done.get((row["case"], name)) or _run(case, lub, row, name, solve)
+            done[(row["case"], name)] = run
             runs.append(run)
             if progress:
                 progress(f"{row['case']}: {name} mu={run.mu:.4g} (ref {row['mu_extrapolated']:.4g}, "
                          f"err {run.mu_error:.1%}) in {run.wall_time_s:.3g} s")
             if checkpoint is not None:
                 Path(checkpoint).write_text(json.dumps(
-                    {"solver_version": SOLVER_VERSION, "runs": [dataclasses.asdict(r) for r in runs]
-                     + [dataclasses.asdict(r) for k, r in done.items() if k not in {(x.case, x.model) for x in runs}]},
+                    {"solver_version": SOLVER_VERSION, "runs": [dataclasses.asdict(r) for r in done.values()]},
                     default=float), encoding="utf-8")
     return {"runs": runs, "cases": cases, "models": list(models), "provenance": provenance(),
             "reference_file": str(reference)}

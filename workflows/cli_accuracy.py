@@ -81,14 +81,17 @@ def run_mixed(args) -> int:
                "markdown_path": str(paths["markdown"]), "plot_path": str(paths["plot"]),
                "json_path": str(paths["json"])}
 
-    def human(data):
-        rows = [f"{name}: median err mu {row['mu_error_median']:.3g}, p90 {row['mu_error_p90']:.3g}; "
-                f"mean time {row['wall_time_mean_s']:.3g} s/case ({row['converged']}/{row['n_cases']} converged)"
-                for name, row in data["summary"].items()]
-        return "\n".join(rows + [f"wrote {data['markdown_path']}, {data['plot_path']}"])
-
-    emit(payload, args.json, human)
+    emit(payload, args.json, lambda data: _human_summary(data, "p90", "mu_error_p90"))
     return 0
+
+
+def _human_summary(data: dict, spread: str, spread_key: str) -> str:
+    """One line per level or model of a study's summary (median and ``spread`` of the μ error, time), then the
+    files written."""
+    rows = [f"{name}: median err mu {row['mu_error_median']:.3g}, {spread} {row[spread_key]:.3g}; "
+            f"mean time {row['wall_time_mean_s']:.3g} s/case ({row['converged']}/{row['n_cases']} converged)"
+            for name, row in data["summary"].items()]
+    return "\n".join(rows + [f"wrote {data['markdown_path']}, {data['plot_path']}"])
 
 
 def run_accuracy(args) -> int:
@@ -159,11 +162,5 @@ def run_accuracy(args) -> int:
         "git_commit": study.provenance.get("git_commit"),
     }
 
-    def human(data):
-        rows = [f"{level}: median err mu {row['mu_error_median']:.3g}, max {row['mu_error_max']:.3g}; "
-                f"mean time {row['wall_time_mean_s']:.3g} s/case ({row['converged']}/{row['n_cases']} converged)"
-                for level, row in data["summary"].items()]
-        return "\n".join(rows + [f"wrote {data['markdown_path']}, {data['plot_path']}"])
-
-    emit(payload, args.json, human)
+    emit(payload, args.json, lambda data: _human_summary(data, "max", "mu_error_max"))
     return 0
