@@ -18,6 +18,8 @@ Pipeline (:func:`fit_surrogate`):
 
 from __future__ import annotations
 
+import dataclasses
+
 import math
 import time
 import warnings
@@ -144,10 +146,12 @@ class BranchFit:
     summary_text: str = ""
     messages: list[str] = field(default_factory=list)
     stable: bool = True
+    fixed_zero: list[str] = field(default_factory=list)
 
     def to_dict(self) -> dict[str, Any]:
         return {
             "terms": list(self.terms),
+            "fixed_zero": list(self.fixed_zero),
             "params": [float(v) for v in self.params],
             "std_errors": [float(v) for v in self.std_errors],
             "r2": float(self.r2),
@@ -230,15 +234,57 @@ def _intercept_column(x: np.ndarray) -> int | None:
 
 
 def fit_branch(x: np.ndarray, y: np.ndarray, names: list[str], branch: str, lam: np.ndarray | None = None,
-               max_condition: float = MAX_STANDARDISED_CONDITION) -> BranchFit:
+               max_condition: float = MAX_STANDARDISED_CONDITION, fixed_zero: tuple[str, ...] = ()) -> BranchFit:
     """OLS fit of ln μ on one branch's design matrix with statsmodels (see module docstring for the checks).
     ``max_condition``: condition number of the standardised design above which the branch is unstable.
+    ``fixed_zero``: terms whose coefficient is fixed at 0 (not fitted; :func:`alpha_terms_to_fix`): they are left
+    out of the regression and reported with coefficient and standard error 0.
 
     BLAS runs single-threaded here: the matrices are thin (n × 10–14) and multi-threaded SVDs were measured 10×
     slower on a loaded 2-core machine.
     """
+    keep = [j for j, name in enumerate(names) if name not in fixed_zero]
     with threadpool_limits(1):
-        return _fit_branch(x, y, names, branch, lam, max_condition)
+        fit = _fit_branch(x[:, keep], y, [names[j] for j in keep], branch, lam, max_condition)
+    if len(keep) == len(names):
+        return fit
+    k = len(names)
+    params, errors, cov = np.zeros(k), np.zeros(k), np.zeros((k, k))
+    params[keep], errors[keep] = fit.params, fit.std_errors
+    cov[np.ix_(keep, keep)] = fit.covariance
+    return dataclasses.replace(fit, terms=list(names), params=params, std_errors=errors, covariance=cov,
+                               fixed_zero=[n for n in names if n in fixed_zero])
+
+
+ALPHA_CONSTANT_RTOL = 1e-9
+"""Relative spread of ᾱ over a dataset below which the lubricant's α1 is taken as temperature independent."""
+
+
+def alpha_terms_to_fix(formula: Formula, branch: str, features: dict[str, np.ndarray]) -> tuple[str, ...]:
+    """Terms of ``branch`` to fix at 0 because ᾱ does not vary: with ᾱ constant over the dataset (a lubricant whose
+    α1 does not depend on temperature, e.g. one Barus α) the terms that contain it lose their own variable —
+    ᾱ ln SR is a multiple of ln SR whatever the factorial, ᾱ^W̄ and ᾱ^r̄ are functions of W̄ and r̄ alone, which the
+    factorial's levels may not separate from the other terms (Eq. 9b). Each such term that adds no rank to the
+    standardised design (column-pivoted QR, the α terms added one by one after the others) is fixed at 0: the
+    fitted function is unchanged, its coefficients become identifiable. Empty when ᾱ varies; a dependent term
+    without ᾱ still stops the fit (:func:`fit_branch`)."""
+    alpha = np.asarray(features["alpha"], dtype=float)
+    if alpha.size == 0 or np.ptp(alpha) > ALPHA_CONSTANT_RTOL * max(float(np.max(np.abs(alpha))), 1e-300):
+        return ()
+    names = formula.term_names(branch)
+    alpha_terms = [n for n in names if "alpha" in n]
+    if not alpha_terms:
+        return ()
+    others = [n for n in names if n not in alpha_terms]
+    z, _, _ = _standardise(design_matrix(formula.terms[branch], features))
+    order = [names.index(n) for n in others + alpha_terms]
+    fixed = []
+    for count in range(len(alpha_terms)):  # add the α terms one by one; fix each that adds no rank
+        kept = [j for j in order[: len(others) + count + 1] if names[j] not in fixed]
+        rank, _ = rank_and_dependent_terms(z[:, kept], [names[j] for j in kept])
+        if rank < len(kept):
+            fixed.append(alpha_terms[count])
+    return tuple(fixed)
 
 
 def _fit_branch(x, y, names, branch, lam, max_condition) -> BranchFit:
@@ -442,7 +488,13 @@ def fit_surrogate(table: pd.DataFrame, lubricant, e_reduced: float, *, formula: 
     for branch, mask in masks.items():
         sub = {k: v[mask] for k, v in feats.items()}
         x = design_matrix(formula.terms[branch], sub)
-        branches[branch] = fit_branch(x, ln_mu[mask], formula.term_names(branch), branch, sub["lam"], max_condition)
+        fixed = alpha_terms_to_fix(formula, branch, sub)
+        if fixed:
+            warnings.warn(f"branch {branch}: the pressure-viscosity coefficient is the same at every temperature of "
+                          f"the dataset, so the terms {list(fixed)} are multiples of the others: fixed at 0",
+                          UserWarning, stacklevel=2)
+        branches[branch] = fit_branch(x, ln_mu[mask], formula.term_names(branch), branch, sub["lam"], max_condition,
+                                      fixed)
     stable = all(f.stable for f in branches.values())
     if prepared.lambda_column_max_rel_diff is not None and prepared.lambda_column_max_rel_diff > LAMBDA_COLUMN_RTOL:
         warnings.warn(f"lambda_bar recomputed from the inputs differs from the dataset's lambda_bar column by up to "

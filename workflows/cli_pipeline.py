@@ -85,16 +85,7 @@ def run_pipeline_command(args: argparse.Namespace) -> int:
                        design=args.design, overwrite=args.overwrite, workers=args.workers,
                        time_limit_s=args.time_limit_s)
     resume = _resume_command(args, run)
-    n = run.factorial.size
-    state = (f"resuming: {run.resumable} of {n} points done" if run.resumable and not args.overwrite
-             else f"new run of {n} points")
-    print(f"gearloss pipeline {args.pipeline_command}: factorial {run.factorial.name}, level {run.level}, model "
-          f"{run.model}; {state}\n  output: {run.dataset} and {run.coefficients}\n  Ctrl-C stops and keeps the "
-          f"finished points; resume with: {resume}", file=sys.stderr, flush=True)
-    if run.smoke:
-        from .pipeline import SMOKE_LABEL
-
-        print(f"  {SMOKE_LABEL}", file=sys.stderr, flush=True)
+    announce(f"gearloss pipeline {args.pipeline_command}: factorial", run, resume, args.overwrite)
     result = run_pipeline(run.out_dir, run.factorial, workers=args.workers,
                           scheduler=getattr(args, "scheduler", None), progress=args.progress, level=run.level,
                           model=run.model, design=args.design, allow_unstable=args.allow_unstable,
@@ -109,32 +100,54 @@ def run_pipeline_command(args: argparse.Namespace) -> int:
     return exit_codes.OK if (design["converged"] and design["valid"]) else exit_codes.NOT_VALID
 
 
+def announce(title: str, run, resume: str, overwrite: bool) -> None:
+    """The start lines on stderr: what runs (``title`` then the factorial, level, model), new or resumed, where the
+    output goes and the command that resumes it; the smoke label for a smooth-surface run."""
+    from .pipeline import SMOKE_LABEL
+
+    n = run.factorial.size
+    state = (f"resuming: {run.resumable} of {n} points done" if run.resumable and not overwrite
+             else f"new run of {n} points")
+    print(f"{title} {run.factorial.name}, level {run.level}, model {run.model}; {state}\n  output: {run.dataset} "
+          f"and {run.coefficients}\n  Ctrl-C stops and keeps the finished points; resume with: {resume}",
+          file=sys.stderr, flush=True)
+    if run.smoke:
+        print(f"  {SMOKE_LABEL}", file=sys.stderr, flush=True)
+
+
 def _resume_command(args, run) -> str:
-    """The command that continues this run: the one typed, without --overwrite (a resume must not start afresh)."""
+    return resume_command(args, ["pipeline", args.pipeline_command, "--out-dir", str(run.out_dir)])
+
+
+def resume_command(args, fallback: list[str]) -> str:
+    """The command that continues a run: the one typed, without --overwrite (a resume must not start afresh);
+    ``fallback`` the arguments when the typed ones are unknown (a call from Python)."""
     import shlex
 
     argv = [a for a in getattr(args, "argv", []) if a != "--overwrite"]
-    if not argv:
-        argv = ["pipeline", args.pipeline_command, "--out-dir", str(run.out_dir)]
-    return "gearloss " + shlex.join(argv)
+    return "gearloss " + shlex.join(argv or fallback)
 
 
-def _human(p: dict) -> str:
-    s = p["stages"]
-    data, fit, design = s["dataset"], s["fit"], s["design"]
-    lines = []
-    if p.get("label"):
-        lines.append(p["label"])
-    lines.append(
+def dataset_fit_lines(data: dict, fit: dict) -> list[str]:
+    """The human summary of stages 1 (dataset) and 2 (fit) from their ``to_dict()`` payloads."""
+    lines = [
         f"stage 1 dataset   {data['artefact']}: factorial {data['factorial']} (level {data['level']}, model "
         f"{data['model']}), {data['n_points']} points, {data['computed']} computed"
         f"{' (resumed)' if data['resumed'] else ''}; ok {data['ok']}, failed {data['failed']}, non-converged "
-        f"{data['non_converged']} — {data['wall_time_s']:.1f} s")
+        f"{data['non_converged']} — {data['wall_time_s']:.1f} s"]
     for message, count in (data.get("failures") or {}).items():
         lines.append(f"                  {count} failed: {message}")
     branches = ", ".join(f"{b}: n={v['n_obs']}, adj R² {v['adj_r2']:.3f}" for b, v in fit["branches"].items())
     lines.append(f"stage 2 fit       {fit['artefact']}: {fit['n_used']} rows used ({branches}); CV RMSE ln μ "
                  f"{fit['cv_rmse_ln_mu']:.3f}; stable {fit['stable']} — {fit['wall_time_s']:.1f} s")
+    return lines
+
+
+def _human(p: dict) -> str:
+    s = p["stages"]
+    data, fit, design = s["dataset"], s["fit"], s["design"]
+    lines = [p["label"]] if p.get("label") else []
+    lines += dataset_fit_lines(data, fit)
     lines.append(f"stage 3 design {design['design']} at {design['torque_nm']:.0f} N·m, {design['speed_rpm']:.0f} rpm, "
                  f"{design['oil_temperature_k'] - 273.15:.0f} °C, Rq {design['rq1_m'] * 1e6:.2g} µm, M_P "
                  f"{design['profile_crown_m'] * 1e6:.3g} µm, M_L {design['lead_crown_m'] * 1e6:.3g} µm — "

@@ -85,9 +85,11 @@ def _factorial(factorial):
     return factorial if isinstance(factorial, Factorial) else load_factorial(factorial)
 
 
-def default_out_dir(factorial_name: str, level: str, model: str = "auto") -> str:
-    """``gearloss_<factorial>_<level>`` (``_<model>`` appended unless auto): one directory per kind of run."""
-    safe = "".join(c if c.isalnum() or c in "-_" else "_" for c in factorial_name)
+def default_out_dir(factorial_name: str, level: str, model: str = "auto", lubricant_name: str | None = None) -> str:
+    """``gearloss_[<lubricant>_]<factorial>_<level>`` (``_<model>`` appended unless auto; the lubricant's name when
+    one is chosen instead of the factorial's): one directory per kind of run."""
+    parts = ([lubricant_name] if lubricant_name else []) + [factorial_name]
+    safe = "_".join("".join(c if c.isalnum() or c in "-_" else "_" for c in part) for part in parts)
     return f"gearloss_{safe}_{level}" + ("" if model == "auto" else f"_{model}")
 
 
@@ -101,7 +103,7 @@ class PipelinePlan:
     model: str
     lubricant_name: str
     study: str
-    design: str
+    design: str | None
     out_dir: Path
     resumable: int  # points already done in an existing dataset file of the same run (0: new run)
 
@@ -119,12 +121,14 @@ class PipelinePlan:
 
 
 def check_inputs(factorial=QUICK_FACTORIAL, *, out_dir=None, level: str | None = None, model: str | None = None,
-                 lubricant=None, study: str = "paper2009", design: str = "D", overwrite: bool = False,
+                 lubricant=None, study: str = "paper2009", design: str | None = "D", overwrite: bool = False,
                  workers: int = 1, time_limit_s: float | None = None) -> PipelinePlan:
     """Check everything a run needs before stage 1 computes anything (a typo in ``design`` must not cost the
-    stage-1 run): factorial, level, model, lubricant, the design (a name of ``study`` or a design TOML file),
-    workers, time limit, and that ``out_dir`` either holds nothing of this run or the same run (then it resumes)."""
-    from ehl_dataset.dataset.runner import check_model, check_time_limit, recorded_model
+    stage-1 run): factorial, level, model, lubricant (its data range covers the factorial's temperatures), the
+    design (a name of ``study`` or a design TOML file; None: no design stage), workers, time limit, and that
+    ``out_dir`` either holds nothing of this run or the same run (then it resumes)."""
+    from ehl_dataset.dataset.runner import check_lubricant_covers, check_model, check_time_limit, recorded_model
+    from ehl_dataset.dataset.factorial import canonical_json
     from ehl_dataset.dataset.store import SOLVER_DEFAULTS, read_metadata
     from ehl_dataset.model.lubricant import load_lubricant
     from ehl_dataset.solvers.levels import get_level
@@ -136,8 +140,11 @@ def check_inputs(factorial=QUICK_FACTORIAL, *, out_dir=None, level: str | None =
     level = get_level(level or plan.level).name
     model = check_model(model or plan.model)
     lub = load_lubricant(lubricant or plan.lubricant)
-    _check_design(study, design)
-    out = Path(out_dir) if out_dir is not None else Path(default_out_dir(plan.name, level, model))
+    check_lubricant_covers(plan, lub)
+    if design is not None:
+        _check_design(study, design)
+    out = Path(out_dir) if out_dir is not None else Path(default_out_dir(
+        plan.name, level, model, None if lubricant is None or lub.name == plan.lubricant else lub.name))
     if out.exists() and not out.is_dir():
         raise InputError("out-dir", str(out), "a directory (this path is a file)")
     resumable = 0
@@ -153,9 +160,9 @@ def check_inputs(factorial=QUICK_FACTORIAL, *, out_dir=None, level: str | None =
             if str(recorded.get(key)) != value:
                 raise InputError(key, value, f"{recorded_model(recorded) if key == 'model' else recorded.get(key)!r}"
                                  f" as recorded in {dataset}", hint)
-        if meta["lubricant"].get("name") != lub.name:
-            raise InputError("lubricant", lub.name, f"{meta['lubricant'].get('name')!r} as recorded in {dataset}",
-                             hint)
+        if canonical_json(lub.to_json_dict()) != canonical_json(meta["lubricant"]):
+            raise InputError("lubricant", lub.name, f"the definition of {meta['lubricant'].get('name')!r} as "
+                             f"recorded in {dataset} (compared field by field)", hint)
         resumable = int(meta["counts"]["ok"])
     return PipelinePlan(plan, level, model, lub.name, study, design, out, resumable)
 
@@ -362,6 +369,42 @@ def run_pipeline(out_dir: str | Path | None = None, factorial=QUICK_FACTORIAL, *
     stages.append(design_stage(stages[1].artefact, study=study, design=design, options=mesh_options,
                                clip_to_fitted_ranges=clip_to_fitted_ranges))
     result = PipelineResult(str(out), stages, time.perf_counter() - started)
+    if run.smoke:
+        result.label = SMOKE_LABEL
+    return result
+
+
+# ---------------------------------------------------------------------- a user's lubricant
+def run_lubricant_fit(lubricant, factorial=QUICK_FACTORIAL, *, out_dir=None, workers: int = 1,
+                      scheduler: str | None = None, level: str | None = None, model: str | None = None,
+                      progress: str = "auto", allow_unstable: bool = False, time_limit_s: float | None = None,
+                      overwrite: bool = False, resume_command: str | None = None,
+                      checked: PipelinePlan | None = None, **runner_options) -> PipelineResult:
+    """Stages 1–2 for ``lubricant`` (a name, a TOML file or a :class:`~ehl_dataset.model.lubricant.Lubricant`):
+    ``factorial`` → ``OUT/dataset.h5`` → ``OUT/<lubricant>_<factorial>.json``, the coefficient file that
+    ``gearloss gear evaluate --friction FILE`` and :func:`efficiency.friction.friction_from_spec` read.
+
+    ``out_dir`` None: ``gearloss_<lubricant>_<factorial>_<level>[_<model>]``. Resumable like
+    :func:`run_pipeline` (same directory, same factorial, level, model and lubricant definition), on local
+    processes or on the Dask cluster at ``scheduler``. Every input is checked before stage 1, the lubricant's
+    temperature range against the factorial's temperature levels included (docs/pipeline.md, "Your own
+    lubricant").
+    """
+    started = time.perf_counter()
+    run = checked or check_inputs(factorial, out_dir=out_dir, level=level, model=model, lubricant=lubricant,
+                                  design=None, overwrite=overwrite, workers=workers, time_limit_s=time_limit_s)
+    if overwrite:
+        for path in (run.dataset, run.coefficients, run.coefficients.with_suffix(".summary.txt")):
+            path.unlink(missing_ok=True)
+    dataset = dataset_stage(run.out_dir, run.factorial, workers=workers, scheduler=scheduler, lubricant=lubricant,
+                            level=run.level, model=run.model, progress=progress, time_limit_s=time_limit_s,
+                            **runner_options)
+    if dataset.details["interrupted"]:
+        raise Interrupted(dataset.details["interrupted"], f"lubricant fit stage 1 ({dataset.details['computed']} "
+                          f"points computed, {dataset.details['pending']} pending in {dataset.artefact})",
+                          resume_command)
+    fit = fit_stage(dataset.artefact, run.coefficients, allow_unstable=allow_unstable)
+    result = PipelineResult(str(run.out_dir), [dataset, fit], time.perf_counter() - started)
     if run.smoke:
         result.label = SMOKE_LABEL
     return result

@@ -52,7 +52,7 @@ import numpy as np
 from threadpoolctl import threadpool_limits
 
 from ..model.contact import ContactCase
-from ..model.lubricant import Lubricant, load_lubricant, lubricant_from_dict
+from ..model.lubricant import CELSIUS_ZERO_K, Lubricant, load_lubricant, lubricant_from_dict
 from ..solvers.deterministic import MODEL_VERSION as DETERMINISTIC_MODEL_VERSION
 from ..solvers.levels import get_level
 from ..solvers.planner import plan_effects
@@ -470,6 +470,7 @@ def run_factorial(out, factorial: Factorial | str | os.PathLike, *, lubricant=No
     time_limit_s = check_time_limit(time_limit_s, solver)
     plan = factorial if isinstance(factorial, Factorial) else load_factorial(factorial)
     lub = lubricant if isinstance(lubricant, Lubricant) else load_lubricant(lubricant or plan.lubricant)
+    check_lubricant_covers(plan, lub)
     config = solver_config(solver, level or plan.level, effects or plan.effects, model or plan.model)
     lubricant_dict = json.loads(canonical_json(lub.to_json_dict()))
     factorial_dict = plan.to_dict()
@@ -490,6 +491,17 @@ def run_factorial(out, factorial: Factorial | str | os.PathLike, *, lubricant=No
     with store:
         return execute(store, solver=solver, workers=workers, scheduler=scheduler, kind=kind,
                        time_limit_s=time_limit_s, **options)
+
+
+def check_lubricant_covers(plan: Factorial, lub: Lubricant) -> None:
+    """Refuse (``InputError``, before anything is computed) a factorial with a temperature level outside the
+    lubricant's data range: every point at that temperature would fail."""
+    low, high = lub.t_min - CELSIUS_ZERO_K, lub.t_max - CELSIUS_ZERO_K
+    for t_c in plan.temp_c:
+        if not low <= t_c <= high:
+            raise InputError("temp_c", t_c, f"[{low:g}, {high:g}] °C, the data range of lubricant {lub.name!r}",
+                             f"a temperature level of factorial {plan.name!r}; extend the lubricant's "
+                             "[temperature_range] only with property data that cover it")
 
 
 def resume_run(path, *, workers: int = 1, scheduler: str | None = None, solver: str | Callable | None = None,

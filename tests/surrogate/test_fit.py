@@ -50,12 +50,19 @@ def test_sr_zero_failed_and_unconverged_rows_are_excluded_and_counted(eq9_data, 
 
 
 def test_rank_deficient_design_raises_naming_the_term(atf, e_reduced, true_params):
-    """With a single temperature ᾱ is constant, so ᾱ ln SR is a multiple of ln SR: Eq. 9b is rank deficient and
-    the fit must refuse with a message that names the dependent term."""
-    levels = dict(SMALL_LEVELS, temp_c=[75])
+    """With a single sliding SR level ln SR is constant, a multiple of the intercept: both branches are rank
+    deficient and the fit must refuse with a message that names the dependent term. (A single temperature makes ᾱ
+    constant instead: the α terms are then fixed at 0, as for a lubricant with one α; test below.)"""
+    levels = dict(SMALL_LEVELS, sr=[0.0, 0.2])
     table = eq9_table(factorial_inputs(levels), true_params, atf, e_reduced, noise_sd=NOISE_SD, seed=2)
     with pytest.raises(SolverError, match=r"rank .* terms \["):
         fit_surrogate(table, atf, e_reduced, allow_unstable=True)
+    one_temperature = eq9_table(factorial_inputs(dict(SMALL_LEVELS, temp_c=[75])), true_params, atf, e_reduced,
+                                noise_sd=NOISE_SD, seed=2)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        fit = fit_surrogate(one_temperature, atf, e_reduced, allow_unstable=True)
+    assert "alpha*ln(SR)" in fit.branches["full_film"].fixed_zero
 
 
 def test_full_film_branch_reports_multicollinearity(eq9_fit):
@@ -101,3 +108,37 @@ def test_standard_errors_have_nominal_coverage_over_replicates(eq9_data, atf, e_
     z = np.abs(np.array(z))
     assert 0.60 < np.mean(z < 1.0) < 0.76
     assert 0.92 < np.mean(z < 2.0) < 0.985
+
+
+def test_a_lubricant_with_one_pressure_viscosity_coefficient_fixes_the_alpha_terms_and_keeps_the_fit(e_reduced):
+    """gear_oil_75w90 has one Barus α (9.68e-9 1/Pa at every temperature), so ᾱ is constant and the term ᾱ ln SR of
+    Eq. 9b is a multiple of ln SR: the design is rank-deficient whatever the factorial (found by
+    ``gearloss lubricant fit gear_oil_75w90``). The fit fixes such α terms at 0, warns, and records them; the fitted
+    function is the least-squares one (the same predictions as the minimum-norm solution of the full design).
+    The ATF, whose α1 falls with temperature, fixes nothing."""
+    from ehl_dataset.model.lubricant import load_lubricant
+    from surrogate.fit import branch_masks
+    from surrogate.forms import LI_KAHRAMAN_2009, design_matrix
+    from surrogate.synthetic import toy_table
+
+    oil = load_lubricant("gear_oil_75w90")
+    table = toy_table(factorial_inputs(SMALL_LEVELS), oil, e_reduced)
+    with pytest.warns(UserWarning, match="fixed at 0"):
+        fit = fit_surrogate(table, oil, e_reduced)
+    full_film = fit.branches["full_film"]
+    assert "alpha*ln(SR)" in full_film.fixed_zero
+    assert all(full_film.params[full_film.terms.index(t)] == 0.0 for t in full_film.fixed_zero)
+    assert full_film.rank == len(full_film.terms) - len(full_film.fixed_zero)
+    prepared = prepare_table(table, oil, e_reduced)
+    masks = branch_masks(prepared.features["lam"], LI_KAHRAMAN_2009.lambda_threshold)
+    for branch, mask in masks.items():
+        x = design_matrix(LI_KAHRAMAN_2009.terms[branch], {k: v[mask] for k, v in prepared.features.items()})
+        scale = np.abs(x).max(axis=0)
+        min_norm = np.linalg.lstsq(x / scale, prepared.ln_mu[mask], rcond=1e-10)[0] / scale
+        np.testing.assert_allclose(x @ fit.branches[branch].params, x @ min_norm, atol=1e-6)
+
+    atf = load_lubricant("atf")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        atf_fit = fit_surrogate(toy_table(factorial_inputs(SMALL_LEVELS), atf, e_reduced), atf, e_reduced)
+    assert all(not b.fixed_zero for b in atf_fit.branches.values())
