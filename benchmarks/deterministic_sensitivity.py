@@ -3,11 +3,13 @@ thickness h_b, on one case at one spacing, paired with the base run of benchmark
 (same roughness, same window).
 
     python benchmarks/deterministic_sensitivity.py --case A --spacing 32 --passes 11
+    python benchmarks/deterministic_sensitivity.py --case A --spacing 32 --passes 40 --tag courant \
+        --variant base --variant courant_0.5 --variant courant_0.25
 
-Variants: Courant 0.5 (time step halved), Newton tolerance 1e-9 (10× looser), h_b × 0.5 and × 2 (physical, reported).
-Writes benchmarks/results/deterministic_sensitivity_<case>.json (μ, its standard error, and for each variant the
+Variants: Courant 0.5 and 0.25 (time step halved, quartered), Newton tolerance 1e-9 (10× looser), h_b × 0.5 and × 2
+(physical, reported). Writes benchmarks/results/deterministic_sensitivity_<case>[_<tag>].json (μ, its standard error, and for each variant the
 paired difference to the base run with its standard error) and the μ(t) series of every run in
-benchmarks/results/deterministic_sensitivity/<case>_<variant>.npz.
+benchmarks/results/deterministic_sensitivity/<case>[_<tag>]_<variant>.npz.
 """
 
 from __future__ import annotations
@@ -35,6 +37,7 @@ RESULTS = Path(__file__).resolve().parent / "results"
 VARIANTS = {
     "base": {},
     "courant_0.5": {"courant": 0.5},
+    "courant_0.25": {"courant": 0.25},
     "tolerance_1e-9": {"newton_tolerance": 1e-9},
     "h_b_x0.5": {"boundary_film_m": 0.5 * BOUNDARY_FILM_M},
     "h_b_x2": {"boundary_film_m": 2.0 * BOUNDARY_FILM_M},
@@ -42,6 +45,7 @@ VARIANTS = {
 
 
 def series_path(case: str, name: str) -> Path:
+    """``case`` is the case letter with the run's tag (``A`` or ``A_courant``)."""
     return RESULTS / "deterministic_sensitivity" / f"{case}_{name}.npz"
 
 
@@ -66,14 +70,17 @@ def main(argv=None) -> int:
     parser.add_argument("--spacing", type=int, default=32, help="β/n")
     parser.add_argument("--passes", type=float, default=11.0)
     parser.add_argument("--variant", action="append", default=[], choices=sorted(VARIANTS))
+    parser.add_argument("--tag", default="", help="suffix of the result files (a separate record)")
     args = parser.parse_args(argv)
+    key = args.case + (f"_{args.tag}" if args.tag else "")
     case = ContactCase.from_engineering(*CASES[args.case])
     state = load_lubricant(LUBRICANT).state(case.temperature)
     beta = baseline_profile().correlation_length
-    path = RESULTS / f"deterministic_sensitivity_{args.case}.json"
-    series_path(args.case, "base").parent.mkdir(parents=True, exist_ok=True)
+    path = RESULTS / f"deterministic_sensitivity_{key}.json"
+    series_path(key, "base").parent.mkdir(parents=True, exist_ok=True)
     record = json.loads(path.read_text()) if path.exists() else {}
-    if record.get("model_version") != MODEL_VERSION or record.get("spacing") != args.spacing:
+    if (record.get("model_version"), record.get("spacing"), record.get("passes")) != (MODEL_VERSION, args.spacing,
+                                                                                       args.passes):
         record = {"case": args.case, "inputs": CASES[args.case], "model_version": MODEL_VERSION,
                   "spacing": args.spacing, "passes": args.passes, "runs": {}}
     for name in args.variant or list(VARIANTS):
@@ -92,12 +99,12 @@ def main(argv=None) -> int:
                                 "h_min_m": result.h_min, "converged": result.converged,
                                 "message": result.message, "substep_steps": e.get("substep_steps"),
                                 "wall_time_s": time.time() - start, "n_steps": e["n_steps"]}
-        np.savez_compressed(series_path(args.case, name), t_s=t_window, mu=mu_window)
+        np.savez_compressed(series_path(key, name), t_s=t_window, mu=mu_window)
         if "base" in record["runs"]:
             base = record["runs"]["base"]["mu"]
             for other, run in record["runs"].items():
                 run["mu_relative_to_base"] = run["mu"] / base - 1.0
-                paired = paired_difference(args.case, other)
+                paired = paired_difference(key, other)
                 if paired is not None:
                     run["paired_difference_relative"], run["paired_difference_sem_relative"] = (
                         paired[0] / base, paired[1] / base)
