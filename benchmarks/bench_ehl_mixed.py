@@ -4,11 +4,16 @@
     python benchmarks/bench_ehl_mixed.py --level standard --sample random --n 50 --seed 1
     python benchmarks/bench_ehl_mixed.py --sample corners --shard 0/2 & python ... --shard 1/2   # one per core
     python benchmarks/bench_ehl_mixed.py --sample corners --merge results/ehl_mixed_corners_fast_shard*.json
+    python benchmarks/bench_ehl_mixed.py --model homogenised --closure transverse --sample random --n 500 --seed 2
+    python benchmarks/bench_ehl_mixed.py --model smooth --sample random --n 500 --seed 2    # the same points, smooth
 
 Corners: p_h {0.5, 2.5} GPa × r_eq {5, 80} mm × u_r {1, 20} m/s × SR {0, 1} × T {25, 100} °C × Rq1 = Rq2
 {0.05, 1.0} µm (docs/dataset_format.md), ATF, effects=full. Random: uniform draws from the paper's levels. Writes per-case rows
 and a summary (converged count, mean/median time of all and of converged cases, projected time for 42,000 points on
-this machine with one process per core) to benchmarks/results/ehl_mixed_<sample>_<level>.json.
+this machine with one process per core) to benchmarks/results/ehl_mixed_<sample>_<level>.json
+(``..._<sample>_<level>_<model>[_<closure>].json`` with ``--model`` other than auto). ``--model`` is one of
+ehl_dataset.solver.MODELS; ``--closure`` the homogenised model's flow factors. ``cpu_time_s`` of each row is the
+process CPU time, unaffected by other jobs on the machine (one BLAS thread).
 """
 
 from __future__ import annotations
@@ -29,6 +34,7 @@ from ehl_dataset.model.contact import ContactCase
 from ehl_dataset.model.effects import Effects
 from ehl_dataset.model.lubricant import load_lubricant
 from ehl_dataset.solver import SOLVER_VERSION, solve_contact
+from ehl_dataset.solvers.homogenised import HomogenisedOptions
 from ehl_dataset.solvers.transient import NewtonCost
 
 # _common.py sits next to this file. Run as a script (`python benchmarks/bench_ehl_mixed.py` or, inside benchmarks/,
@@ -68,25 +74,32 @@ def main(argv=None) -> int:
     parser.add_argument("--time-limit-s", type=float, default=None,
                         help="wall-time budget per case [s]; a case that spends it counts as not finished, and the "
                              "mean time is then a lower bound (reported as such)")
+    parser.add_argument("--model", default="auto", help="contact model (ehl_dataset.solver.MODELS)")
+    parser.add_argument("--closure", default="transverse", help="flow factors of --model homogenised")
     args = parser.parse_args(argv)
     cases = corner_cases() if args.sample == "corners" else random_cases(args.n, args.seed)
     if args.max_r_eq_mm is not None:
         cases = [c for c in cases if c[1] <= args.max_r_eq_mm]
     lub = load_lubricant("atf")
-    suffix = ""
+    suffix = "" if args.model == "auto" else f"_{args.model}" + (f"_{args.closure}" if args.model == "homogenised"
+                                                                    else "")
+    homogenised = HomogenisedOptions(closure=args.closure) if args.model == "homogenised" else None
     if args.merge:
         return _report(args, lub, merge_shards(args.merge), suffix)
     if args.shard:
         index, count = (int(v) for v in args.shard.split("/"))
         cases = cases[index::count]
-        suffix = f"_shard{index}of{count}"
+        suffix += f"_shard{index}of{count}"
     rows = []
     for case_args in cases:
         case = ContactCase.from_engineering(*case_args)
         start, cpu_start = time.perf_counter(), time.process_time()
         try:
-            res = solve_contact(case, lub, args.level, Effects.full(), time_limit_s=args.time_limit_s)
+            res = solve_contact(case, lub, args.level, Effects.full(), time_limit_s=args.time_limit_s,
+                                model=args.model, homogenised=homogenised)
             row = {"case": case_args, "converged": res.converged, "mu": res.mu, "mu_std": res.mu_std,
+                   "finite": bool(np.isfinite([res.mu, res.h_min, res.h_central]).all()), "h_min_m": res.h_min,
+                   "h_central_m": res.h_central,
                    "lambda_bar": res.lambda_bar, "asperity_load_share": res.asperity_load_share,
                    "max_load_error": res.extra.get("max_load_error"), "n_nodes": res.extra.get("n_nodes"),
                    "yielded_load_share": res.extra.get("yielded_load_share"), "p_max_pa": res.p_max,
@@ -127,7 +140,8 @@ def _report(args, lub, rows, suffix) -> int:
     summary = {**summarize_rows(rows),
                "converged_mu_in_0_mu_d_for_sr_gt_0": all(0.0 <= r["mu"] <= lub.mu_d for r in ok if r["case"][3] > 0),
                "converged_max_abs_mu_sr_0": max((abs(r["mu"]) for r in ok if r["case"][3] == 0), default=None),
-               "converged_max_load_error": max((r["max_load_error"] for r in ok), default=None),
+               "converged_max_load_error": max((r["max_load_error"] for r in ok if r.get("max_load_error") is not None),
+                                               default=None),
                "converged_lambda_bar_min": min((r["lambda_bar"] for r in ok), default=math.nan),
                "time_limited": sum(bool(r.get("time_limited")) for r in rows),
                **newton_cost_summary(rows),
@@ -141,7 +155,13 @@ def _report(args, lub, rows, suffix) -> int:
                            "planned/completed time steps (an estimate, not a measurement, and a low one: steps after the "
                            "roughness ramp-in cost more; two 80 mm points needed 2.5-2.7x it, "
                            "results/ehl_mixed_standard_80mm_long.json)")
-    report = {"benchmark": "ehl_mixed", "level": args.level, "sample": args.sample, "summary": summary,
+    summary["converged_all_finite"] = all(r.get("finite", False) for r in ok)
+    cpu = [r["cpu_time_s"] for r in rows if "cpu_time_s" in r]
+    if cpu:
+        summary["mean_cpu_time_s"] = statistics.fmean(cpu)
+        summary["p95_cpu_time_s"] = float(np.percentile(cpu, 95))
+    report = {"benchmark": "ehl_mixed", "level": args.level, "sample": args.sample, "model": args.model,
+              "closure": args.closure if args.model == "homogenised" else None, "summary": summary,
               "solver_version": SOLVER_VERSION,
               "rows": rows, "machine": machine_info()}
     write_report(args.out or RESULTS_DIR / f"ehl_mixed_{args.sample}_{args.level}{suffix}.json", report)

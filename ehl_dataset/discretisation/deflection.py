@@ -120,6 +120,19 @@ def uniform_symbol(n_fft: int, dx: float, images: int = 200) -> np.ndarray:
     return total
 
 
+def periodic_kernel_spectrum(n: int, dx: float, images: int = 200) -> np.ndarray:
+    """Real-FFT multiplier (length n//2 + 1) of the deflection of a pressure periodic over n nodes of spacing
+    ``dx``: V = irfft(rfft(P)·K̂, n) is (K p)_i of :func:`uniform_kernel` summed over all periodic images, which is
+    :func:`uniform_symbol` at the n angles 2πk/n. The mean mode (k = 0, the log kernel's infinite constant) is set to
+    0: a periodic window's mean deflection belongs to its film constant. A pressure cos(2πx/L) gives the
+    deflection cos(2πx/L)·L/(2π) up to O((2πΔ/L)²) (the symbol of the continuous operator is 1/|ξ|)."""
+    if n < 2 or not dx > 0.0:
+        raise ValueError("need n >= 2 nodes and dx > 0")
+    symbol = uniform_symbol(n, dx, images)[: n // 2 + 1]
+    symbol[0] = 0.0
+    return symbol
+
+
 def inverse_kernel_band(width: int, dx: float, n_fft: int = 1 << 14) -> np.ndarray:
     """Coefficients b[m], m = −width … width (array index m + width), of the banded approximation B ≈ K⁻¹ of the
     uniform-grid deflection operator of :func:`uniform_kernel` (unit scale), spacing ``dx``.

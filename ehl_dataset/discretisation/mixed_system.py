@@ -86,25 +86,35 @@ def _face(ea, eb, mean):
 def _face_partials(k, eps, eps_p, eps_h, cube, cube_h, mean):
     """ε at face k + ½ and its partials (∂/∂P_f,k, ∂/∂H_k, ∂/∂P_f,k+1, ∂/∂H_k+1); ``cube`` H³ per node and
     ``cube_h`` its derivative (for the kirchhoff mean)."""
+    return _face_partials_of(k, k + 1, eps, eps_p, eps_h, cube, cube_h, mean)
+
+
+@numba.njit(cache=True)
+def _face_partials_of(k, k1, eps, eps_p, eps_h, cube, cube_h, mean):
+    """:func:`_face_partials` of the face between nodes ``k`` and ``k1`` (k1 = k + 1, or 0 across a period)."""
     if mean == 3:
         fa = eps[k] / cube[k]
-        fb = eps[k + 1] / cube[k + 1]
+        fb = eps[k1] / cube[k1]
         lm, la, lb = _face(fa, fb, 2)
-        hm, ha, hb = _face(cube[k], cube[k + 1], 1)
+        hm, ha, hb = _face(cube[k], cube[k1], 1)
         fa_p = eps_p[k] / cube[k]
-        fb_p = eps_p[k + 1] / cube[k + 1]
+        fb_p = eps_p[k1] / cube[k1]
         fa_h = (eps_h[k] - fa * cube_h[k]) / cube[k]
-        fb_h = (eps_h[k + 1] - fb * cube_h[k + 1]) / cube[k + 1]
+        fb_h = (eps_h[k1] - fb * cube_h[k1]) / cube[k1]
         return (lm * hm, la * fa_p * hm, la * fa_h * hm + lm * ha * cube_h[k], lb * fb_p * hm,
-                lb * fb_h * hm + lm * hb * cube_h[k + 1])
-    ef, wa, wb = _face(eps[k], eps[k + 1], mean)
-    return ef, wa * eps_p[k], wa * eps_h[k], wb * eps_p[k + 1], wb * eps_h[k + 1]
+                lb * fb_h * hm + lm * hb * cube_h[k1])
+    ef, wa, wb = _face(eps[k], eps[k1], mean)
+    return ef, wa * eps_p[k], wa * eps_h[k], wb * eps_p[k1], wb * eps_h[k1]
 
 
 @numba.njit(cache=True)
 def assemble(dx, pf, th, pc, h, eps, eps_p, eps_h, rho, rho_p, h_b, kappa, p_yield, stor_coef, stor_old, mean,
-             order, cube, cube_h):
+             order, cube, cube_h, periodic=False):
     """Residual (3N) and band Jacobians (A, D) of the node equations; the load row is the caller's.
+
+    ``periodic``: the grid is one period of a periodic window (node N ≡ node 0): N faces, the face N−1 + ½ joins
+    node N−1 to node 0, every node has a mass row with its time term and a cavitation complementarity (no inlet, no
+    outflow); the band offsets then count modulo N.
 
     Per node: ``pf``, ``th``, ``pc``, ``h`` the state; ``eps``, ``eps_p``, ``eps_h`` ε and its partials in P_f and H;
     ``rho``, ``rho_p`` ρ̄ and ∂ρ̄/∂P_f; ``cube``, ``cube_h`` the film factor H³ of ε and its derivative in H;
@@ -122,40 +132,44 @@ def assemble(dx, pf, th, pc, h, eps, eps_p, eps_h, rho, rho_p, h_b, kappa, p_yie
     m_p = rho_p * th * hm
     m_t = rho * hm
     m_h = np.where(h > h_b, rho * th, 0.0)
-    for k in range(n - 1):
-        ef, ef_pk, ef_hk, ef_pk1, ef_hk1 = _face_partials(k, eps, eps_p, eps_h, cube, cube_h, mean)
-        grad = (pf[k + 1] - pf[k]) / dx
-        c = 0.5 * order if k >= 1 else 0.0
-        m_km1 = m[k - 1] if k >= 1 else 0.0
+    faces = n if periodic else n - 1
+    for k in range(faces):
+        k1 = (k + 1) % n  # the downstream node (node 0 across the periodic face)
+        km = (k - 1) % n  # the upstream neighbour of node k (periodic or k >= 1)
+        has_up = periodic or k >= 1
+        ef, ef_pk, ef_hk, ef_pk1, ef_hk1 = _face_partials_of(k, k1, eps, eps_p, eps_h, cube, cube_h, mean)
+        grad = (pf[k1] - pf[k]) / dx
+        c = 0.5 * order if has_up else 0.0
+        m_km1 = m[km] if has_up else 0.0
         # downstream weight: the minmod-limited form (order 2) uses the smaller of the upwind and downwind
         # differences, or none at an extremum, so that a content jump (a film closing on a contact) cannot make a
         # face carry lubricant against the flow (TVD; second order where the content is smooth)
         cd = 0.0
         if order == 2.0:
             c = 0.0
-            if k >= 1 and k + 1 < n - 1:
+            if periodic or (k >= 1 and k + 1 < n - 1):
                 d_up = m[k] - m_km1
-                d_down = m[k + 1] - m[k]
+                d_down = m[k1] - m[k]
                 if d_up * d_down > 0.0:
                     if abs(d_up) <= abs(d_down):
                         c = 0.5
                     else:
                         cd = 0.5
-        m_kp1 = m[k + 1]
+        m_kp1 = m[k1]
         q = ef * grad - (m[k] + c * (m[k] - m_km1) + cd * (m_kp1 - m[k]))
         q_pf_k = ef_pk * grad - ef / dx - (1.0 + c - cd) * m_p[k]
         q_th_k = -(1.0 + c - cd) * m_t[k]
         q_h_k = ef_hk * grad - (1.0 + c - cd) * m_h[k]
-        q_pf_k1 = ef_pk1 * grad + ef / dx - cd * m_p[k + 1]
-        q_th_k1 = -cd * m_t[k + 1]
-        q_h_k1 = ef_hk1 * grad - cd * m_h[k + 1]
+        q_pf_k1 = ef_pk1 * grad + ef / dx - cd * m_p[k1]
+        q_th_k1 = -cd * m_t[k1]
+        q_h_k1 = ef_hk1 * grad - cd * m_h[k1]
         for side in range(2):
-            node = k if side == 0 else k + 1
-            if node < 1:
+            node = k if side == 0 else k1
+            if node < 1 and not periodic:
                 continue
             sign = 1.0 if side == 0 else -1.0
             r = 3 * node
-            o = k - node + 2
+            o = 2 - side  # band offset of node k in the row of ``node``
             res[r] += sign * q
             jac[r, o, 0] += sign * q_pf_k
             jac[r, o, 1] += sign * q_th_k
@@ -163,26 +177,28 @@ def assemble(dx, pf, th, pc, h, eps, eps_p, eps_h, rho, rho_p, h_b, kappa, p_yie
             jac[r, o + 1, 0] += sign * q_pf_k1
             jac[r, o + 1, 1] += sign * q_th_k1
             dfilm[r, o + 1] += sign * q_h_k1
-            if k >= 1:
-                jac[r, o - 1, 0] += sign * c * m_p[k - 1]
-                jac[r, o - 1, 1] += sign * c * m_t[k - 1]
-                dfilm[r, o - 1] += sign * c * m_h[k - 1]
-    last = 3 * (n - 1)
-    res[last] -= m[n - 1]
-    jac[last, 2, 0] -= m_p[n - 1]
-    jac[last, 2, 1] -= m_t[n - 1]
-    dfilm[last, 2] -= m_h[n - 1]
-    for i in range(1, n):
+            if has_up:
+                jac[r, o - 1, 0] += sign * c * m_p[km]
+                jac[r, o - 1, 1] += sign * c * m_t[km]
+                dfilm[r, o - 1] += sign * c * m_h[km]
+    if not periodic:
+        last = 3 * (n - 1)
+        res[last] -= m[n - 1]
+        jac[last, 2, 0] -= m_p[n - 1]
+        jac[last, 2, 1] -= m_t[n - 1]
+        dfilm[last, 2] -= m_h[n - 1]
+    for i in range(0 if periodic else 1, n):
         r = 3 * i
         res[r] -= stor_coef[i] * m[i] + stor_old[i]
         jac[r, 2, 0] -= stor_coef[i] * m_p[i]
         jac[r, 2, 1] -= stor_coef[i] * m_t[i]
         dfilm[r, 2] -= stor_coef[i] * m_h[i]
-    res[0] = th[0] - 1.0
-    jac[0, 2, 1] = 1.0
+    if not periodic:
+        res[0] = th[0] - 1.0
+        jac[0, 2, 1] = 1.0
     for i in range(n):
         r = 3 * i + 1
-        if i == 0 or i == n - 1:
+        if not periodic and (i == 0 or i == n - 1):
             res[r] = pf[i]
             jac[r, 2, 0] = 1.0
         else:
@@ -201,9 +217,9 @@ def assemble(dx, pf, th, pc, h, eps, eps_p, eps_h, rho, rho_p, h_b, kappa, p_yie
 
 
 @numba.njit(cache=True)
-def local_matvec(jac, dfilm, v, dh):
+def local_matvec(jac, dfilm, v, dh, periodic=False):
     """Σ_j A_rj v_j + Σ_j D_rj dH_j for the band arrays of :func:`assemble` (``v`` the 3N local unknowns and more,
-    ``dh`` the film change at every node)."""
+    ``dh`` the film change at every node; ``periodic``: the offsets count modulo N)."""
     n3 = jac.shape[0]
     n = n3 // 3
     out = np.zeros(n3)
@@ -212,7 +228,9 @@ def local_matvec(jac, dfilm, v, dh):
         total = 0.0
         for o in range(OFFSETS):
             j = i + o - 2
-            if j < 0 or j >= n:
+            if periodic:
+                j %= n
+            elif j < 0 or j >= n:
                 continue
             total += (jac[r, o, 0] * v[3 * j] + jac[r, o, 1] * v[3 * j + 1] + jac[r, o, 2] * v[3 * j + 2]
                       + dfilm[r, o] * dh[j])

@@ -33,7 +33,7 @@ from typing import Callable
 import numpy as np
 import scipy.fft
 
-from ..discretisation.deflection import inverse_kernel_band, uniform_kernel
+from ..discretisation.deflection import inverse_kernel_band, periodic_kernel_spectrum, uniform_kernel
 from ..discretisation.mixed_system import FACE_MEANS, assemble, local_matvec
 
 COUETTE_FLUXES = {"linear": 1.0, "first-order": 0.0, "minmod": 2.0}
@@ -186,10 +186,14 @@ class MixedProblem:
 
     def __init__(self, x: np.ndarray, scales: ContactScales, state: LubricantState, h_b: float, p_yield: float,
                  compressible: bool = True, face_mean: str = "kirchhoff", band: int = 12,
-                 couette_flux: str = "minmod"):
+                 couette_flux: str = "minmod", mean_pressure: float | None = None):
+        """``mean_pressure`` None: the whole contact, loaded with W' (∫P dX = π/2); a number P̄: ``x`` is one
+        period of a periodic window (period N Δ) whose mean total pressure is P̄, with the periodic deflection
+        (:func:`~ehl_dataset.discretisation.deflection.periodic_kernel_spectrum`; its mean is H0's)."""
         self.x = np.ascontiguousarray(x, dtype=float)
         self.n = n = self.x.size
         self.dx = float(self.x[1] - self.x[0])
+        self.periodic = mean_pressure is not None
         self.lam = scales.lam
         self.shear = scales.shear
         self.p_h = scales.p_h
@@ -199,16 +203,23 @@ class MixedProblem:
         self.compressible = compressible and state.compressible
         self.mean = FACE_MEANS[face_mean]
         self.order = COUETTE_FLUXES[couette_flux]
-        kernel = uniform_kernel(n, self.dx)
-        # circular convolution of length >= 2N - 1 holds the linear one on the N output nodes (DC-FFT)
-        self.fft_size = scipy.fft.next_fast_len(2 * n - 1, real=True)
-        wrapped = np.zeros(self.fft_size)
-        wrapped[:n] = kernel[n - 1:]
-        wrapped[-(n - 1):] = kernel[: n - 1]
-        self.kernel_spectrum = scipy.fft.rfft(wrapped)
         self.weights = np.full(n, self.dx)
-        self.weights[0] = self.weights[-1] = 0.5 * self.dx
-        self.kappa = 1.0 / float(kernel[n - 1])
+        if self.periodic:
+            self.fft_size = n
+            self.kernel_spectrum = periodic_kernel_spectrum(n, self.dx)
+            self.kappa = 1.0 / float(scipy.fft.irfft(self.kernel_spectrum, n)[0])
+            self.load_target = float(mean_pressure) * n * self.dx
+        else:
+            kernel = uniform_kernel(n, self.dx)
+            # circular convolution of length >= 2N - 1 holds the linear one on the N output nodes (DC-FFT)
+            self.fft_size = scipy.fft.next_fast_len(2 * n - 1, real=True)
+            wrapped = np.zeros(self.fft_size)
+            wrapped[:n] = kernel[n - 1:]
+            wrapped[-(n - 1):] = kernel[: n - 1]
+            self.kernel_spectrum = scipy.fft.rfft(wrapped)
+            self.weights[0] = self.weights[-1] = 0.5 * self.dx
+            self.kappa = 1.0 / float(kernel[n - 1])
+            self.load_target = 0.5 * math.pi
         self.binv = inverse_kernel_band(band, self.dx)
         self.m_ref = 1.0
         self.preconditioner = None
@@ -288,10 +299,10 @@ class MixedProblem:
         res, jac, dfilm = assemble(self.dx, np.ascontiguousarray(pf), np.ascontiguousarray(th),
                                    np.ascontiguousarray(pc), h, eps, eps_p, eps_h, rho, rho_p, self.h_b, self.kappa,
                                    self.p_yield, storage[0], storage[1], self.mean, self.order,
-                                   cube, cube_h)
+                                   cube, cube_h, self.periodic)
         out = np.empty(3 * self.n + 1)
         out[:-1] = res
-        out[-1] = float(self.weights @ (pf + pc)) - 0.5 * math.pi
+        out[-1] = float(self.weights @ (pf + pc)) - self.load_target
         return out, h, jac, dfilm
 
     def row_scale(self) -> np.ndarray:
@@ -303,7 +314,7 @@ class MixedProblem:
     def jacobian_product(self, jac, dfilm, v):
         dp = v[0:-1:3] + v[2:-1:3]
         out = np.empty_like(v)
-        out[:-1] = local_matvec(jac, dfilm, v, self.deflection(dp) + v[-1])
+        out[:-1] = local_matvec(jac, dfilm, v, self.deflection(dp) + v[-1], self.periodic)
         out[-1] = float(self.weights @ dp)
         return out
 
@@ -394,8 +405,10 @@ class MixedProblem:
         return abs(float(np.sum(self.last_residual[3:-1:3]))) / self.m_ref
 
 
-def _traction(problem: MixedProblem, case: ContactCase, state: LubricantState, scales: ContactScales, z, h):
-    """(μ, asperity part of μ, asperity load share, yielded load share) of one state (paper Eq. 7–8)."""
+def _traction(problem: MixedProblem, case: ContactCase, state: LubricantState, scales: ContactScales, z, h,
+              local: bool = False):
+    """(μ, asperity part of μ, asperity load share, yielded load share) of one state (paper Eq. 7–8); with
+    ``local`` also the local shear stress per node [Pa] (θτ + (h/2)∂p_f/∂x + μ_d p_c sign u_s)."""
     pf, th, pc, _ = problem.unpack(z)
     p_f = pf * case.p_h
     p_c = pc * case.p_h
@@ -409,6 +422,9 @@ def _traction(problem: MixedProblem, case: ContactCase, state: LubricantState, s
     mu = float(w @ (tau + rolling)) / load + asperity
     share = float(w @ p_c) / load
     yielded = float(w @ (p_c * (pc >= (1.0 - 1e-9) * problem.p_yield))) / load
+    if local:
+        sign = math.copysign(1.0, case.u_s) if case.u_s != 0.0 else 0.0
+        return mu, asperity, share, yielded, tau + rolling + state.mu_d * sign * p_c
     return mu, asperity, share, yielded
 
 
@@ -498,8 +514,7 @@ def solve_deterministic(case: ContactCase, state: LubricantState, plan: Effects,
         t = k * d_t
         record.add(problem, case, state, scales, z, h, g, substeps, t * time_scale)
         if k > first_average:
-            record.film_sum = record.last_film.copy() if record.film_sum is None else record.film_sum + record.last_film
-            record.film_count += 1
+            record.accumulate()
         if k >= n_min and (k - n_min) % check_every == 0:
             mu_mean = time_mean(record.mu[first_average:])
             tolerance = options.mu_sem_target * max(abs(mu_mean.mean), 0.01)
@@ -623,11 +638,25 @@ class _Record:
         self.mass, self.load = [], []
         self.film_sum = None
         self.film_count = 0
+        self.profile_sums = {}
         self.substep_steps = 0
         self.smooth = {}
 
+    def accumulate(self):
+        """Add the last state's profiles to the sums of the averaging window."""
+        self.film_sum = self.last_film.copy() if self.film_sum is None else self.film_sum + self.last_film
+        self.film_count += 1
+        for key, value in self.last_profiles.items():
+            self.profile_sums[key] = value.copy() if key not in self.profile_sums else self.profile_sums[key] + value
+
+    def mean_profiles(self) -> dict:
+        """Time-averaged profiles over the averaging window [SI], named as in the result's ``extra``."""
+        if not self.film_count:
+            return {}
+        return {key: value / self.film_count for key, value in self.profile_sums.items()}
+
     def add(self, problem, case, state, scales, z, h, gap, substeps, t_s):
-        mu, asperity, share, yielded = _traction(problem, case, state, scales, z, h)
+        mu, asperity, share, yielded, local = _traction(problem, case, state, scales, z, h, local=True)
         self.t.append(t_s)
         self.mu.append(mu)
         self.asperity.append(asperity)
@@ -639,6 +668,10 @@ class _Record:
         self.load.append(float(problem.weights @ (pf + pc)) / (0.5 * math.pi) - 1.0)
         self.mass.append(problem.mass_balance_error())
         self.last_film = h * scales.film_scale
+        self.last_profiles = {"mean_shear_stress_profile_pa": local, "mean_contact_pressure_profile_pa": pc * case.p_h,
+                              "mean_pressure_profile_pa": (pf + pc) * case.p_h,
+                              "mean_content_film_profile_m": problem.unpack(z)[1] * np.maximum(h, problem.h_b)
+                              * scales.film_scale}
         self.substep_steps += substeps > 1
 
 
@@ -687,7 +720,7 @@ def _result(case, state, plan, level_name, options, problem, scales, z, h, recor
                "t_series_s": np.asarray(record.t), "h_min_local_m": local_min,
                "h_min_local_series_m": np.asarray(record.h_min), "mass_error_series": np.asarray(record.mass),
                "face_mean": options.face_mean,
-               "couette_flux": options.couette_flux, **problem.cost, **rule},
+               "couette_flux": options.couette_flux, **record.mean_profiles(), **problem.cost, **rule},
     )
 
 

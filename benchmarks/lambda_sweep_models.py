@@ -1,0 +1,100 @@
+"""μ(λ̄) of every contact model on the roughness sweep of benchmarks/deterministic_lambda_sweep.py: the trend of the
+paper's Fig. 2 as each model draws it, against the deterministic solver.
+
+    python benchmarks/deterministic_lambda_sweep.py --spacing 16 --passes 11     # first: the deterministic runs
+    python benchmarks/lambda_sweep_models.py                                       # then: the other models + figure
+
+Same conditions (case A of the validation set: 0.5 GPa / 5 mm / 5 m/s / SR 0.3 / 90 °C, ATF, Rq1 = Rq2 = each Rq of
+the deterministic sweep); the models of workflows.accuracy_mixed.MIXED_MODELS except the deterministic levels.
+Writes benchmarks/results/lambda_sweep_models.json (resumable) and docs/figures/lambda_sweep_models.png.
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+from ehl_dataset.model.contact import ContactCase
+from ehl_dataset.model.lubricant import load_lubricant
+from ehl_dataset.solver import SOLVER_VERSION
+from workflows.accuracy_mixed import solve_model
+
+ROOT = Path(__file__).resolve().parents[1]
+SWEEP = ROOT / "benchmarks" / "results" / "deterministic_lambda_sweep.json"
+OUT = ROOT / "benchmarks" / "results" / "lambda_sweep_models.json"
+FIGURE = ROOT / "docs" / "figures" / "lambda_sweep_models.png"
+MODELS = ("smooth-standard", "transient-fast", "transient-standard", "homogenised-transverse-standard",
+          "homogenised-isotropic-standard")
+COMMAND = "python benchmarks/lambda_sweep_models.py"
+
+
+def main() -> int:
+    sweep = json.loads(SWEEP.read_text())
+    lubricant = load_lubricant("atf")
+    record = json.loads(OUT.read_text()) if OUT.exists() else {}
+    if record.get("solver_version") != SOLVER_VERSION:
+        record = {"solver_version": SOLVER_VERSION, "conditions": sweep["conditions"], "runs": {}}
+    record["deterministic"] = {"model_version": sweep["model_version"], "points_per_beta": sweep["points_per_beta"],
+                               "passes": sweep["passes"],
+                               "runs": {k: {f: v[f] for f in ("rq_um", "lambda_bar", "mu", "mu_sem",
+                                                              "asperity_load_share", "wall_time_s")}
+                                        for k, v in sweep["runs"].items()}}
+    for key, run in sorted(sweep["runs"].items(), key=lambda kv: kv[1]["rq_um"]):
+        case = ContactCase.from_engineering(*sweep["conditions"], run["rq_um"], run["rq_um"])
+        for name in MODELS:
+            slot = record["runs"].setdefault(name, {})
+            if key in slot:
+                continue
+            start = time.perf_counter()
+            result = solve_model(case, lubricant, name)
+            slot[key] = {"rq_um": run["rq_um"], "lambda_bar": result.lambda_bar, "mu": result.mu,
+                         "mu_sem": result.mu_sem, "asperity_load_share": result.asperity_load_share,
+                         "converged": result.converged, "wall_time_s": time.perf_counter() - start}
+            OUT.write_text(json.dumps(record, indent=1, default=float))
+            print(f"{name} Rq {run['rq_um']:g}: μ {result.mu:.5f} ({slot[key]['wall_time_s']:.1f} s)", flush=True)
+    plot(record)
+    return 0
+
+
+def plot(record: dict) -> Path:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    det = sorted(record["deterministic"]["runs"].values(), key=lambda r: r["lambda_bar"])
+    fig, ax = plt.subplots(figsize=(7.0, 4.6))
+    lam = np.array([r["lambda_bar"] for r in det])
+    ax.errorbar(lam, [r["mu"] for r in det], yerr=[2 * r["mu_sem"] for r in det], color="k", marker="o", lw=2,
+                capsize=3, label=f"deterministic (β/{record['deterministic']['points_per_beta']:g}, ±2 SE)")
+    styles = {"smooth-standard": ("tab:gray", "s", "--"), "transient-fast": ("tab:red", "v", ":"),
+              "transient-standard": ("tab:red", "^", "-"), "homogenised-transverse-standard": ("tab:blue", "D", "-"),
+              "homogenised-isotropic-standard": ("tab:green", "D", "-")}
+    for name, runs in record["runs"].items():
+        rows = sorted(runs.values(), key=lambda r: r["lambda_bar"])
+        color, marker, line = styles.get(name, ("tab:purple", "x", "-"))
+        ax.plot([r["lambda_bar"] for r in rows], [r["mu"] for r in rows], color=color, marker=marker, ls=line,
+                label=name + ("" if all(r["converged"] for r in rows) else " (some not converged)"))
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.axvline(1.0, color="0.7", lw=0.8)
+    ax.set_xlabel("λ̄ (Dowson–Higginson film / composite Rq)")
+    ax.set_ylabel("μ")
+    c = record["conditions"]
+    ax.set_title(f"μ(λ̄) per contact model: {c[0]} GPa, {c[1]} mm, {c[2]} m/s, SR {c[3]}, {c[4]} °C, ATF",
+                 fontsize=9)
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=7, loc="upper right")
+    fig.tight_layout()
+    FIGURE.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(FIGURE, dpi=110)
+    plt.close(fig)
+    return FIGURE
+
+
+if __name__ == "__main__":
+    sys.exit(main())
