@@ -9,7 +9,7 @@ spacing Δx = β/``--spacing`` for all (the same nodes), and the same roughness 
 Rq, so that neighbouring runs are paired. Writes benchmarks/results/deterministic_lambda_sweep.json (resumable: a
 run already in the file at the same model version, spacing and passes is kept) with μ, its standard error, the
 asperity share, λ̄, the smooth μ, and per neighbouring pair the slope d ln μ / d ln λ̄ and whether μ falls within
-2 standard errors (paired differences of the μ(t) series).
+2 standard errors (paired differences of the μ(t) series, kept in benchmarks/results/deterministic_lambda_sweep/).
 """
 
 from __future__ import annotations
@@ -37,10 +37,18 @@ RQ_UM = (0.02, 0.05, 0.1, 0.2, 0.3, 0.5, 0.8)
 MAX_PASSES = 40.0
 
 
+SERIES = RESULTS / "deterministic_lambda_sweep"
+"""The μ(t) series of each run (``<Rq>.npz``: t_s, mu over the averaging window)."""
+
+
+def series(run: dict) -> tuple[np.ndarray, np.ndarray]:
+    data = np.load(SERIES / f"{run['rq_um']:g}.npz")
+    return data["t_s"], data["mu"]
+
+
 def paired(run_a: dict, run_b: dict) -> tuple[float, float]:
     """(mean, standard error) of μ_b(t) − μ_a(t) over the common times (the series of b interpolated)."""
-    ta, ma, tb, mb = (np.asarray(run_a["t_s"]), np.asarray(run_a["mu_series"]), np.asarray(run_b["t_s"]),
-                      np.asarray(run_b["mu_series"]))
+    (ta, ma), (tb, mb) = series(run_a), series(run_b)
     inside = (ta >= tb[0]) & (ta <= tb[-1])
     mean = time_mean(np.interp(ta[inside], tb, mb) - ma[inside])
     return mean.mean, mean.standard_error
@@ -76,8 +84,9 @@ def main(argv=None) -> int:
             "rq_um": rq, "lambda_bar": result.lambda_bar, "mu": float(np.mean(mu)),
             "mu_sem": time_mean(mu).standard_error, "asperity_load_share": result.asperity_load_share,
             "smooth_mu": e.get("smooth_mu"), "h_central_m": result.h_central, "converged": result.converged,
-            "message": result.message, "n_steps": e["n_steps"], "wall_time_s": time.time() - start,
-            "t_s": [float(v) for v in e["t_series_s"][window]], "mu_series": [float(v) for v in mu]}
+            "message": result.message, "n_steps": e["n_steps"], "wall_time_s": time.time() - start}
+        SERIES.mkdir(parents=True, exist_ok=True)
+        np.savez_compressed(SERIES / f"{rq:g}.npz", t_s=np.asarray(e["t_series_s"][window], dtype=float), mu=mu)
         _compare(record)
         path.write_text(json.dumps(record, indent=1))
         run = record["runs"][name]
