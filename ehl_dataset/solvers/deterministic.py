@@ -320,13 +320,13 @@ class MixedProblem:
 
     def _direction(self, jac, dfilm, scaled_residual, scale, tol):
         if self.preconditioner is None:
-            self.preconditioner = BandedPreconditioner(jac, dfilm, self.binv, self.weights)
+            self.preconditioner = BandedPreconditioner(jac, dfilm, self.binv, self.weights, self.periodic)
             self.cost["factorisations"] += 1
         matvec = lambda v: self.jacobian_product(jac, dfilm, v) * scale  # noqa: E731
         apply = lambda r: self.preconditioner.apply(r / scale)  # noqa: E731
         step, its, rel = gmres(matvec, apply, -scaled_residual, tol, 40)
         if rel > tol or its >= REFACTOR_ITERATIONS:  # the stored LU has aged: refactor with this Jacobian, solve again
-            self.preconditioner = BandedPreconditioner(jac, dfilm, self.binv, self.weights)
+            self.preconditioner = BandedPreconditioner(jac, dfilm, self.binv, self.weights, self.periodic)
             self.cost["factorisations"] += 1
             apply = lambda r: self.preconditioner.apply(r / scale)  # noqa: E731
             step2, its2, rel = gmres(matvec, apply, -scaled_residual, tol, 80)

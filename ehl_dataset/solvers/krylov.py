@@ -17,6 +17,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import scipy.ndimage
 from scipy.linalg import lapack, solve_triangular
 
 from ..discretisation.mixed_system import preconditioner_band
@@ -31,20 +32,28 @@ class BandedPreconditioner:
     (P_f, θ, P_c interleaved, H0 last).
     """
 
-    def __init__(self, jac, dfilm, binv, weights):
+    def __init__(self, jac, dfilm, binv, weights, periodic: bool = False):
         width = (binv.size - 1) // 2
         self.n = weights.size
         self.kl = 3 * width + 5
+        self.periodic = periodic
         band, col_h0 = preconditioner_band(jac, dfilm, binv, self.kl)
         lu, piv, info = lapack.dgbtrf(band, self.kl, self.kl)
         if info < 0:
             raise ValueError(f"dgbtrf: illegal argument {-info}")
         self.singular = info > 0
         self.lu, self.piv, self.binv = lu, piv, binv
+        self.border = self._solve(col_h0)
+        if periodic:
+            # a periodic deflection has no mean mode: ΔP_f + ΔP_c = BΔV + c with c the mean pressure change, which
+            # the load row fixes (Σ_j w_j (BΔV)_j = 0: B sums to zero), and ΔH0 keeps the mean of ΔV at zero
+            self.total_weight = float(np.sum(weights))
+            self.mean_shift = self._solve(np.sum(jac[:, :, 2], axis=1))
+            self.denominator = float(np.mean(self.border[0::3]))
+            return
         # load row in z': Σ_j w_j (BΔV)_j = Σ_l (Bᵀw)_l ΔV_l (ΔP_f cancels)
         self.load_row = np.zeros(3 * self.n)
         self.load_row[0::3] = np.convolve(weights, binv[::-1], mode="same")
-        self.border = self._solve(col_h0)
         self.denominator = -float(self.load_row @ self.border)
 
     def _solve(self, rhs):
@@ -54,13 +63,23 @@ class BandedPreconditioner:
     def apply(self, r: np.ndarray) -> np.ndarray:
         """Approximate J⁻¹ r (length 3N + 1)."""
         y = self._solve(r[:-1])
-        dh0 = (r[-1] - self.load_row @ y) / self.denominator
+        shift = 0.0
+        if self.periodic:
+            shift = r[-1] / self.total_weight
+            y = y - self.mean_shift * shift
+            dh0 = float(np.mean(y[0::3])) / self.denominator
+            smoothed = scipy.ndimage.convolve1d(y[0::3] - self.border[0::3] * dh0, self.binv, mode="wrap")
+        else:
+            dh0 = (r[-1] - self.load_row @ y) / self.denominator
         y = y - self.border * dh0
         out = np.empty(3 * self.n + 1)
         dpf = y[1::3]
         out[0:-1:3] = dpf
         out[1:-1:3] = y[2::3]
-        out[2:-1:3] = np.convolve(y[0::3], self.binv, mode="same") - dpf
+        if self.periodic:
+            out[2:-1:3] = smoothed + shift - dpf
+        else:
+            out[2:-1:3] = np.convolve(y[0::3], self.binv, mode="same") - dpf
         out[-1] = dh0
         return out
 
