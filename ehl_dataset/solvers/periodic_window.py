@@ -23,6 +23,7 @@ scaled back to its Rq), moving at its surface speed and read periodically.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import time
 from dataclasses import dataclass, field
@@ -40,6 +41,11 @@ from .steady import ContactScales
 from .time_average import time_mean
 
 
+RETRY_NEWTON_ITERATIONS = 50
+"""Newton iterations of the second attempt at a step that failed with ``WindowOptions.newton_iterations`` at every
+sub-step split (the whole-contact solver's default)."""
+
+
 @dataclass(frozen=True)
 class WindowOptions:
     """``length_beta`` window length L in correlation lengths; ``points_per_beta`` grid; ``courant`` u_r Δt/Δx;
@@ -51,7 +57,8 @@ class WindowOptions:
     :class:`~ehl_dataset.solvers.deterministic.DeterministicOptions`, except ``newton_iterations`` (15, not 50):
     in the Hertzian zone colliding asperities make a third of the full steps fail, and a Newton solve that has not
     converged in 15 iterations is cheaper to split into sub-steps (measured on W1's centre, 16 β at β/8, 256
-    steps: 97 s with 50, 55 s with 25, 39 s with 15, 29 s with 10 iterations)."""
+    steps: 97 s with 50, 55 s with 25, 39 s with 15, 29 s with 10 iterations); a step that fails at every split
+    is tried once more with :data:`RETRY_NEWTON_ITERATIONS` (counted in ``series["retried_steps"]``)."""
 
     length_beta: float = 16.0
     points_per_beta: float = 16.0
@@ -178,6 +185,8 @@ def solve_window(case: ContactCase, state: LubricantState, mean_pressure_pa: flo
         return -amplitude * (r1 + r2) / scales.film_scale
 
     numerics = options.numerics()
+    retry = dataclasses.replace(numerics, newton_iterations=RETRY_NEWTON_ITERATIONS)
+    retried = 0
     record = {"t_s": [], "mu_local": [], "shear_stress_pa": [], "asperity_share": [], "mean_film_m": [],
               "content_film_m": [], "min_film_m": [], "lubricant_content": [], "mean_pressure_error": []}
     s = {"z": z, "m": problem.content(z, problem.film(z, flat)), "z_prev": None, "dt_prev": None}
@@ -189,8 +198,13 @@ def solve_window(case: ContactCase, state: LubricantState, mean_pressure_pa: flo
             converged, message = False, f"wall-time limit of {time_limit_s:g} s reached after {k} of {n_steps} steps"
             break
         outcome = _advance(problem, s, gap_at, k * d_t, d_t, numerics)
+        if outcome is None and options.newton_iterations < RETRY_NEWTON_ITERATIONS:
+            outcome = _advance(problem, s, gap_at, k * d_t, d_t, retry)
+            retried += outcome is not None
         if outcome is None:
-            converged, message = False, f"not converged: Newton failed at step {k + 1} with {options.max_substeps} sub-steps"
+            converged = False
+            message = (f"not converged: Newton failed at step {k + 1} with {options.max_substeps} sub-steps and "
+                       f"{max(options.newton_iterations, RETRY_NEWTON_ITERATIONS)} iterations")
             break
         z, h, _, _ = outcome
         k += 1
@@ -210,7 +224,7 @@ def solve_window(case: ContactCase, state: LubricantState, mean_pressure_pa: flo
         message=message, wall_time_s=clock() - start, n_nodes=n, n_steps=k, dx_m=dx_m, length_m=length_m,
         mean_pressure_pa=float(mean_pressure_pa),
         series={**{key: np.asarray(v) for key, v in record.items()}, "average_from_step": first_average,
-                "mass_error": problem.mass_balance_error(), **problem.cost})
+                "mass_error": problem.mass_balance_error(), "retried_steps": retried, **problem.cost})
 
 
 def _record_step(record, problem: MixedProblem, case, state, scales, z, h, t_s, p_bar_pa):
