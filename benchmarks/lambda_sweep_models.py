@@ -3,6 +3,7 @@ paper's Fig. 2 as each model draws it, against the deterministic solver.
 
     python benchmarks/deterministic_lambda_sweep.py --spacing 16 --passes 11     # first: the deterministic runs
     python benchmarks/lambda_sweep_models.py                                       # then: the other models + figure
+    python benchmarks/lambda_sweep_models.py --plot                                # the figure from the JSON only
 
 Same conditions (case A of the validation set: 0.5 GPa / 5 mm / 5 m/s / SR 0.3 / 90 °C, ATF, Rq1 = Rq2 = each Rq of
 the deterministic sweep); the models of workflows.accuracy_mixed.MIXED_MODELS except the deterministic levels.
@@ -33,6 +34,9 @@ COMMAND = "python benchmarks/lambda_sweep_models.py"
 
 
 def main() -> int:
+    if "--plot" in sys.argv:
+        plot(json.loads(OUT.read_text()))
+        return 0
     sweep = json.loads(SWEEP.read_text())
     lubricant = load_lubricant("atf")
     record = json.loads(OUT.read_text()) if OUT.exists() else {}
@@ -65,6 +69,7 @@ def plot(record: dict) -> Path:
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    import matplotlib.ticker
 
     det = sorted(record["deterministic"]["runs"].values(), key=lambda r: r["lambda_bar"])
     fig, ax = plt.subplots(figsize=(7.0, 4.6))
@@ -75,20 +80,26 @@ def plot(record: dict) -> Path:
               "transient-standard": ("tab:red", "^", "-"), "homogenised-transverse-standard": ("tab:blue", "D", "-"),
               "homogenised-isotropic-standard": ("tab:green", "D", "-")}
     for name, runs in record["runs"].items():
-        rows = sorted(runs.values(), key=lambda r: r["lambda_bar"])
+        rows = sorted((r for r in runs.values() if r["converged"]), key=lambda r: r["lambda_bar"])
+        missing = len(runs) - len(rows)
         color, marker, line = styles.get(name, ("tab:purple", "x", "-"))
         ax.plot([r["lambda_bar"] for r in rows], [r["mu"] for r in rows], color=color, marker=marker, ls=line,
-                label=name + ("" if all(r["converged"] for r in rows) else " (some not converged)"))
+                label=name + (f" ({missing} not converged, left out)" if missing else ""))
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.axvline(1.0, color="0.7", lw=0.8)
     ax.set_xlabel("λ̄ (Dowson–Higginson film / composite Rq)")
     ax.set_ylabel("μ")
     c = record["conditions"]
-    ax.set_title(f"μ(λ̄) per contact model: {c[0]} GPa, {c[1]} mm, {c[2]} m/s, SR {c[3]}, {c[4]} °C, ATF",
+    ax.set_title(f"μ(λ̄) per contact model: {c[0]} GPa, {c[1]} mm, {c[2]} m/s, SR {c[3]}, {c[4]} °C, ATF\n"
+                 f"solver {record['solver_version']}, deterministic {record['deterministic']['model_version']}",
                  fontsize=9)
+    ticks = [0.1, 0.2, 0.5, 1.0, 2.0, 5.0]
+    ax.xaxis.set_major_locator(matplotlib.ticker.FixedLocator(ticks))
+    ax.xaxis.set_major_formatter(matplotlib.ticker.FixedFormatter([f"{t:g}" for t in ticks]))
+    ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=7, loc="upper right")
+    ax.legend(fontsize=7, loc="lower right")
     fig.tight_layout()
     FIGURE.parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(FIGURE, dpi=110)
