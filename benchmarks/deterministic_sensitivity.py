@@ -4,10 +4,11 @@ thickness h_b, on one case at one spacing, paired with the base run of benchmark
 
     python benchmarks/deterministic_sensitivity.py --case A --spacing 32 --passes 11
     python benchmarks/deterministic_sensitivity.py --case A --spacing 32 --passes 40 --tag courant \
-        --variant base --variant courant_0.5 --variant courant_0.25
+        --variant base --variant courant_0.5 --variant courant_0.25          # (det-7: base at Courant 1)
 
-Variants: Courant 0.5 and 0.25 (time step halved, quartered), Newton tolerance 1e-9 (10× looser), h_b × 0.5 and × 2
-(physical, reported). Writes benchmarks/results/deterministic_sensitivity_<case>[_<tag>].json (μ, its standard error, and for each variant the
+Variants: Courant 1, 0.5 and 0.25 (the default is 0.5 since det-2026.11-8, 1 before: under det-7 the base run and
+``courant_1`` are the same, under det-8 the base run and ``courant_0.5``), Newton tolerance 1e-9 (10× looser), h_b ×
+0.5 and × 2 (physical, reported). Writes benchmarks/results/deterministic_sensitivity_<case>[_<tag>].json (μ, its standard error, and for each variant the
 paired difference to the base run with its standard error) and the μ(t) series of every run in
 benchmarks/results/deterministic_sensitivity/<case>[_<tag>]_<variant>.npz.
 """
@@ -36,6 +37,7 @@ from deterministic_validation import CASES, LUBRICANT, MAX_PASSES  # noqa: E402
 RESULTS = Path(__file__).resolve().parent / "results"
 VARIANTS = {
     "base": {},
+    "courant_1": {"courant": 1.0},
     "courant_0.5": {"courant": 0.5},
     "courant_0.25": {"courant": 0.25},
     "tolerance_1e-9": {"newton_tolerance": 1e-9},

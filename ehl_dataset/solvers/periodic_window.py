@@ -36,7 +36,8 @@ from ..model.lubricant import LubricantState
 from ..model.roughness import SEGMENT_GAP_CORRELATION_LENGTHS, RoughnessProfile, baseline_profile
 from ..model.traction import eyring_shear_stress
 from ..validation import InputError, check_range
-from .deterministic import (BOUNDARY_FILM_M, YIELD_PRESSURE_PA, DeterministicOptions, MixedProblem, _advance)
+from .deterministic import (BOUNDARY_FILM_M, COURANT, YIELD_PRESSURE_PA, DeterministicOptions, MixedProblem,
+                            _advance)
 from .steady import ContactScales
 from .time_average import time_mean
 
@@ -62,7 +63,7 @@ class WindowOptions:
 
     length_beta: float = 16.0
     points_per_beta: float = 16.0
-    courant: float = 1.0
+    courant: float = COURANT
     ramp_passes: float = 0.5
     startup_passes: float = 1.0
     average_passes: float = 4.0
