@@ -7,7 +7,7 @@ paper's Fig. 2 as each model draws it, against the deterministic solver.
 
 Same conditions (case A of the validation set: 0.5 GPa / 5 mm / 5 m/s / SR 0.3 / 90 °C, ATF, Rq1 = Rq2 = each Rq of
 the deterministic sweep); the models of workflows.accuracy_mixed.MIXED_MODELS except the deterministic levels.
-Writes benchmarks/results/lambda_sweep_models.json (resumable) and docs/figures/lambda_sweep_models.png.
+Writes benchmarks/results/lambda_sweep_models.json (resumable) and docs/figures/mu_lambda_models.png.
 """
 
 from __future__ import annotations
@@ -27,7 +27,7 @@ from workflows.accuracy_mixed import solve_model
 ROOT = Path(__file__).resolve().parents[1]
 SWEEP = ROOT / "benchmarks" / "results" / "deterministic_lambda_sweep.json"
 OUT = ROOT / "benchmarks" / "results" / "lambda_sweep_models.json"
-FIGURE = ROOT / "docs" / "figures" / "lambda_sweep_models.png"
+FIGURE = ROOT / "docs" / "figures" / "mu_lambda_models.png"
 MODELS = ("smooth-standard", "transient-fast", "transient-standard", "homogenised-transverse-standard",
           "homogenised-isotropic-standard")
 COMMAND = "python benchmarks/lambda_sweep_models.py"
