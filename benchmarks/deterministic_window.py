@@ -9,6 +9,13 @@ run there, and what does feeding it the smooth central film instead of the resol
 2. Windows of ``--lengths`` correlation lengths at the same grid spacing, at that mean pressure, holding that content
    (fed "resolved"), and holding the content of the smooth solution's central film (fed "smooth").
 Writes benchmarks/results/deterministic_window_<tag>.json.
+
+    python benchmarks/deterministic_window.py --inputs 1.0 10 5 0.2 75 0.4 0.4 --spacing 8 --passes 4 --tag V1 \
+        --across --lengths 8 --window-spacing 8 --courant 1
+
+``--across``: windows at five Gauss–Legendre points of |x| < 0.9 a, each fed the resolved local mean pressure and
+film; their shear integrated over that zone plus the resolved shear outside it gives a two-scale whole-contact μ
+(deterministic_window_<tag>_across_beta<n>.json).
 """
 
 from __future__ import annotations
@@ -58,10 +65,18 @@ def main(argv=None) -> int:
     parser.add_argument("--passes", type=float, default=4.0)
     parser.add_argument("--lengths", type=float, nargs="+", default=[8.0, 16.0])
     parser.add_argument("--tag", required=True)
+    parser.add_argument("--across", action="store_true",
+                        help="instead: windows of the first --lengths at --window-spacing across the Hertzian zone "
+                             "(Gauss-Legendre points of |x| < 0.9 a), each fed the resolved local pressure and film, "
+                             "and the whole-contact mu they give with the resolved shear outside that zone")
+    parser.add_argument("--window-spacing", type=float, default=None, help="points per β of the windows")
+    parser.add_argument("--courant", type=float, default=None, help="Courant number of the windows")
     args = parser.parse_args(argv)
     case = ContactCase.from_engineering(*args.inputs)
     state = load_lubricant("atf").state(case.temperature)
     full = full_run(case, state, args.spacing, args.passes, RESULTS / f"deterministic_window_{args.tag}_full.npz")
+    if args.across:
+        return across(case, state, full, args)
     x = full["x_m"] / case.half_width
     centre = np.abs(x) < CENTRE
     local = {k: float(np.mean(full[k][centre])) for k in PROFILES}
@@ -99,6 +114,53 @@ def main(argv=None) -> int:
             record["windows"].append(row)
             out.write_text(json.dumps(record, indent=1))
             print(json.dumps(row), flush=True)
+    return 0
+
+
+ACROSS_POINTS = 5
+ACROSS_EDGE = 0.9
+"""Windows at the Gauss–Legendre points of |x| < ACROSS_EDGE·a (ACROSS_POINTS of them) for ``--across``."""
+
+
+def across(case, state, full: dict, args) -> int:
+    """Two-scale whole-contact μ: ∫τ̄ dx / W' with τ̄ from windows inside |x| < 0.9 a and from the resolved run
+    outside; compared with the resolved run's own μ and its own ∫τ̄ over the same zone."""
+    x = full["x_m"] / case.half_width
+    nodes, weights = np.polynomial.legendre.leggauss(ACROSS_POINTS)
+    positions, weights = ACROSS_EDGE * nodes, ACROSS_EDGE * weights * case.half_width
+    spacing = args.window_spacing or args.spacing
+    extra = {"courant": args.courant} if args.courant else {}
+    options = WindowOptions(length_beta=args.lengths[0], points_per_beta=spacing, **extra)
+    tau = full["mean_shear_stress_profile_pa"]
+    inside = np.abs(x) < ACROSS_EDGE
+    dx = float(full["x_m"][1] - full["x_m"][0])
+    outside_force = float(np.sum(tau[~inside])) * dx
+    resolved_inside = float(np.sum(tau[inside])) * dx
+    rows, window_inside = [], 0.0
+    for position, weight in zip(positions, weights):
+        p_bar = float(np.interp(position, x, full["mean_pressure_profile_pa"]))
+        film = float(np.interp(position, x, full["mean_content_film_profile_m"]))
+        result = solve_window(case, state, p_bar, film, options)
+        window_inside += weight * result.shear_stress_pa
+        rows.append({"x_over_a": position, "pressure_pa": p_bar, "film_m": film,
+                     "resolved_shear_pa": float(np.interp(position, x, tau)), "window_shear_pa": result.shear_stress_pa,
+                     "mu_local": result.mu_local, "mu_local_sem": result.mu_local_sem,
+                     "asperity_share": result.asperity_share, "converged": result.converged,
+                     "wall_time_s": result.wall_time_s})
+        print(json.dumps(rows[-1]), flush=True)
+    load = case.load_per_length
+    record = {"inputs": args.inputs, "model_version": MODEL_VERSION, "full_points_per_beta": args.spacing,
+              "window_points_per_beta": spacing, "window_length_beta": args.lengths[0],
+              "window_courant": options.courant, "windows": rows,
+              "resolved_mu": float(full["mu"]), "resolved_mu_sem": float(full["mu_sem"]),
+              "resolved_zone_force_per_length_n_m": resolved_inside, "window_zone_force_per_length_n_m": window_inside,
+              "outside_force_per_length_n_m": outside_force,
+              "two_scale_mu": (window_inside + outside_force) / load,
+              "resolved_profile_mu": (resolved_inside + outside_force) / load,
+              "window_time_s": sum(r["wall_time_s"] for r in rows)}
+    tag = f"{args.tag}_across_beta{spacing:g}"
+    (RESULTS / f"deterministic_window_{tag}.json").write_text(json.dumps(record, indent=1))
+    print(json.dumps({k: v for k, v in record.items() if k != "windows"}), flush=True)
     return 0
 
 
