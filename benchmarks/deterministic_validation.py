@@ -190,14 +190,27 @@ def summarise_case(name: str) -> dict | None:
 
 
 def summarise() -> None:
-    rows = [r for r in (summarise_case(name) for name in CASES) if r is not None]
+    """Write the reference data and the docs table. A case whose runs are not all of the current model version keeps
+    its entry of the existing reference file (with the version it was made under), so that a version bump never
+    empties the reference set that ``gearloss accuracy --mixed`` reads."""
+    previous = {}
+    if REFERENCE.exists():
+        previous = {r["case"]: r for r in json.loads(REFERENCE.read_text()).get("cases", [])}
+    rows = []
+    for name in CASES:
+        row = summarise_case(name)
+        if row is None:
+            row = previous.get(name)
+        if row is not None:
+            rows.append(row)
     REFERENCE.parent.mkdir(parents=True, exist_ok=True)
     REFERENCE.write_text(json.dumps({"description": "Grid-converged mu of the deterministic mixed-EHL solver "
                                                     "(benchmarks/deterministic_validation.py)",
                                      "lubricant": LUBRICANT, "cases": rows}, indent=1, default=float) + "\n")
     lines = ["# Validation set of the deterministic solver", "",
-             f"Made by `python benchmarks/deterministic_validation.py --summarise` (solver version "
-             f"{rows[0]['solver_version'] if rows else '-'}); the data: `data/reference/deterministic_validation.json`.",
+             f"Made by `python benchmarks/deterministic_validation.py --summarise` (deterministic model versions: "
+             f"{', '.join(sorted({r['solver_version'] for r in rows})) or '-'}, per case in the data); the data: "
+             f"`data/reference/deterministic_validation.json`.",
              "", "| case | p_h GPa | r_eq mm | u_r m/s | SR | T °C | Rq µm | λ̄ | a/β | spacings β/n | μ coarse | "
              "μ middle | μ fine | fine step | order | μ extrapolated | ± | sem of μ middle | share fine | "
              "share fine step | smooth μ | time per spacing [s] |",
