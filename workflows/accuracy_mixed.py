@@ -119,8 +119,15 @@ def _run(case: ContactCase, lubricant, row: dict, name: str, solve: Callable | N
         return MixedRun(row["case"], name, math.nan, math.nan, math.nan, math.nan, time.perf_counter() - start, False,
                         f"{type(err).__name__}: {err}")
     elapsed = time.perf_counter() - start
-    run = MixedRun(row["case"], name, float(result.mu), float(result.mu_sem or 0.0), float(result.h_central),
-                   float(result.asperity_load_share), elapsed, bool(result.converged), result.message or "")
+    return MixedRun(row["case"], name, float(result.mu), float(result.mu_sem or 0.0), float(result.h_central),
+                    float(result.asperity_load_share), elapsed, bool(result.converged), result.message or "")
+
+
+def _measure(run: MixedRun, row: dict) -> MixedRun:
+    """Set the errors of ``run`` against the reference ``row`` (also for a run resumed from a checkpoint: the
+    reference may have been recomputed since)."""
+    if not math.isfinite(run.mu):
+        return run
     run.mu_error = relative_error(run.mu, row["mu_extrapolated"])
     if row.get("h_central_m"):
         run.h_central_error = relative_error(run.h_central_m, row["h_central_m"])
@@ -152,7 +159,7 @@ def run_mixed_study(models: Sequence[str] = CHEAP_MODELS, reference: str | Path 
     for row in cases:
         case = reference_case(row)
         for name in models:
-            run = done.get((row["case"], name)) or _run(case, lub, row, name, solve)
+            run = _measure(done.get((row["case"], name)) or _run(case, lub, row, name, solve), row)
             done[(row["case"], name)] = run
             runs.append(run)
             if progress:

@@ -46,6 +46,10 @@ def test_errors_are_measured_against_the_reference_and_runs_resume(tmp_path):
     again = accuracy_mixed.run_mixed_study(["smooth-standard"], reference_file(tmp_path), checkpoint=checkpoint,
                                            solve=solve)
     assert len(calls) == 1 and again["runs"][0].mu == run.mu       # resumed from the checkpoint, not solved again
+    # a recomputed reference (e.g. rerun under a new model version): the resumed run is measured against it
+    moved = reference_file(tmp_path, [{**CASE, "mu_extrapolated": 0.0275}])
+    remeasured = accuracy_mixed.run_mixed_study(["smooth-standard"], moved, checkpoint=checkpoint, solve=solve)
+    assert len(calls) == 1 and remeasured["runs"][0].mu_error == pytest.approx(0.2, rel=1e-12)  # |0.033 − 0.0275|/0.0275
     paths = accuracy_mixed.write_mixed_report(study, tmp_path, "gearloss accuracy --mixed")
     assert "| smooth-standard | 1 | 1 | 10 % |" in paths["markdown"].read_text()
     assert paths["plot"].stat().st_size > 0
