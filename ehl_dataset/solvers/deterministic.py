@@ -409,26 +409,36 @@ class MixedProblem:
         return abs(float(np.sum(self.last_residual[3:-1:3]))) / self.m_ref
 
 
+def local_shear_stress(problem: MixedProblem, case: ContactCase, state: LubricantState, scales: ContactScales, z,
+                       h) -> tuple[np.ndarray, np.ndarray]:
+    """Per node [Pa]: the fluid shear stress θτ_Eyring + (h/2)∂p_f/∂x (paper Eq. 7, h floored at h_b; the gradient
+    periodic on a window) and the boundary friction μ_d p_c sign(u_s) (Eq. 8)."""
+    pf, th, pc, _ = problem.unpack(z)
+    p_f = pf * case.p_h
+    h_m = np.maximum(h, problem.h_b) * scales.film_scale
+    if problem.periodic:
+        gradient = (np.roll(p_f, -1) - np.roll(p_f, 1)) / (2.0 * problem.dx * scales.a)
+    else:
+        gradient = np.gradient(p_f, problem.x * scales.a)
+    fluid = th * eyring_shear_stress(state.viscosity(p_f), case.u_s, h_m, state.tau0) + 0.5 * h_m * gradient
+    sign = math.copysign(1.0, case.u_s) if case.u_s != 0.0 else 0.0
+    return fluid, state.mu_d * sign * pc * case.p_h
+
+
 def _traction(problem: MixedProblem, case: ContactCase, state: LubricantState, scales: ContactScales, z, h,
               local: bool = False):
     """(μ, asperity part of μ, asperity load share, yielded load share) of one state (paper Eq. 7–8); with
-    ``local`` also the local shear stress per node [Pa] (θτ + (h/2)∂p_f/∂x + μ_d p_c sign u_s)."""
-    pf, th, pc, _ = problem.unpack(z)
-    p_f = pf * case.p_h
-    p_c = pc * case.p_h
-    h_m = np.maximum(h, problem.h_b) * scales.film_scale
-    x_m = problem.x * scales.a
-    tau = th * eyring_shear_stress(state.viscosity(p_f), case.u_s, h_m, state.tau0)
-    rolling = 0.5 * h_m * np.gradient(p_f, x_m)
+    ``local`` also the local shear stress per node [Pa] (:func:`local_shear_stress`, both parts)."""
+    _, _, pc, _ = problem.unpack(z)
+    fluid, boundary = local_shear_stress(problem, case, state, scales, z, h)
     w = problem.weights * scales.a
     load = case.load_per_length
-    asperity = float(w @ (state.mu_d * math.copysign(1.0, case.u_s) * p_c)) / load if case.u_s != 0.0 else 0.0
-    mu = float(w @ (tau + rolling)) / load + asperity
-    share = float(w @ p_c) / load
-    yielded = float(w @ (p_c * (pc >= (1.0 - 1e-9) * problem.p_yield))) / load
+    asperity = float(w @ boundary) / load
+    mu = float(w @ fluid) / load + asperity
+    share = float(w @ pc) * case.p_h / load
+    yielded = float(w @ (pc * (pc >= (1.0 - 1e-9) * problem.p_yield))) * case.p_h / load
     if local:
-        sign = math.copysign(1.0, case.u_s) if case.u_s != 0.0 else 0.0
-        return mu, asperity, share, yielded, tau + rolling + state.mu_d * sign * p_c
+        return mu, asperity, share, yielded, fluid + boundary
     return mu, asperity, share, yielded
 
 
@@ -668,14 +678,13 @@ class _Record:
         self.yielded.append(yielded)
         self.h_min.append(float(np.min(h)) * scales.film_scale)
         self.h_c.append(float(np.interp(0.0, problem.x, h)) * scales.film_scale)
-        pf, _, pc, _ = problem.unpack(z)
+        pf, th, pc, _ = problem.unpack(z)
         self.load.append(float(problem.weights @ (pf + pc)) / (0.5 * math.pi) - 1.0)
         self.mass.append(problem.mass_balance_error())
         self.last_film = h * scales.film_scale
         self.last_profiles = {"mean_shear_stress_profile_pa": local, "mean_contact_pressure_profile_pa": pc * case.p_h,
                               "mean_pressure_profile_pa": (pf + pc) * case.p_h,
-                              "mean_content_film_profile_m": problem.unpack(z)[1] * np.maximum(h, problem.h_b)
-                              * scales.film_scale}
+                              "mean_content_film_profile_m": th * np.maximum(h, problem.h_b) * scales.film_scale}
         self.substep_steps += substeps > 1
 
 

@@ -34,10 +34,9 @@ import numpy as np
 from ..model.contact import ContactCase
 from ..model.lubricant import LubricantState
 from ..model.roughness import SEGMENT_GAP_CORRELATION_LENGTHS, RoughnessProfile, baseline_profile
-from ..model.traction import eyring_shear_stress
 from ..validation import InputError, check_range
 from .deterministic import (BOUNDARY_FILM_M, COURANT, YIELD_PRESSURE_PA, DeterministicOptions, MixedProblem,
-                            _advance)
+                            _advance, local_shear_stress)
 from .steady import ContactScales
 from .time_average import time_mean
 
@@ -231,13 +230,10 @@ def solve_window(case: ContactCase, state: LubricantState, mean_pressure_pa: flo
 def _record_step(record, problem: MixedProblem, case, state, scales, z, h, t_s, p_bar_pa):
     """Append the window means of one state (module docstring)."""
     pf, th, pc, _ = problem.unpack(z)
-    p_f = pf * case.p_h
     h_m = np.maximum(h, problem.h_b) * scales.film_scale
-    dx_m = problem.dx * scales.a
-    gradient = (np.roll(p_f, -1) - np.roll(p_f, 1)) / (2.0 * dx_m)
-    shear = th * eyring_shear_stress(state.viscosity(p_f), case.u_s, h_m, state.tau0) + 0.5 * h_m * gradient
+    fluid, boundary = local_shear_stress(problem, case, state, scales, z, h)
     contact = float(np.mean(pc)) * case.p_h
-    tau = float(np.mean(shear)) + (state.mu_d * math.copysign(1.0, case.u_s) * contact if case.u_s else 0.0)
+    tau = float(np.mean(fluid + boundary))
     record["t_s"].append(t_s)
     record["shear_stress_pa"].append(tau)
     record["mu_local"].append(tau / p_bar_pa)
