@@ -54,6 +54,7 @@ from threadpoolctl import threadpool_limits
 from ..model.contact import ContactCase
 from ..model.lubricant import CELSIUS_ZERO_K, Lubricant, load_lubricant, lubricant_from_dict
 from ..solvers.deterministic import MODEL_VERSION as DETERMINISTIC_MODEL_VERSION
+from ..solvers.wide_contact import WIDE_MODEL_VERSION
 from ..solvers.levels import get_level
 from ..solvers.planner import plan_effects
 from ..validation import InputError, check_time_limit as check_positive_seconds
@@ -226,6 +227,7 @@ def solver_config(solver: str | Callable, level: str, effects: str, model: str =
     }
     if config["model"] == "deterministic":  # its numerics are versioned on their own (docs/deterministic_solver.md)
         config["model_version"] = DETERMINISTIC_MODEL_VERSION
+        config["wide_model_version"] = WIDE_MODEL_VERSION
     return config
 
 

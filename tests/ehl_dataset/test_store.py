@@ -261,3 +261,11 @@ def test_a_deterministic_file_is_not_resumed_under_other_deterministic_numerics(
     with DatasetStore.open(path, "r+") as store:
         with pytest.raises(InputError, match=r"solver\.model_version.*det-2026\.11-1"):
             store.check_compatible(solver=config)
+    from ehl_dataset.solvers.wide_contact import WIDE_MODEL_VERSION
+
+    assert config["wide_model_version"] == WIDE_MODEL_VERSION
+    path = tmp_path / "wide.h5"
+    make_store(path, plan, lubricant, **{**config, "wide_model_version": "wide-2026.10-1"}).close()
+    with DatasetStore.open(path, "r+") as store:
+        with pytest.raises(InputError, match=r"solver\.wide_model_version.*wide-2026\.10-1"):
+            store.check_compatible(solver=config)

@@ -1,0 +1,222 @@
+"""How much thicker is the film of a rough contact than the smooth one? The feeding law of the periodic window.
+
+A periodic window of the Hertzian centre (ehl_dataset.solvers.periodic_window) needs the mean lubricant content the
+inlet delivers, which it cannot compute itself (docs/deterministic_solver.md, "Periodic window"). This script
+measures it on resolved deterministic runs: the time-averaged content film θ·max(h, h_b) over the centre |x| < 0.2 a
+against the steady smooth solver's film over the same band, as the excess Δ = h̄_rough − h_smooth in units of the
+composite roughness σ = √(Rq1² + Rq2²), against H = h_smooth/σ, and fits
+
+    Δ/σ = c / (H + d)                               (→ c·σ²/h_smooth for thick films, → c/d σ as H → 0)
+
+by least squares (scipy.optimize.curve_fit), with leave-one-family-out errors.
+
+Runs: roughness sweeps at fixed load, speed, sliding and temperature (``FAMILIES``: case A's conditions, a/β 2.9,
+and case I's load and speed, a/β 8.8), at Δx = β/16 over 4 passes, plus every resolved run already in the repository
+that recorded its mean profiles (validation runs benchmarks/results/deterministic/*.json, whole-contact runs
+benchmarks/results/deterministic_window_*_full.npz). Resumable; runs are cached in
+benchmarks/results/deterministic_film_law/.
+
+    python benchmarks/deterministic_film_law.py            # run the families, fit, write the JSON
+    python benchmarks/deterministic_film_law.py --plot     # and docs/figures/film_law.png
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+from scipy.optimize import curve_fit
+
+from ehl_dataset.model.contact import ContactCase
+from ehl_dataset.model.effects import Effects
+from ehl_dataset.model.lubricant import load_lubricant
+from ehl_dataset.model.roughness import baseline_profile
+from ehl_dataset.solvers.deterministic import MODEL_VERSION, DeterministicOptions, solve_deterministic
+from ehl_dataset.solvers.levels import get_level
+from ehl_dataset.solvers.steady import dowson_higginson_lambda, solve_steady
+
+RESULTS = Path(__file__).resolve().parent / "results"
+RUNS = RESULTS / "deterministic_film_law"
+VALIDATION_RUNS = RESULTS / "deterministic"
+OUT = RESULTS / "deterministic_film_law.json"
+FIGURE = Path(__file__).resolve().parents[1] / "docs" / "figures" / "film_law.png"
+LUBRICANT = "atf"
+CENTRE = 0.2
+"""Half width of the central band [a] over which films are averaged."""
+FAMILIES = {
+    # name: ((p_h GPa, r_eq mm, u_r m/s, SR, T °C), Rq1 = Rq2 values [µm])
+    "A": ((0.5, 5.0, 5.0, 0.3, 90.0), (0.02, 0.05, 0.1, 0.2, 0.3, 0.5, 0.8)),
+    "I": ((1.5, 5.0, 5.0, 0.2, 75.0), (0.05, 0.15, 0.3, 0.6)),
+}
+SPACING = 16.0
+PASSES = 4.0
+
+
+def smooth_centre_film(case: ContactCase, state) -> float:
+    """Mean film [m] of the steady smooth solve (standard level) over |x| < CENTRE·a."""
+    full = Effects.full()
+    plan = Effects(False, False, full.shear_thinning, full.compressibility, full.mode, {})
+    smooth = solve_steady(case, state, get_level("standard"), plan)
+    return float(np.mean(smooth.film[np.abs(smooth.x / case.half_width) < CENTRE]))
+
+
+def centre_mean(x_over_a: np.ndarray, profile) -> float:
+    return float(np.mean(np.asarray(profile)[np.abs(x_over_a) < CENTRE]))
+
+
+def point(source: str, inputs, content_film_m: float, mu: float, share: float, version: str, state) -> dict:
+    case = ContactCase.from_engineering(*inputs)
+    sigma = float(np.hypot(case.rq1, case.rq2))
+    h_smooth = smooth_centre_film(case, state)
+    return {"source": source, "inputs": list(inputs), "model_version": version, "sigma_m": sigma,
+            "lambda_bar": dowson_higginson_lambda(case, state)[1],
+            "a_over_beta": case.half_width / baseline_profile().correlation_length,
+            "smooth_film_m": h_smooth, "content_film_m": content_film_m, "H": h_smooth / sigma,
+            "excess_over_sigma": (content_film_m - h_smooth) / sigma, "mu": mu, "asperity_share": share}
+
+
+def family_run(name: str, conditions, rq: float, lubricant) -> dict:
+    path = RUNS / f"{name}_{rq:g}.json"
+    if path.exists():
+        record = json.loads(path.read_text())
+        if record["model_version"] == MODEL_VERSION:
+            return record
+    case = ContactCase.from_engineering(*conditions, rq, rq)
+    state = lubricant.state(case.temperature)
+    beta = baseline_profile().correlation_length
+    options = DeterministicOptions(dx_m=beta / SPACING, max_passes=PASSES, mu_sem_target=1.0,
+                                   min_average_passes=PASSES - 1.5)
+    start = time.time()
+    result = solve_deterministic(case, state, Effects.full(), options)
+    x = result.x / case.half_width
+    film = centre_mean(x, result.extra["mean_content_film_profile_m"])
+    record = point(f"family {name}", (*conditions, rq, rq), film, result.mu, result.asperity_load_share,
+                   MODEL_VERSION, state)
+    record.update({"converged": result.converged, "mu_sem": result.mu_sem, "wall_time_s": time.time() - start,
+                   "points_per_beta": SPACING})
+    RUNS.mkdir(parents=True, exist_ok=True)
+    path.write_text(json.dumps(record, indent=1))
+    print(f"{name} Rq {rq:g}: H {record['H']:.3f} excess {record['excess_over_sigma']:.3f} sigma, "
+          f"mu {result.mu:.4f}, {record['wall_time_s']:.0f} s", flush=True)
+    return record
+
+
+def recorded_runs(lubricant) -> list[dict]:
+    """Points from the resolved runs already in the repository that carry mean profiles (the finest spacing of each
+    validation case; the whole-contact runs of the window study)."""
+    points = []
+    finest: dict[str, dict] = {}
+    for path in sorted(VALIDATION_RUNS.glob("*_beta*.json")):
+        run = json.loads(path.read_text())
+        if "mean_content_film_profile_m" not in run["extra"]:
+            continue
+        if run["case"] not in finest or run["points_per_beta"] > finest[run["case"]]["points_per_beta"]:
+            finest[run["case"]] = run
+    domain = DeterministicOptions().domain
+    for name, run in sorted(finest.items()):
+        profile = np.asarray(run["extra"]["mean_content_film_profile_m"])
+        x = np.linspace(domain[0], domain[1], profile.size)
+        case = ContactCase.from_engineering(*run["inputs"])
+        points.append(point(f"validation {name} (β/{run['points_per_beta']})", run["inputs"], centre_mean(x, profile),
+                            run["mu"], run["asperity_load_share"], run["solver_version"],
+                            lubricant.state(case.temperature)))
+    for path in sorted(RESULTS.glob("deterministic_window_*_full.npz")):
+        data = np.load(path)
+        record = json.loads((RESULTS / path.name.replace("_full.npz", ".json")).read_text())
+        inputs = record["inputs"]
+        case = ContactCase.from_engineering(*inputs)
+        x = data["x_m"] / case.half_width
+        points.append(point(f"whole contact {path.name.split('_')[2]} (β/{record['points_per_beta']:g})", inputs,
+                            centre_mean(x, data["mean_content_film_profile_m"]), float(data["mu"]),
+                            float(data["share"]), str(data["model_version"]), lubricant.state(case.temperature)))
+    return points
+
+
+def law(H, c, d):
+    return c / (H + d)
+
+
+def fit(points: list[dict]) -> dict:
+    H = np.array([p["H"] for p in points])
+    y = np.array([p["excess_over_sigma"] for p in points])
+    (c, d), cov = curve_fit(law, H, y, p0=(0.6, 0.5))
+    residual = y - law(H, c, d)
+    families = sorted({p["source"].split(" (")[0] if p["source"].startswith("family") else "recorded" for p in points})
+    held_out = {}
+    for family in families:
+        member = np.array([(p["source"].startswith(family) if family != "recorded" else not p["source"].startswith(
+            "family")) for p in points])
+        if member.all() or (~member).sum() < 3:
+            continue
+        (cf, df), _ = curve_fit(law, H[~member], y[~member], p0=(c, d))
+        film = np.array([p["smooth_film_m"] for p in points])[member]
+        sigma = np.array([p["sigma_m"] for p in points])[member]
+        content = np.array([p["content_film_m"] for p in points])[member]
+        predicted = film + sigma * law(H[member], cf, df)
+        held_out[family] = {"c": float(cf), "d": float(df),
+                            "film_error_max": float(np.max(np.abs(predicted / content - 1.0)))}
+    content = np.array([p["content_film_m"] for p in points])
+    predicted = np.array([p["smooth_film_m"] + p["sigma_m"] * law(p["H"], c, d) for p in points])
+    return {"c": float(c), "d": float(d), "c_sd": float(np.sqrt(cov[0, 0])), "d_sd": float(np.sqrt(cov[1, 1])),
+            "residual_rms_sigma": float(np.sqrt(np.mean(residual**2))),
+            "residual_max_sigma": float(np.max(np.abs(residual))),
+            "film_error_max": float(np.max(np.abs(predicted / content - 1.0))), "leave_one_family_out": held_out}
+
+
+def plot(points: list[dict], result: dict) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(6.4, 4.4))
+    groups: dict[str, list[dict]] = {}
+    for p in points:
+        groups.setdefault(p["source"].split(" (")[0].split(" Rq")[0], []).append(p)
+    for (name, members), marker in zip(sorted(groups.items()), "osD^vP*X"):
+        ax.plot([p["H"] for p in members], [p["excess_over_sigma"] for p in members], marker, ls="none",
+                label=name, ms=6, mfc="none")
+    grid = np.geomspace(0.08, 8.0, 200)
+    ax.plot(grid, law(grid, result["c"], result["d"]), "k-",
+            label=f"Δ/σ = {result['c']:.2f}/(H + {result['d']:.2f})")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("H = smooth central film / σ")
+    ax.set_ylabel("(rough − smooth central film) / σ")
+    ax.set_title(f"Film excess of resolved rough contacts ({MODEL_VERSION})", fontsize=10)
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    FIGURE.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(FIGURE, dpi=120)
+    print(f"wrote {FIGURE}")
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--families", nargs="*", default=list(FAMILIES), help="which sweeps to run (none: fit only)")
+    parser.add_argument("--plot", action="store_true")
+    args = parser.parse_args(argv)
+    lubricant = load_lubricant(LUBRICANT)
+    points = recorded_runs(lubricant)
+    for name in args.families:
+        conditions, rqs = FAMILIES[name]
+        points += [family_run(name, conditions, rq, lubricant) for rq in rqs]
+    result = fit(points)
+    OUT.write_text(json.dumps({"law": "excess/sigma = c/(H + d)", "centre_half_width_a": CENTRE,
+                               "fit": result, "points": points}, indent=1))
+    for p in points:
+        print(f"{p['source']:<34} H {p['H']:6.3f}  excess {p['excess_over_sigma']:6.3f} σ  "
+              f"law {law(p['H'], result['c'], result['d']):6.3f} σ  a/β {p['a_over_beta']:5.1f}  {p['model_version']}")
+    print(json.dumps(result, indent=1))
+    if args.plot:
+        plot(points, result)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
