@@ -18,6 +18,10 @@ benchmarks/results/deterministic_film_law/.
 
     python benchmarks/deterministic_film_law.py            # run the families, fit, write the JSON
     python benchmarks/deterministic_film_law.py --plot     # and docs/figures/film_law.png
+
+With ``--closures`` each point also gets the central film of the homogenised model's two flow-factor closures
+(transverse, isotropic; ehl_dataset.solvers.homogenised) on the same band, so that the figure shows which film each
+closure entrains against the resolved one.
 """
 
 from __future__ import annotations
@@ -136,6 +140,21 @@ def recorded_runs(lubricant) -> list[dict]:
     return points
 
 
+def closure_films(points: list[dict], lubricant) -> None:
+    """Add the homogenised model's central excess film (both closures, standard level) to each point."""
+    from ehl_dataset.solvers.homogenised import HomogenisedOptions, solve_homogenised
+
+    for p in points:
+        case = ContactCase.from_engineering(*p["inputs"])
+        state = lubricant.state(case.temperature)
+        for closure in ("transverse", "isotropic"):
+            result = solve_homogenised(case, state, get_level("standard"), Effects.full(),
+                                       options=HomogenisedOptions(closure=closure))
+            film = centre_mean(result.x / case.half_width, result.film)
+            p[f"{closure}_excess_over_sigma"] = (film - p["smooth_film_m"]) / p["sigma_m"]
+            p[f"{closure}_converged"] = bool(result.converged)
+
+
 def law(H, c, d):
     return c / (H + d)
 
@@ -181,6 +200,12 @@ def plot(points: list[dict], result: dict) -> None:
         ax.plot([p["H"] for p in members], [p["excess_over_sigma"] for p in members], marker, ls="none",
                 label=name, ms=6, mfc="none")
     grid = np.geomspace(0.08, 8.0, 200)
+    for closure, colour in (("transverse", "tab:red"), ("isotropic", "tab:blue")):
+        key = f"{closure}_excess_over_sigma"
+        shown = [p for p in points if key in p and p[key] > 0.0]
+        if shown:
+            ax.plot([p["H"] for p in shown], [p[key] for p in shown], "x", color=colour, ms=6,
+                    label=f"homogenised model, {closure} closure")
     ax.plot(grid, law(grid, result["c"], result["d"]), "k-",
             label=f"Δ/σ = {result['c']:.2f}/(H + {result['d']:.2f})")
     ax.set_xscale("log")
@@ -200,6 +225,7 @@ def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--families", nargs="*", default=list(FAMILIES), help="which sweeps to run (none: fit only)")
     parser.add_argument("--plot", action="store_true")
+    parser.add_argument("--closures", action="store_true", help="also the homogenised model's films")
     args = parser.parse_args(argv)
     lubricant = load_lubricant(LUBRICANT)
     points = recorded_runs(lubricant)
@@ -207,11 +233,15 @@ def main(argv=None) -> int:
         conditions, rqs = FAMILIES[name]
         points += [family_run(name, conditions, rq, lubricant) for rq in rqs]
     result = fit(points)
+    if args.closures:
+        closure_films(points, lubricant)
     OUT.write_text(json.dumps({"law": "excess/sigma = c/(H + d)", "centre_half_width_a": CENTRE,
                                "fit": result, "points": points}, indent=1))
     for p in points:
         print(f"{p['source']:<34} H {p['H']:6.3f}  excess {p['excess_over_sigma']:6.3f} σ  "
-              f"law {law(p['H'], result['c'], result['d']):6.3f} σ  a/β {p['a_over_beta']:5.1f}  {p['model_version']}")
+              f"law {law(p['H'], result['c'], result['d']):6.3f} σ  a/β {p['a_over_beta']:5.1f}  {p['model_version']}"
+              + (f"  transverse {p['transverse_excess_over_sigma']:6.3f} σ  isotropic "
+                 f"{p['isotropic_excess_over_sigma']:6.3f} σ" if args.closures else ""))
     print(json.dumps(result, indent=1))
     if args.plot:
         plot(points, result)

@@ -10,6 +10,11 @@ Rq, so that neighbouring runs are paired. Writes benchmarks/results/deterministi
 run already in the file at the same model version, spacing and passes is kept) with μ, its standard error, the
 asperity share, λ̄, the smooth μ, and per neighbouring pair the slope d ln μ / d ln λ̄ and whether μ falls within
 2 standard errors (paired differences of the μ(t) series, kept in benchmarks/results/deterministic_lambda_sweep/).
+
+    python benchmarks/deterministic_lambda_sweep.py --spacing 16 --passes 11 --rq-um 0.5 0.8 --courant 0.5 0.125
+
+``--courant``: instead, the time-step check of the runs already in the sweep: each ``--rq-um`` rerun at each Courant
+number, paired with the sweep's run at the default (benchmarks/results/deterministic_lambda_sweep_courant.json).
 """
 
 from __future__ import annotations
@@ -59,7 +64,11 @@ def main(argv=None) -> int:
     parser.add_argument("--spacing", type=float, default=16.0)
     parser.add_argument("--passes", type=float, default=11.0)
     parser.add_argument("--rq-um", type=float, nargs="+", default=list(RQ_UM))
+    parser.add_argument("--courant", type=float, nargs="+", default=None,
+                        help="time-step check of the sweep's runs at these Courant numbers")
     args = parser.parse_args(argv)
+    if args.courant:
+        return courant_check(args)
     path = RESULTS / "deterministic_lambda_sweep.json"
     record = json.loads(path.read_text()) if path.exists() else {}
     key = (MODEL_VERSION, args.spacing, args.passes)
@@ -92,6 +101,52 @@ def main(argv=None) -> int:
         run = record["runs"][name]
         print(f"Rq {rq:g} µm: λ̄ {run['lambda_bar']:.3g}, μ {run['mu']:.5f} ± {run['mu_sem']:.5f}, share "
               f"{run['asperity_load_share']:.3f}, {run['wall_time_s']:.0f} s", flush=True)
+    return 0
+
+
+def courant_check(args) -> int:
+    """Rerun sweep points at other Courant numbers, paired with the sweep's run (same roughness, same times)."""
+    sweep = json.loads((RESULTS / "deterministic_lambda_sweep.json").read_text())
+    if sweep["model_version"] != MODEL_VERSION:
+        raise SystemExit(f"the sweep was made under {sweep['model_version']}, not {MODEL_VERSION}: rerun it first")
+    path = RESULTS / "deterministic_lambda_sweep_courant.json"
+    record = json.loads(path.read_text()) if path.exists() else {}
+    if record.get("model_version") != MODEL_VERSION:
+        record = {"model_version": MODEL_VERSION, "points_per_beta": sweep["points_per_beta"],
+                  "passes": sweep["passes"], "default_courant": DeterministicOptions().courant, "runs": {}}
+    state = load_lubricant("atf").state(CONDITIONS[4] + 273.15)
+    beta = baseline_profile().correlation_length
+    for rq in args.rq_um:
+        base = sweep["runs"][f"{rq:g}"]
+        for courant in args.courant:
+            name = f"{rq:g}_courant_{courant:g}"
+            if name in record["runs"]:
+                continue
+            case = ContactCase.from_engineering(*CONDITIONS, rq, rq)
+            options = DeterministicOptions(dx_m=beta / sweep["points_per_beta"], max_passes=MAX_PASSES,
+                                           mu_sem_target=1.0, min_average_passes=sweep["passes"] - 1.5,
+                                           courant=courant)
+            start = time.time()
+            result = solve_deterministic(case, state, Effects.full(), options)
+            e = result.extra
+            window = slice(e["average_from_step"], None)
+            mu = np.asarray(e["mu_series"][window], dtype=float)
+            t = np.asarray(e["t_series_s"][window], dtype=float)
+            t_base, mu_base = series(base)
+            inside = (t_base >= t[0]) & (t_base <= t[-1])
+            paired_mean = time_mean(np.interp(t_base[inside], t, mu) - mu_base[inside])
+            record["runs"][name] = {
+                "rq_um": rq, "courant": courant, "mu": float(np.mean(mu)), "mu_sem": time_mean(mu).standard_error,
+                "asperity_load_share": result.asperity_load_share, "base_mu": base["mu"],
+                "base_asperity_load_share": base["asperity_load_share"],
+                "paired_delta_mu": paired_mean.mean, "paired_delta_mu_sem": paired_mean.standard_error,
+                "converged": result.converged, "wall_time_s": time.time() - start}
+            path.write_text(json.dumps(record, indent=1))
+            run = record["runs"][name]
+            print(f"Rq {rq:g} µm at Courant {courant:g}: μ {run['mu']:.5f} (share {run['asperity_load_share']:.4f}) "
+                  f"against {base['mu']:.5f} (share {base['asperity_load_share']:.4f}): paired "
+                  f"{run['paired_delta_mu'] / base['mu']:+.2%} ± {run['paired_delta_mu_sem'] / base['mu']:.2%}",
+                  flush=True)
     return 0
 
 

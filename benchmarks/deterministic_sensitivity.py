@@ -6,8 +6,8 @@ thickness h_b, on one case at one spacing, paired with the base run of benchmark
     python benchmarks/deterministic_sensitivity.py --case A --spacing 32 --passes 40 --tag courant \
         --variant base --variant courant_0.5 --variant courant_0.25          # (det-7: base at Courant 1)
 
-Variants: Courant 1, 0.5 and 0.25 (the default is 0.5 since det-2026.11-8, 1 before: under det-7 the base run and
-``courant_1`` are the same, under det-8 the base run and ``courant_0.5``), Newton tolerance 1e-9 (10× looser), h_b ×
+Variants: Courant 1, 0.5, 0.25 and 0.125 (the default is 0.25 since det-2026.11-9, 0.5 in det-8, 1 before: under
+det-7 the base run and ``courant_1`` are the same, under det-8 the base run and ``courant_0.5``), Newton tolerance 1e-9 (10× looser), h_b ×
 0.5 and × 2 (physical, reported). Writes benchmarks/results/deterministic_sensitivity_<case>[_<tag>].json (μ, its standard error, and for each variant the
 paired difference to the base run with its standard error) and the μ(t) series of every run in
 benchmarks/results/deterministic_sensitivity/<case>[_<tag>]_<variant>.npz.
@@ -40,6 +40,7 @@ VARIANTS = {
     "courant_1": {"courant": 1.0},
     "courant_0.5": {"courant": 0.5},
     "courant_0.25": {"courant": 0.25},
+    "courant_0.125": {"courant": 0.125},
     "tolerance_1e-9": {"newton_tolerance": 1e-9},
     "h_b_x0.5": {"boundary_film_m": 0.5 * BOUNDARY_FILM_M},
     "h_b_x2": {"boundary_film_m": 2.0 * BOUNDARY_FILM_M},

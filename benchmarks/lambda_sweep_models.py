@@ -47,6 +47,7 @@ def main() -> int:
                                "runs": {k: {f: v[f] for f in ("rq_um", "lambda_bar", "mu", "mu_sem",
                                                               "asperity_load_share", "wall_time_s")}
                                         for k, v in sweep["runs"].items()}}
+    OUT.write_text(json.dumps(record, indent=1, default=float))
     for key, run in sorted(sweep["runs"].items(), key=lambda kv: kv[1]["rq_um"]):
         case = ContactCase.from_engineering(*sweep["conditions"], run["rq_um"], run["rq_um"])
         for name in MODELS:

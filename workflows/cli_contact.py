@@ -42,6 +42,10 @@ def register(subparsers) -> None:
                             "leakage, as the paper's model) or isotropic (side leakage); default transverse")
     solve.add_argument("--dx-um", type=float, default=None,
                        help="grid spacing of the deterministic model [µm] (default: the level's grid rule)")
+    solve.add_argument("--wide", default="auto", choices=["auto", "resolve", "windows"],
+                       help="how the deterministic model covers the contact: auto (periodic windows across the "
+                            "Hertzian zone fed by the film law when a/β > 15 and no --dx-um is given, else the whole "
+                            "contact resolved), resolve, windows (docs/deterministic_solver.md, \"Wide contacts\")")
     solve.add_argument("--time-limit-s", type=float, default=None,
                        help="wall-time budget of a transient (rough) solve [s]; when spent the result is marked "
                             "not converged (default: none)")
@@ -71,11 +75,14 @@ def _solve(args) -> int:
 
         roughness = load_profile(args.roughness_file, unit=args.roughness_unit)
     deterministic = None
-    if args.dx_um is not None:
+    if args.dx_um is not None or args.wide != "auto":
         from ehl_dataset.solvers.deterministic import deterministic_options
 
-        check_finite("dx_um", args.dx_um)
-        deterministic = deterministic_options(level.name, dx_m=args.dx_um * 1e-6)
+        overrides = {"wide": args.wide}
+        if args.dx_um is not None:
+            check_finite("dx_um", args.dx_um)
+            overrides["dx_m"] = args.dx_um * 1e-6
+        deterministic = deterministic_options(level.name, **overrides)
     from ehl_dataset.solvers.homogenised import HomogenisedOptions
 
     result = solve_contact(case, lubricant, level.name, effects, roughness, args.time_limit_s, model=args.model,
@@ -101,6 +108,7 @@ def _solve(args) -> int:
         "lubricant": lubricant.name,
         "roughness_profile": result.extra.get("roughness_profile"),
         "model": result.extra.get("model", "transient" if result.effects.get("roughness") else "smooth"),
+        "route": result.extra.get("route"),
         "dx_m": result.extra.get("dx_m"),
         "n_nodes": result.extra.get("n_nodes"),
         "n_steps": result.extra.get("n_steps"),

@@ -53,7 +53,7 @@ from .result import ContactResult
 from .steady import ContactScales, dowson_higginson_lambda, moes_h_c, solve_steady
 from .time_average import time_mean
 
-MODEL_VERSION = "det-2026.11-8"
+MODEL_VERSION = "det-2026.11-9"
 """Version of the deterministic model's numerics (recorded with its results; bump with any change that can alter a
 solved value). :data:`ehl_dataset.solver.SOLVER_VERSION` covers the whole solver."""
 BOUNDARY_FILM_M = 5e-9
@@ -62,10 +62,12 @@ their adsorbed/reacted boundary films, which carry load and friction μ_d·p_c. 
 friction-modifier layers are a few nm thick, and deterministic mixed-EHL becomes mesh-dependent once films fall
 below ~10–20 nm (Liu, Wang, Wang, Hu & Zhu, J. Tribol. 128 (2006) 641); its effect on μ is reported as a
 sensitivity (h_b × 0.5, × 2) in docs/deterministic_solver.md."""
-COURANT = 0.5
-"""Default u_r Δt/Δx (det-2026.11-8; 1.0 before). Measured on case A at β/32 over 40 paired passes: Courant 1 → 0.5
-moves μ by −3.8 % ± 1.1 % and the asperity share from 0.011 to 0.0007 (the colliding-asperity events of the longer
-step are partly numerical), 0.5 → 0.25 by −0.13 % ± 0.03 % (docs/deterministic_solver.md, "Sensitivity")."""
+COURANT = 0.25
+"""Default u_r Δt/Δx (det-2026.11-9; 0.5 in det-8, 1.0 before). Measured where asperities carry load, case A's
+conditions with Rq 0.5 µm (λ̄ 0.2) at β/16 over 11 paired passes: Courant 0.5 → 0.25 moves μ by −8.9 % ± 6.2 % and
+the asperity share from 0.035 to 0.004; 0.25 → 0.125 by −0.20 % ± 0.05 % (share 0.0039). On case A (Rq 0.3 µm) at
+β/32 over 40 passes: 1 → 0.5 −3.8 % ± 1.1 %, 0.5 → 0.25 −0.13 % ± 0.03 %. The colliding-asperity events of a longer
+step are partly numerical (docs/deterministic_solver.md, "Sensitivity")."""
 YIELD_PRESSURE_PA = 6.8e9
 """Hardness of case-hardened gear steel, 60 HRC ≈ 697 HV ≈ 6.8 GPa (ASTM E140): the cap of the solid contact
 pressure (elastic–perfectly-plastic asperities; Johnson 1985, §6)."""
@@ -766,7 +768,7 @@ def _result(case, state, plan, level_name, options, problem, scales, z, h, recor
         residuals={"max_load_error": float(np.max(np.abs(record.load))) if record.load else 0.0,
                    "max_mass_error": float(np.max(record.mass)) if record.mass else 0.0},
         message=message, x=x_m, pressure=(pf + pc) * case.p_h, film=mean_film,
-        extra={"model": "deterministic", "model_version": MODEL_VERSION, "dx_m": float(problem.dx * scales.a), "n_nodes": int(problem.n),
+        extra={"model": "deterministic", "route": "resolve", "model_version": MODEL_VERSION, "dx_m": float(problem.dx * scales.a), "n_nodes": int(problem.n),
                "n_steps": n_steps, "average_from_step": int(first_average), "courant": options.courant,
                "boundary_film_m": float(problem.h_b * scales.film_scale),
                "yield_pressure_pa": float(problem.p_yield * case.p_h), "asperity_load_share_sem": float(share_sem),

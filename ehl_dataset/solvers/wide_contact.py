@@ -46,8 +46,8 @@ from .steady import dowson_higginson_lambda, solve_steady
 WIDE_MODEL_VERSION = "wide-2026.11-1"
 """Version of the wide-contact route (film law, window layout); recorded next to the deterministic model version."""
 
-FILM_LAW_C = 0.588
-FILM_LAW_D = 0.502
+FILM_LAW_C = 0.460
+FILM_LAW_D = 0.383
 """Film law Δ/σ = c/(H + d), H = h_s/σ: least-squares fit over resolved deterministic runs
 (``python benchmarks/deterministic_film_law.py``; points, residuals and leave-one-family-out errors in
 benchmarks/results/deterministic_film_law.json)."""
@@ -59,27 +59,33 @@ WIDE_A_OVER_BETA = 15.0
 """a/β above which ``DeterministicOptions(wide="auto")`` takes this route instead of resolving the whole contact."""
 
 
-def fed_central_film(smooth_film_m: float, sigma_m: float) -> float:
+def fed_central_film(smooth_film_m: float, sigma_m: float, offset_sigma: float = 0.0) -> float:
     """Mean content film [m] of the Hertzian centre of a rough contact from the smooth central film [m] and the
-    composite roughness σ [m] (the film law of the module docstring)."""
+    composite roughness σ [m] (the film law of the module docstring), plus ``offset_sigma``·σ (the law's scatter,
+    for sensitivity studies)."""
     check_range("smooth_film_m", smooth_film_m, 0.0, 1e-3, low_inclusive=False, unit="m")
     check_range("sigma_m", sigma_m, 0.0, 1e-4, unit="m")
+    check_range("offset_sigma", offset_sigma, -1.0, 1.0)
     if sigma_m == 0.0:
         return float(smooth_film_m)
-    return float(smooth_film_m + sigma_m * FILM_LAW_C / (smooth_film_m / sigma_m + FILM_LAW_D))
+    excess = FILM_LAW_C / (smooth_film_m / sigma_m + FILM_LAW_D) + offset_sigma
+    return float(smooth_film_m + sigma_m * excess)
 
 
 @dataclass(frozen=True)
 class WideOptions:
-    """``points`` Gauss–Legendre windows in |x| < ``edge``·a; ``window`` their options (length, grid, time step)."""
+    """``points`` Gauss–Legendre windows in |x| < ``edge``·a; ``window`` their options (length, grid, time step);
+    ``film_offset_sigma`` added to the film law's excess Δ/σ (0: the law; ± its scatter for a sensitivity study)."""
 
     points: int = 5
     edge: float = 0.9
+    film_offset_sigma: float = 0.0
     window: WindowOptions = field(default_factory=lambda: WindowOptions(length_beta=8.0, points_per_beta=16.0))
 
     def __post_init__(self):
         check_range("points", self.points, 1, 20)
         check_range("edge", self.edge, 0.1, 1.0)
+        check_range("film_offset_sigma", self.film_offset_sigma, -1.0, 1.0)
         if not isinstance(self.window, WindowOptions):
             raise InputError("window", type(self.window).__name__, "a WindowOptions")
 
@@ -123,7 +129,8 @@ def solve_wide(case: ContactCase, state: LubricantState, plan: Effects, options:
         f"deterministic mixed EHL by {options.points} periodic windows across the Hertzian zone (a/β = "
         f"{a / profile.correlation_length:.0f}), fed the smooth pressure and the film law")
     extra = {"model": "deterministic", "route": "wide", "wide_model_version": WIDE_MODEL_VERSION,
-             "model_version": deterministic_version, "film_law": {"c": FILM_LAW_C, "d": FILM_LAW_D},
+             "model_version": deterministic_version, "film_law": {"c": FILM_LAW_C, "d": FILM_LAW_D,
+                                                                   "offset_sigma": options.film_offset_sigma},
              "a_over_beta": a / profile.correlation_length, "smooth_mu": smooth.mu, "smooth_h_min_m": smooth.h_min}
     if not smooth.converged:
         return _failed(case, plan, recorded, level_name, start, lambda_bar, f"smooth start: {smooth.message}", extra)
@@ -131,7 +138,7 @@ def solve_wide(case: ContactCase, state: LubricantState, plan: Effects, options:
     centre = np.abs(x_m / a) < CENTRE_BAND
     sigma = case.s_c
     h_smooth_centre = float(np.mean(h_s[centre]))
-    h_centre = fed_central_film(h_smooth_centre, sigma)
+    h_centre = fed_central_film(h_smooth_centre, sigma, options.film_offset_sigma)
     rho_centre = float(state.density(float(np.mean(p_s[centre]))))
     nodes, weights = np.polynomial.legendre.leggauss(options.points)
     positions, weights = options.edge * nodes * a, options.edge * weights * a

@@ -107,3 +107,23 @@ def test_a_narrow_contact_or_a_given_spacing_is_resolved(wide_case):
     assert not _takes_windows(case, profile, DeterministicOptions(dx_m=1e-6))
     assert not _takes_windows(case, profile, DeterministicOptions(wide="resolve"))
     assert _takes_windows(narrow, profile, DeterministicOptions(wide="windows"))
+
+
+def test_the_command_line_reports_the_route(capsys, monkeypatch):
+    """``gearloss contact solve ... --model deterministic --wide windows --json`` (issue 14, deliverable 2): the JSON
+    names the route and carries the fields of a deterministic run. (The ``fast`` level's layout is shrunk to the
+    coarse one above to keep the test to seconds.)"""
+    from ehl_dataset.solvers import deterministic
+    from workflows.cli import main
+
+    monkeypatch.setitem(deterministic.LEVEL_OPTIONS, "fast", {**deterministic.LEVEL_OPTIONS["fast"], **TINY})
+
+    code = main(["contact", "solve", "--p-h-gpa", "1.0", "--r-eq-mm", "20", "--u-r", "5", "--sr", "0.2", "--temp-c",
+                 "75", "--rq1-um", "0.002", "--rq2-um", "0.002", "--model", "deterministic", "--wide", "windows",
+                 "--level", "fast", "--json"])
+    payload = json.loads(capsys.readouterr().out)
+    assert code == 0 and payload["converged"]
+    assert payload["route"] == "wide" and payload["model"] == "deterministic"
+    for key in ("mu", "mu_sem", "asperity_load_share", "h_min_m", "lambda_bar", "dx_m", "n_nodes", "n_steps",
+                "effects", "wall_time_s"):
+        assert payload[key] is not None, key
