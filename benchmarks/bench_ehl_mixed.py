@@ -71,6 +71,8 @@ def main(argv=None) -> int:
     parser.add_argument("--merge", nargs="+", default=None, help="shard JSON files to merge into one report")
     parser.add_argument("--max-r-eq-mm", type=float, default=None,
                         help="keep only the drawn points with r_eq <= this [mm] (same draws, a subset)")
+    parser.add_argument("--min-r-eq-mm", type=float, default=None,
+                        help="keep only the points with r_eq >= this [mm] (e.g. the wide corners)")
     parser.add_argument("--time-limit-s", type=float, default=None,
                         help="wall-time budget per case [s]; a case that spends it counts as not finished, and the "
                              "mean time is then a lower bound (reported as such)")
@@ -80,6 +82,8 @@ def main(argv=None) -> int:
     cases = corner_cases() if args.sample == "corners" else random_cases(args.n, args.seed)
     if args.max_r_eq_mm is not None:
         cases = [c for c in cases if c[1] <= args.max_r_eq_mm]
+    if args.min_r_eq_mm is not None:
+        cases = [c for c in cases if c[1] >= args.min_r_eq_mm]
     lub = load_lubricant("atf")
     suffix = "" if args.model == "auto" else f"_{args.model}" + (f"_{args.closure}" if args.model == "homogenised"
                                                                     else "")
@@ -112,6 +116,7 @@ def main(argv=None) -> int:
                    **{key: res.extra.get(key) for key in NewtonCost.FIELDS},  # the solver's cost record
                    # a converged run may have had only its averaging-window extension cut by the budget
                    "time_limited": bool(res.extra.get("time_limited", False)) and not res.converged,
+                   "route": res.extra.get("route"), "film_law_extrapolated": res.extra.get("film_law_extrapolated"),
                    "message": res.message}
         except Exception as err:  # recorded, the sweep goes on
             row = {"case": case_args, "converged": False, "error": f"{type(err).__name__}: {err}"}
