@@ -30,7 +30,8 @@ from .model.contact import ContactCase
 from .model.effects import Effects
 from .model.lubricant import Lubricant, load_lubricant
 from .model.roughness import RoughnessProfile
-from .solvers.deterministic import DeterministicOptions, deterministic_options, solve_deterministic
+from .solvers.deterministic import DeterministicOptions, deterministic_options
+from .solvers.wide_contact import solve_deterministic_contact
 from .solvers.homogenised import HomogenisedOptions, solve_homogenised
 from .solvers.levels import AccuracyLevel, get_level
 from .solvers.planner import resolve_effects, without_thermal
@@ -112,9 +113,9 @@ def solve_contact(case: ContactCase, lubricant: Lubricant | str, level: str | Ac
             return solve_homogenised(case, state, lvl, _isothermal(plan, "homogenised"), roughness,
                                      homogenised or HomogenisedOptions())
         if model == "deterministic":
-            return solve_deterministic(case, state, _isothermal(plan, "deterministic"),
-                                       deterministic or deterministic_options(lvl.name), roughness, time_limit_s,
-                                       lvl.name)
+            return solve_deterministic_contact(case, state, _isothermal(plan, "deterministic"),
+                                               deterministic or deterministic_options(lvl.name), roughness,
+                                               time_limit_s, lvl.name)
         if plan.roughness and case.s_c > 0.0:
             return solve_transient(case, state, lvl, _isothermal(plan, "transient"), roughness, time_limit_s,
                                    transient_options or TransientOptions())

@@ -93,10 +93,12 @@ class DeterministicOptions:
     complementarity rows in p_h) of every step; ``max_substeps`` largest split of a time step whose Newton solve
     failed; ``clock`` the wall clock (time.perf_counter).
 
-    ``wide`` how a contact is covered (:data:`WIDE_ROUTES`): ``"resolve"`` solves the whole conjunction;
-    ``"windows"`` solves ``wide_windows`` periodic windows of ``window_length_beta`` correlation lengths across the
-    Hertzian zone, fed by the film law (:mod:`ehl_dataset.solvers.wide_contact`); ``"auto"`` takes the windows when
-    a/β exceeds :data:`~ehl_dataset.solvers.wide_contact.WIDE_A_OVER_BETA` and no ``dx_m`` is given.
+    ``wide`` how :func:`ehl_dataset.solvers.wide_contact.solve_deterministic_contact` (the entry point of
+    ``solve_contact(model="deterministic")``) covers a contact (:data:`WIDE_ROUTES`): ``"resolve"`` solves the whole
+    conjunction (:func:`solve_deterministic`, which always does); ``"windows"`` solves ``wide_windows`` periodic
+    windows of ``window_length_beta`` correlation lengths across the Hertzian zone, fed by the film law;
+    ``"auto"`` takes the windows when a/β exceeds :data:`~ehl_dataset.solvers.wide_contact.WIDE_A_OVER_BETA` and no
+    ``dx_m`` is given.
     """
 
     dx_m: float | None = None
@@ -458,30 +460,6 @@ def _traction(problem: MixedProblem, case: ContactCase, state: LubricantState, s
     return mu, asperity, share, yielded
 
 
-def _takes_windows(case: ContactCase, profile: RoughnessProfile, options: DeterministicOptions) -> bool:
-    from .wide_contact import WIDE_A_OVER_BETA
-
-    if options.wide == "windows":
-        return True
-    return (options.wide == "auto" and options.dx_m is None and case.s_c > 0.0
-            and case.half_width / profile.correlation_length > WIDE_A_OVER_BETA)
-
-
-def _wide_options(case: ContactCase, profile: RoughnessProfile, h_b_m: float, options: DeterministicOptions):
-    """The window layout of a wide run: the whole-contact grid rule without the inlet term, the same time step,
-    Newton and face options."""
-    from .periodic_window import WindowOptions
-    from .wide_contact import WideOptions
-
-    dx_m = options.dx_m if options.dx_m is not None else grid_spacing(profile, case.rq1, case.rq2, h_b_m, options)[0]
-    window = WindowOptions(length_beta=options.window_length_beta, points_per_beta=profile.correlation_length / dx_m,
-                           courant=options.courant, boundary_film_m=options.boundary_film_m,
-                           yield_pressure_pa=options.yield_pressure_pa, newton_tolerance=options.newton_tolerance,
-                           max_substeps=options.max_substeps, face_mean=options.face_mean,
-                           couette_flux=options.couette_flux, band=options.band, clock=options.clock)
-    return WideOptions(points=options.wide_windows, window=window)
-
-
 def solve_deterministic(case: ContactCase, state: LubricantState, plan: Effects, options: DeterministicOptions,
                         roughness: RoughnessProfile | None = None, time_limit_s: float | None = None,
                         level_name: str = "reference") -> ContactResult:
@@ -492,11 +470,9 @@ def solve_deterministic(case: ContactCase, state: LubricantState, plan: Effects,
     a = scales.a
     profile = roughness if roughness is not None else baseline_profile()
     h_b_m = options.boundary_film_m if options.boundary_film_m is not None else BOUNDARY_FILM_M
-    if _takes_windows(case, profile, options):
-        from .wide_contact import solve_wide
-
-        return solve_wide(case, state, plan, _wide_options(case, profile, h_b_m, options), profile, time_limit_s,
-                          level_name, MODEL_VERSION)
+    if options.wide == "windows":
+        raise InputError("wide", options.wide, "'auto' or 'resolve' here: solve_deterministic resolves the whole "
+                         "contact; the windows are ehl_dataset.solvers.wide_contact.solve_deterministic_contact's")
     rule = {}
     if options.dx_m is not None:
         dx_m = options.dx_m

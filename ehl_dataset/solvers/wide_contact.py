@@ -40,6 +40,7 @@ from ..model.lubricant import LubricantState
 from ..model.roughness import RoughnessProfile, baseline_profile
 from ..model.traction import eyring_shear_stress, full_film_mask
 from ..validation import InputError, check_range
+from .deterministic import MODEL_VERSION, BOUNDARY_FILM_M, DeterministicOptions, grid_spacing, solve_deterministic
 from .levels import get_level
 from .periodic_window import WindowOptions, solve_window
 from .result import ContactResult
@@ -212,6 +213,40 @@ def solve_wide(case: ContactCase, state: LubricantState, plan: Effects, options:
         level=level_name, effects=recorded, mu_sem=math.sqrt(variance) / load, lambda_bar=lambda_bar,
         asperity_load_share=share / load, residuals={}, message=message, x=x_m[zone], pressure=p_s[zone], film=mean_film,
         extra=extra)
+
+
+def takes_windows(case: ContactCase, profile: RoughnessProfile, options: DeterministicOptions) -> bool:
+    """Whether a deterministic run of ``case`` goes by windows (``options.wide``; module docstring)."""
+    if options.wide == "windows":
+        return True
+    return (options.wide == "auto" and options.dx_m is None and case.s_c > 0.0
+            and case.half_width / profile.correlation_length > WIDE_A_OVER_BETA)
+
+
+def wide_options(case: ContactCase, profile: RoughnessProfile, options: DeterministicOptions) -> WideOptions:
+    """The window layout of a wide run from the deterministic options: the whole-contact grid rule without the inlet
+    term (or ``dx_m``), the same time step, Newton and face options."""
+    h_b_m = options.boundary_film_m if options.boundary_film_m is not None else BOUNDARY_FILM_M
+    dx_m = options.dx_m if options.dx_m is not None else grid_spacing(profile, case.rq1, case.rq2, h_b_m, options)[0]
+    window = WindowOptions(length_beta=options.window_length_beta, points_per_beta=profile.correlation_length / dx_m,
+                           courant=options.courant, boundary_film_m=options.boundary_film_m,
+                           yield_pressure_pa=options.yield_pressure_pa, newton_tolerance=options.newton_tolerance,
+                           max_substeps=options.max_substeps, face_mean=options.face_mean,
+                           couette_flux=options.couette_flux, band=options.band, clock=options.clock)
+    return WideOptions(points=options.wide_windows, window=window)
+
+
+def solve_deterministic_contact(case: ContactCase, state: LubricantState, plan: Effects,
+                                options: DeterministicOptions, roughness: RoughnessProfile | None = None,
+                                time_limit_s: float | None = None, level_name: str = "reference") -> ContactResult:
+    """The deterministic model on any contact: the whole contact resolved
+    (:func:`~ehl_dataset.solvers.deterministic.solve_deterministic`) or, for a wide one, windows fed by the film law
+    (:func:`solve_wide`), as ``options.wide`` says."""
+    profile = roughness if roughness is not None else baseline_profile()
+    if takes_windows(case, profile, options):
+        return solve_wide(case, state, plan, wide_options(case, profile, options), profile, time_limit_s, level_name,
+                          MODEL_VERSION)
+    return solve_deterministic(case, state, plan, options, roughness, time_limit_s, level_name)
 
 
 def _failed(case, plan, recorded, level_name, start, lambda_bar, message, extra) -> ContactResult:

@@ -15,7 +15,7 @@ from ehl_dataset.model.lubricant import load_lubricant
 from ehl_dataset.solvers.deterministic import DeterministicOptions, solve_deterministic
 from ehl_dataset.model.roughness import baseline_profile
 from ehl_dataset.solvers.wide_contact import (FILM_LAW_C, FILM_LAW_D, FILM_LAW_K, WideOptions, fed_central_film,
-                                              inlet_length)
+                                              inlet_length, solve_deterministic_contact, takes_windows)
 from ehl_dataset.validation import InputError
 
 FILM_LAW_DATA = Path(__file__).resolve().parents[2] / "benchmarks" / "results" / "deterministic_film_law.json"
@@ -70,9 +70,12 @@ def test_the_film_law_refuses_bad_input(kwargs, parameter):
         fed_central_film(**kwargs)
 
 
-def test_bad_route_and_layout_are_refused():
+def test_bad_route_and_layout_are_refused(wide_case):
     with pytest.raises(InputError, match="wide"):
         DeterministicOptions(wide="sideways")
+    case, state = wide_case
+    with pytest.raises(InputError, match="wide"):  # the resolving solver does not silently ignore a route
+        solve_deterministic(case, state, Effects.full(), DeterministicOptions(wide="windows"))
     with pytest.raises(InputError, match="points"):
         WideOptions(points=0)
 
@@ -87,7 +90,7 @@ def wide_case():
 @pytest.fixture(scope="module")
 def wide_smooth_limit(wide_case):
     case, state = wide_case
-    return solve_deterministic(case, state, Effects.full(), DeterministicOptions(**TINY))
+    return solve_deterministic_contact(case, state, Effects.full(), DeterministicOptions(**TINY))
 
 
 def test_a_wide_contact_takes_the_windows_and_records_why(wide_smooth_limit):
@@ -114,16 +117,14 @@ def test_the_wide_route_tends_to_the_smooth_solve_as_the_roughness_vanishes(wide
 def test_a_narrow_contact_or_a_given_spacing_is_resolved(wide_case):
     """``auto`` resolves contacts up to WIDE_A_OVER_BETA wide, and any run given an explicit spacing (the
     convergence studies); only ``wide="windows"`` forces the windows."""
-    from ehl_dataset.solvers.deterministic import _takes_windows
-
     case, _ = wide_case
     profile = baseline_profile()
     narrow = ContactCase.from_engineering(0.5, 5, 5, 0.3, 90, 0.3, 0.3)
-    assert _takes_windows(case, profile, DeterministicOptions())
-    assert not _takes_windows(narrow, profile, DeterministicOptions())
-    assert not _takes_windows(case, profile, DeterministicOptions(dx_m=1e-6))
-    assert not _takes_windows(case, profile, DeterministicOptions(wide="resolve"))
-    assert _takes_windows(narrow, profile, DeterministicOptions(wide="windows"))
+    assert takes_windows(case, profile, DeterministicOptions())
+    assert not takes_windows(narrow, profile, DeterministicOptions())
+    assert not takes_windows(case, profile, DeterministicOptions(dx_m=1e-6))
+    assert not takes_windows(case, profile, DeterministicOptions(wide="resolve"))
+    assert takes_windows(narrow, profile, DeterministicOptions(wide="windows"))
 
 
 def test_the_command_line_reports_the_route(capsys, monkeypatch):
