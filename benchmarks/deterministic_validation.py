@@ -147,9 +147,10 @@ def paired_difference(run: dict, base: dict, key: str) -> tuple[float, float]:
 def summarise_case(name: str) -> dict | None:
     coarse, middle, fine = levels = spacings(name)
     runs = {n: json.loads(run_path(name, n).read_text()) for n in levels if run_path(name, n).exists()}
-    if set(runs) != set(levels) or not all(r["converged"] and r["solver_version"] == MODEL_VERSION
-                                           for r in runs.values()):
+    if set(runs) != set(levels) or not all(r["converged"] for r in runs.values()):
         return None
+    if len({r["solver_version"] for r in runs.values()}) != 1:
+        return None  # the three spacings must share one model version (a rerun in progress mixes them)
     base = runs[middle]
     out = {"case": name, "inputs": dict(zip(("p_h_gpa", "r_eq_mm", "u_r_m_s", "sr", "temp_c", "rq1_um", "rq2_um"),
                                             CASES[name])),
@@ -189,18 +190,34 @@ def summarise_case(name: str) -> dict | None:
     return out
 
 
+OLDEST_ACCEPTED = "det-2026.11-7"
+"""Runs made under older deterministic numerics (before the limited Couette flux and the round-off stop) do not enter
+the reference set."""
+
+
+def version_key(version: str) -> tuple[int, ...]:
+    """det-YYYY.MM-n as (YYYY, MM, n), so that det-2026.11-10 sorts after det-2026.11-9."""
+    date, number = version.removeprefix("det-").rsplit("-", 1)
+    return (*(int(v) for v in date.split(".")), int(number))
+
+
 def summarise() -> None:
-    """Write the reference data and the docs table. A case whose runs are not all of the current model version keeps
-    its entry of the existing reference file (with the version it was made under), so that a version bump never
-    empties the reference set that ``gearloss accuracy --mixed`` reads."""
+    """Write the reference data and the docs table. Each case enters with its three runs if they share one model
+    version (not older than OLDEST_ACCEPTED), else keeps its entry of the existing reference file; the newer of the
+    two wins, so that a version bump never empties the reference set that ``gearloss accuracy --mixed`` reads. The
+    table and the data name each case's version."""
     previous = {}
     if REFERENCE.exists():
         previous = {r["case"]: r for r in json.loads(REFERENCE.read_text()).get("cases", [])}
     rows = []
     for name in CASES:
         row = summarise_case(name)
-        if row is None:
-            row = previous.get(name)
+        if row is not None and version_key(row["solver_version"]) < version_key(OLDEST_ACCEPTED):
+            row = None
+        kept = previous.get(name)
+        if row is None or (kept is not None and version_key(kept["solver_version"]) > version_key(
+                row["solver_version"])):
+            row = kept
         if row is not None:
             rows.append(row)
     REFERENCE.parent.mkdir(parents=True, exist_ok=True)

@@ -50,8 +50,8 @@ WIDE_MODEL_VERSION = "wide-2026.11-1"
 """Version of the wide-contact route (film law, window layout); recorded next to the deterministic model version."""
 
 FILM_LAW_C = 0.378
-FILM_LAW_D = 0.363
-FILM_LAW_K = 0.437
+FILM_LAW_D = 0.364
+FILM_LAW_K = 0.444
 """Film law Δ/σ = c·(L_in/β)^k/(H + d), H = h_s/σ: least-squares fit over resolved deterministic runs
 (``python benchmarks/deterministic_film_law.py``; points, residuals and leave-one-group-out errors in
 benchmarks/results/deterministic_film_law.json)."""
