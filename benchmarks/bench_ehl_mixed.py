@@ -78,6 +78,9 @@ def main(argv=None) -> int:
                              "mean time is then a lower bound (reported as such)")
     parser.add_argument("--model", default="auto", help="contact model (ehl_dataset.solver.MODELS)")
     parser.add_argument("--closure", default="transverse", help="flow factors of --model homogenised")
+    parser.add_argument("--resume", action="store_true",
+                        help="keep the rows of the output file that exists, run only the cases it lacks, and rewrite "
+                             "the report after every case (a long run that is stopped loses at most one case)")
     args = parser.parse_args(argv)
     cases = corner_cases() if args.sample == "corners" else random_cases(args.n, args.seed)
     if args.max_r_eq_mm is not None:
@@ -94,8 +97,12 @@ def main(argv=None) -> int:
         index, count = (int(v) for v in args.shard.split("/"))
         cases = cases[index::count]
         suffix += f"_shard{index}of{count}"
-    rows = []
+    out = Path(args.out or RESULTS_DIR / f"ehl_mixed_{args.sample}_{args.level}{suffix}.json")
+    rows = json.loads(out.read_text())["rows"] if args.resume and out.exists() else []
+    done = {tuple(r["case"]) for r in rows}
     for case_args in cases:
+        if tuple(case_args) in done:
+            continue
         case = ContactCase.from_engineering(*case_args)
         start, cpu_start = time.perf_counter(), time.process_time()
         try:
@@ -124,7 +131,9 @@ def main(argv=None) -> int:
         row["cpu_time_s"] = time.process_time() - cpu_start  # one BLAS thread: unaffected by other processes
         rows.append(row)
         print(json.dumps(row, default=float), flush=True)
-    return _report(args, lub, rows, suffix)
+        if args.resume:
+            _report(args, lub, rows, suffix, out, quiet=True)
+    return _report(args, lub, rows, suffix, out)
 
 
 def newton_cost_summary(rows) -> dict:
@@ -140,7 +149,7 @@ def newton_cost_summary(rows) -> dict:
                 r["newton_iterations_failed"] / max(r["newton_step_iterations"], 1) for r in rec)}
 
 
-def _report(args, lub, rows, suffix) -> int:
+def _report(args, lub, rows, suffix, out: Path | None = None, quiet: bool = False) -> int:
     ok = [r for r in rows if r["converged"]]
     summary = {**summarize_rows(rows),
                "converged_mu_in_0_mu_d_for_sr_gt_0": all(0.0 <= r["mu"] <= lub.mu_d for r in ok if r["case"][3] > 0),
@@ -169,8 +178,9 @@ def _report(args, lub, rows, suffix) -> int:
               "closure": args.closure if args.model == "homogenised" else None, "summary": summary,
               "solver_version": SOLVER_VERSION,
               "rows": rows, "machine": machine_info()}
-    write_report(args.out or RESULTS_DIR / f"ehl_mixed_{args.sample}_{args.level}{suffix}.json", report)
-    print(json.dumps(summary, indent=2, default=float))
+    write_report(out or args.out or RESULTS_DIR / f"ehl_mixed_{args.sample}_{args.level}{suffix}.json", report)
+    if not quiet:
+        print(json.dumps(summary, indent=2, default=float))
     return 0
 
 

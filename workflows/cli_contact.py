@@ -37,9 +37,11 @@ def register(subparsers) -> None:
                             "homogenised (steady two-scale mixed model; a prototype, see "
                             "docs/homogenised_model.md), deterministic (the deterministic mixed reference solver; "
                             "slow: minutes per case)")
-    solve.add_argument("--closure", default="transverse", choices=["transverse", "isotropic"],
-                       help="flow-factor closure of the homogenised model: transverse (1-D roughness, no side "
-                            "leakage, as the paper's model) or isotropic (side leakage); default transverse")
+    solve.add_argument("--closure", default="transverse", choices=["transverse", "isotropic", "film_law"],
+                       help="closure of the homogenised model: the flow factors transverse (1-D roughness, no side "
+                            "leakage, as the paper's model) or isotropic (side leakage), or film_law (smooth "
+                            "pressure, the measured film law of resolved rough contacts and the dry-contact table's "
+                            "traction; for wide contacts, docs/homogenised_model.md); default transverse")
     solve.add_argument("--dx-um", type=float, default=None,
                        help="grid spacing of the deterministic model [µm] (default: the level's grid rule)")
     solve.add_argument("--wide", default="auto", choices=["auto", "resolve", "windows"],

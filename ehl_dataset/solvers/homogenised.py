@@ -37,14 +37,17 @@ from ..model.lubricant import LubricantState
 from ..model.roughness import RoughnessProfile
 from ..model.traction import full_film_mask
 from ..validation import InputError, check_range
+from .film_law_model import solve_film_law
 from .levels import AccuracyLevel
 from .newton import ReynoldsProblem, newton_solve
 from .result import ContactResult
 from .steady import ContactScales, dowson_higginson_lambda, moes_h_c, solve_steady, solve_steady_problem, steady_grid
 
-CLOSURES = ("transverse", "isotropic")
-"""Flow-factor closures: ``transverse`` (1-D roughness as in the paper's model, no side leakage) and ``isotropic``
-(side leakage around contacts)."""
+CLOSURES = ("transverse", "isotropic", "film_law")
+"""Closures: the flow factors ``transverse`` (1-D roughness as in the paper's model, no side leakage) and
+``isotropic`` (side leakage around contacts), or ``film_law``: no averaged Reynolds equation, the smooth pressure with
+the measured film law of resolved rough contacts and the table's traction
+(:mod:`ehl_dataset.solvers.film_law_model`, for wide contacts)."""
 BOUNDARY_FILM_M = 5e-9
 """Film-breakdown thickness h_b [m], the floor of the micro gaps in the 1-D flow factors (the deterministic model's
 default, :data:`ehl_dataset.solvers.deterministic.BOUNDARY_FILM_M`)."""
@@ -160,6 +163,8 @@ def solve_homogenised(case: ContactCase, state: LubricantState, lvl: AccuracyLev
                                                                             "(S_c = 0): steady smooth solve"))
         smooth.extra["model"] = "homogenised"
         return smooth
+    if closure == "film_law":
+        return solve_film_law(case, state, lvl, plan, roughness, h_b_m)
     table = dry_contact_table(roughness, case.rq1, case.rq2, case.e_reduced)
     scales = ContactScales.of(case, state, plan.shear_thinning)
     smooth_plan = Effects(False, False, plan.shear_thinning, plan.compressibility, plan.mode, {})

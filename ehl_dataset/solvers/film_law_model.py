@@ -1,0 +1,147 @@
+"""Film-law homogenised model of a wide rough contact: the deterministic wide route with its periodic windows
+replaced by the ensemble average over the roughness pair's dry-contact table (docs/homogenised_model.md,
+"Film-law closure").
+
+The deterministic model of a contact many correlation lengths wide (:mod:`ehl_dataset.solvers.wide_contact`) takes
+the smooth solve's pressure p̄(x), the lubricant content of the measured film law,
+
+    h̄(x) = h̄_c ρ(p̄_c)/ρ(p̄(x)),   h̄_c = h_s + σ·c·(L_in/β)^k/(h_s/σ + d)   (fed_central_film),
+
+and solves periodic windows for the local mean traction. Here that traction is the average over the gaps
+g = h̄(x) + z of the roughness pair (z the composite heights of the actual profiles, the windows of the dry-contact
+tables, :func:`ehl_dataset.model.dry_contact.composite_windows`), at the local mean pressure:
+
+    τ̄(x) = ⟨τ0 asinh(η(p̄) u_s/(τ0 max(h̄ + z, h_b)))⟩_z,
+
+plus the rolling part (h̄/2)∂p̄/∂x, inside |x| < e·a; outside, the smooth solve's local shear stress (paper Eq. 7).
+The fluid carries the whole load and no asperity friction is added: in the deterministic reference the micro-EHL
+pressure between colliding asperities holds them apart (asperity share ≤ 0.02 down to λ̄ 0.12 on the roughness
+sweep, ≤ 0.004 in the windows of the widest factorial corners), whereas the dry-contact table at the law's film
+gives 2–13 % of the load to the asperities and, with μ_d on it, μ 15–325 % above the windows (measured,
+benchmarks/film_law_model.py). The micro-EHL pressure itself is not modelled: the fluid pressure is taken uniform
+over a cell. Measured against the windows on the factorial's widest corners this holds within a few per cent where the
+viscosity is saturated in the Eyring sense, and misses up to ≈ 40 % of μ at low λ̄ and low pressure; in narrow
+contacts (a/β of a few) it misses the rise of μ at low λ̄ (benchmarks/film_law_model.py, docs page above). The result
+says when a contact is narrower than the route's validated a/β or the film law is extrapolated.
+
+The cost is one steady smooth solve and a table lookup: this is a production model, not a reference.
+"""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+from ..model.contact import ContactCase
+from ..model.dry_contact import composite_windows, profile_hash
+from ..model.effects import Effects
+from ..model.lubricant import LubricantState
+from ..model.roughness import RoughnessProfile, baseline_profile
+from ..model.traction import eyring_shear_stress
+from ..validation import check_range
+from .levels import AccuracyLevel
+from .result import ContactResult
+from .steady import dowson_higginson_lambda, solve_steady
+from .wide_contact import (CENTRE_BAND, FILM_LAW_C, FILM_LAW_D, FILM_LAW_K, WIDE_A_OVER_BETA, WIDE_MODEL_VERSION,
+                           WideOptions, _integral_outside, fed_central_film, film_law_extrapolation, inlet_length,
+                           smooth_shear_stress)
+
+FILM_LAW_MODEL_VERSION = "film-law-2026.11-1"
+"""Version of this closure (film law of :mod:`ehl_dataset.solvers.wide_contact`, gap-averaged traction)."""
+
+HEIGHT_QUANTILES = 256
+"""Number of equal-probability levels (midpoints) of the composite height distribution in the gap average."""
+
+_QUANTILE_CACHE: dict[tuple[str, float, float], np.ndarray] = {}
+
+
+def composite_height_quantiles(profile: RoughnessProfile, rq1: float, rq2: float,
+                               count: int = HEIGHT_QUANTILES) -> np.ndarray:
+    """Quantiles [m] of the composite roughness z = R1 + R2 of the pair (``profile`` scaled to Rq1, Rq2 [m]) at the
+    levels (i + ½)/count, pooled over the dry-contact tables' windows (cached per profile and Rq pair)."""
+    key = (profile_hash(profile), float(rq1), float(rq2), int(count))
+    if key not in _QUANTILE_CACHE:
+        z, _ = composite_windows(profile, rq1, rq2)
+        _QUANTILE_CACHE[key] = np.quantile(z.ravel(), (np.arange(count) + 0.5) / count)
+    return _QUANTILE_CACHE[key]
+
+
+def gap_averaged_shear_stress(eta, u_s: float, film_m, heights_m, tau0: float, floor_m: float) -> np.ndarray:
+    """⟨τ0 asinh(η u_s/(τ0 max(h̄ + z, h_b)))⟩ over the equal-probability heights z [m] (Eyring Couette stress of
+    the gaps of a rough film of mean gap h̄ [m]; gaps below h_b floored at it) [Pa], one value per (η, h̄) node."""
+    eta = np.asarray(eta, dtype=float)[:, None]
+    gap = np.maximum(np.asarray(film_m, dtype=float)[:, None] + np.asarray(heights_m)[None, :], floor_m)
+    return np.mean(eyring_shear_stress(eta, u_s, gap, tau0), axis=1)
+
+
+def solve_film_law(case: ContactCase, state: LubricantState, lvl: AccuracyLevel, plan: Effects,
+                   roughness: RoughnessProfile | None, boundary_film_m: float,
+                   edge: float = WideOptions.edge) -> ContactResult:
+    """Film-law homogenised solve of a rough contact (module docstring) on the level's steady grid.
+
+    ``boundary_film_m`` h_b [m], the floor of the micro gaps in the Eyring shear; ``edge`` the half width of the
+    film-law zone [a]. The smooth case (S_c = 0) is the caller's (it returns the smooth solution)."""
+    start = time.perf_counter()
+    check_range("edge", edge, 0.1, 1.0)
+    profile = roughness if roughness is not None else baseline_profile()
+    heights = composite_height_quantiles(profile, case.rq1, case.rq2)
+    smooth_plan = Effects(False, False, plan.shear_thinning, plan.compressibility, plan.mode, {})
+    smooth = solve_steady(case, state, lvl, smooth_plan)
+    _, lambda_bar = dowson_higginson_lambda(case, state)
+    a, sigma = case.half_width, case.s_c
+    a_over_beta = a / profile.correlation_length
+    x_m, p_s, h_s = smooth.x, smooth.pressure, smooth.film
+    centre = np.abs(x_m / a) < CENTRE_BAND
+    h_smooth_centre = float(np.mean(h_s[centre]))
+    inlet_over_beta = inlet_length(case, h_smooth_centre) / profile.correlation_length
+    h_centre = fed_central_film(h_smooth_centre, sigma, inlet_over_beta)
+    rho_centre = float(state.density(float(np.mean(p_s[centre]))))
+
+    zone = np.abs(x_m) <= edge * a
+    xz, pz = x_m[zone], p_s[zone]
+    film = h_centre * rho_centre / np.asarray(state.density(pz), dtype=float)
+    shear = gap_averaged_shear_stress(state.viscosity(pz), case.u_s, film, heights, state.tau0, boundary_film_m)
+    rolling = 0.5 * film * np.gradient(p_s, x_m)[zone]
+    load = case.load_per_length
+
+    def integral(f):
+        return float(np.sum(0.5 * (f[1:] + f[:-1]) * np.diff(xz)))
+
+    outside = _integral_outside(x_m, smooth_shear_stress(x_m, p_s, h_s, state, case.u_s), edge * a)
+    parts = {"mu_couette": integral(shear) / load, "mu_poiseuille": integral(rolling) / load,
+             "mu_outside_zone": outside / load}
+    mu = sum(parts.values())
+    converged = bool(smooth.converged) and bool(np.all(np.isfinite([mu, *film])))
+    warnings = []
+    if a_over_beta < WIDE_A_OVER_BETA:
+        warnings.append(f"narrow contact (a/β = {a_over_beta:.1f} < {WIDE_A_OVER_BETA:g}): micro-EHL pressure "
+                        "not modelled, outside the validated range")
+    extrapolated = film_law_extrapolation(h_smooth_centre, sigma, inlet_over_beta)
+    if extrapolated:
+        warnings.append(f"film law extrapolated ({extrapolated})")
+    if not converged:
+        message = f"not converged: {smooth.message}" if not smooth.converged else "not converged: non-finite traction"
+    else:
+        message = "; ".join(["converged", *warnings])
+    recorded = plan.to_dict()
+    recorded["reasons"] = dict(recorded.get("reasons") or {})
+    recorded["reasons"]["model"] = ("homogenised mixed EHL (film-law closure: smooth pressure, measured film law, "
+                                    "dry-contact table traction)")
+    recorded["roughness"], recorded["transient"] = True, False
+    return ContactResult(
+        mu=float(mu), h_min=float(np.min(film)), h_central=float(np.interp(0.0, xz, film)),
+        p_max=float(np.max(p_s)), converged=converged, iterations=int(smooth.iterations),
+        wall_time=time.perf_counter() - start, level=lvl.name, effects=recorded, lambda_bar=lambda_bar,
+        asperity_load_share=0.0, residuals=dict(smooth.residuals), message=message, x=xz,
+        pressure=pz, film=film,
+        extra={"model": "homogenised", "closure": "film_law", "model_version": FILM_LAW_MODEL_VERSION,
+               "wide_model_version": WIDE_MODEL_VERSION, "n_nodes": int(x_m.size), **parts,
+               "film_law": {"c": FILM_LAW_C, "d": FILM_LAW_D, "k": FILM_LAW_K}, "a_over_beta": a_over_beta,
+               "fed_central_film_m": h_centre, "smooth_central_film_m": h_smooth_centre,
+               "inlet_over_beta": inlet_over_beta, "film_law_extrapolated": extrapolated,
+               "narrow_contact": a_over_beta < WIDE_A_OVER_BETA, "smooth_mu": smooth.mu,
+               "smooth_h_min_m": smooth.h_min, "boundary_film_m": boundary_film_m, "zone_edge": edge,
+               "floored_gap_fraction_max": float(np.mean(film[:, None] + heights[None, :] < boundary_film_m,
+                                                          axis=1).max())},
+    )
