@@ -57,8 +57,9 @@ def film_law(case, lubricant):
                          homogenised=HomogenisedOptions(closure="film_law"))
 
 
-def with_table_load(case, lubricant, result) -> float:
-    """μ of the variant with the dry-contact table's asperity load at the film law's mean gap (module docstring)."""
+def with_table_load(case, lubricant, result) -> tuple[float, float]:
+    """μ of the variant with the dry-contact table's asperity load at the film law's mean gap (module docstring),
+    and the share of the load the table gives the asperities."""
     state = lubricant.state(case.temperature)
     table = dry_contact_table(None, case.rq1, case.rq2, case.e_reduced)
     x, p, film = result.x, result.pressure, result.film
@@ -67,8 +68,10 @@ def with_table_load(case, lubricant, result) -> float:
                                     result.extra["boundary_film_m"])
     inside = shear + math.copysign(1.0, case.u_s) * (case.u_s != 0.0) * state.mu_d * p_a
     load = case.load_per_length
-    integral = float(np.sum(0.5 * (inside[1:] + inside[:-1]) * np.diff(x))) / load
-    return integral + result.extra["mu_poiseuille"] + result.extra["mu_outside_zone"]
+    def integral(f):
+        return float(np.sum(0.5 * (f[1:] + f[:-1]) * np.diff(x))) / load
+
+    return integral(inside) + result.extra["mu_poiseuille"] + result.extra["mu_outside_zone"], integral(p_a)
 
 
 def run(case_args, lubricant, mu_ref, label, group):
@@ -79,11 +82,12 @@ def run(case_args, lubricant, mu_ref, label, group):
     start = time.perf_counter()
     smooth = solve_contact(case, lubricant, "standard", model="smooth")
     smooth_wall = time.perf_counter() - start
-    table_mu = with_table_load(case, lubricant, result)
+    table_mu, table_share = with_table_load(case, lubricant, result)
     row = {"group": group, "label": label, "case": list(case_args), "a_over_beta": result.extra["a_over_beta"],
            "lambda_bar": result.lambda_bar, "mu_reference": mu_ref, "mu": result.mu, "mu_smooth": smooth.mu,
-           "mu_with_table_load": table_mu, "converged": result.converged, "message": result.message,
-           "narrow_contact": result.extra["narrow_contact"], "film_law_extrapolated": result.extra["film_law_extrapolated"],
+           "mu_with_table_load": table_mu, "table_asperity_share": table_share, "converged": result.converged,
+           "message": result.message, "narrow_contact": result.extra["narrow_contact"],
+           "film_law_extrapolated": result.extra["film_law_extrapolated"],
            "wall_time_s": wall, "smooth_wall_time_s": smooth_wall}
     if case_args[3] > 0.0 and abs(mu_ref) >= MIN_MU:
         for key, name in (("mu", "error"), ("mu_smooth", "smooth_error"), ("mu_with_table_load", "table_load_error")):

@@ -29,7 +29,7 @@ SWEEP = ROOT / "benchmarks" / "results" / "deterministic_lambda_sweep.json"
 OUT = ROOT / "benchmarks" / "results" / "lambda_sweep_models.json"
 FIGURE = ROOT / "docs" / "figures" / "mu_lambda_models.png"
 MODELS = ("smooth-standard", "transient-fast", "transient-standard", "homogenised-transverse-standard",
-          "homogenised-isotropic-standard")
+          "homogenised-isotropic-standard", "homogenised-film_law-standard")
 COMMAND = "python benchmarks/lambda_sweep_models.py"
 
 
@@ -79,7 +79,8 @@ def plot(record: dict) -> Path:
                 capsize=3, label=f"deterministic (β/{record['deterministic']['points_per_beta']:g}, ±2 SE)")
     styles = {"smooth-standard": ("tab:gray", "s", "--"), "transient-fast": ("tab:red", "v", ":"),
               "transient-standard": ("tab:red", "^", "-"), "homogenised-transverse-standard": ("tab:blue", "D", "-"),
-              "homogenised-isotropic-standard": ("tab:green", "D", "-")}
+              "homogenised-isotropic-standard": ("tab:green", "D", "-"),
+              "homogenised-film_law-standard": ("tab:purple", "o", "-.")}
     for name, runs in record["runs"].items():
         rows = sorted((r for r in runs.values() if r["converged"]), key=lambda r: r["lambda_bar"])
         missing = len(runs) - len(rows)

@@ -40,17 +40,22 @@ from .solvers.steady import solve_steady
 from .solvers.transient import TransientOptions, solve_transient
 from .validation import InputError, check_time_limit
 
-SOLVER_VERSION = "ehl-2026.11-8"
+SOLVER_VERSION = "ehl-2026.11-9"
 """Version of the numerics behind :func:`solve_contact`. The dataset store records it and refuses to resume a file
 computed with another version: bump it with every change that can alter a solved value."""
 
 MODELS = ("auto", "smooth", "homogenised", "deterministic")
-"""Contact models :func:`solve_contact` can be asked for: ``auto`` (the effect plan decides: steady smooth, or the
-transient mixed solver of :mod:`ehl_dataset.solvers.transient` for rough surfaces), ``smooth`` (steady smooth
-surfaces whatever the roughness), ``homogenised`` (the steady two-scale mixed model,
-:mod:`ehl_dataset.solvers.homogenised`; a prototype whose error against the reference is in
-docs/homogenised_model.md, so ``auto`` never picks it yet), ``deterministic`` (the deterministic mixed reference
-solver, :mod:`ehl_dataset.solvers.deterministic`, for rough surfaces)."""
+"""Contact models :func:`solve_contact` can be asked for: ``auto`` (the effect plan decides: steady smooth; for rough
+surfaces the steady homogenised model with the film-law closure where the contact is at least the planner's
+``a_over_beta_homogenised`` correlation lengths wide, else the transient mixed solver of
+:mod:`ehl_dataset.solvers.transient`), ``smooth`` (steady smooth surfaces whatever the roughness), ``homogenised``
+(the steady two-scale mixed model, :mod:`ehl_dataset.solvers.homogenised`, with the closure of ``homogenised``;
+errors against the reference in docs/homogenised_model.md), ``deterministic`` (the deterministic mixed reference
+solver, :mod:`ehl_dataset.solvers.deterministic`, for rough surfaces).
+
+Version history of what can change a solved value: ehl-2026.11-8 added the thermal correction of the traction;
+ehl-2026.11-9 makes ``auto`` solve wide rough contacts (a/β ≥ 15 at ``fast`` and ``standard``) by the film-law
+homogenised model instead of the transient solver."""
 
 __all__ = ["solve_contact", "checked_inputs", "SOLVER_VERSION", "MODELS"]
 
@@ -106,7 +111,8 @@ def solve_contact(case: ContactCase, lubricant: Lubricant | str, level: str | Ac
     lvl = get_level(level)
     if model == "smooth":
         effects = Effects.smooth_steady(forced="model=smooth")
-    plan = resolve_effects(effects, case, lubricant, lvl.name)
+    plan = resolve_effects(effects, case, lubricant, lvl.name,
+                           roughness.correlation_length if roughness is not None else None)
     # one BLAS thread per solve: the dense solves are small, and workers run one case per core
     with threadpool_limits(limits=1):
         if model == "homogenised":
@@ -116,6 +122,9 @@ def solve_contact(case: ContactCase, lubricant: Lubricant | str, level: str | Ac
             return solve_deterministic_contact(case, state, _isothermal(plan, "deterministic"),
                                                deterministic or deterministic_options(lvl.name), roughness,
                                                time_limit_s, lvl.name)
+        if plan.roughness and case.s_c > 0.0 and not plan.transient:  # the planner's homogenised choice
+            return solve_homogenised(case, state, lvl, _isothermal(plan, "homogenised"), roughness,
+                                     HomogenisedOptions(closure="film_law"))
         if plan.roughness and case.s_c > 0.0:
             return solve_transient(case, state, lvl, _isothermal(plan, "transient"), roughness, time_limit_s,
                                    transient_options or TransientOptions())

@@ -110,6 +110,7 @@ def _solve(args) -> int:
         "lubricant": lubricant.name,
         "roughness_profile": result.extra.get("roughness_profile"),
         "model": result.extra.get("model", "transient" if result.effects.get("roughness") else "smooth"),
+        "closure": result.extra.get("closure"),
         "route": result.extra.get("route"),
         "dx_m": result.extra.get("dx_m"),
         "n_nodes": result.extra.get("n_nodes"),
@@ -134,7 +135,11 @@ def _human(d: dict) -> str:
         f"lambda_bar    {lam}",
         f"status        {status} after {d['iterations']} iterations, {d['wall_time_s'] * 1e3:.1f} ms",
         f"level         {d['level']}; effects {', '.join(k for k in ('roughness', 'transient', 'shear_thinning', 'compressibility', 'thermal') if d['effects'].get(k))}",
+        f"model         {d['model']}" + (f" ({d['closure']} closure)" if d.get("closure") else "")
+        + (f", {d['route']} route" if d.get("route") else ""),
     ]
+    if d["converged"] and d.get("message") and d["message"] != "converged":
+        lines.append(f"note          {d['message'].removeprefix('converged; ')}")
     if d.get("thermal"):
         t = d["thermal"]
         lines.append(f"thermal       mu isothermal {t['mu_isothermal']:.5f}; max rise of the surfaces "

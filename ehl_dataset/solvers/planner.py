@@ -9,8 +9,11 @@ threshold says it does not change the result beyond the level's tolerance (the c
   touch and μ of the transient rough solve equals that of the steady smooth solve within the level's tolerance:
   solve the steady smooth problem (the saving: one steady solve instead of hundreds of time steps). Moving
   roughness is what makes a line contact transient, so both flags go together. S_c = 0 gives λ̄ = ∞.
-  The ``model`` decision says which solver that means (steady smooth, or the transient mixed solver) and why the
-  homogenised model is not chosen yet (docs/homogenised_model.md).
+  The ``model`` decision says which solver that means: steady smooth; for a rough contact at least
+  ``a_over_beta_homogenised`` roughness correlation lengths wide (a/β, β of the roughness profile), the steady
+  homogenised model with the film-law closure (the roughness is a homogeneous micro-scale there: measured against the
+  deterministic model in docs/homogenised_model.md, "Film-law closure"), so ``transient`` is off; otherwise the
+  transient mixed solver.
 * **shear thinning** — inlet Eyring number X_in = η0·|u_s|/(τ0·h_min,DH): sinh(τ_m/τ0) of the Couette shear where
   the film is formed (the inlet, at ambient viscosity). The Eyring flow factor is √(1 + X²), and only the inlet
   flow shapes the film: in the Hertz zone the Poiseuille flow is negligible whatever its factor. The Eyring number
@@ -42,9 +45,11 @@ from dataclasses import asdict, dataclass, replace
 from ..model.effects import Effects
 from ..model.film_formulas import dimensionless_groups, dowson_higginson_min_film, moes_central_film
 from ..model.lubricant import dowson_higginson_density
+from ..model.roughness import baseline_profile
 from ..model.thermal import centre_estimate
 from ..validation import InputError
 from .levels import get_level
+from .wide_contact import WIDE_A_OVER_BETA
 
 
 @dataclass(frozen=True)
@@ -56,18 +61,23 @@ class PlannerThresholds:
     ``tolerance`` the relative change of μ and h_min a skipped effect may cause at this level [-] — what the
     planned-versus-full tests assert on cases straddling the thresholds;
     ``thermal_change`` predicted relative reduction of the centre Couette traction at or below which the thermal
-    correction is skipped [-].
+    correction is skipped [-];
+    ``a_over_beta_homogenised`` a/β (Hertz half width over the roughness correlation length) at or above which a
+    rough contact is solved by the steady film-law homogenised model instead of the transient mixed solver [-].
     """
 
     lambda_smooth: float
     eyring_newtonian: float
     tolerance: float
     thermal_change: float = 0.0
+    a_over_beta_homogenised: float = math.inf
 
 
 THRESHOLDS: dict[str, PlannerThresholds] = {
-    "fast": PlannerThresholds(lambda_smooth=3.5, eyring_newtonian=0.01, tolerance=0.05, thermal_change=0.04),
-    "standard": PlannerThresholds(lambda_smooth=5.0, eyring_newtonian=0.003, tolerance=0.02, thermal_change=0.016),
+    "fast": PlannerThresholds(lambda_smooth=3.5, eyring_newtonian=0.01, tolerance=0.05, thermal_change=0.04,
+                              a_over_beta_homogenised=WIDE_A_OVER_BETA),
+    "standard": PlannerThresholds(lambda_smooth=5.0, eyring_newtonian=0.003, tolerance=0.02, thermal_change=0.016,
+                                  a_over_beta_homogenised=WIDE_A_OVER_BETA),
     "reference": PlannerThresholds(lambda_smooth=math.inf, eyring_newtonian=0.0, tolerance=0.0, thermal_change=0.0),
 }
 """Thresholds per level (levels not listed use ``standard``). Justification and measurements: docs/planner.md."""
@@ -78,10 +88,11 @@ def thresholds_for(level) -> PlannerThresholds:
     return THRESHOLDS.get(get_level(level).name, THRESHOLDS["standard"])
 
 
-def dimensionless_numbers(case, lubricant) -> dict[str, float]:
+def dimensionless_numbers(case, lubricant, correlation_length_m: float | None = None) -> dict[str, float]:
     """The numbers the planner decides from (SI inputs; the lubricant's temperature range is checked).
+    ``correlation_length_m``: β of the roughness profile [m] (None: the shipped baseline profile's).
 
-    Returns ``lambda_bar``, ``h_min_dh_m``, ``s_c_m``, ``sr``, ``eyring_inlet`` (X_in), ``eyring_number`` (X_h at
+    Returns ``lambda_bar``, ``a_over_beta`` (Hertz half width over β), ``h_min_dh_m``, ``s_c_m``, ``sr``, ``eyring_inlet`` (X_in), ``eyring_number`` (X_h at
     the Hertz pressure), ``tau_m_over_tau0`` (asinh X_h), ``eta_hertz_pa_s``, ``density_change`` (ρ(p_h)/ρ0 − 1), ``p_h_over_p_a`` (NaN if the law has no
     p_a), ``moes_m``, ``moes_l``, and the thermal estimate at the Hertz centre: ``thermal_change`` (predicted
     relative reduction of the Couette traction), ``flash_rise_k``, ``film_centre_rise_k``, ``nahme_number``,
@@ -107,8 +118,10 @@ def dimensionless_numbers(case, lubricant) -> dict[str, float]:
     thermal = centre_estimate(state.temperature_table(case.p_h), h_c, case.half_width, case.u1, case.u2, state.tau0,
                               state.thermal)
     props = state.thermal
+    beta = correlation_length_m if correlation_length_m is not None else baseline_profile().correlation_length
     return {
         "lambda_bar": lambda_bar,
+        "a_over_beta": case.half_width / beta,
         "h_min_dh_m": h_dh,
         "s_c_m": s_c,
         "sr": float(case.sr),
@@ -131,17 +144,20 @@ def dimensionless_numbers(case, lubricant) -> dict[str, float]:
     }
 
 
-def plan_effects(case, lubricant, level="standard") -> Effects:
-    """Decide which effects to simulate for ``case`` with ``lubricant`` at accuracy ``level``.
+def plan_effects(case, lubricant, level="standard", correlation_length_m: float | None = None) -> Effects:
+    """Decide which effects to simulate for ``case`` with ``lubricant`` at accuracy ``level``
+    (``correlation_length_m``: β of the roughness profile [m]; None: the shipped baseline profile's).
 
     Returns an :class:`~ehl_dataset.model.effects.Effects` with ``mode="auto"`` and ``reasons`` holding the numbers,
     the thresholds and one sentence per decision. Bad input raises :class:`InputError` (unknown level,
     temperature outside the lubricant's data).
     """
     limits = thresholds_for(level)
-    nums = dimensionless_numbers(case, lubricant)
+    nums = dimensionless_numbers(case, lubricant, correlation_length_m)
     lam = nums["lambda_bar"]
     rough = not lam >= limits.lambda_smooth
+    wide = nums["a_over_beta"] >= limits.a_over_beta_homogenised
+    homogenised = rough and wide
     x_in = nums["eyring_inlet"]
     newtonian = x_in <= limits.eyring_newtonian
     change = nums["thermal_change"]
@@ -152,10 +168,17 @@ def plan_effects(case, lubricant, level="standard") -> Effects:
                       (f"S_c=0: smooth surfaces" if math.isinf(lam) else
                        f"lambda_bar={lam:.3g} >= {limits.lambda_smooth:g}: roughness does not change mu within "
                        f"the level tolerance, steady smooth solve")),
-        "transient": ("moving roughness makes the contact transient" if rough else
+        "transient": (f"a/beta={nums['a_over_beta']:.3g} >= {limits.a_over_beta_homogenised:g}: the roughness is a "
+                      f"homogeneous micro-scale, its ensemble average replaces the time average: steady"
+                      if homogenised else
+                      "moving roughness makes the contact transient" if rough else
                       "smooth surfaces under constant load: steady"),
-        "model": ("transient mixed solver; not the homogenised model, which misses the deterministic reference by "
-                  "tens of per cent (docs/homogenised_model.md); the reference itself: model=deterministic"
+        "model": (f"homogenised model, film-law closure (a/beta={nums['a_over_beta']:.3g} >= "
+                  f"{limits.a_over_beta_homogenised:g}; against the deterministic model's windows on the wide "
+                  "factorial corners: docs/homogenised_model.md)"
+                  if homogenised else
+                  (f"transient mixed solver (a/beta={nums['a_over_beta']:.3g} < {limits.a_over_beta_homogenised:g}: "
+                   "too narrow for the homogenised model); the reference itself: model=deterministic")
                   if rough else "steady smooth solver"),
         "shear_thinning": (f"inlet Eyring number X_in={x_in:.3g} <= {limits.eyring_newtonian:g}: Newtonian "
                            f"flow (factor sqrt(1+X^2)-1={math.sqrt(1 + x_in ** 2) - 1:.2g})"
@@ -173,7 +196,8 @@ def plan_effects(case, lubricant, level="standard") -> Effects:
     level_name = getattr(level, "name", level)
     reasons = {"level": str(level_name), "numbers": _json_safe(nums), "thresholds": _json_safe(asdict(limits)),
                "decisions": decisions}
-    return Effects(roughness=rough, transient=rough, shear_thinning=not newtonian, compressibility=True,
+    return Effects(roughness=rough, transient=rough and not homogenised, shear_thinning=not newtonian,
+                   compressibility=True,
                    mode="auto", reasons=reasons, thermal=thermal)
 
 
@@ -188,15 +212,17 @@ EFFECT_PLANS = ("auto", "isothermal", "full")
 """Named plans :func:`resolve_effects` accepts besides an :class:`Effects` instance."""
 
 
-def resolve_effects(effects, case, lubricant, level="standard") -> Effects:
+def resolve_effects(effects, case, lubricant, level="standard", correlation_length_m: float | None = None) -> Effects:
     """``"auto"`` → :func:`plan_effects`; ``"isothermal"`` → the same plan with the thermal correction off;
-    ``"full"`` → :meth:`Effects.full`; an :class:`Effects` as given."""
+    ``"full"`` → :meth:`Effects.full`; an :class:`Effects` as given. ``correlation_length_m``: β of the roughness
+    profile [m] (None: the shipped baseline's)."""
     if isinstance(effects, Effects):
         return effects
     if effects == "auto":
-        return plan_effects(case, lubricant, level)
+        return plan_effects(case, lubricant, level, correlation_length_m)
     if effects == "isothermal":
-        return without_thermal(plan_effects(case, lubricant, level), "effects=isothermal: isothermal traction")
+        return without_thermal(plan_effects(case, lubricant, level, correlation_length_m),
+                               "effects=isothermal: isothermal traction")
     if effects == "full":
         return Effects.full()
     raise InputError("effects", effects, "'auto', 'isothermal', 'full' or an Effects instance")

@@ -59,8 +59,9 @@ def test_thick_film_is_solved_smooth_except_at_reference():
 
 @pytest.mark.parametrize("level", ["fast", "standard"])
 def test_threshold_straddle(level):
-    """Roughness is skipped exactly from λ̄ = lambda_smooth on: S_c chosen for λ̄ = 0.98 and 1.02 × threshold."""
-    base = case(1.0, 20, 10, 0.3, 50, 0, 0)
+    """Roughness is skipped exactly from λ̄ = lambda_smooth on: S_c chosen for λ̄ = 0.98 and 1.02 × threshold
+    (a narrow contact, a/β < 15, so the rough side is the transient solver)."""
+    base = case(1.0, 5, 10, 0.3, 50, 0, 0)
     h_dh = dimensionless_numbers(base, ATF)["h_min_dh_m"]
     threshold = THRESHOLDS[level].lambda_smooth
     for factor, rough in ((0.98, True), (1.02, False)):
@@ -69,6 +70,33 @@ def test_threshold_straddle(level):
         assert plan.roughness is rough and plan.transient is rough
         assert plan.reasons["numbers"]["lambda_bar"] == pytest.approx(factor * threshold, rel=1e-9)
         assert plan.reasons["thresholds"]["lambda_smooth"] == threshold
+
+
+@pytest.mark.parametrize("level", ["fast", "standard"])
+def test_wide_rough_contacts_take_the_homogenised_model_from_a_over_beta_15(level):
+    """a/β ≥ a_over_beta_homogenised: steady film-law homogenised model (roughness on, transient off); below it the
+    transient solver. r_eq chosen for a/β = 0.98 and 1.02 × the threshold (a ∝ r_eq at fixed p_h)."""
+    threshold = THRESHOLDS[level].a_over_beta_homogenised
+    assert threshold == 15.0
+    at_20 = dimensionless_numbers(case(r_eq_mm=20), ATF)["a_over_beta"]
+    for factor, wide in ((0.98, False), (1.02, True)):
+        c = case(r_eq_mm=20 * factor * threshold / at_20)
+        plan = plan_effects(c, ATF, level)
+        assert plan.reasons["numbers"]["a_over_beta"] == pytest.approx(factor * threshold, rel=1e-9)
+        assert plan.roughness and plan.transient is not wide
+        assert ("homogenised model, film-law closure" in plan.reasons["decisions"]["model"]) is wide
+    result = solve(c, ATF, level)
+    assert result.extra["model"] == "homogenised" and result.extra["closure"] == "film_law"
+    assert not result.effects["transient"] and result.effects["roughness"]
+
+
+def test_the_reference_level_never_homogenises_and_the_profile_correlation_length_decides():
+    """The reference level takes only exact skips; a/β is computed with the β of the profile the solve uses."""
+    wide = case(r_eq_mm=80)
+    assert plan_effects(wide, ATF, "reference").transient
+    a = wide.half_width
+    assert plan_effects(wide, ATF, "standard", correlation_length_m=a / 14.0).transient
+    assert not plan_effects(wide, ATF, "standard", correlation_length_m=a / 16.0).transient
 
 
 def test_numbers_follow_their_formulas():
