@@ -18,7 +18,7 @@ from .cli_help import model_help
 from .cli_output import emit
 
 COMMANDS = (
-    ("quick", "quick", "quick factorial (324 points, fast level): the main job, about 35 min with 2 workers"),
+    ("quick", "quick", "quick factorial (324 points, fast level): the main job, about 1-2 min with 2 workers"),
     ("paper", "paper2009", "the paper's 42,000-point factorial (standard level): the long run (many CPU-hours; "
                            "Dask for clusters)"),
     ("smoke", "smoke", "smoke factorial (96 points, smooth-surface solves): every stage end to end in seconds, to "

@@ -5,7 +5,7 @@ marker comment that says what it is:
 
 * ``<!-- example -->`` — run it; every command must exit 0 (``<!-- example exit=1 -->``: exit 1, e.g. a result flagged
   outside the validity). Quick examples: ``tests/test_doc_examples.py`` runs them all;
-* ``<!-- example slow -->`` — a long run (the 35-minute main job, a full figure): run only by this script with
+* ``<!-- example slow -->`` — a long run (the main job, a full figure): run only by this script with
   ``--all``;
 * ``<!-- synopsis -->`` — option syntax with placeholders (``[--json]``, ``FILE``), not a command.
 
