@@ -53,7 +53,8 @@ MIN_MU = 1e-3
 
 
 def film_law(case, lubricant):
-    return solve_contact(case, lubricant, "standard", model="homogenised",
+    """Isothermal, as the deterministic model (the planner's runs add the thermal correction where it matters)."""
+    return solve_contact(case, lubricant, "standard", "isothermal", model="homogenised",
                          homogenised=HomogenisedOptions(closure="film_law"))
 
 

@@ -116,15 +116,16 @@ def solve_contact(case: ContactCase, lubricant: Lubricant | str, level: str | Ac
     # one BLAS thread per solve: the dense solves are small, and workers run one case per core
     with threadpool_limits(limits=1):
         if model == "homogenised":
-            return solve_homogenised(case, state, lvl, _isothermal(plan, "homogenised"), roughness,
-                                     homogenised or HomogenisedOptions())
+            options = homogenised or HomogenisedOptions()
+            # the film-law closure has the smooth solver's thermal correction; the flow-factor closures have none
+            return solve_homogenised(case, state, lvl, plan if options.closure == "film_law"
+                                     else _isothermal(plan, "homogenised"), roughness, options)
         if model == "deterministic":
             return solve_deterministic_contact(case, state, _isothermal(plan, "deterministic"),
                                                deterministic or deterministic_options(lvl.name), roughness,
                                                time_limit_s, lvl.name)
         if plan.roughness and case.s_c > 0.0 and not plan.transient:  # the planner's homogenised choice
-            return solve_homogenised(case, state, lvl, _isothermal(plan, "homogenised"), roughness,
-                                     HomogenisedOptions(closure="film_law"))
+            return solve_homogenised(case, state, lvl, plan, roughness, HomogenisedOptions(closure="film_law"))
         if plan.roughness and case.s_c > 0.0:
             return solve_transient(case, state, lvl, _isothermal(plan, "transient"), roughness, time_limit_s,
                                    transient_options or TransientOptions())

@@ -39,14 +39,16 @@ MIXED_MODELS: dict[str, dict[str, Any]] = {
     "smooth-standard": {"model": "smooth", "level": "standard"},
     "homogenised-transverse-standard": {"model": "homogenised", "level": "standard", "closure": "transverse"},
     "homogenised-isotropic-standard": {"model": "homogenised", "level": "standard", "closure": "isotropic"},
-    "homogenised-film_law-standard": {"model": "homogenised", "level": "standard", "closure": "film_law"},
+    "homogenised-film_law-standard": {"model": "homogenised", "level": "standard", "closure": "film_law",
+                                      "effects": "isothermal"},
     "transient-fast": {"model": "auto", "level": "fast", "effects": "full"},
     "transient-standard": {"model": "auto", "level": "standard", "effects": "full"},
     "deterministic-fast": {"model": "deterministic", "level": "fast"},
     "deterministic-standard": {"model": "deterministic", "level": "standard"},
 }
 """The models measured, each a :func:`~ehl_dataset.solver.solve_contact` call: the steady smooth solve (what the
-mixed regime costs if roughness is ignored), the homogenised prototype with each closure, the transient rough
+mixed regime costs if roughness is ignored), the homogenised model with each closure (the film-law one isothermal,
+like the reference and the other rough models), the transient rough
 solver of the pipeline (``model="auto"``, all effects: the rough transient path) and the deterministic solver at its
 ``fast`` and ``standard`` grid rules (the reference itself is its three-spacing extrapolation)."""
 CHEAP_MODELS = ("smooth-standard", "homogenised-transverse-standard", "homogenised-isotropic-standard")

@@ -17,9 +17,14 @@ plus the rolling part (h̄/2)∂p̄/∂x, inside |x| < e·a; outside, the smooth
 The fluid carries the whole load and no asperity friction is added: in the deterministic reference the micro-EHL
 pressure between colliding asperities holds them apart (asperity share ≤ 0.02 down to λ̄ 0.12 on the roughness
 sweep, ≤ 0.004 in the windows of the widest factorial corners), whereas the dry-contact table at the law's film
-gives 2–13 % of the load to the asperities and, with μ_d on it, μ 15–325 % above the windows (measured,
+gives part of the load to the asperities and, with μ_d on it, μ up to 325 % above the windows (measured,
 benchmarks/film_law_model.py). The micro-EHL pressure itself is not modelled: the fluid pressure is taken uniform
-over a cell. Measured against the windows on the factorial's widest corners this holds within a few per cent where the
+over a cell. With ``plan.thermal`` the Couette stresses carry the thermal correction of the smooth solver (shear
+heating and flash temperature, :mod:`ehl_dataset.model.thermal`) computed for a smooth film of the model's mean
+film: outside the zone as is, inside as the node-wise ratio thermal/isothermal that scales the gap average (the
+heat source is the mean film's shear, not the gap-averaged one: an approximation).
+
+Measured against the windows on the factorial's widest corners this holds within a few per cent where the
 viscosity is saturated in the Eyring sense, and misses up to ≈ 40 % of μ at low λ̄ and low pressure; in narrow
 contacts (a/β of a few) it misses the rise of μ at low λ̄ (benchmarks/film_law_model.py, docs page above). The result
 says when a contact is narrower than the route's validated a/β or the film law is extrapolated.
@@ -38,14 +43,14 @@ from ..model.dry_contact import composite_windows, profile_hash
 from ..model.effects import Effects
 from ..model.lubricant import LubricantState
 from ..model.roughness import RoughnessProfile, baseline_profile
-from ..model.traction import eyring_shear_stress
+from ..model.thermal import ThermalTraction, thermal_couette_traction
+from ..model.traction import eyring_shear_stress, full_film_mask
 from ..validation import check_range
 from .levels import AccuracyLevel
 from .result import ContactResult
 from .steady import dowson_higginson_lambda, solve_steady
 from .wide_contact import (CENTRE_BAND, FILM_LAW_C, FILM_LAW_D, FILM_LAW_K, WIDE_A_OVER_BETA, WIDE_MODEL_VERSION,
-                           WideOptions, _integral_outside, fed_central_film, film_law_extrapolation, inlet_length,
-                           smooth_shear_stress)
+                           WideOptions, _integral_outside, fed_central_film, film_law_extrapolation, inlet_length)
 
 FILM_LAW_MODEL_VERSION = "film-law-2026.11-1"
 """Version of this closure (film law of :mod:`ehl_dataset.solvers.wide_contact`, gap-averaged traction)."""
@@ -73,6 +78,21 @@ def gap_averaged_shear_stress(eta, u_s: float, film_m, heights_m, tau0: float, f
     eta = np.asarray(eta, dtype=float)[:, None]
     gap = np.maximum(np.asarray(film_m, dtype=float)[:, None] + np.asarray(heights_m)[None, :], floor_m)
     return np.mean(eyring_shear_stress(eta, u_s, gap, tau0), axis=1)
+
+
+def _thermal_ratio(case: ContactCase, state: LubricantState, x_m, p_pa, film_m, liquid
+                   ) -> tuple[ThermalTraction, np.ndarray]:
+    """The thermal correction of the traction (:func:`ehl_dataset.model.thermal.thermal_couette_traction`: shear
+    heating of the film and flash temperature of the surfaces) for a smooth film of the model's mean film ``film_m``
+    [m] on the smooth solve's nodes, and the node-wise ratio thermal / isothermal Couette stress (1 where the film
+    carries no shear) that scales the gap-averaged stress."""
+    thermal = thermal_couette_traction(x_m, film_m, state.temperature_table(p_pa), liquid, case.u1, case.u2,
+                                       state.tau0, state.thermal)
+    isothermal = eyring_shear_stress(state.viscosity(p_pa), case.u_s, np.maximum(film_m, 1e-300), state.tau0)
+    ratio = np.ones_like(isothermal)
+    sheared = liquid & (np.abs(isothermal) > 0.0)
+    ratio[sheared] = thermal.shear_stress[sheared] / isothermal[sheared]
+    return thermal, ratio
 
 
 def solve_film_law(case: ContactCase, state: LubricantState, lvl: AccuracyLevel, plan: Effects,
@@ -103,16 +123,30 @@ def solve_film_law(case: ContactCase, state: LubricantState, lvl: AccuracyLevel,
     film = h_centre * rho_centre / np.asarray(state.density(pz), dtype=float)
     shear = gap_averaged_shear_stress(state.viscosity(pz), case.u_s, film, heights, state.tau0, boundary_film_m)
     rolling = 0.5 * film * np.gradient(p_s, x_m)[zone]
+    liquid = full_film_mask(p_s)
+    couette_outside = eyring_shear_stress(state.viscosity(p_s), case.u_s, np.maximum(h_s, 1e-300), state.tau0)
+    thermal_extra = {}
+    if plan.thermal:
+        thermal, ratio = _thermal_ratio(case, state, x_m, p_s, np.where(zone, np.interp(x_m, xz, film), h_s), liquid)
+        shear_isothermal, couette_isothermal = shear, couette_outside
+        shear, couette_outside = shear * ratio[zone], thermal.shear_stress
+        thermal_extra = {"summary": thermal.summary(), "converged": thermal.converged}
+    outside_stress = np.where(liquid, couette_outside + 0.5 * h_s * np.gradient(p_s, x_m), 0.0)
     load = case.load_per_length
 
     def integral(f):
         return float(np.sum(0.5 * (f[1:] + f[:-1]) * np.diff(xz)))
 
-    outside = _integral_outside(x_m, smooth_shear_stress(x_m, p_s, h_s, state, case.u_s), edge * a)
+    outside = _integral_outside(x_m, outside_stress, edge * a)
     parts = {"mu_couette": integral(shear) / load, "mu_poiseuille": integral(rolling) / load,
              "mu_outside_zone": outside / load}
+    if plan.thermal:
+        outside_isothermal = _integral_outside(
+            x_m, np.where(liquid, couette_isothermal + 0.5 * h_s * np.gradient(p_s, x_m), 0.0), edge * a)
+        thermal_extra["mu_isothermal"] = (integral(shear_isothermal) + integral(rolling) + outside_isothermal) / load
     mu = sum(parts.values())
     converged = bool(smooth.converged) and bool(np.all(np.isfinite([mu, *film])))
+    thermal_failed = bool(thermal_extra) and not thermal_extra["converged"]
     warnings = []
     if a_over_beta < WIDE_A_OVER_BETA:
         warnings.append(f"narrow contact (a/β = {a_over_beta:.1f} < {WIDE_A_OVER_BETA:g}): micro-EHL pressure "
@@ -120,14 +154,17 @@ def solve_film_law(case: ContactCase, state: LubricantState, lvl: AccuracyLevel,
     extrapolated = film_law_extrapolation(h_smooth_centre, sigma, inlet_over_beta)
     if extrapolated:
         warnings.append(f"film law extrapolated ({extrapolated})")
-    if not converged:
+    if thermal_failed:
+        converged = False
+        message = "not converged: thermal correction of the traction did not converge"
+    elif not converged:
         message = f"not converged: {smooth.message}" if not smooth.converged else "not converged: non-finite traction"
     else:
         message = "; ".join(["converged", *warnings])
     recorded = plan.to_dict()
     recorded["reasons"] = dict(recorded.get("reasons") or {})
     recorded["reasons"]["model"] = ("homogenised mixed EHL (film-law closure: smooth pressure, measured film law, "
-                                    "dry-contact table traction)")
+                                    "gap-averaged Eyring traction)")
     recorded["roughness"], recorded["transient"] = True, False
     return ContactResult(
         mu=float(mu), h_min=float(np.min(film)), h_central=float(np.interp(0.0, xz, film)),
@@ -141,6 +178,8 @@ def solve_film_law(case: ContactCase, state: LubricantState, lvl: AccuracyLevel,
                "fed_central_film_m": h_centre, "smooth_central_film_m": h_smooth_centre,
                "inlet_over_beta": inlet_over_beta, "film_law_extrapolated": extrapolated,
                "narrow_contact": a_over_beta < WIDE_A_OVER_BETA, "smooth_mu": smooth.mu,
+               **({"thermal": {**thermal_extra["summary"], "mu_isothermal": thermal_extra["mu_isothermal"],
+                               "properties": state.thermal.to_dict()}} if thermal_extra else {}),
                "smooth_h_min_m": smooth.h_min, "boundary_film_m": boundary_film_m, "zone_edge": edge,
                "floored_gap_fraction_max": float(np.mean(film[:, None] + heights[None, :] < boundary_film_m,
                                                           axis=1).max())},

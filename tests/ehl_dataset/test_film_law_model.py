@@ -27,8 +27,9 @@ def atf():
 
 
 def solve(inputs, lubricant):
-    return solve_contact(ContactCase.from_engineering(*inputs), lubricant, "standard", model="homogenised",
-                         homogenised=FILM_LAW)
+    """Isothermal, as the deterministic model and the smooth solver it is compared with."""
+    return solve_contact(ContactCase.from_engineering(*inputs), lubricant, "standard", "isothermal",
+                         model="homogenised", homogenised=FILM_LAW)
 
 
 def test_gap_average_of_a_two_point_height_distribution_is_exact():
@@ -59,6 +60,26 @@ def test_smooth_limit(atf):
     assert rough.converged
     assert rough.mu == pytest.approx(smooth.mu, rel=5e-3)
     assert rough.h_central == pytest.approx(smooth.h_central, rel=5e-3)
+
+
+def test_thermal_correction_has_the_smooth_solvers_limit(atf):
+    """With the planner's thermal correction (shear heating, flash temperature: the smooth solver's model), Rq → 0
+    gives the smooth solver's thermally corrected μ within 0.5 %; effects="isothermal" gives the isothermal μ, which
+    the thermal result records; pure rolling has no Couette heating (the correction changes nothing)."""
+    inputs = [1.2, 20, 5, 0.3, 90]
+    tiny = ContactCase.from_engineering(*inputs, 0.002, 0.002)
+    smooth_thermal = solve_contact(ContactCase.from_engineering(*inputs, 0, 0), atf, "standard")
+    assert smooth_thermal.effects["thermal"]
+    thermal = solve_contact(tiny, atf, "standard", model="homogenised", homogenised=FILM_LAW)
+    isothermal = solve_contact(tiny, atf, "standard", "isothermal", model="homogenised", homogenised=FILM_LAW)
+    assert thermal.effects["thermal"] and not isothermal.effects["thermal"]
+    assert thermal.mu == pytest.approx(smooth_thermal.mu, rel=5e-3)
+    assert thermal.extra["thermal"]["mu_isothermal"] == pytest.approx(isothermal.mu, rel=1e-12)
+    assert thermal.mu < 0.9 * isothermal.mu  # this contact's shear heating is substantial (≈ 20 %)
+    rolling = ContactCase.from_engineering(1.2, 20, 5, 0.0, 90, 0.2, 0.2)
+    full = solve_contact(rolling, atf, "standard", "full", model="homogenised", homogenised=FILM_LAW)
+    iso = solve_contact(rolling, atf, "standard", "isothermal", model="homogenised", homogenised=FILM_LAW)
+    assert full.mu == pytest.approx(iso.mu, rel=1e-9, abs=1e-12)
 
 
 def test_central_film_is_the_film_law(atf):

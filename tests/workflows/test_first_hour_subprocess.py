@@ -1,7 +1,7 @@
 """Issue 16 acceptance with real processes: the README's main job, the smoke pipeline and the main job again, in any
 order, without collisions; Ctrl-C gives exit 130 and the command that resumes; SIGTERM 143.
 
-The main job (`gearloss pipeline quick`) takes about two CPU-minutes (72 s with 2 workers), so here it runs with a
+The main job (`gearloss pipeline quick`) takes about two CPU-minutes (79 s with 2 workers), so here it runs with a
 tiny wall-time budget per point
 (`--time-limit-s 0.5`) and is interrupted with SIGINT a few seconds after it has started computing; the smoke
 pipeline runs to its end (about 10 s).
