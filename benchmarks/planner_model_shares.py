@@ -1,0 +1,44 @@
+"""Which contact model the planner picks over a factorial: the share of points solved steady smooth, by the film-law
+homogenised model (rough, a/β ≥ 15) and by the transient solver (rough, narrow), at the factorial's level.
+
+    python benchmarks/planner_model_shares.py                    # quick (all 324) and paper2009 (every 14th point)
+
+Planning only (ehl_dataset.solvers.planner.plan_effects with the shipped roughness profile): no solve is run.
+"""
+
+from __future__ import annotations
+
+import collections
+import sys
+
+from ehl_dataset.dataset.factorial import load_factorial
+from ehl_dataset.model.contact import ContactCase
+from ehl_dataset.model.lubricant import load_lubricant
+from ehl_dataset.solvers.planner import plan_effects
+
+STRIDES = {"quick": 1, "paper2009": 14}
+
+
+def shares(name: str, stride: int) -> dict[str, int]:
+    factorial = load_factorial(name)
+    lubricant = load_lubricant(factorial.lubricant or "atf")
+    counts: collections.Counter = collections.Counter()
+    for row in factorial.points()[::stride]:
+        plan = plan_effects(ContactCase(*(float(v) for v in row)), lubricant, factorial.level or "standard")
+        counts["smooth" if not plan.roughness else "transient" if plan.transient else "film_law"] += 1
+    return dict(counts)
+
+
+def main() -> int:
+    for name, stride in STRIDES.items():
+        counts = shares(name, stride)
+        total, rough = sum(counts.values()), counts.get("film_law", 0) + counts.get("transient", 0)
+        print(f"{name} (every {stride}th point, {total} points, level {load_factorial(name).level}): "
+              f"smooth {counts.get('smooth', 0)}, film-law {counts.get('film_law', 0)}, transient "
+              f"{counts.get('transient', 0)} ({100 * counts.get('transient', 0) / max(rough, 1):.0f} % of the rough "
+              f"points, {100 * counts.get('transient', 0) / total:.0f} % of all)")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
