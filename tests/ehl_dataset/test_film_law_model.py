@@ -146,3 +146,21 @@ def test_random_points_of_the_paper_ranges_converge_bounded_or_are_marked(atf, p
         assert 0.0 <= result.mu <= atf.state(case.temperature).mu_d
     else:
         assert abs(result.mu) <= 0.01
+
+
+def test_the_command_line_says_which_model_the_planner_chose(capsys):
+    """``gearloss contact solve`` on a wide rough contact (a/β 28): the planner's film-law choice in the JSON (model,
+    closure, the decision with its a/β) and in the text output's ``model`` line; a narrow one stays transient."""
+    from workflows.cli import main
+
+    wide = ["contact", "solve", "--p-h-gpa", "1.2", "--r-eq-mm", "20", "--u-r", "5", "--sr", "0.3", "--temp-c", "90",
+            "--rq1-um", "0.2", "--rq2-um", "0.2", "--level", "fast"]
+    assert main(wide + ["--json"]) == 0
+    payload = json.loads(capsys.readouterr().out)
+    assert payload["model"] == "homogenised" and payload["closure"] == "film_law"
+    assert payload["effects"]["reasons"]["numbers"]["a_over_beta"] == pytest.approx(28.3, abs=0.1)
+    assert "film-law closure" in payload["effects"]["reasons"]["decisions"]["model"]
+    assert main(wide) == 0
+    assert "model         homogenised (film_law closure)" in capsys.readouterr().out
+    narrow = ContactCase.from_engineering(1.2, 5, 5, 0.3, 90, 0.2, 0.2)
+    assert solve_contact(narrow, load_lubricant("atf"), "fast").effects["transient"]
