@@ -11,6 +11,7 @@ Three comparisons, all with the ATF:
   (data/reference/deterministic_validation.json) and the roughness sweep (benchmarks/results/
   deterministic_lambda_sweep.json): narrow contacts, a/β 1.5–12, outside the closure's validated range, reported to
   show where it fails;
+* μ(λ̄) of the closure on three wide contacts, Rq1 = Rq2 from 0.01 to 1 µm (the trend a fit inherits);
 * the same closure with the dry-contact table's asperity load at the film law's mean gap (p_a, μ_d p_a, fluid at
   p̄ − p_a): the variant the model does not take, and why.
 Wall times are the film-law solve and the steady smooth solve of the same point, one process, other jobs possibly on
@@ -47,6 +48,8 @@ RESOLVED_WIDE = {  # docs/deterministic_solver.md, "Wide contacts": resolved at 
     "V1": ([1.0, 10, 5, 0.2, 75, 0.4, 0.4], 0.0233, 0.0009, "det-2026.11-7"),
     "W1": ([1.0, 20, 5, 0.2, 75, 0.4, 0.4], 0.0226, 0.0006, "det-2026.11-6"),
 }
+TREND_CONTACTS = ([1.0, 20, 5, 0.2, 75], [1.0, 80, 5, 0.2, 75], [2.0, 40, 2, 0.5, 100])
+TREND_RQ_UM = (0.01, 0.05, 0.1, 0.2, 0.4, 0.7, 1.0)
 MIN_MU = 1e-3
 """Relative errors are reported for sliding contacts (SR > 0) where the reference |μ| ≥ MIN_MU; pure rolling
 (μ of order 1e-3 or less, the rolling part only) is compared by absolute values."""
@@ -141,11 +144,20 @@ def main() -> int:
     for run_ in sorted(sweep["runs"].values(), key=lambda r: r["rq_um"]):
         rows.append(run(list(sweep["conditions"]) + [run_["rq_um"], run_["rq_um"]], lubricant, run_["mu"],
                         f"sweep Rq {run_['rq_um']} µm", "narrow"))
+    trend = []
+    for inputs in TREND_CONTACTS:
+        points = []
+        for rq in TREND_RQ_UM:
+            result = film_law(ContactCase.from_engineering(*inputs, rq, rq), lubricant)
+            points.append({"rq_um": rq, "lambda_bar": result.lambda_bar, "mu": result.mu,
+                           "a_over_beta": result.extra["a_over_beta"]})
+        trend.append({"inputs": inputs, "points": points})
+        print("trend", inputs, [(round(q["lambda_bar"], 2), round(q["mu"], 4)) for q in points], flush=True)
     report = {"benchmark": "film_law_model", "model_version": FILM_LAW_MODEL_VERSION, "solver_version": SOLVER_VERSION,
               "corners_source": str(CORNERS.relative_to(ROOT)), "corners_level": corners.get("level"),
               "resolved_wide": {k: {"inputs": v[0], "mu": v[1], "mu_sem": v[2], "model_version": v[3]}
                                 for k, v in RESOLVED_WIDE.items()},
-              "summary": summary(rows), "rows": rows, "machine": machine_info()}
+              "summary": summary(rows), "trend": trend, "rows": rows, "machine": machine_info()}
     OUT.write_text(json.dumps(report, indent=1, default=float))
     print(json.dumps(report["summary"], indent=1))
     return 0
