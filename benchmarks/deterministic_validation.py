@@ -17,6 +17,8 @@ index with safety factor 1.25 (or |μ̂_32 − μ̂_16| when no order can be obs
     python benchmarks/deterministic_validation.py --case A          # run (resumable) one case, all spacings
     python benchmarks/deterministic_validation.py --all             # all cases, cheapest first
     python benchmarks/deterministic_validation.py --summarise       # data/reference + docs table from the runs
+    python benchmarks/deterministic_validation.py --case G --spacing 32 [--max-passes 12]
+                                                     # one spacing only (spacings can run in parallel processes)
 
 Runs are cached as benchmarks/results/deterministic/<case>_beta<n>.json (the series and the run's record).
 """
@@ -77,12 +79,12 @@ def spacings(name: str) -> tuple[int, int, int]:
     return SPACINGS.get(name, POINTS_PER_BETA)
 
 
-def options_for(n: int, long: bool) -> DeterministicOptions:
+def options_for(n: int, long: bool, max_passes: float = MAX_PASSES) -> DeterministicOptions:
     beta = baseline_profile().correlation_length
     if long:
-        return DeterministicOptions(dx_m=beta / n, max_passes=MAX_PASSES, mu_sem_target=LONG_TARGET)
+        return DeterministicOptions(dx_m=beta / n, max_passes=max_passes, mu_sem_target=LONG_TARGET)
     # short runs: stop at the minimum window (a target of 100 % is met at once)
-    return DeterministicOptions(dx_m=beta / n, max_passes=MAX_PASSES, mu_sem_target=1.0,
+    return DeterministicOptions(dx_m=beta / n, max_passes=max_passes, mu_sem_target=1.0,
                                 min_average_passes=SHORT_AVERAGE_PASSES)
 
 
@@ -90,18 +92,23 @@ def run_path(name: str, n: int) -> Path:
     return RUNS / f"{name}_beta{n}.json"
 
 
-def run_case(name: str) -> None:
+def run_case(name: str, only: int | None = None, max_passes: float = MAX_PASSES) -> None:
+    """Run the case's spacings not yet on record under this model version (``only``: that spacing alone); the
+    long run stops at ``max_passes`` passes if its standard-error target is not met by then (recorded in its
+    message)."""
     lubricant = load_lubricant(LUBRICANT)
     case = ContactCase.from_engineering(*CASES[name])
     state = lubricant.state(case.temperature)
     RUNS.mkdir(parents=True, exist_ok=True)
     coarse, middle, fine = spacings(name)
     for n in (middle, coarse, fine):
+        if only is not None and n != only:
+            continue
         path = run_path(name, n)
         if path.exists() and json.loads(path.read_text()).get("solver_version") == MODEL_VERSION:
             continue
         start = time.time()
-        result = solve_deterministic(case, state, Effects.full(), options_for(n, n == middle))
+        result = solve_deterministic(case, state, Effects.full(), options_for(n, n == middle, max_passes))
         extra = {k: (v.tolist() if isinstance(v, np.ndarray) else v) for k, v in result.extra.items()}
         record = {"case": name, "inputs": CASES[name], "points_per_beta": n, "solver_version": MODEL_VERSION,
                   "mu": result.mu, "mu_sem": result.mu_sem, "asperity_load_share": result.asperity_load_share,
@@ -255,12 +262,14 @@ def main(argv=None) -> int:
     parser.add_argument("--case", action="append", default=[], help="case name (repeatable)")
     parser.add_argument("--all", action="store_true", help="every case, cheapest first")
     parser.add_argument("--summarise", action="store_true", help="write the reference data and the docs table")
+    parser.add_argument("--spacing", type=int, default=None, help="run only this spacing (points per beta)")
+    parser.add_argument("--max-passes", type=float, default=MAX_PASSES, help="cap of the long run's passes")
     args = parser.parse_args(argv)
     names = list(CASES) if args.all else args.case
     if args.all:
         names.sort(key=lambda k: CASES[k][0] * CASES[k][1])
     for name in names:
-        run_case(name)
+        run_case(name, args.spacing, args.max_passes)
     if args.summarise:
         summarise()
     return 0

@@ -34,28 +34,29 @@ from .solvers.deterministic import DeterministicOptions, deterministic_options
 from .solvers.wide_contact import solve_deterministic_contact
 from .solvers.homogenised import HomogenisedOptions, solve_homogenised
 from .solvers.levels import AccuracyLevel, get_level
-from .solvers.planner import resolve_effects, without_thermal
+from .solvers.planner import resolve_effects, thresholds_for, without_thermal
 from .solvers.result import ContactResult
 from .solvers.steady import solve_steady
 from .solvers.transient import TransientOptions, solve_transient
 from .validation import InputError, check_time_limit
 
-SOLVER_VERSION = "ehl-2026.11-9"
+SOLVER_VERSION = "ehl-2026.11-10"
 """Version of the numerics behind :func:`solve_contact`. The dataset store records it and refuses to resume a file
 computed with another version: bump it with every change that can alter a solved value."""
 
 MODELS = ("auto", "smooth", "homogenised", "deterministic")
 """Contact models :func:`solve_contact` can be asked for: ``auto`` (the effect plan decides: steady smooth; for rough
 surfaces the steady homogenised model with the film-law closure where the contact is at least the planner's
-``a_over_beta_homogenised`` correlation lengths wide, else the transient mixed solver of
-:mod:`ehl_dataset.solvers.transient`), ``smooth`` (steady smooth surfaces whatever the roughness), ``homogenised``
+``a_over_beta_homogenised`` correlation lengths wide, else the level's ``rough_model``: the transient mixed solver
+of :mod:`ehl_dataset.solvers.transient` at ``fast`` and ``standard``, the deterministic solver at ``reference``), ``smooth`` (steady smooth surfaces whatever the roughness), ``homogenised``
 (the steady two-scale mixed model, :mod:`ehl_dataset.solvers.homogenised`, with the closure of ``homogenised``;
 errors against the reference in docs/homogenised_model.md), ``deterministic`` (the deterministic mixed reference
 solver, :mod:`ehl_dataset.solvers.deterministic`, for rough surfaces).
 
 Version history of what can change a solved value: ehl-2026.11-8 added the thermal correction of the traction;
 ehl-2026.11-9 makes ``auto`` solve wide rough contacts (a/β ≥ 15 at ``fast`` and ``standard``) by the film-law
-homogenised model instead of the transient solver."""
+homogenised model instead of the transient solver; ehl-2026.11-10 makes ``auto`` at ``reference`` solve rough
+contacts by the deterministic solver (the accuracy reference) instead of the transient solver."""
 
 __all__ = ["solve_contact", "checked_inputs", "SOLVER_VERSION", "MODELS"]
 
@@ -120,7 +121,8 @@ def solve_contact(case: ContactCase, lubricant: Lubricant | str, level: str | Ac
             # the film-law closure has the smooth solver's thermal correction; the flow-factor closures have none
             return solve_homogenised(case, state, lvl, plan if options.closure == "film_law"
                                      else _isothermal(plan, "homogenised"), roughness, options)
-        if model == "deterministic":
+        planned_deterministic = plan.mode == "auto" and thresholds_for(lvl).rough_model == "deterministic"
+        if model == "deterministic" or (plan.roughness and case.s_c > 0.0 and planned_deterministic):
             return solve_deterministic_contact(case, state, _isothermal(plan, "deterministic"),
                                                deterministic or deterministic_options(lvl.name), roughness,
                                                time_limit_s, lvl.name)

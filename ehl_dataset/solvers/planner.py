@@ -63,7 +63,10 @@ class PlannerThresholds:
     ``thermal_change`` predicted relative reduction of the centre Couette traction at or below which the thermal
     correction is skipped [-];
     ``a_over_beta_homogenised`` a/β (Hertz half width over the roughness correlation length) at or above which a
-    rough contact is solved by the steady film-law homogenised model instead of the transient mixed solver [-].
+    rough contact is solved by the steady film-law homogenised model instead of the transient mixed solver [-];
+    ``rough_model`` the solver of the other rough contacts: ``"transient"`` (the production transient mixed solver,
+    :mod:`ehl_dataset.solvers.transient`) or ``"deterministic"`` (the deterministic reference solver,
+    :mod:`ehl_dataset.solvers.deterministic`, which solves contacts wider than its window limit by periodic windows).
     """
 
     lambda_smooth: float
@@ -71,6 +74,7 @@ class PlannerThresholds:
     tolerance: float
     thermal_change: float = 0.0
     a_over_beta_homogenised: float = math.inf
+    rough_model: str = "transient"
 
 
 THRESHOLDS: dict[str, PlannerThresholds] = {
@@ -78,7 +82,8 @@ THRESHOLDS: dict[str, PlannerThresholds] = {
                               a_over_beta_homogenised=WIDE_A_OVER_BETA),
     "standard": PlannerThresholds(lambda_smooth=5.0, eyring_newtonian=0.003, tolerance=0.02, thermal_change=0.016,
                                   a_over_beta_homogenised=WIDE_A_OVER_BETA),
-    "reference": PlannerThresholds(lambda_smooth=math.inf, eyring_newtonian=0.0, tolerance=0.0, thermal_change=0.0),
+    "reference": PlannerThresholds(lambda_smooth=math.inf, eyring_newtonian=0.0, tolerance=0.0, thermal_change=0.0,
+                                   rough_model="deterministic"),
 }
 """Thresholds per level (levels not listed use ``standard``). Justification and measurements: docs/planner.md."""
 
@@ -177,7 +182,11 @@ def plan_effects(case, lubricant, level="standard", correlation_length_m: float 
                   f"{limits.a_over_beta_homogenised:g}; against the deterministic model's windows on the wide "
                   "factorial corners: docs/homogenised_model.md)"
                   if homogenised else
-                  (f"transient mixed solver (a/beta={nums['a_over_beta']:.3g} < {limits.a_over_beta_homogenised:g}: "
+                  ("deterministic mixed solver: the accuracy reference of rough contacts (the transient "
+                   "solver's asperity contact is measured +70..+143 % high where asperities touch: "
+                   "docs/deterministic_solver.md); no thermal model"
+                   if limits.rough_model == "deterministic" else
+                   f"transient mixed solver (a/beta={nums['a_over_beta']:.3g} < {limits.a_over_beta_homogenised:g}: "
                    "too narrow for the homogenised model); the reference itself: model=deterministic")
                   if rough else "steady smooth solver"),
         "shear_thinning": (f"inlet Eyring number X_in={x_in:.3g} <= {limits.eyring_newtonian:g}: Newtonian "

@@ -90,6 +90,36 @@ def test_wide_rough_contacts_take_the_homogenised_model_from_a_over_beta_15(leve
     assert not result.effects["transient"] and result.effects["roughness"]
 
 
+def test_the_reference_level_sends_rough_contacts_to_the_deterministic_solver(monkeypatch):
+    """At ``reference`` the planner's rough model is the deterministic solver (the accuracy reference; the transient
+    solver is +70..+143 % high where asperities touch, docs/deterministic_solver.md); at ``fast`` and ``standard``
+    narrow rough contacts stay on the transient solver. Forced effects (``effects="full"``) keep the transient path
+    at every level, and smooth surfaces the steady solve. The routing is checked with the solvers replaced by
+    recorders (a deterministic solve at the reference grid costs minutes)."""
+    import ehl_dataset.solver as solver_module
+    calls = []
+
+    def recorder(name):
+        def solve_stub(*args, **kwargs):
+            calls.append(name)
+            return name
+        return solve_stub
+
+    monkeypatch.setattr(solver_module, "solve_deterministic_contact", recorder("deterministic"))
+    monkeypatch.setattr(solver_module, "solve_transient", recorder("transient"))
+    monkeypatch.setattr(solver_module, "solve_steady", recorder("steady"))
+    narrow = case(r_eq_mm=5)
+    assert "deterministic mixed solver" in plan_effects(narrow, ATF, "reference").reasons["decisions"]["model"]
+    for level in ("fast", "standard"):
+        assert THRESHOLDS[level].rough_model == "transient"
+        assert "transient mixed solver" in plan_effects(narrow, ATF, level).reasons["decisions"]["model"]
+    assert solve(narrow, ATF, "reference") == "deterministic"
+    assert solve(narrow, ATF, "standard") == "transient"
+    assert solve(narrow, ATF, "reference", "full") == "transient"
+    assert solve(case(rq1_um=0, rq2_um=0), ATF, "reference") == "steady"
+    assert calls == ["deterministic", "transient", "transient", "steady"]
+
+
 def test_the_reference_level_never_homogenises_and_the_profile_correlation_length_decides():
     """The reference level takes only exact skips; a/β is computed with the β of the profile the solve uses."""
     wide = case(r_eq_mm=80)
