@@ -84,6 +84,14 @@ def usage_error(parser: argparse.ArgumentParser, message: str) -> UsageError:
     return UsageError(f"{message} (see '{parser.prog} --help')", parser.prog)
 
 
+EFFECTS_CHOICES = ("auto", "isothermal", "full")
+"""The ``--effects`` values of the dataset, pipeline and lubricant-fit commands: those of
+:data:`ehl_dataset.dataset.factorial.EFFECTS_MODES` (asserted in tests; not imported, to keep the parser fast)."""
+
+EFFECTS_HELP = ("effect plan of stage 1: auto (the planner's), isothermal (the planner's without the thermal correction "
+                "of the traction: isothermal data, as the paper's Eq. 9 was fitted to), full (every effect)")
+
+
 def model_help(extra: str) -> LazyHelp:
     """Help of a ``--model`` option: the names of :data:`ehl_dataset.solver.MODELS`, read when the help is shown
     (importing the solver takes seconds, so it is not done to build the parser)."""

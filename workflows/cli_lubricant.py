@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import argparse
 
-from .cli_help import model_help
+from .cli_help import EFFECTS_CHOICES, EFFECTS_HELP, model_help
 from .cli_output import emit
 
 SHOW_TEMPERATURES_C = (40.0, 100.0)
@@ -58,6 +58,8 @@ def register(subparsers) -> None:
                           "file (default: quick)")
     fit.add_argument("--level", default=None, help="EHL accuracy level (default: the factorial's)")
     fit.add_argument("--model", default=None, help=model_help("default: the factorial's"))
+    fit.add_argument("--effects", choices=EFFECTS_CHOICES, default=None,
+                     help=EFFECTS_HELP + "; default: the factorial's (auto)")
     fit.add_argument("--out-dir", default=None, metavar="DIR",
                      help="output directory (default: gearloss_<lubricant>_<factorial>_<level>[_<model>])")
     fit.add_argument("--overwrite", action="store_true", help="start afresh instead of resuming DIR's run")
@@ -130,7 +132,7 @@ def _fit(args: argparse.Namespace) -> int:
     check_range("workers", args.workers, 1, 1024)
     run = check_inputs(args.factorial, out_dir=args.out_dir, level=args.level, model=args.model,
                        lubricant=args.lubricant, design=None, overwrite=args.overwrite, workers=args.workers,
-                       time_limit_s=args.time_limit_s)
+                       time_limit_s=args.time_limit_s, effects=args.effects)
     resume = _resume_command(args, run)
     announce(f"gearloss lubricant fit: lubricant {run.lubricant_name}, factorial", run, resume, args.overwrite)
     result = run_lubricant_fit(args.lubricant, run.factorial, out_dir=run.out_dir, workers=args.workers,

@@ -14,7 +14,7 @@ from __future__ import annotations
 import argparse
 import sys
 
-from .cli_help import model_help
+from .cli_help import EFFECTS_CHOICES, EFFECTS_HELP, model_help
 from .cli_output import emit
 
 COMMANDS = (
@@ -55,6 +55,8 @@ def register(subparsers) -> None:
                             "standard for paper); fast runs rough μ a median 36 %% above standard")
         p.add_argument("--model", default=None, help=model_help("default: the factorial's (smooth for smoke, auto "
                                                                 "otherwise)"))
+        p.add_argument("--effects", choices=EFFECTS_CHOICES, default=None,
+                       help=EFFECTS_HELP + "; default: the factorial's (auto)")
         p.add_argument("--design", default="D",
                        help="published design of the study to evaluate (A, B, C, D) or a design TOML file")
         p.add_argument("--progress", choices=("auto", "bar", "log", "none"), default="auto",
@@ -83,7 +85,7 @@ def run_pipeline_command(args: argparse.Namespace) -> int:
     check_range("workers", args.workers, 1, 1024)
     run = check_inputs(args.factorial, out_dir=args.out_dir, level=args.level, model=args.model,
                        design=args.design, overwrite=args.overwrite, workers=args.workers,
-                       time_limit_s=args.time_limit_s)
+                       time_limit_s=args.time_limit_s, effects=args.effects)
     resume = _resume_command(args, run)
     announce(f"gearloss pipeline {args.pipeline_command}: factorial", run, resume, args.overwrite)
     result = run_pipeline(run.out_dir, run.factorial, workers=args.workers,
@@ -108,7 +110,8 @@ def announce(title: str, run, resume: str, overwrite: bool) -> None:
     n = run.factorial.size
     state = (f"resuming: {run.resumable} of {n} points done" if run.resumable and not overwrite
              else f"new run of {n} points")
-    print(f"{title} {run.factorial.name}, level {run.level}, model {run.model}; {state}\n  output: {run.dataset} "
+    effects = "" if run.effects == "auto" else f", effects {run.effects}"
+    print(f"{title} {run.factorial.name}, level {run.level}, model {run.model}{effects}; {state}\n  output: {run.dataset} "
           f"and {run.coefficients}\n  Ctrl-C stops and keeps the finished points; resume with: {resume}",
           file=sys.stderr, flush=True)
     if run.smoke:
@@ -132,7 +135,8 @@ def dataset_fit_lines(data: dict, fit: dict) -> list[str]:
     """The human summary of stages 1 (dataset) and 2 (fit) from their ``to_dict()`` payloads."""
     lines = [
         f"stage 1 dataset   {data['artefact']}: factorial {data['factorial']} (level {data['level']}, model "
-        f"{data['model']}), {data['n_points']} points, {data['computed']} computed"
+        f"{data['model']}" + ("" if data.get("effects", "auto") == "auto" else f", effects {data['effects']}")
+        + f"), {data['n_points']} points, {data['computed']} computed"
         f"{' (resumed)' if data['resumed'] else ''}; ok {data['ok']}, failed {data['failed']}, non-converged "
         f"{data['non_converged']} — {data['wall_time_s']:.1f} s"]
     for message, count in (data.get("failures") or {}).items():

@@ -85,18 +85,20 @@ def _factorial(factorial):
     return factorial if isinstance(factorial, Factorial) else load_factorial(factorial)
 
 
-def default_out_dir(factorial_name: str, level: str, model: str = "auto", lubricant_name: str | None = None) -> str:
-    """``gearloss_[<lubricant>_]<factorial>_<level>`` (``_<model>`` appended unless auto; the lubricant's name when
-    one is chosen instead of the factorial's): one directory per kind of run."""
+def default_out_dir(factorial_name: str, level: str, model: str = "auto", lubricant_name: str | None = None,
+                    effects: str = "auto") -> str:
+    """``gearloss_[<lubricant>_]<factorial>_<level>`` (``_<model>`` appended unless auto, ``_<effects>`` unless auto;
+    the lubricant's name when one is chosen instead of the factorial's): one directory per kind of run."""
     parts = ([lubricant_name] if lubricant_name else []) + [factorial_name]
     safe = "_".join("".join(c if c.isalnum() or c in "-_" else "_" for c in part) for part in parts)
-    return f"gearloss_{safe}_{level}" + ("" if model == "auto" else f"_{model}")
+    return (f"gearloss_{safe}_{level}" + ("" if model == "auto" else f"_{model}")
+            + ("" if effects == "auto" else f"_{effects}"))
 
 
 @dataclass
 class PipelinePlan:
     """The checked inputs of a run (:func:`check_inputs`): the factorial, its level, contact model and lubricant
-    name, the design, and the files it will write."""
+    name, the design, the files it will write and the effect plan of stage 1."""
 
     factorial: Any
     level: str
@@ -106,6 +108,7 @@ class PipelinePlan:
     design: str | None
     out_dir: Path
     resumable: int  # points already done in an existing dataset file of the same run (0: new run)
+    effects: str = "auto"
 
     @property
     def dataset(self) -> Path:
@@ -122,13 +125,14 @@ class PipelinePlan:
 
 def check_inputs(factorial=QUICK_FACTORIAL, *, out_dir=None, level: str | None = None, model: str | None = None,
                  lubricant=None, study: str = "paper2009", design: str | None = "D", overwrite: bool = False,
-                 workers: int = 1, time_limit_s: float | None = None) -> PipelinePlan:
+                 workers: int = 1, time_limit_s: float | None = None, effects: str | None = None) -> PipelinePlan:
     """Check everything a run needs before stage 1 computes anything (a typo in ``design`` must not cost the
-    stage-1 run): factorial, level, model, lubricant (its data range covers the factorial's temperatures), the
+    stage-1 run): factorial, level, model, effect plan (None: the factorial's; one of
+    :data:`ehl_dataset.dataset.factorial.EFFECTS_MODES`), lubricant (its data range covers the factorial's temperatures), the
     design (a name of ``study`` or a design TOML file; None: no design stage), workers, time limit, and that
     ``out_dir`` either holds nothing of this run or the same run (then it resumes)."""
     from ehl_dataset.dataset.runner import check_lubricant_covers, check_model, check_time_limit, recorded_model
-    from ehl_dataset.dataset.factorial import canonical_json
+    from ehl_dataset.dataset.factorial import EFFECTS_MODES, canonical_json
     from ehl_dataset.dataset.store import SOLVER_DEFAULTS, read_metadata
     from ehl_dataset.model.lubricant import load_lubricant
     from ehl_dataset.solvers.levels import get_level
@@ -139,12 +143,15 @@ def check_inputs(factorial=QUICK_FACTORIAL, *, out_dir=None, level: str | None =
     plan = _factorial(factorial)
     level = get_level(level or plan.level).name
     model = check_model(model or plan.model)
+    effects = effects or plan.effects
+    if effects not in EFFECTS_MODES:
+        raise InputError("effects", effects, f"one of {list(EFFECTS_MODES)}")
     lub = load_lubricant(lubricant or plan.lubricant)
     check_lubricant_covers(plan, lub)
     if design is not None:
         _check_design(study, design)
     out = Path(out_dir) if out_dir is not None else Path(default_out_dir(
-        plan.name, level, model, None if lubricant is None or lub.name == plan.lubricant else lub.name))
+        plan.name, level, model, None if lubricant is None or lub.name == plan.lubricant else lub.name, effects))
     if out.exists() and not out.is_dir():
         raise InputError("out-dir", str(out), "a directory (this path is a file)")
     resumable = 0
@@ -156,7 +163,7 @@ def check_inputs(factorial=QUICK_FACTORIAL, *, out_dir=None, level: str | None =
         if meta["factorial_sha256"] != plan.points_hash():
             raise InputError("factorial", plan.name, f"the factorial of the run in {out} "
                              f"({meta['factorial'].get('name')!r})", hint)
-        for key, value in (("level", level), ("model", model)):
+        for key, value in (("level", level), ("model", model), ("effects", effects)):
             if str(recorded.get(key)) != value:
                 raise InputError(key, value, f"{recorded_model(recorded) if key == 'model' else recorded.get(key)!r}"
                                  f" as recorded in {dataset}", hint)
@@ -164,7 +171,7 @@ def check_inputs(factorial=QUICK_FACTORIAL, *, out_dir=None, level: str | None =
             raise InputError("lubricant", lub.name, f"the definition of {meta['lubricant'].get('name')!r} as "
                              f"recorded in {dataset} (compared field by field)", hint)
         resumable = int(meta["counts"]["ok"])
-    return PipelinePlan(plan, level, model, lub.name, study, design, out, resumable)
+    return PipelinePlan(plan, level, model, lub.name, study, design, out, resumable, effects)
 
 
 def _check_design(study: str, design: str) -> None:
@@ -189,11 +196,12 @@ def coefficients_file_name(lubricant_name: str, factorial_name: str) -> str:
 # ---------------------------------------------------------------------- stage 1
 def dataset_stage(out_dir: str | Path, factorial, *, workers: int = 1, scheduler: str | None = None,
                   lubricant=None, level: str | None = None, progress: str = "auto", overwrite: bool = False,
-                  time_limit_s: float | None = None, model: str | None = None, **runner_options) -> StageResult:
+                  time_limit_s: float | None = None, model: str | None = None, effects: str | None = None,
+                  **runner_options) -> StageResult:
     """Compute ``factorial`` (a :class:`~ehl_dataset.dataset.factorial.Factorial`, a shipped name or a TOML path) into
     ``out_dir/dataset.h5``; continue the file if it holds the same run. ``time_limit_s``: wall-time budget per
     point [s] (None: none; a point that spends it is stored not converged with its message; an execution option, so
-    a file continues whatever budget it was started with). ``runner_options`` go to
+    a file continues whatever budget it was started with). ``effects``: the effect plan (None: the factorial's). ``runner_options`` go to
     :func:`ehl_dataset.dataset.runner.run_factorial` (``window``, ``max_attempts``, ``stream``, ...)."""
     from ehl_dataset.dataset.runner import check_time_limit, run_factorial
 
@@ -205,11 +213,12 @@ def dataset_stage(out_dir: str | Path, factorial, *, workers: int = 1, scheduler
     resumed = out.exists() and not overwrite
     summary = run_factorial(out, plan, lubricant=lubricant, level=level, workers=workers, scheduler=scheduler,
                             progress=progress, overwrite=overwrite, time_limit_s=time_limit_s, model=model,
-                            **runner_options)
+                            effects=effects, **runner_options)
     from ehl_dataset.dataset.store import read_metadata
 
     solver = read_metadata(out)["solver"]
     details = {"factorial": plan.name, "level": solver.get("level"), "model": solver.get("model", "auto"),
+               "effects": solver.get("effects"),
                "n_points": summary.n_points, "computed": summary.computed,
                "time_limit_s": time_limit_s,
                "ok": summary.ok, "failed": summary.failed, "pending": summary.pending,
@@ -335,11 +344,11 @@ def run_pipeline(out_dir: str | Path | None = None, factorial=QUICK_FACTORIAL, *
                  progress: str = "auto", study: str = "paper2009", design: str = "D", allow_unstable: bool = False,
                  mesh_options=None, clip_to_fitted_ranges: bool = True, time_limit_s: float | None = None,
                  overwrite: bool = False, resume_command: str | None = None, checked: PipelinePlan | None = None,
-                 **runner_options) -> PipelineResult:
+                 effects: str | None = None, **runner_options) -> PipelineResult:
     """Stages 1–3 in one process: dataset → coefficient file → design evaluation (see the module docstring).
 
     ``out_dir`` None: :func:`default_out_dir`. ``time_limit_s``: stage 1's wall-time budget per point [s]
-    (:func:`dataset_stage`). ``overwrite``: start the run afresh (the directory's dataset and coefficient file
+    (:func:`dataset_stage`). ``effects``: stage 1's effect plan (None: the factorial's). ``overwrite``: start the run afresh (the directory's dataset and coefficient file
     are replaced). ``resume_command``: the command that continues this run, named in the
     :class:`~workflows.exit_codes.Interrupted` raised when a signal stops stage 1. ``checked``: the result of
     :func:`check_inputs` for these arguments (computed here when None).
@@ -347,7 +356,7 @@ def run_pipeline(out_dir: str | Path | None = None, factorial=QUICK_FACTORIAL, *
     started = time.perf_counter()
     run = checked or check_inputs(factorial, out_dir=out_dir, level=level, model=model, lubricant=lubricant,
                                   study=study, design=design, overwrite=overwrite, workers=workers,
-                                  time_limit_s=time_limit_s)
+                                  time_limit_s=time_limit_s, effects=effects)
     out = run.out_dir
     if overwrite:
         for path in (run.dataset, run.coefficients, run.coefficients.with_suffix(".summary.txt")):
@@ -355,7 +364,7 @@ def run_pipeline(out_dir: str | Path | None = None, factorial=QUICK_FACTORIAL, *
     try:
         stages = [dataset_stage(out, run.factorial, workers=workers, scheduler=scheduler, lubricant=lubricant,
                                 level=run.level, model=run.model, progress=progress, time_limit_s=time_limit_s,
-                                **runner_options)]
+                                effects=run.effects, **runner_options)]
     except InputError as err:  # the store names dataset-run options; the pipeline's are --out-dir / --overwrite
         if "start a new file" in str(err):
             raise InputError(err.parameter, err.value, err.accepted,
@@ -379,26 +388,29 @@ def run_lubricant_fit(lubricant, factorial=QUICK_FACTORIAL, *, out_dir=None, wor
                       scheduler: str | None = None, level: str | None = None, model: str | None = None,
                       progress: str = "auto", allow_unstable: bool = False, time_limit_s: float | None = None,
                       overwrite: bool = False, resume_command: str | None = None,
-                      checked: PipelinePlan | None = None, **runner_options) -> PipelineResult:
+                      checked: PipelinePlan | None = None, effects: str | None = None,
+                      **runner_options) -> PipelineResult:
     """Stages 1–2 for ``lubricant`` (a name, a TOML file or a :class:`~ehl_dataset.model.lubricant.Lubricant`):
     ``factorial`` → ``OUT/dataset.h5`` → ``OUT/<lubricant>_<factorial>.json``, the coefficient file that
     ``gearloss gear evaluate --friction FILE`` and :func:`efficiency.friction.friction_from_spec` read.
 
-    ``out_dir`` None: ``gearloss_<lubricant>_<factorial>_<level>[_<model>]``. Resumable like
-    :func:`run_pipeline` (same directory, same factorial, level, model and lubricant definition), on local
+    ``out_dir`` None: ``gearloss_<lubricant>_<factorial>_<level>[_<model>][_<effects>]``. ``effects``: stage 1's
+    effect plan (None: the factorial's; ``isothermal`` gives the isothermal data the paper fitted). Resumable like
+    :func:`run_pipeline` (same directory, same factorial, level, model, effects and lubricant definition), on local
     processes or on the Dask cluster at ``scheduler``. Every input is checked before stage 1, the lubricant's
     temperature range against the factorial's temperature levels included (docs/pipeline.md, "Your own
     lubricant").
     """
     started = time.perf_counter()
     run = checked or check_inputs(factorial, out_dir=out_dir, level=level, model=model, lubricant=lubricant,
-                                  design=None, overwrite=overwrite, workers=workers, time_limit_s=time_limit_s)
+                                  design=None, overwrite=overwrite, workers=workers, time_limit_s=time_limit_s,
+                                  effects=effects)
     if overwrite:
         for path in (run.dataset, run.coefficients, run.coefficients.with_suffix(".summary.txt")):
             path.unlink(missing_ok=True)
     dataset = dataset_stage(run.out_dir, run.factorial, workers=workers, scheduler=scheduler, lubricant=lubricant,
                             level=run.level, model=run.model, progress=progress, time_limit_s=time_limit_s,
-                            **runner_options)
+                            effects=run.effects, **runner_options)
     if dataset.details["interrupted"]:
         raise Interrupted(dataset.details["interrupted"], f"lubricant fit stage 1 ({dataset.details['computed']} "
                           f"points computed, {dataset.details['pending']} pending in {dataset.artefact})",

@@ -59,7 +59,9 @@ _SCALAR_AXES: dict[str, tuple[float, float, str, bool]] = {
 _ROUGHNESS_AXIS = "roughness_um"
 AXIS_KEYS: tuple[str, ...] = (*_SCALAR_AXES, _ROUGHNESS_AXIS)
 _TOP_KEYS = {"name", "description", "source", "lubricant", "level", "effects", "model", "axes"}
-EFFECTS_MODES = ("auto", "full")
+EFFECTS_MODES = ("auto", "isothermal", "full")
+"""Effect plans a dataset can be computed with: ``auto`` (the planner's), ``isothermal`` (the planner's without the
+thermal correction of the traction: the isothermal data the paper's Eq. 9 was fitted to), ``full`` (every effect)."""
 
 
 @dataclass(frozen=True)

@@ -546,14 +546,14 @@ def warm_up_indices(points: np.ndarray, candidates: list[int], lubricant: dict, 
                     solver) -> list[int]:
     """Points the coordinator computes before the workers start, so each compiled code path is built once.
 
-    For the default solver with ``effects="auto"``: for each distinct plan (roughness, transient, shear thinning)
+    For the default solver with ``effects="auto"`` or ``"isothermal"``: for each distinct plan (roughness, transient, shear thinning)
     the planner makes among ``candidates``, the candidate with the narrowest contact (smallest p_h·r_eq, to which
     the Hertz half width and so the transient grid are proportional: the coordinator should not spend minutes on
     a wide rough contact while the workers wait); otherwise just the first candidate.
     """
     if not candidates:
         return []
-    if solver_reference(solver) != DEFAULT_SOLVER or effects != "auto":
+    if solver_reference(solver) != DEFAULT_SOLVER or effects not in ("auto", "isothermal"):
         return candidates[:1]
     lub = _lubricant(canonical_json(lubricant))
     chosen: dict[tuple, int] = {}

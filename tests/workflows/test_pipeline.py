@@ -216,3 +216,36 @@ def test_pipeline_end_to_end_with_the_ehl_solver(tmp_path, capsys):
     assert 0.9 < payload["efficiency"] < 1.0 and math.isfinite(payload["power_loss_w"])
     for name in ("dataset", "fit", "design"):
         assert stages[name]["wall_time_s"] > 0.0
+
+
+def test_stage1_runs_isothermal_on_request_and_a_run_keeps_its_effect_plan(tmp_path, tiny):
+    """``effects="isothermal"`` (the data the paper's Eq. 9 was fitted to): the planner's plan without the thermal
+    correction. Rows whose automatic plan corrects the traction get a higher μ (shear heating only lowers the
+    viscosity, docs/ehl_solver.md), the others the same μ; the file records the plan, the default directory names it,
+    and a run directory is not resumed under the other plan."""
+    from ehl_dataset.dataset.store import read_metadata
+    from ehl_dataset.validation import InputError
+    from workflows.pipeline import check_inputs, default_out_dir
+
+    auto = dataset_stage(tmp_path / "auto", tiny, progress="none")
+    iso = dataset_stage(tmp_path / "iso", tiny, progress="none", effects="isothermal")
+    assert iso.details["effects"] == "isothermal" and auto.details["effects"] == "auto"
+    assert read_metadata(iso.artefact)["solver"]["effects"] == "isothermal"
+    a, b = read_table(auto.artefact), read_table(iso.artefact)
+    thermal = np.array([json.loads(e)["thermal"] for e in a["effects"]])
+    assert thermal.any()
+    assert not any(json.loads(e)["thermal"] for e in b["effects"])
+    assert np.all(b["mu"].to_numpy()[thermal] > a["mu"].to_numpy()[thermal] * 1.001)
+    np.testing.assert_allclose(b["mu"].to_numpy()[~thermal], a["mu"].to_numpy()[~thermal], rtol=1e-12)
+    assert default_out_dir("quick", "fast", effects="isothermal") == "gearloss_quick_fast_isothermal"
+    with pytest.raises(InputError, match="effects"):
+        check_inputs(tiny, out_dir=tmp_path / "auto", effects="isothermal", design=None)
+    with pytest.raises(InputError, match="effects"):
+        check_inputs(tiny, effects="warm", design=None)
+
+
+def test_the_cli_effect_choices_are_the_store_s():
+    from ehl_dataset.dataset.factorial import EFFECTS_MODES
+    from workflows.cli_help import EFFECTS_CHOICES
+
+    assert EFFECTS_CHOICES == EFFECTS_MODES
