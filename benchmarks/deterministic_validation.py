@@ -69,6 +69,11 @@ SPACINGS = {"A": CONTACT_SPACINGS, "B": CONTACT_SPACINGS, "C": CONTACT_SPACINGS}
 A, B and C: μ moves by 7–14 % between β/16 and β/32 under det-2026.11-6 (benchmarks/results/
 deterministic_convergence_<case>.json), so their finest pair has to be β/32–β/64."""
 MAX_PASSES = 40.0
+LAYOUT_PASSES = 100.0
+"""Run length [passes] every run's roughness is laid out for, whatever its own cap: the paired differences need
+the same roughness at the same times at every spacing (DeterministicOptions.layout_passes). Case G's short runs
+were once laid out for their default cap of 40 passes against 100 for the long run, and their paired differences
+were −17 %/−18 % where a shared layout gives +0.1 % (docs/deterministic_solver.md)."""
 SHORT_AVERAGE_PASSES = 1.5
 LONG_TARGET = 0.015
 SAFETY = 1.25
@@ -82,10 +87,11 @@ def spacings(name: str) -> tuple[int, int, int]:
 def options_for(n: int, long: bool, max_passes: float = MAX_PASSES) -> DeterministicOptions:
     beta = baseline_profile().correlation_length
     if long:
-        return DeterministicOptions(dx_m=beta / n, max_passes=max_passes, mu_sem_target=LONG_TARGET)
+        return DeterministicOptions(dx_m=beta / n, max_passes=max_passes, mu_sem_target=LONG_TARGET,
+                                    layout_passes=LAYOUT_PASSES)
     # short runs: stop at the minimum window (a target of 100 % is met at once)
     return DeterministicOptions(dx_m=beta / n, max_passes=max_passes, mu_sem_target=1.0,
-                                min_average_passes=SHORT_AVERAGE_PASSES)
+                                min_average_passes=SHORT_AVERAGE_PASSES, layout_passes=LAYOUT_PASSES)
 
 
 def run_path(name: str, n: int) -> Path:
@@ -105,12 +111,15 @@ def run_case(name: str, only: int | None = None, max_passes: float = MAX_PASSES)
         if only is not None and n != only:
             continue
         path = run_path(name, n)
-        if path.exists() and json.loads(path.read_text()).get("solver_version") == MODEL_VERSION:
-            continue
+        if path.exists():
+            done = json.loads(path.read_text())
+            if done.get("solver_version") == MODEL_VERSION and done.get("layout_passes", LAYOUT_PASSES) == LAYOUT_PASSES:
+                continue
         start = time.time()
         result = solve_deterministic(case, state, Effects.full(), options_for(n, n == middle, max_passes))
         extra = {k: (v.tolist() if isinstance(v, np.ndarray) else v) for k, v in result.extra.items()}
         record = {"case": name, "inputs": CASES[name], "points_per_beta": n, "solver_version": MODEL_VERSION,
+                  "layout_passes": LAYOUT_PASSES,
                   "mu": result.mu, "mu_sem": result.mu_sem, "asperity_load_share": result.asperity_load_share,
                   "h_min_m": result.h_min, "h_central_m": result.h_central, "converged": result.converged,
                   "message": result.message, "wall_time_s": result.wall_time, "lambda_bar": result.lambda_bar,
@@ -158,6 +167,11 @@ def summarise_case(name: str) -> dict | None:
         return None
     if len({r["solver_version"] for r in runs.values()}) != 1:
         return None  # the three spacings must share one model version (a rerun in progress mixes them)
+    layouts = {r["layout_passes"] for r in runs.values() if "layout_passes" in r}
+    if len(layouts) > 1:
+        print(f"{name}: runs laid out for different lengths {sorted(layouts)} passes are not paired; rerun the "
+              f"short runs", file=sys.stderr)
+        return None
     base = runs[middle]
     out = {"case": name, "inputs": dict(zip(("p_h_gpa", "r_eq_mm", "u_r_m_s", "sr", "temp_c", "rq1_um", "rq2_um"),
                                             CASES[name])),

@@ -87,6 +87,9 @@ class DeterministicOptions:
     to 1 over this many passes (one pass: the domain length at u_r); ``startup_passes`` passes after the ramp before
     averaging starts; ``min_average_passes``, ``max_passes`` bounds of the averaging window, extended until the
     standard error of the time-averaged μ is ≤ ``mu_sem_target``·max(|μ|, 0.01) over ≥ 20 correlation times;
+    ``layout_passes`` the run length [passes] the roughness is laid out for (None: ``max_passes``): where each
+    surface reads the profile depends on it, so runs to be compared pairwise (the same roughness at the same times,
+    e.g. at different grid spacings with different ``max_passes``) must share it, and it must be ≥ ``max_passes``;
     ``face_mean`` of the Poiseuille conductance; ``couette_flux`` its shear-flux scheme (:data:`COUETTE_FLUXES`);
     ``band`` half-width of the banded inverse kernel in the
     preconditioner; ``newton_tolerance`` max scaled residual (mass rows relative to the central Couette flux,
@@ -112,6 +115,7 @@ class DeterministicOptions:
     startup_passes: float = 1.0
     min_average_passes: float = 1.5
     max_passes: float = 12.0
+    layout_passes: float | None = None
     mu_sem_target: float = 0.015
     face_mean: str = "kirchhoff"
     couette_flux: str = "minmod"
@@ -132,6 +136,8 @@ class DeterministicOptions:
             check_range("boundary_film_m", self.boundary_film_m, 0.0, 1e-6, low_inclusive=False, unit="m")
         check_range("courant", self.courant, 0.0, 8.0, low_inclusive=False)
         check_range("mu_sem_target", self.mu_sem_target, 0.0, 1.0)
+        if self.layout_passes is not None:
+            check_range("layout_passes", self.layout_passes, self.max_passes, 1e4, unit="passes")
         if self.face_mean not in FACE_MEANS:
             raise InputError("face_mean", self.face_mean, f"one of {sorted(FACE_MEANS)}")
         if self.couette_flux not in COUETTE_FLUXES:
@@ -522,7 +528,8 @@ def solve_deterministic(case: ContactCase, state: LubricantState, plan: Effects,
     time_scale = a / case.u_r
     # laid out for max_passes whatever the spacing: runs at different spacings read the same roughness at the same
     # times (paired comparisons, docs/deterministic_solver.md)
-    surfaces = plan_surfaces(case, x * a, options.max_passes * passes_dt * time_scale, profile)
+    layout_passes = options.max_passes if options.layout_passes is None else options.layout_passes
+    surfaces = plan_surfaces(case, x * a, layout_passes * passes_dt * time_scale, profile)
 
     def gap_at(t):
         r1, r2 = surfaces.at(t * time_scale)
@@ -753,7 +760,8 @@ def _result(case, state, plan, level_name, options, problem, scales, z, h, recor
                "mu_series": np.asarray(record.mu), "share_series": np.asarray(record.share),
                "t_series_s": np.asarray(record.t), "h_min_local_m": local_min,
                "h_min_local_series_m": np.asarray(record.h_min), "mass_error_series": np.asarray(record.mass),
-               "face_mean": options.face_mean,
+               "face_mean": options.face_mean, "layout_passes": float(
+                   options.max_passes if options.layout_passes is None else options.layout_passes),
                "couette_flux": options.couette_flux, **record.mean_profiles(), **problem.cost, **rule},
     )
 
