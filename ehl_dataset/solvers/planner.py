@@ -183,8 +183,8 @@ def plan_effects(case, lubricant, level="standard", correlation_length_m: float 
                   "factorial corners: docs/homogenised_model.md)"
                   if homogenised else
                   ("deterministic mixed solver: the accuracy reference of rough contacts (the transient "
-                   "solver's asperity contact is measured +70..+143 % high where asperities touch: "
-                   "docs/deterministic_solver.md); no thermal model"
+                   "solver is measured +107..+195 % high on the rough reference case G: "
+                   "docs/accuracy_mixed.md); no thermal model"
                    if limits.rough_model == "deterministic" else
                    f"transient mixed solver (a/beta={nums['a_over_beta']:.3g} < {limits.a_over_beta_homogenised:g}: "
                    "too narrow for the homogenised model); the reference itself: model=deterministic")

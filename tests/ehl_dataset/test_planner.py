@@ -92,7 +92,7 @@ def test_wide_rough_contacts_take_the_homogenised_model_from_a_over_beta_15(leve
 
 def test_the_reference_level_sends_rough_contacts_to_the_deterministic_solver(monkeypatch):
     """At ``reference`` the planner's rough model is the deterministic solver (the accuracy reference; the transient
-    solver is +70..+143 % high where asperities touch, docs/deterministic_solver.md); at ``fast`` and ``standard``
+    solver is +107..+195 % high on the rough reference case G, docs/accuracy_mixed.md); at ``fast`` and ``standard``
     narrow rough contacts stay on the transient solver. Forced effects (``effects="full"``) keep the transient path
     at every level, and smooth surfaces the steady solve. The routing is checked with the solvers replaced by
     recorders (a deterministic solve at the reference grid costs minutes)."""
