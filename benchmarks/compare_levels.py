@@ -157,7 +157,12 @@ def main(argv=None) -> int:
         plot(level_doc, ref_doc, args.png, labels)
         rel = Path(args.png).relative_to(Path(args.out).parent) if Path(args.png).is_relative_to(Path(args.out).parent) else Path(args.png)
         names = labels or (level_doc["level"], ref_doc["level"])
-        text = text.replace("## Per point", f"![μ {names[0]} against {names[1]}]({rel})\n\n## Per point", 1)
+        command = (f"python benchmarks/compare_levels.py {args.level_json} {args.reference_json} --out {args.out} "
+                   f"--png {args.png}" + (f" --labels {' '.join(args.labels)}" if args.labels else ""))
+        versions = " and ".join(dict.fromkeys(d.get("solver_version", "unversioned") for d in (level_doc, ref_doc)))
+        caption = f"*Made by `{command}`{' with the note above' if args.note else ''} (EHL solver {versions}).*"
+        text = text.replace("## Per point", f"![μ {names[0]} against {names[1]}]({rel})\n\n{caption}\n\n## Per point",
+                            1)
     Path(args.out).write_text(text)
     print(text.split("## Per point")[0])
     return 0
