@@ -113,7 +113,8 @@ def run_case(name: str, only: int | None = None, max_passes: float = MAX_PASSES)
         path = run_path(name, n)
         if path.exists():
             done = json.loads(path.read_text())
-            if done.get("solver_version") == MODEL_VERSION and done.get("layout_passes", LAYOUT_PASSES) == LAYOUT_PASSES:
+            same_layout = done.get("layout_passes", LAYOUT_PASSES) == LAYOUT_PASSES  # runs before the key: kept
+            if done.get("solver_version") == MODEL_VERSION and same_layout:
                 continue
         start = time.time()
         result = solve_deterministic(case, state, Effects.full(), options_for(n, n == middle, max_passes))

@@ -148,6 +148,11 @@ class DeterministicOptions:
         if not (x_start < -1.0 and x_end > 1.0):
             raise InputError("domain", self.domain, "x_start < -1 < 1 < x_end (units of the Hertz half width)")
 
+    @property
+    def roughness_layout_passes(self) -> float:
+        """The run length [passes] the roughness is laid out for: ``layout_passes``, else ``max_passes``."""
+        return float(self.max_passes if self.layout_passes is None else self.layout_passes)
+
 
 LEVEL_OPTIONS = {
     "fast": dict(points_per_beta=8.0, points_per_ell=0.625, mu_sem_target=0.10, max_passes=6.0),
@@ -526,10 +531,9 @@ def solve_deterministic(case: ContactCase, state: LubricantState, plan: Effects,
     n_max = max(int(math.ceil(options.max_passes * steps_per_pass)), n_min)
     check_every = max(int(0.25 * steps_per_pass), 1)
     time_scale = a / case.u_r
-    # laid out for max_passes whatever the spacing: runs at different spacings read the same roughness at the same
-    # times (paired comparisons, docs/deterministic_solver.md)
-    layout_passes = options.max_passes if options.layout_passes is None else options.layout_passes
-    surfaces = plan_surfaces(case, x * a, layout_passes * passes_dt * time_scale, profile)
+    # laid out for a length in passes, whatever the spacing: runs at different spacings with the same layout read the
+    # same roughness at the same times (paired comparisons, docs/deterministic_solver.md)
+    surfaces = plan_surfaces(case, x * a, options.roughness_layout_passes * passes_dt * time_scale, profile)
 
     def gap_at(t):
         r1, r2 = surfaces.at(t * time_scale)
@@ -760,8 +764,7 @@ def _result(case, state, plan, level_name, options, problem, scales, z, h, recor
                "mu_series": np.asarray(record.mu), "share_series": np.asarray(record.share),
                "t_series_s": np.asarray(record.t), "h_min_local_m": local_min,
                "h_min_local_series_m": np.asarray(record.h_min), "mass_error_series": np.asarray(record.mass),
-               "face_mean": options.face_mean, "layout_passes": float(
-                   options.max_passes if options.layout_passes is None else options.layout_passes),
+               "face_mean": options.face_mean, "layout_passes": options.roughness_layout_passes,
                "couette_flux": options.couette_flux, **record.mean_profiles(), **problem.cost, **rule},
     )
 
