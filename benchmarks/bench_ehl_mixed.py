@@ -8,7 +8,7 @@
     python benchmarks/bench_ehl_mixed.py --model smooth --sample random --n 500 --seed 2    # the same points, smooth
 
 Corners: p_h {0.5, 2.5} GPa × r_eq {5, 80} mm × u_r {1, 20} m/s × SR {0, 1} × T {25, 100} °C × Rq1 = Rq2
-{0.05, 1.0} µm (docs/dataset_format.md), ATF, effects=full. Random: uniform draws from the paper's levels. Writes per-case rows
+{0.05, 1.0} µm (docs/dataset_format.md), ATF, effects=full (``--effects``). Random: uniform draws from the paper's levels. Writes per-case rows
 and a summary (converged count, mean/median time of all and of converged cases, projected time for 42,000 points on
 this machine with one process per core) to benchmarks/results/ehl_mixed_<sample>_<level>.json
 (``..._<sample>_<level>_<model>[_<closure>].json`` with ``--model`` other than auto). ``--model`` is one of
@@ -78,6 +78,9 @@ def main(argv=None) -> int:
                              "mean time is then a lower bound (reported as such)")
     parser.add_argument("--model", default="auto", help="contact model (ehl_dataset.solver.MODELS)")
     parser.add_argument("--closure", default="transverse", help="flow factors of --model homogenised")
+    parser.add_argument("--effects", default="full", choices=("full", "isothermal", "auto"),
+                        help="effect plan of every solve (default full; isothermal: the film-law closure without its "
+                             "thermal correction, like the deterministic and transient solvers, which have none)")
     parser.add_argument("--resume", action="store_true",
                         help="keep the rows of the output file that exists, run only the cases it lacks, and rewrite "
                              "the report after every case (a long run that is stopped loses at most one case)")
@@ -91,6 +94,7 @@ def main(argv=None) -> int:
     suffix = "" if args.model == "auto" else f"_{args.model}" + (f"_{args.closure}" if args.model == "homogenised"
                                                                     else "")
     homogenised = HomogenisedOptions(closure=args.closure) if args.model == "homogenised" else None
+    effects = Effects.full() if args.effects == "full" else args.effects
     if args.merge:
         return _report(args, lub, merge_shards(args.merge), suffix)
     if args.shard:
@@ -106,7 +110,7 @@ def main(argv=None) -> int:
         case = ContactCase.from_engineering(*case_args)
         start, cpu_start = time.perf_counter(), time.process_time()
         try:
-            res = solve_contact(case, lub, args.level, Effects.full(), time_limit_s=args.time_limit_s,
+            res = solve_contact(case, lub, args.level, effects, time_limit_s=args.time_limit_s,
                                 model=args.model, homogenised=homogenised)
             row = {"case": case_args, "converged": res.converged, "mu": res.mu, "mu_std": res.mu_std,
                    "finite": bool(np.isfinite([res.mu, res.h_min, res.h_central]).all()), "h_min_m": res.h_min,
@@ -175,7 +179,8 @@ def _report(args, lub, rows, suffix, out: Path | None = None, quiet: bool = Fals
         summary["mean_cpu_time_s"] = statistics.fmean(cpu)
         summary["p95_cpu_time_s"] = float(np.percentile(cpu, 95))
     report = {"benchmark": "ehl_mixed", "level": args.level, "sample": args.sample, "model": args.model,
-              "closure": args.closure if args.model == "homogenised" else None, "summary": summary,
+              "closure": args.closure if args.model == "homogenised" else None,
+              "effects": args.effects, "summary": summary,
               "solver_version": SOLVER_VERSION,
               "rows": rows, "machine": machine_info()}
     write_report(out or args.out or RESULTS_DIR / f"ehl_mixed_{args.sample}_{args.level}{suffix}.json", report)

@@ -1,5 +1,7 @@
 """Which contact model the planner picks over a factorial: the share of points solved steady smooth, by the film-law
-homogenised model (rough, a/β ≥ 15) and by the transient solver (rough, narrow), at the factorial's level.
+homogenised model within its validated range (rough, a/β ≥ 15), by the same model outside it (rough, narrow: the
+level's rough model since ehl-2026.11-11) and by the transient solver (a level whose rough model is transient), at
+the factorial's level.
 
     python benchmarks/planner_model_shares.py                    # quick (all 324) and paper2009 (every 14th point)
 
@@ -25,18 +27,23 @@ def shares(name: str, stride: int) -> dict[str, int]:
     counts: collections.Counter = collections.Counter()
     for row in factorial.points()[::stride]:
         plan = plan_effects(ContactCase(*(float(v) for v in row)), lubricant, factorial.level or "standard")
-        counts["smooth" if not plan.roughness else "transient" if plan.transient else "film_law"] += 1
+        wide = plan.reasons["numbers"]["a_over_beta"] >= plan.reasons["thresholds"]["a_over_beta_homogenised"]
+        counts["smooth" if not plan.roughness else "transient" if plan.transient else
+               "film_law" if wide else "film_law_narrow"] += 1
     return dict(counts)
 
 
 def main() -> int:
     for name, stride in STRIDES.items():
         counts = shares(name, stride)
-        total, rough = sum(counts.values()), counts.get("film_law", 0) + counts.get("transient", 0)
+        total = sum(counts.values())
+        rough = total - counts.get("smooth", 0)
+        narrow = counts.get("film_law_narrow", 0) + counts.get("transient", 0)
         print(f"{name} (every {stride}th point, {total} points, level {load_factorial(name).level}): "
-              f"smooth {counts.get('smooth', 0)}, film-law {counts.get('film_law', 0)}, transient "
-              f"{counts.get('transient', 0)} ({100 * counts.get('transient', 0) / max(rough, 1):.0f} % of the rough "
-              f"points, {100 * counts.get('transient', 0) / total:.0f} % of all)")
+              f"smooth {counts.get('smooth', 0)}, film-law (a/beta >= 15) {counts.get('film_law', 0)}, film-law "
+              f"outside its validated range (narrow) {counts.get('film_law_narrow', 0)}, transient "
+              f"{counts.get('transient', 0)} (narrow: {100 * narrow / max(rough, 1):.0f} % of the rough points, "
+              f"{100 * narrow / total:.0f} % of all)")
     return 0
 
 

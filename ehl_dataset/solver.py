@@ -10,10 +10,12 @@
 
 Smooth cases (no roughness effect, or S_c = 0) go to the steady solver (:mod:`ehl_dataset.solvers.steady`: a smooth
 contact under constant load and speed has a steady solution, which is what a transient run would settle to, so the
-``transient`` flag changes nothing for smooth surfaces); rough surfaces with the ``roughness`` effect go to the
-transient mixed solver (:mod:`ehl_dataset.solvers.transient`). ``model="homogenised"`` asks for the steady homogenised
-mixed model (:mod:`ehl_dataset.solvers.homogenised`, a prototype not yet validated: docs/homogenised_model.md), and
-``model="deterministic"`` for the deterministic mixed reference (:mod:`ehl_dataset.solvers.deterministic`).
+````transient`` flag changes nothing for smooth surfaces); rough surfaces with the ``roughness`` effect go where the
+plan's ``model`` decision sends them (:data:`MODELS`): the steady film-law homogenised model
+(:mod:`ehl_dataset.solvers.homogenised`) at ``fast`` and ``standard``, the deterministic mixed reference
+(:mod:`ehl_dataset.solvers.deterministic`) at ``reference``, and the transient mixed solver
+(:mod:`ehl_dataset.solvers.transient`) where the effects are forced with ``transient`` on (``effects="full"``).
+``model="homogenised"`` and ``model="deterministic"`` ask for those models whatever the plan.
 
 Every dataset file records ``ehl_dataset.solver:solve_contact`` and imports it on resume, and the store compares
 :data:`SOLVER_VERSION` with the recorded one: both stay here whatever moves behind them.
@@ -40,15 +42,17 @@ from .solvers.steady import solve_steady
 from .solvers.transient import TransientOptions, solve_transient
 from .validation import InputError, check_time_limit
 
-SOLVER_VERSION = "ehl-2026.11-10"
+SOLVER_VERSION = "ehl-2026.11-11"
 """Version of the numerics behind :func:`solve_contact`. The dataset store records it and refuses to resume a file
 computed with another version: bump it with every change that can alter a solved value."""
 
 MODELS = ("auto", "smooth", "homogenised", "deterministic")
 """Contact models :func:`solve_contact` can be asked for: ``auto`` (the effect plan decides: steady smooth; for rough
 surfaces the steady homogenised model with the film-law closure where the contact is at least the planner's
-``a_over_beta_homogenised`` correlation lengths wide, else the level's ``rough_model``: the transient mixed solver
-of :mod:`ehl_dataset.solvers.transient` at ``fast`` and ``standard``, the deterministic solver at ``reference``), ``smooth`` (steady smooth surfaces whatever the roughness), ``homogenised``
+``a_over_beta_homogenised`` correlation lengths wide, else the level's ``rough_model``: the same film-law model at
+``fast`` and ``standard`` (outside its validated range, recorded), the deterministic solver at ``reference``; forced
+effects with ``transient`` on run the transient mixed solver of :mod:`ehl_dataset.solvers.transient`), ``smooth``
+(steady smooth surfaces whatever the roughness), ``homogenised``
 (the steady two-scale mixed model, :mod:`ehl_dataset.solvers.homogenised`, with the closure of ``homogenised``;
 errors against the reference in docs/homogenised_model.md), ``deterministic`` (the deterministic mixed reference
 solver, :mod:`ehl_dataset.solvers.deterministic`, for rough surfaces).
@@ -56,7 +60,9 @@ solver, :mod:`ehl_dataset.solvers.deterministic`, for rough surfaces).
 Version history of what can change a solved value: ehl-2026.11-8 added the thermal correction of the traction;
 ehl-2026.11-9 makes ``auto`` solve wide rough contacts (a/β ≥ 15 at ``fast`` and ``standard``) by the film-law
 homogenised model instead of the transient solver; ehl-2026.11-10 makes ``auto`` at ``reference`` solve rough
-contacts by the deterministic solver (the accuracy reference) instead of the transient solver."""
+contacts by the deterministic solver (the accuracy reference) instead of the transient solver; ehl-2026.11-11 makes
+``auto`` at ``fast`` and ``standard`` solve narrow rough contacts (a/β < 15) by the film-law homogenised model too,
+instead of the transient solver (docs/narrow_contacts.md)."""
 
 __all__ = ["solve_contact", "checked_inputs", "SOLVER_VERSION", "MODELS"]
 

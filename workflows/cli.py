@@ -96,6 +96,17 @@ def _signals_raise():
             signal.signal(signal.SIGINT, previous_int)
 
 
+def _signal_behind(err: BaseException) -> BaseException | None:
+    """The interrupt (:class:`KeyboardInterrupt` or :class:`_Terminated`) in the cause/context chain of ``err``."""
+    seen = set()
+    while err is not None and id(err) not in seen:
+        seen.add(id(err))
+        if isinstance(err, (KeyboardInterrupt, _Terminated)):
+            return err
+        err = err.__cause__ or err.__context__
+    return None
+
+
 def main(argv: list[str] | None = None) -> int:
     from .cli_output import fail
 
@@ -132,6 +143,15 @@ def main(argv: list[str] | None = None) -> int:
         return fail(exit_codes.SIGINT, f"interrupted by SIGINT: {args.command_line} stopped", as_json)
     except _Terminated:
         return fail(exit_codes.SIGTERM, f"terminated by SIGTERM: {args.command_line} stopped", as_json)
+    except SystemError as err:
+        # a signal handler's exception raised while compiled (numba) code ran comes back as the cause of a
+        # SystemError ("returned a result with an exception set")
+        signal_error = _signal_behind(err)
+        if isinstance(signal_error, KeyboardInterrupt):
+            return fail(exit_codes.SIGINT, f"interrupted by SIGINT: {args.command_line} stopped", as_json)
+        if isinstance(signal_error, _Terminated):
+            return fail(exit_codes.SIGTERM, f"terminated by SIGTERM: {args.command_line} stopped", as_json)
+        raise
     except FileNotFoundError as err:
         return fail(exit_codes.BAD_INPUT, f"file not found: {err.filename or err}", as_json, value=err.filename)
     except (IsADirectoryError, NotADirectoryError, PermissionError) as err:

@@ -12,8 +12,10 @@ threshold says it does not change the result beyond the level's tolerance (the c
   The ``model`` decision says which solver that means: steady smooth; for a rough contact at least
   ``a_over_beta_homogenised`` roughness correlation lengths wide (a/β, β of the roughness profile), the steady
   homogenised model with the film-law closure (the roughness is a homogeneous micro-scale there: measured against the
-  deterministic model in docs/homogenised_model.md, "Film-law closure"), so ``transient`` is off; otherwise the
-  transient mixed solver.
+  deterministic model in docs/homogenised_model.md, "Film-law closure"), so ``transient`` is off; a narrower rough
+  contact goes to the level's ``rough_model``: the same film-law model at ``fast`` and ``standard``, recorded as
+  outside its validated range (no cheap model is within those levels' tolerance there, and the transient mixed solver
+  is further off than the film law: docs/narrow_contacts.md), the deterministic solver at ``reference``.
 * **shear thinning** — inlet Eyring number X_in = η0·|u_s|/(τ0·h_min,DH): sinh(τ_m/τ0) of the Couette shear where
   the film is formed (the inlet, at ambient viscosity). The Eyring flow factor is √(1 + X²), and only the inlet
   flow shapes the film: in the Hertz zone the Poiseuille flow is negligible whatever its factor. The Eyring number
@@ -52,6 +54,9 @@ from .levels import get_level
 from .wide_contact import WIDE_A_OVER_BETA
 
 
+ROUGH_MODELS = ("homogenised", "transient", "deterministic")
+
+
 @dataclass(frozen=True)
 class PlannerThresholds:
     """Thresholds of the planner for one accuracy level.
@@ -63,10 +68,13 @@ class PlannerThresholds:
     ``thermal_change`` predicted relative reduction of the centre Couette traction at or below which the thermal
     correction is skipped [-];
     ``a_over_beta_homogenised`` a/β (Hertz half width over the roughness correlation length) at or above which a
-    rough contact is solved by the steady film-law homogenised model instead of the transient mixed solver [-];
-    ``rough_model`` the solver of the other rough contacts: ``"transient"`` (the production transient mixed solver,
-    :mod:`ehl_dataset.solvers.transient`) or ``"deterministic"`` (the deterministic reference solver,
-    :mod:`ehl_dataset.solvers.deterministic`, which solves contacts wider than its window limit by periodic windows).
+    rough contact is solved by the steady film-law homogenised model, within its validated range [-];
+    ``rough_model`` the solver of the other (narrower) rough contacts: ``"homogenised"`` (the same film-law model,
+    recorded as outside its validated range), ``"transient"`` (the transient mixed solver,
+    :mod:`ehl_dataset.solvers.transient`, a median +84 % high below λ̄ = 1 on narrow contacts:
+    docs/narrow_contacts.md) or
+    ``"deterministic"`` (the deterministic reference solver, :mod:`ehl_dataset.solvers.deterministic`, which solves
+    contacts wider than its window limit by periodic windows; about a minute per narrow contact at its ``fast`` grid).
     """
 
     lambda_smooth: float
@@ -76,12 +84,16 @@ class PlannerThresholds:
     a_over_beta_homogenised: float = math.inf
     rough_model: str = "transient"
 
+    def __post_init__(self):
+        if self.rough_model not in ROUGH_MODELS:
+            raise InputError("rough_model", self.rough_model, f"one of {list(ROUGH_MODELS)}")
+
 
 THRESHOLDS: dict[str, PlannerThresholds] = {
     "fast": PlannerThresholds(lambda_smooth=3.5, eyring_newtonian=0.01, tolerance=0.05, thermal_change=0.04,
-                              a_over_beta_homogenised=WIDE_A_OVER_BETA),
+                              a_over_beta_homogenised=WIDE_A_OVER_BETA, rough_model="homogenised"),
     "standard": PlannerThresholds(lambda_smooth=5.0, eyring_newtonian=0.003, tolerance=0.02, thermal_change=0.016,
-                                  a_over_beta_homogenised=WIDE_A_OVER_BETA),
+                                  a_over_beta_homogenised=WIDE_A_OVER_BETA, rough_model="homogenised"),
     "reference": PlannerThresholds(lambda_smooth=math.inf, eyring_newtonian=0.0, tolerance=0.0, thermal_change=0.0,
                                    rough_model="deterministic"),
 }
@@ -162,7 +174,8 @@ def plan_effects(case, lubricant, level="standard", correlation_length_m: float 
     lam = nums["lambda_bar"]
     rough = not lam >= limits.lambda_smooth
     wide = nums["a_over_beta"] >= limits.a_over_beta_homogenised
-    homogenised = rough and wide
+    homogenised = rough and (wide or limits.rough_model == "homogenised")
+    a_b = f"a/beta={nums['a_over_beta']:.3g}"
     x_in = nums["eyring_inlet"]
     newtonian = x_in <= limits.eyring_newtonian
     change = nums["thermal_change"]
@@ -173,21 +186,30 @@ def plan_effects(case, lubricant, level="standard", correlation_length_m: float 
                       (f"S_c=0: smooth surfaces" if math.isinf(lam) else
                        f"lambda_bar={lam:.3g} >= {limits.lambda_smooth:g}: roughness does not change mu within "
                        f"the level tolerance, steady smooth solve")),
-        "transient": (f"a/beta={nums['a_over_beta']:.3g} >= {limits.a_over_beta_homogenised:g}: the roughness is a "
-                      f"homogeneous micro-scale, its ensemble average replaces the time average: steady"
+        "transient": (f"{a_b} >= {limits.a_over_beta_homogenised:g}: the roughness is a homogeneous micro-scale, its "
+                      f"ensemble average replaces the time average: steady"
+                      if homogenised and wide else
+                      f"{a_b} < {limits.a_over_beta_homogenised:g}, but the level's rough model is the steady "
+                      f"homogenised one: steady"
                       if homogenised else
                       "moving roughness makes the contact transient" if rough else
                       "smooth surfaces under constant load: steady"),
-        "model": (f"homogenised model, film-law closure (a/beta={nums['a_over_beta']:.3g} >= "
-                  f"{limits.a_over_beta_homogenised:g}; against the deterministic model's windows on the wide "
-                  "factorial corners: docs/homogenised_model.md)"
+        "model": (f"homogenised model, film-law closure ({a_b} >= {limits.a_over_beta_homogenised:g}; against the "
+                  "deterministic model's windows on the wide factorial corners: docs/homogenised_model.md)"
+                  if homogenised and wide else
+                  f"homogenised model, film-law closure, outside its validated range ({a_b} < "
+                  f"{limits.a_over_beta_homogenised:g}: micro-EHL pressure not modelled; against the deterministic "
+                  "model at fast on 25 narrow rough factorial points its mu is a median 19 % low (90th percentile "
+                  "51 %) below lambda_bar 1 and within 6 % above; the transient solver is a median 84 % high below "
+                  "1: docs/narrow_contacts.md); the "
+                  "reference: level reference or model=deterministic"
                   if homogenised else
                   ("deterministic mixed solver: the accuracy reference of rough contacts (the transient "
                    "solver is measured +107..+195 % high on the rough reference case G: "
                    "docs/accuracy_mixed.md); no thermal model"
                    if limits.rough_model == "deterministic" else
-                   f"transient mixed solver (a/beta={nums['a_over_beta']:.3g} < {limits.a_over_beta_homogenised:g}: "
-                   "too narrow for the homogenised model); the reference itself: model=deterministic")
+                   f"transient mixed solver ({a_b} < {limits.a_over_beta_homogenised:g}: too narrow for the "
+                   "homogenised model); the reference itself: model=deterministic")
                   if rough else "steady smooth solver"),
         "shear_thinning": (f"inlet Eyring number X_in={x_in:.3g} <= {limits.eyring_newtonian:g}: Newtonian "
                            f"flow (factor sqrt(1+X^2)-1={math.sqrt(1 + x_in ** 2) - 1:.2g})"

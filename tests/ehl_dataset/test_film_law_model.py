@@ -150,7 +150,8 @@ def test_random_points_of_the_paper_ranges_converge_bounded_or_are_marked(atf, p
 
 def test_the_command_line_says_which_model_the_planner_chose(capsys):
     """``gearloss contact solve`` on a wide rough contact (a/β 28): the planner's film-law choice in the JSON (model,
-    closure, the decision with its a/β) and in the text output's ``model`` line; a narrow one stays transient."""
+    closure, the decision with its a/β) and in the text output's ``model`` line; a narrow one takes the same model,
+    recorded as outside its validated range."""
     from workflows.cli import main
 
     wide = ["contact", "solve", "--p-h-gpa", "1.2", "--r-eq-mm", "20", "--u-r", "5", "--sr", "0.3", "--temp-c", "90",
@@ -163,4 +164,6 @@ def test_the_command_line_says_which_model_the_planner_chose(capsys):
     assert main(wide) == 0
     assert "model         homogenised (film_law closure)" in capsys.readouterr().out
     narrow = ContactCase.from_engineering(1.2, 5, 5, 0.3, 90, 0.2, 0.2)
-    assert solve_contact(narrow, load_lubricant("atf"), "fast").effects["transient"]
+    narrow_result = solve_contact(narrow, load_lubricant("atf"), "fast")
+    assert narrow_result.extra["model"] == "homogenised" and not narrow_result.effects["transient"]
+    assert "outside its validated range" in narrow_result.effects["reasons"]["decisions"]["model"]

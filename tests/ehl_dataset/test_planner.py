@@ -1,5 +1,6 @@
 """The effect planner: decisions on clear-cut cases, the recorded reasons, and planned-versus-full agreement."""
 
+import dataclasses
 import json
 import math
 
@@ -12,7 +13,9 @@ from ehl_dataset.model.effects import Effects
 from ehl_dataset.model.film_formulas import dowson_higginson_min_film
 from ehl_dataset.model.lubricant import load_lubricant
 from ehl_dataset.solver import solve_contact as solve
-from ehl_dataset.solvers.planner import THRESHOLDS, dimensionless_numbers, plan_effects, resolve_effects
+from ehl_dataset.solvers.homogenised import HomogenisedOptions
+from ehl_dataset.solvers.planner import (THRESHOLDS, PlannerThresholds, dimensionless_numbers, plan_effects,
+                                         resolve_effects)
 from ehl_dataset.validation import InputError
 
 ATF = load_lubricant("atf")
@@ -36,7 +39,8 @@ def test_hardest_corner_needs_everything():
     """2.5 GPa, 5 mm, 1 m/s, 100 °C, Rq 1 µm, SR 1: λ̄ ≈ 0.02 (heavy asperity contact), Eyring X ≫ 1,
     ρ(2.5 GPa)/ρ0 − 1 = 0.280 (Dowson–Higginson, paper Eq. 6: (1 + 2.266·2.5)/(1 + 1.683·2.5) − 1)."""
     plan = plan_effects(case(2.5, 5, 1, 1.0, 100, 1.0, 1.0), ATF, "fast")
-    assert plan.roughness and plan.transient and plan.shear_thinning and plan.compressibility
+    assert plan.roughness and plan.shear_thinning and plan.compressibility
+    assert plan_effects(case(2.5, 5, 1, 1.0, 100, 1.0, 1.0), ATF, "reference").transient
     nums = plan.reasons["numbers"]
     assert nums["lambda_bar"] < 0.05
     assert nums["eyring_number"] > 1e3
@@ -60,22 +64,23 @@ def test_thick_film_is_solved_smooth_except_at_reference():
 @pytest.mark.parametrize("level", ["fast", "standard"])
 def test_threshold_straddle(level):
     """Roughness is skipped exactly from λ̄ = lambda_smooth on: S_c chosen for λ̄ = 0.98 and 1.02 × threshold
-    (a narrow contact, a/β < 15, so the rough side is the transient solver)."""
+    (a narrow contact, a/β < 15: the rough side is the level's rough model, the steady film-law one)."""
     base = case(1.0, 5, 10, 0.3, 50, 0, 0)
     h_dh = dimensionless_numbers(base, ATF)["h_min_dh_m"]
     threshold = THRESHOLDS[level].lambda_smooth
     for factor, rough in ((0.98, True), (1.02, False)):
         rq = h_dh / (factor * threshold) / math.sqrt(2)
         plan = plan_effects(ContactCase(base.p_h, base.r_eq, base.u_r, base.sr, base.temperature, rq, rq), ATF, level)
-        assert plan.roughness is rough and plan.transient is rough
+        assert plan.roughness is rough and not plan.transient
         assert plan.reasons["numbers"]["lambda_bar"] == pytest.approx(factor * threshold, rel=1e-9)
         assert plan.reasons["thresholds"]["lambda_smooth"] == threshold
 
 
 @pytest.mark.parametrize("level", ["fast", "standard"])
 def test_wide_rough_contacts_take_the_homogenised_model_from_a_over_beta_15(level):
-    """a/β ≥ a_over_beta_homogenised: steady film-law homogenised model (roughness on, transient off); below it the
-    transient solver. r_eq chosen for a/β = 0.98 and 1.02 × the threshold (a ∝ r_eq at fixed p_h)."""
+    """a/β ≥ a_over_beta_homogenised: steady film-law homogenised model within its validated range (roughness on,
+    transient off); below it the same model, recorded as outside that range (the level's rough model). r_eq chosen
+    for a/β = 0.98 and 1.02 × the threshold (a ∝ r_eq at fixed p_h)."""
     threshold = THRESHOLDS[level].a_over_beta_homogenised
     assert threshold == 15.0
     at_20 = dimensionless_numbers(case(r_eq_mm=20), ATF)["a_over_beta"]
@@ -83,8 +88,9 @@ def test_wide_rough_contacts_take_the_homogenised_model_from_a_over_beta_15(leve
         c = case(r_eq_mm=20 * factor * threshold / at_20)
         plan = plan_effects(c, ATF, level)
         assert plan.reasons["numbers"]["a_over_beta"] == pytest.approx(factor * threshold, rel=1e-9)
-        assert plan.roughness and plan.transient is not wide
-        assert ("homogenised model, film-law closure" in plan.reasons["decisions"]["model"]) is wide
+        assert plan.roughness and not plan.transient
+        assert "homogenised model, film-law closure" in plan.reasons["decisions"]["model"]
+        assert ("outside its validated range" in plan.reasons["decisions"]["model"]) is not wide
     result = solve(c, ATF, level)
     assert result.extra["model"] == "homogenised" and result.extra["closure"] == "film_law"
     assert not result.effects["transient"] and result.effects["roughness"]
@@ -93,9 +99,11 @@ def test_wide_rough_contacts_take_the_homogenised_model_from_a_over_beta_15(leve
 def test_the_reference_level_sends_rough_contacts_to_the_deterministic_solver(monkeypatch):
     """At ``reference`` the planner's rough model is the deterministic solver (the accuracy reference; the transient
     solver is +107..+195 % high on the rough reference case G, docs/accuracy_mixed.md); at ``fast`` and ``standard``
-    narrow rough contacts stay on the transient solver. Forced effects (``effects="full"``) keep the transient path
-    at every level, and smooth surfaces the steady solve. The routing is checked with the solvers replaced by
-    recorders (a deterministic solve at the reference grid costs minutes)."""
+    narrow rough contacts go to the film-law homogenised model, recorded as outside its validated range (on 15
+    narrow random points and corners below λ̄ = 1 the transient solver is a median +84 % above the deterministic
+    model at fast, the film law −19 %: docs/narrow_contacts.md). Forced effects (``effects="full"``) keep the
+    transient path at every level, and smooth surfaces the steady solve. The routing is checked with the solvers
+    replaced by recorders (a deterministic solve at the reference grid costs minutes)."""
     import ehl_dataset.solver as solver_module
     calls = []
 
@@ -108,16 +116,30 @@ def test_the_reference_level_sends_rough_contacts_to_the_deterministic_solver(mo
     monkeypatch.setattr(solver_module, "solve_deterministic_contact", recorder("deterministic"))
     monkeypatch.setattr(solver_module, "solve_transient", recorder("transient"))
     monkeypatch.setattr(solver_module, "solve_steady", recorder("steady"))
+    monkeypatch.setattr(solver_module, "solve_homogenised", recorder("homogenised"))
     narrow = case(r_eq_mm=5)
     assert "deterministic mixed solver" in plan_effects(narrow, ATF, "reference").reasons["decisions"]["model"]
     for level in ("fast", "standard"):
-        assert THRESHOLDS[level].rough_model == "transient"
-        assert "transient mixed solver" in plan_effects(narrow, ATF, level).reasons["decisions"]["model"]
+        assert THRESHOLDS[level].rough_model == "homogenised"
+        assert "outside its validated range" in plan_effects(narrow, ATF, level).reasons["decisions"]["model"]
     assert solve(narrow, ATF, "reference") == "deterministic"
-    assert solve(narrow, ATF, "standard") == "transient"
+    assert solve(narrow, ATF, "standard") == "homogenised"
+    assert solve(narrow, ATF, "fast") == "homogenised"
     assert solve(narrow, ATF, "reference", "full") == "transient"
+    assert solve(narrow, ATF, "standard", "full") == "transient"
     assert solve(case(rq1_um=0, rq2_um=0), ATF, "reference") == "steady"
-    assert calls == ["deterministic", "transient", "transient", "steady"]
+    assert calls == ["deterministic", "homogenised", "homogenised", "transient", "transient", "steady"]
+
+
+def test_a_level_may_keep_the_transient_solver_for_narrow_rough_contacts_and_rejects_unknown_models(monkeypatch):
+    """``rough_model="transient"`` (the behaviour before ehl-2026.11-11) still routes narrow rough contacts to the
+    transient solver and wide ones to the film law; an unknown rough model is a clear error."""
+    monkeypatch.setitem(THRESHOLDS, "fast", dataclasses.replace(THRESHOLDS["fast"], rough_model="transient"))
+    narrow, wide = plan_effects(case(r_eq_mm=5), ATF, "fast"), plan_effects(case(r_eq_mm=80), ATF, "fast")
+    assert narrow.transient and "transient mixed solver" in narrow.reasons["decisions"]["model"]
+    assert not wide.transient and "outside" not in wide.reasons["decisions"]["model"]
+    with pytest.raises(InputError, match="rough_model"):
+        PlannerThresholds(lambda_smooth=1.0, eyring_newtonian=0.0, tolerance=0.0, rough_model="fem")
 
 
 def test_the_reference_level_never_homogenises_and_the_profile_correlation_length_decides():
@@ -125,8 +147,10 @@ def test_the_reference_level_never_homogenises_and_the_profile_correlation_lengt
     wide = case(r_eq_mm=80)
     assert plan_effects(wide, ATF, "reference").transient
     a = wide.half_width
-    assert plan_effects(wide, ATF, "standard", correlation_length_m=a / 14.0).transient
-    assert not plan_effects(wide, ATF, "standard", correlation_length_m=a / 16.0).transient
+    narrower, wider = (plan_effects(wide, ATF, "standard", correlation_length_m=a / n) for n in (14.0, 16.0))
+    assert narrower.reasons["numbers"]["a_over_beta"] == pytest.approx(14.0)
+    assert "outside its validated range" in narrower.reasons["decisions"]["model"]
+    assert "outside" not in wider.reasons["decisions"]["model"]
 
 
 def test_numbers_follow_their_formulas():
@@ -220,6 +244,27 @@ def test_shear_thinning_skip_agrees_with_full_model(level):
         if factor <= 1:
             assert d_mu <= limits.tolerance and d_h <= limits.tolerance
     assert changes[-1] > changes[0]
+
+
+@pytest.mark.parametrize("level", ["fast", "standard"])
+@pytest.mark.parametrize("contact", [(1.0, 20, 10, 0.3, 50), (1.0, 5, 10, 0.3, 50), (0.5, 5, 2, 0.05, 100)])
+def test_roughness_skip_agrees_with_the_levels_rough_model(level, contact):
+    """Where the planner skips roughness (λ̄ ≥ lambda_smooth), the level's own rough model, the film-law homogenised
+    model (isothermal on both sides), gives μ within the level's tolerance of the smooth solve at the threshold itself
+    (the narrow contacts are outside its validated range but still its rough model). Contacts: the calibration
+    contact of the transient comparison below, a narrow one, and the light-load, low-SR contact where the film law
+    departs most from smooth (+69 % at λ̄ = 1, +1.1 % at 3.5)."""
+    limits = THRESHOLDS[level]
+    smooth_case = case(*contact, 0, 0)
+    rq = dimensionless_numbers(smooth_case, ATF)["h_min_dh_m"] / limits.lambda_smooth / math.sqrt(2)
+    rough_case = ContactCase(smooth_case.p_h, smooth_case.r_eq, smooth_case.u_r, smooth_case.sr,
+                             smooth_case.temperature, rq, rq)
+    planned = solve(rough_case, ATF, level, "isothermal")
+    assert not planned.effects["roughness"]
+    film_law = solve(rough_case, ATF, level, "isothermal", model="homogenised",
+                     homogenised=HomogenisedOptions(closure="film_law"))
+    assert film_law.converged and film_law.effects["roughness"]
+    assert abs(planned.mu - film_law.mu) <= limits.tolerance * film_law.mu
 
 
 @pytest.mark.slow

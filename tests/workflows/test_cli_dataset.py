@@ -115,8 +115,10 @@ def test_bad_input_is_one_line_and_exit_2(tmp_path, plan_file, capsys, argv, fra
 
 
 # one steady smooth point (Rq 0.05 µm, λ̄ 7.0) and one transient rough point (Rq 0.4 µm, λ̄ 0.87), narrow contact
-BUDGET_PLAN = ('name = "budget"\nlevel = "fast"\n[axes]\np_h_gpa = [0.5]\nr_eq_mm = [5]\nu_r_m_s = [20]\nsr = [0.1]\n'
-               'temp_c = [75]\nroughness_um = [[0.05, 0.05], [0.4, 0.4]]\n')
+# all effects: the rough point runs the transient solver, which honours the budget (the planner's own rough model at
+# fast is steady); the smooth surfaces are solved steady whatever the effects
+BUDGET_PLAN = ('name = "budget"\nlevel = "fast"\neffects = "full"\n[axes]\np_h_gpa = [0.5]\nr_eq_mm = [5]\n'
+               'u_r_m_s = [20]\nsr = [0.1]\ntemp_c = [75]\nroughness_um = [[0.0, 0.0], [0.4, 0.4]]\n')
 
 
 def test_time_limit_stops_a_rough_point_and_is_recorded_in_the_session(tmp_path, capsys):

@@ -287,3 +287,31 @@ def test_12_the_accuracy_report_figure_is_not_older_than_the_solver_or_says_so()
     version = caption.split("EHL solver ")[1].split()[0].rstrip(").,;*")
     assert version == SOLVER_VERSION or "older than the current" in caption
     assert not math.isnan(float(version.rsplit("-", 1)[1]))
+
+
+@pytest.mark.parametrize("interrupt, code, words", [("_CtrlC", 130, "interrupted by SIGINT"),
+                                                    ("_Terminated", 143, "terminated by SIGTERM")])
+def test_a_signal_that_arrives_inside_compiled_code_still_gives_its_exit_code(monkeypatch, capsys, interrupt, code,
+                                                                              words):
+    """A signal handler's exception raised while numba-compiled code runs comes back as the cause of a SystemError
+    ("returned a result with an exception set", seen with SIGTERM during the gear sweep's contact solve): it still
+    exits 130/143 with the one-line message; a SystemError without an interrupt behind it is not swallowed."""
+    import workflows.cli as cli
+    import workflows.cli_gear_studies as studies
+
+    def interrupted_sweep(args):
+        try:
+            raise getattr(cli, interrupt)()
+        except BaseException as err:
+            raise SystemError("<CPUDispatcher> returned a result with an exception set") from err
+
+    monkeypatch.setattr(studies, "run_sweep", interrupted_sweep)
+    assert cli.main(["gear", "sweep", "--friction", "xu2007"]) == code
+    assert capsys.readouterr().err.strip() == f"gearloss: {words}: gearloss gear sweep --friction xu2007 stopped"
+
+    def broken_sweep(args):
+        raise SystemError("a genuine interpreter error")
+
+    monkeypatch.setattr(studies, "run_sweep", broken_sweep)
+    with pytest.raises(SystemError, match="genuine"):
+        cli.main(["gear", "sweep", "--friction", "xu2007"])

@@ -1,0 +1,193 @@
+"""Which cheap model for rough contacts: the transient mixed solver, the film-law homogenised model and the smooth
+solver against the deterministic model, on the same factorial points, split into narrow (a/β < 15) and wide contacts
+and at λ̄ = 1. Writes docs/narrow_contacts.md and its figure from the JSON of benchmarks/bench_ehl_mixed.py:
+
+    python benchmarks/narrow_contact_models.py
+
+The runs it reads (all at ``fast``, ATF, 600 s limit per case, first 54 random points of seed 1 and the 64 corners):
+
+    python benchmarks/bench_ehl_mixed.py --model deterministic --sample random --n 200 --seed 1 --level fast \\
+        --time-limit-s 600 --resume --out benchmarks/results/ehl_mixed_random200_fast_deterministic.json
+    python benchmarks/bench_ehl_mixed.py --model auto --sample random --n 54 --seed 1 --level fast \\
+        --time-limit-s 600 --out benchmarks/results/ehl_mixed_random54_fast_transient.json
+    python benchmarks/bench_ehl_mixed.py --model homogenised --closure film_law --effects isothermal \\
+        --sample random --n 54 --seed 1 --level fast \\
+        --out benchmarks/results/ehl_mixed_random54_fast_homogenised_film_law_isothermal.json
+    python benchmarks/bench_ehl_mixed.py --model smooth --sample random --n 54 --seed 1 --level fast \\
+        --out benchmarks/results/ehl_mixed_random54_fast_smooth.json
+    (the same with --sample corners: ehl_mixed_corners_fast_deterministic.json, ehl_mixed_corners_fast.json (the
+    transient solver, effects=full), ehl_mixed_corners_fast_homogenised_film_law_isothermal.json,
+    ehl_mixed_corners_fast_smooth.json)
+
+Every model here is isothermal (the deterministic and transient solvers have no thermal model; the film law runs
+with ``--effects isothermal``, the smooth solve of ``--model smooth`` is isothermal). Points with SR = 0 (μ ≈ 0) and
+points either side did not converge are left out. The deterministic model at ``fast`` is not the grid-converged
+reference (docs/accuracy_mixed.md: within 4.6 % in median of it, +27 % on case G): the differences are between models.
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+from pathlib import Path
+
+import numpy as np
+
+from ehl_dataset.model.contact import ContactCase
+from ehl_dataset.model.roughness import baseline_profile
+from ehl_dataset.solver import SOLVER_VERSION
+from ehl_dataset.solvers.wide_contact import WIDE_A_OVER_BETA
+
+ROOT = Path(__file__).resolve().parents[1]
+RESULTS = ROOT / "benchmarks" / "results"
+DOC = ROOT / "docs" / "narrow_contacts.md"
+FIGURE = ROOT / "docs" / "figures" / "narrow_contacts.png"
+SAMPLES = {
+    "random": ("ehl_mixed_random200_fast_deterministic.json", {
+        "transient": "ehl_mixed_random54_fast_transient.json",
+        "film law": "ehl_mixed_random54_fast_homogenised_film_law_isothermal.json",
+        "smooth": "ehl_mixed_random54_fast_smooth.json"}),
+    "corners": ("ehl_mixed_corners_fast_deterministic.json", {
+        "transient": "ehl_mixed_corners_fast.json",
+        "film law": "ehl_mixed_corners_fast_homogenised_film_law_isothermal.json",
+        "smooth": "ehl_mixed_corners_fast_smooth.json"}),
+}
+COMMAND = "python benchmarks/narrow_contact_models.py"
+
+
+def _rows(name: str) -> tuple[dict, dict]:
+    data = json.loads((RESULTS / name).read_text())
+    return data, {tuple(r["case"]): r for r in data["rows"]}
+
+
+def compare() -> list[dict]:
+    """One record per (sample, model, point) where the model and the deterministic model both converged, SR > 0."""
+    beta = baseline_profile().correlation_length
+    out = []
+    for sample, (reference_name, models) in SAMPLES.items():
+        _, reference = _rows(reference_name)
+        for model, name in models.items():
+            data, rows = _rows(name)
+            for key, row in rows.items():
+                ref = reference.get(key)
+                if ref is None or not (row.get("converged") and ref.get("converged")) or key[3] == 0:
+                    continue
+                case = ContactCase.from_engineering(*key)
+                out.append({"sample": sample, "model": model, "case": key, "lambda_bar": ref["lambda_bar"],
+                            "a_over_beta": case.half_width / beta, "error": row["mu"] / ref["mu"] - 1.0,
+                            "time_s": row.get("wall_time_s", np.nan), "reference_time_s": ref.get("wall_time_s"),
+                            "version": data["solver_version"]})
+    return out
+
+
+def deterministic_versions() -> str:
+    return ", ".join(f"{sample} {_rows(name)[0]['solver_version'].split()[0]}"
+                     for sample, (name, _) in SAMPLES.items())
+
+
+def _group_stats(errors: list[float], times: list[float]) -> str:
+    e = np.asarray(errors)
+    a = np.abs(e)
+    return (f"{e.size} | {100 * np.median(e):+.1f} % | {100 * np.median(a):.1f} % | {100 * np.percentile(a, 90):.1f} % | "
+            f"{100 * a.max():.0f} % | {np.median(times):.2g}")
+
+
+def markdown(records: list[dict]) -> str:
+    versions = sorted({(r["model"], r["sample"], r["version"].split()[0]) for r in records})
+    lines = ["# Rough contacts: which cheap model, narrow and wide", "",
+             f"*Made by `{COMMAND}` from the JSON runs named in its docstring (EHL solver versions of the runs: "
+             + ", ".join(f"{m} {s} {v}" for m, s, v in versions)
+             + f"; deterministic: {deterministic_versions()}; this page written under EHL solver "
+             f"{SOLVER_VERSION}).*", "",
+             "μ of three cheap models against the deterministic model at `fast` on the same points: the first 54 "
+             "random factorial points (seed 1) and the 64 corners of the paper's factorial, ATF, all isothermal, "
+             "points with SR > 0 that both converged. error = μ_model/μ_deterministic − 1. Narrow: a/β < "
+             f"{WIDE_A_OVER_BETA:g} (the homogenisation limit of the planner, docs/planner.md). The deterministic "
+             "model at `fast` is itself a median 4.6 % (at most 27 %, case G) off its grid-converged reference "
+             "(docs/accuracy_mixed.md), so these are differences between models, not errors against the exact "
+             "answer. Time: the model's median wall time per point [s] (the deterministic model's: "
+             f"{np.median([r['reference_time_s'] for r in records if r['model'] == 'film law']):.0f} s).", "",
+             "| contact | λ̄ | model | points | median error | median abs | 90th pct abs | max abs | median time [s] |",
+             "|---|---|---|---|---|---|---|---|---|"]
+    for narrow in (True, False):
+        for low in (True, False):
+            for model in ("transient", "film law", "smooth"):
+                sel = [r for r in records if r["model"] == model and (r["a_over_beta"] < WIDE_A_OVER_BETA) == narrow
+                       and (r["lambda_bar"] <= 1.0) == low]
+                if not sel:
+                    continue
+                lines.append(f"| {'narrow' if narrow else 'wide'} | {'≤ 1' if low else '> 1'} | {model} | "
+                             + _group_stats([r["error"] for r in sel], [r["time_s"] for r in sel]) + " |")
+    lines += ["", "![error of each model against the deterministic model](figures/narrow_contacts.png)", "",
+              f"*Made by `{COMMAND}` (EHL solver {SOLVER_VERSION}).*", "",
+              "## What the planner does with it", "",
+              "- The transient mixed solver is a median 80–106 % high below λ̄ = 1, narrow and wide: it puts about a "
+              "third of the load on asperities where the deterministic model, with its physical film-breakdown "
+              "thickness, has almost none (docs/transient_vs_deterministic_random.md). It is no longer a production "
+              "model: since ehl-2026.11-11, `model=\"auto\"` runs it only when the effects are forced "
+              "(`effects=\"full\"`).",
+              "- Wide contacts: the film law is within a few per cent in median (its validated range, "
+              "docs/homogenised_model.md).",
+              "- Narrow contacts above λ̄ = 1: the film law is within 6 %.",
+              "- **Narrow contacts below λ̄ = 1: no cheap model is within the `fast` (5 %) or `standard` (2 %) "
+              "tolerance.** The film law is low (it has no micro-EHL pressure, which raises the viscosity in the "
+              "thin gaps of a narrow contact), the smooth solve is closer in median by cancellation but no closer in "
+              "the tail, and the transient solver is high by more than either. The planner sends them to the film "
+              "law at `fast` and `standard` and records in the result's `model` decision that the contact is "
+              "outside the model's validated range; the deterministic model (`--level reference` or "
+              "`--model deterministic`, about a minute per point at its `fast` grid) is the accurate option.",
+              "", "## Per point", "",
+              "| sample | p_h [GPa] | r_eq [mm] | u_r [m/s] | SR | T [°C] | Rq1/Rq2 [µm] | λ̄ | a/β | transient | film law "
+              "| smooth |", "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    by_point: dict = {}
+    for r in records:
+        by_point.setdefault((r["sample"], r["case"]), {})[r["model"]] = r
+    for (sample, key), models in sorted(by_point.items(), key=lambda kv: (kv[0][0], next(iter(kv[1].values()))
+                                                                           ["lambda_bar"])):
+        first = next(iter(models.values()))
+        cells = [f"{100 * models[m]['error']:+.1f} %" if m in models else "n/a"
+                 for m in ("transient", "film law", "smooth")]
+        lines.append(f"| {sample} | {key[0]:g} | {key[1]:g} | {key[2]:g} | {key[3]:g} | {key[4]:g} | "
+                     f"{key[5]:g}/{key[6]:g} | {first['lambda_bar']:.3g} | {first['a_over_beta']:.3g} | "
+                     + " | ".join(cells) + " |")
+    return "\n".join(lines) + "\n"
+
+
+def plot(records: list[dict], path: Path) -> None:
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4.2), sharey=True)
+    styles = {"transient": ("tab:red", "o"), "film law": ("tab:blue", "s"), "smooth": ("tab:gray", "^")}
+    for ax, narrow in zip(axes, (True, False)):
+        for model, (colour, marker) in styles.items():
+            sel = [r for r in records if r["model"] == model and (r["a_over_beta"] < WIDE_A_OVER_BETA) == narrow]
+            ax.scatter([r["lambda_bar"] for r in sel], [100 * r["error"] for r in sel], c=colour, marker=marker,
+                       s=22, alpha=0.75, label=f"{model} ({len(sel)})")
+        ax.axhline(0.0, color="k", lw=0.8)
+        ax.axvline(1.0, color="k", lw=0.6, ls=":")
+        ax.set_xscale("log")
+        ax.set_yscale("symlog", linthresh=10.0)
+        ax.set_xlabel("λ̄ (Dowson–Higginson film over composite Rq)")
+        ax.set_title(f"{'narrow' if narrow else 'wide'} contacts (a/β {'<' if narrow else '≥'} {WIDE_A_OVER_BETA:g})")
+        ax.legend(fontsize=8)
+        ax.grid(alpha=0.3)
+    axes[0].set_ylabel("μ_model / μ_deterministic-fast − 1 [%]")
+    fig.suptitle("Cheap rough-contact models against the deterministic model (fast, isothermal, SR > 0)", fontsize=10)
+    fig.tight_layout()
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def main() -> int:
+    records = compare()
+    DOC.write_text(markdown(records), encoding="utf-8")
+    plot(records, FIGURE)
+    print(f"wrote {DOC} and {FIGURE} ({len(records)} comparisons)")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
