@@ -4,7 +4,7 @@
 factorial (the long run; ``--scheduler ADDRESS`` sends the points to a Dask cluster), ``smoke`` the 96-point
 ``smoke`` factorial with smooth-surface solves (every stage in seconds; its fit is not a friction model). Each run
 writes ``DIR/dataset.h5`` and ``DIR/<lubricant>_<factorial>.json`` (+ ``.summary.txt``), DIR named after the
-factorial, level and model (``gearloss_quick_fast``; ``--out-dir`` chooses another), and prints Design D's P [kW], η,
+factorial, level, model and effects (``gearloss_quick_fast_isothermal``; ``--out-dir`` chooses another), and prints Design D's P [kW], η,
 TE, σ_c, σ_b at the study's operating point and the time of each stage. Running the same command again resumes an
 interrupted run. See :mod:`workflows.pipeline` and docs/pipeline.md.
 """
@@ -18,7 +18,7 @@ from .cli_help import EFFECTS_CHOICES, EFFECTS_HELP, model_help
 from .cli_output import emit
 
 COMMANDS = (
-    ("quick", "quick", "quick factorial (324 points, fast level): the main job, about 1-2 min with 2 workers"),
+    ("quick", "quick", "quick factorial (324 points, fast level): the main job, under a minute with 2 workers"),
     ("paper", "paper2009", "the paper's 42,000-point factorial (standard level): the long run (many CPU-hours; "
                            "Dask for clusters)"),
     ("smoke", "smoke", "smoke factorial (96 points, smooth-surface solves): every stage end to end in seconds, to "
@@ -29,8 +29,10 @@ EPILOG = """\
 resuming: a run stopped by Ctrl-C (exit 130), SIGTERM (exit 143) or a crash keeps every finished point in
 DIR/dataset.h5; the same command again continues it (only points not yet ok are computed). Runs of another
 factorial, level or model go to their own directory; --overwrite starts a run afresh.
-accuracy: the fast level runs rough (λ̄ ≤ 1) friction a median 36 % above the standard level
-(docs/accuracy_random_levels.md); gearloss contact solve defaults to standard."""
+accuracy: at fast and standard every rough contact is solved by the steady film-law model (the two levels agree
+within 0.1 % in median, docs/accuracy_random_levels.md); on narrow contacts below λ̄ 1 it is a median 19 % below
+the deterministic model, which --level reference runs (docs/narrow_contacts.md); gearloss contact solve defaults to
+standard."""
 
 
 def register(subparsers) -> None:
@@ -42,9 +44,10 @@ def register(subparsers) -> None:
         p = sub.add_parser(name, help=help_text, description=help_text, epilog=EPILOG)
         p.add_argument("--out-dir", default=None, metavar="DIR",
                        help="directory for dataset.h5 and the coefficient file (default: gearloss_<factorial>_"
-                            "<level>[_<model>], e.g. " + ("gearloss_smoke_fast_smooth" if name == "smoke" else
-                                                          f"gearloss_{default}_" + ("fast" if name == "quick"
-                                                                                    else "standard")) + ")")
+                            "<level>[_<model>][_<effects>], e.g. " + ("gearloss_smoke_fast_smooth" if name == "smoke"
+                                                                    else f"gearloss_{default}_" + (
+                                                                        "fast" if name == "quick" else "standard")
+                                                                    + "_isothermal") + ")")
         p.add_argument("--overwrite", action="store_true",
                        help="start afresh: replace the dataset and coefficient file in the output directory "
                             "instead of resuming them")
@@ -52,11 +55,12 @@ def register(subparsers) -> None:
         p.add_argument("--factorial", default=default, help="factorial name or TOML file")
         p.add_argument("--level", default=None,
                        help="EHL accuracy level of stage 1 (default: the factorial's: fast for quick and smoke, "
-                            "standard for paper); fast runs rough μ a median 36 %% above standard")
+                            "standard for paper)")
         p.add_argument("--model", default=None, help=model_help("default: the factorial's (smooth for smoke, auto "
                                                                 "otherwise)"))
         p.add_argument("--effects", choices=EFFECTS_CHOICES, default=None,
-                       help=EFFECTS_HELP + "; default: the factorial's (auto)")
+                       help=EFFECTS_HELP + "; default: the factorial's (isothermal for quick and paper, the "
+                                              "paper's model; auto for smoke)")
         p.add_argument("--design", default="D",
                        help="published design of the study to evaluate (A, B, C, D) or a design TOML file")
         p.add_argument("--progress", choices=("auto", "bar", "log", "none"), default="auto",

@@ -72,7 +72,7 @@ def test_main_job_smoke_and_main_job_again_in_any_order_without_collisions(tmp_p
     assert code == 130, err
     resume_line = [line for line in err.splitlines() if "interrupted by SIGINT" in line]
     assert resume_line and resume_line[-1].endswith("resume with: gearloss " + " ".join(MAIN_JOB)), err
-    quick = tmp_path / "gearloss_quick_fast" / "dataset.h5"
+    quick = tmp_path / "gearloss_quick_fast_isothermal" / "dataset.h5"
     assert read_metadata(quick)["factorial"]["name"] == "quick"
     done = read_metadata(quick)["counts"]["ok"]
     assert done >= 1
@@ -89,7 +89,7 @@ def test_main_job_smoke_and_main_job_again_in_any_order_without_collisions(tmp_p
     assert f"resuming: {done} of 324 points done" in err
     assert "interrupted by SIGTERM; finished work is kept, resume with: gearloss pipeline quick" in err
     assert read_metadata(quick)["counts"]["ok"] >= done
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["gearloss_quick_fast", "gearloss_smoke_fast_smooth"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["gearloss_quick_fast_isothermal", "gearloss_smoke_fast_smooth"]
 
 
 def _handles_sigterm(pid: int, timeout: float = 60.0) -> None:
