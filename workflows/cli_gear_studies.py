@@ -5,7 +5,7 @@
 TE p-p, σ_c, σ_b per design into a CSV (``--out``), then searches for designs like D (P < 0.3 kW, σ_b < 235 MPa,
 σ_c < 1.175 GPa, TE < 0.25 µm). ``--limit N`` / ``--stride K`` / ``--fix NAME=VALUE`` choose subsets.
 ``modifications`` evaluates one design over M_P × M_L × torque (paper Fig. 6). Friction: ``--friction
-COEFFS.json|xu2007|benedict_kelley|iso14179|constant:MU`` (default ``atf_quick``, the shipped fitted coefficients;
+COEFFS.json|xu2007|benedict_kelley|iso14179|constant:MU`` (default ``atf``, the shipped fit of the paper factorial;
 published formulas with the study's lubricant). ``gearloss report sweep|modifications`` draws the figures.
 See :mod:`efficiency.studies` and docs/studies.md.
 """
@@ -25,9 +25,9 @@ FIXABLE = {"teeth": "teeth", "n": "teeth", "pressure_angle_deg": "normal_pressur
 
 def _common(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--study", default="paper2009", help="study NAME or TOML file (default paper2009)")
-    parser.add_argument("--friction", default="atf_quick",
+    parser.add_argument("--friction", default="atf",
                         help="COEFFS.json (or shipped name) | xu2007 | benedict_kelley | iso14179 | constant:MU "
-                             "(default atf_quick, the shipped fitted coefficients; published formulas are evaluated "
+                             "(default atf, the shipped fit of the paper factorial; published formulas are evaluated "
                              "with the study's lubricant)")
     parser.add_argument("--positions", type=int, default=24, help="mesh positions per cycle (default 24)")
     parser.add_argument("--slices", type=int, default=30, help="slices across the face (default 30)")

@@ -1,7 +1,7 @@
 """``gearloss report efficiency-map|mesh-cycle|sweep|modifications``: the figures of a design and of the paper's
 studies as PNG files (matplotlib), each with the command that made it and the solver version written under it.
 
-The friction model is the project's fitted coefficient file (``--friction``, default the shipped ``atf_quick``);
+The friction model is the project's fitted coefficient file (``--friction``, default the shipped ``atf``, the fit of the paper factorial);
 ``--compare`` adds published formulas (default ``xu2007``) drawn alongside. The operating conditions default to the
 study's (data/studies/paper2009.toml: 250 N·m, 4000 rpm, ATF 90 °C, Rq 0.4 µm, M_P 15 µm, M_L 12 µm). See
 :mod:`workflows.report` and docs/report.md.
@@ -78,7 +78,7 @@ def _conditions(parser) -> None:
 
 def _common(parser, out: str | None) -> None:
     parser.add_argument("--study", default="paper2009", help="study NAME or TOML file")
-    parser.add_argument("--friction", default="atf_quick",
+    parser.add_argument("--friction", default="atf",
                         help="friction model of the figure: a coefficient file (shipped name or path) or any "
                              "--friction MODEL of gear evaluate")
     parser.add_argument("--compare", nargs="*", default=["xu2007"], metavar="MODEL",

@@ -232,7 +232,7 @@ def test_12_mesh_cycle_loss_along_the_line_of_action_adds_up_to_the_mean_power_l
     assert main(["report", "mesh-cycle", "--out", str(out), "--json"]) == 0
     p = json.loads(capsys.readouterr().out)
     widths = [b - a for a, b in zip(p["roll_bin_edges_m"][:-1], p["roll_bin_edges_m"][1:])]
-    assert set(p["models"]) == {"atf_quick", "xu2007"}
+    assert set(p["models"]) == {"atf", "xu2007"}
     for model in p["models"].values():
         total = sum(q * w for q, w in zip(model["loss_per_length_w_per_m"], widths))
         assert total == pytest.approx(model["power_loss_w"], rel=1e-9)
@@ -240,7 +240,7 @@ def test_12_mesh_cycle_loss_along_the_line_of_action_adds_up_to_the_mean_power_l
             model["power_loss_w"], rel=1e-12)
     info = Image.open(out).info
     assert info["Description"] == f"gearloss report mesh-cycle --out {out} --json"
-    assert SOLVER_VERSION in info["Software"] and "atf_quick fitted on quick data" in info["Comment"]
+    assert SOLVER_VERSION in info["Software"] and "atf fitted on paper2009 data" in info["Comment"]
 
 
 def test_12_efficiency_map_is_eta_of_gear_evaluate_and_hatches_cells_outside_validity(tmp_path, capsys):
@@ -249,7 +249,7 @@ def test_12_efficiency_map_is_eta_of_gear_evaluate_and_hatches_cells_outside_val
                  "--json"]) == 0
     p = json.loads(capsys.readouterr().out)
     assert out.is_file()
-    assert main(["gear", "evaluate", *DESIGN_D, *STUDY_MODS, "--friction", "atf_quick", "--positions", "24",
+    assert main(["gear", "evaluate", *DESIGN_D, *STUDY_MODS, "--friction", "atf", "--positions", "24",
                  "--json"]) == 0
     direct = json.loads(capsys.readouterr().out)
     assert p["efficiency"][1][0] == pytest.approx(direct["efficiency"], rel=1e-12)
@@ -279,7 +279,7 @@ def test_12_every_docs_figure_says_under_it_the_command_and_the_solver_version_a
             assert info.get("Description") == command, (page, image)
             assert info["Software"].split("EHL solver ")[1] in caption
     studies = [c for p, i, c in captions if "sweep" in i or "modifications" in i]
-    assert studies and all("--friction atf_quick" in c or "gearloss report" in c for c in studies)
+    assert studies and all("--friction atf" in c or "gearloss report" in c for c in studies)
 
 
 def test_12_the_accuracy_report_figure_is_not_older_than_the_solver_or_says_so():
