@@ -94,7 +94,9 @@ class DeterministicOptions:
     ``band`` half-width of the banded inverse kernel in the
     preconditioner; ``newton_tolerance`` max scaled residual (mass rows relative to the central Couette flux,
     complementarity rows in p_h) of every step; ``max_substeps`` largest split of a time step whose Newton solve
-    failed; ``clock`` the wall clock (time.perf_counter).
+    failed (128 since 2026-11-24, 32 before: validation case C at β/16 needs more than 32 at one step and converges
+    with 128; the cap is reached only by a step that fails every smaller split, so converged results do not
+    change); ``clock`` the wall clock (time.perf_counter).
 
     ``wide`` how :func:`ehl_dataset.solvers.wide_contact.solve_deterministic_contact` (the entry point of
     ``solve_contact(model="deterministic")``) covers a contact (:data:`WIDE_ROUTES`): ``"resolve"`` solves the whole
@@ -122,7 +124,7 @@ class DeterministicOptions:
     band: int = 12
     newton_tolerance: float = 1e-10
     newton_iterations: int = 50
-    max_substeps: int = 32
+    max_substeps: int = 128
     max_nodes: int = 20000
     wide: str = "auto"
     wide_windows: int = 5
