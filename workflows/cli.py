@@ -139,19 +139,15 @@ def main(argv: list[str] | None = None) -> int:
         return fail(exit_codes.STAGE_FAILED, f"solver error: {err}", as_json)
     except exit_codes.Interrupted as err:
         return fail(err.exit_code, str(err), as_json, resume_command=err.resume_command)
-    except KeyboardInterrupt:
-        return fail(exit_codes.SIGINT, f"interrupted by SIGINT: {args.command_line} stopped", as_json)
-    except _Terminated:
-        return fail(exit_codes.SIGTERM, f"terminated by SIGTERM: {args.command_line} stopped", as_json)
-    except SystemError as err:
+    except (KeyboardInterrupt, _Terminated, SystemError) as err:
         # a signal handler's exception raised while compiled (numba) code ran comes back as the cause of a
         # SystemError ("returned a result with an exception set")
-        signal_error = _signal_behind(err)
-        if isinstance(signal_error, KeyboardInterrupt):
+        interrupt = _signal_behind(err)
+        if interrupt is None:
+            raise
+        if isinstance(interrupt, KeyboardInterrupt):
             return fail(exit_codes.SIGINT, f"interrupted by SIGINT: {args.command_line} stopped", as_json)
-        if isinstance(signal_error, _Terminated):
-            return fail(exit_codes.SIGTERM, f"terminated by SIGTERM: {args.command_line} stopped", as_json)
-        raise
+        return fail(exit_codes.SIGTERM, f"terminated by SIGTERM: {args.command_line} stopped", as_json)
     except FileNotFoundError as err:
         return fail(exit_codes.BAD_INPUT, f"file not found: {err.filename or err}", as_json, value=err.filename)
     except (IsADirectoryError, NotADirectoryError, PermissionError) as err:

@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import argparse
 
-from .cli_help import EFFECTS_CHOICES, EFFECTS_HELP, model_help
+from .cli_help import ACCURACY_EPILOG, EFFECTS_CHOICES, EFFECTS_HELP, model_help
 from .cli_output import emit
 
 SHOW_TEMPERATURES_C = (40.0, 100.0)
@@ -20,9 +20,7 @@ resuming: a run stopped by Ctrl-C (exit 130), SIGTERM (exit 143) or a crash keep
 DIR/dataset.h5; the same command again continues it. A changed lubricant file (any field, [sources] included) is a
 different lubricant: the run is refused, use another --out-dir or --overwrite.
 using the result: gearloss gear evaluate --friction DIR/<lubricant>_<factorial>.json ...
-accuracy: at fast and standard every rough contact is solved by the steady film-law model (the two levels agree
-within 0.1 % in median, docs/accuracy_random_levels.md); on narrow contacts below λ̄ 1 it is a median 19 % below
-the deterministic model, which --level reference runs (docs/narrow_contacts.md)."""
+""" + ACCURACY_EPILOG + "."
 
 
 def register(subparsers) -> None:

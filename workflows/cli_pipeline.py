@@ -14,7 +14,7 @@ from __future__ import annotations
 import argparse
 import sys
 
-from .cli_help import EFFECTS_CHOICES, EFFECTS_HELP, model_help
+from .cli_help import ACCURACY_EPILOG, EFFECTS_CHOICES, EFFECTS_HELP, model_help
 from .cli_output import emit
 
 COMMANDS = (
@@ -29,10 +29,7 @@ EPILOG = """\
 resuming: a run stopped by Ctrl-C (exit 130), SIGTERM (exit 143) or a crash keeps every finished point in
 DIR/dataset.h5; the same command again continues it (only points not yet ok are computed). Runs of another
 factorial, level or model go to their own directory; --overwrite starts a run afresh.
-accuracy: at fast and standard every rough contact is solved by the steady film-law model (the two levels agree
-within 0.1 % in median, docs/accuracy_random_levels.md); on narrow contacts below λ̄ 1 it is a median 19 % below
-the deterministic model, which --level reference runs (docs/narrow_contacts.md); gearloss contact solve defaults to
-standard."""
+""" + ACCURACY_EPILOG + "; gearloss contact solve defaults to standard."
 
 
 def register(subparsers) -> None:
