@@ -4,17 +4,18 @@ and at λ̄ = 1. Writes docs/narrow_contacts.md and its figure from the JSON of 
 
     python benchmarks/narrow_contact_models.py
 
-The runs it reads (all at ``fast``, ATF, 600 s limit per case, first 54 random points of seed 1 and the 64 corners):
+The runs it reads (all at ``fast``, ATF, 600 s limit per case, random points of seed 1 and the 64 corners; the
+deterministic run is resumed as time allows, the transient run has the first 54 random points):
 
     python benchmarks/bench_ehl_mixed.py --model deterministic --sample random --n 200 --seed 1 --level fast \\
         --time-limit-s 600 --resume --out benchmarks/results/ehl_mixed_random200_fast_deterministic.json
     python benchmarks/bench_ehl_mixed.py --model auto --sample random --n 54 --seed 1 --level fast \\
         --time-limit-s 600 --out benchmarks/results/ehl_mixed_random54_fast_transient.json
     python benchmarks/bench_ehl_mixed.py --model homogenised --closure film_law --effects isothermal \\
-        --sample random --n 54 --seed 1 --level fast \\
-        --out benchmarks/results/ehl_mixed_random54_fast_homogenised_film_law_isothermal.json
-    python benchmarks/bench_ehl_mixed.py --model smooth --sample random --n 54 --seed 1 --level fast \\
-        --out benchmarks/results/ehl_mixed_random54_fast_smooth.json
+        --sample random --n 200 --seed 1 --level fast \\
+        --out benchmarks/results/ehl_mixed_random200_fast_homogenised_film_law_isothermal.json
+    python benchmarks/bench_ehl_mixed.py --model smooth --sample random --n 200 --seed 1 --level fast \\
+        --out benchmarks/results/ehl_mixed_random200_fast_smooth.json
     (the same with --sample corners: ehl_mixed_corners_fast_deterministic.json, ehl_mixed_corners_fast.json (the
     transient solver, effects=full), ehl_mixed_corners_fast_homogenised_film_law_isothermal.json,
     ehl_mixed_corners_fast_smooth.json)
@@ -34,8 +35,10 @@ from pathlib import Path
 import numpy as np
 
 from ehl_dataset.model.contact import ContactCase
+from ehl_dataset.model.lubricant import load_lubricant
 from ehl_dataset.model.roughness import baseline_profile
 from ehl_dataset.solver import SOLVER_VERSION
+from ehl_dataset.solvers.planner import NARROW_FILM_LAW_EYRING, dimensionless_numbers
 from ehl_dataset.solvers.wide_contact import WIDE_A_OVER_BETA
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -45,8 +48,8 @@ FIGURE = ROOT / "docs" / "figures" / "narrow_contacts.png"
 SAMPLES = {
     "random": ("ehl_mixed_random200_fast_deterministic.json", {
         "transient": "ehl_mixed_random54_fast_transient.json",
-        "film law": "ehl_mixed_random54_fast_homogenised_film_law_isothermal.json",
-        "smooth": "ehl_mixed_random54_fast_smooth.json"}),
+        "film law": "ehl_mixed_random200_fast_homogenised_film_law_isothermal.json",
+        "smooth": "ehl_mixed_random200_fast_smooth.json"}),
     "corners": ("ehl_mixed_corners_fast_deterministic.json", {
         "transient": "ehl_mixed_corners_fast.json",
         "film law": "ehl_mixed_corners_fast_homogenised_film_law_isothermal.json",
@@ -63,6 +66,7 @@ def _rows(name: str) -> tuple[dict, dict]:
 def compare() -> list[dict]:
     """One record per (sample, model, point) where the model and the deterministic model both converged, SR > 0."""
     beta = baseline_profile().correlation_length
+    atf = load_lubricant("atf")
     out = []
     for sample, (reference_name, models) in SAMPLES.items():
         _, reference = _rows(reference_name)
@@ -74,6 +78,7 @@ def compare() -> list[dict]:
                     continue
                 case = ContactCase.from_engineering(*key)
                 out.append({"sample": sample, "model": model, "case": key, "lambda_bar": ref["lambda_bar"],
+                            "eyring_number": dimensionless_numbers(case, atf)["eyring_number"],
                             "a_over_beta": case.half_width / beta, "error": row["mu"] / ref["mu"] - 1.0,
                             "time_s": row.get("wall_time_s", np.nan), "reference_time_s": ref.get("wall_time_s"),
                             "version": data["solver_version"]})
@@ -92,15 +97,64 @@ def _group_stats(errors: list[float], times: list[float]) -> str:
             f"{100 * a.max():.0f} % | {np.median(times):.2g}")
 
 
+def reference_cases() -> list[dict]:
+    """The film law's signed error on the grid-converged reference cases (docs/accuracy_mixed.json against
+    data/reference/deterministic_validation.json's extrapolated μ), with their λ̄, a/β and X_h."""
+    atf = load_lubricant("atf")
+    beta = baseline_profile().correlation_length
+    reference = {r["case"]: r for r in json.loads((ROOT / "data" / "reference" /
+                                                   "deterministic_validation.json").read_text())["cases"]}
+    out = []
+    for run in json.loads((ROOT / "docs" / "accuracy_mixed.json").read_text())["runs"]:
+        if run["model"] != "homogenised-film_law-standard" or run["case"] not in reference:
+            continue
+        ref = reference[run["case"]]
+        case = ContactCase.from_engineering(*(ref["inputs"][k] for k in ("p_h_gpa", "r_eq_mm", "u_r_m_s", "sr",
+                                                                        "temp_c", "rq1_um", "rq2_um")))
+        numbers = dimensionless_numbers(case, atf)
+        out.append({"case": run["case"], "lambda_bar": numbers["lambda_bar"], "a_over_beta": case.half_width / beta,
+                    "eyring_number": numbers["eyring_number"], "error": run["mu"] / ref["mu_extrapolated"] - 1.0,
+                    "share": ref["asperity_load_share_extrapolated"]})
+    return sorted(out, key=lambda r: r["eyring_number"])
+
+
+def _fluctuation_table() -> list[str]:
+    """The micro-EHL fluctuation measurements (benchmarks/micro_ehl_fluctuations.py) as a Markdown table."""
+    rows = json.loads((RESULTS / "micro_ehl_fluctuations.json").read_text())["rows"]
+    lines = ["| run | X_h | std of p_f / p_h | μ_Couette, local p_f and h | mean p_f and h | mean p_f, local h | "
+             "local p_f, mean h |", "|---|---|---|---|---|---|---|"]
+    for r in rows:
+        lines.append(f"| {r['run']} ({r['model_version']}) | {r['eyring_number']:.3g} | "
+                     f"{r['pressure_std_over_p_h']:.2f} | {r['couette_mu_local']:.4f} | "
+                     f"{r['couette_mu_mean_pressure_mean_film']:.4f} | {r['couette_mu_mean_pressure_local_film']:.4f} | "
+                     f"{r['couette_mu_local_pressure_mean_film']:.4f} |")
+    return lines
+
+
+def _film_law_split(records: list[dict]) -> list[str]:
+    """Film law on narrow contacts below λ̄ 1, split at the planner's X_h limit."""
+    lines = ["| narrow, λ̄ ≤ 1 | points | median error | median abs | 90th pct abs | max abs |", "|---|---|---|---|---|---|"]
+    for label, saturated in ((f"X_h < {NARROW_FILM_LAW_EYRING:g}", False), (f"X_h ≥ {NARROW_FILM_LAW_EYRING:g}", True)):
+        sel = [r["error"] for r in records if r["model"] == "film law" and r["a_over_beta"] < WIDE_A_OVER_BETA
+               and r["lambda_bar"] <= 1.0 and (r["eyring_number"] >= NARROW_FILM_LAW_EYRING) == saturated]
+        if sel:
+            e = np.asarray(sel)
+            lines.append(f"| {label} | {e.size} | {100 * np.median(e):+.1f} % | {100 * np.median(np.abs(e)):.1f} % | "
+                         f"{100 * np.percentile(np.abs(e), 90):.1f} % | {100 * np.abs(e).max():.0f} % |")
+    return lines
+
+
 def markdown(records: list[dict]) -> str:
+    n_random = len({r["case"] for r in records if r["sample"] == "random"})
     versions = sorted({(r["model"], r["sample"], r["version"].split()[0]) for r in records})
     lines = ["# Rough contacts: which cheap model, narrow and wide", "",
              f"*Made by `{COMMAND}` from the JSON runs named in its docstring (EHL solver versions of the runs: "
              + ", ".join(f"{m} {s} {v}" for m, s, v in versions)
              + f"; deterministic: {deterministic_versions()}; this page written under EHL solver "
              f"{SOLVER_VERSION}).*", "",
-             "μ of three cheap models against the deterministic model at `fast` on the same points: the first 54 "
-             "random factorial points (seed 1) and the 64 corners of the paper's factorial, ATF, all isothermal, "
+             "μ of three cheap models against the deterministic model at `fast` on the same points: random "
+             f"factorial points (seed 1; {n_random} with a deterministic result, the transient solver on the first "
+             "54 of them) and the 64 corners of the paper's factorial, ATF, all isothermal, "
              "points with SR > 0 that both converged. error = μ_model/μ_deterministic − 1. Narrow: a/β < "
              f"{WIDE_A_OVER_BETA:g} (the homogenisation limit of the planner, docs/planner.md). The deterministic "
              "model at `fast` is itself a median 4.6 % (at most 27 %, case G) off its grid-converged reference "
@@ -129,16 +183,35 @@ def markdown(records: list[dict]) -> str:
               "- Wide contacts: the film law is within a few per cent in median (its validated range, "
               "docs/homogenised_model.md).",
               "- Narrow contacts above λ̄ = 1: the film law is within 6 %.",
-              "- **Narrow contacts below λ̄ = 1: no cheap model is within the `fast` (5 %) or `standard` (2 %) "
-              "tolerance.** The film law is low (it has no micro-EHL pressure, which raises the viscosity in the "
-              "thin gaps of a narrow contact), the smooth solve is closer in median by cancellation but no closer in "
-              "the tail, and the transient solver is high by more than either. The planner sends them to the film "
-              "law at `fast` and `standard` and records in the result's `model` decision that the contact is "
-              "outside the model's validated range; the deterministic model (`--level reference` or "
-              "`--model deterministic`, about a minute per point at its `fast` grid) is the accurate option.",
+              "- **Narrow contacts below λ̄ = 1: the film law holds where the traction is Eyring-saturated.** "
+              "What decides is the Eyring number at the Hertz pressure, X_h = η(p_h)|u_s|/(τ0 h_min,DH) (its "
+              "τ_m/τ0 = asinh X_h). Deep in the Eyring plateau the shear stress τ0 ln(2X) grows linearly with "
+              "the pressure, so the micro-EHL pressure fluctuations between asperities, which the film law does "
+              "not model, average out; where X_h is small τ still grows almost exponentially with the pressure, "
+              "and the fluctuations raise the mean stress. Measured in the deterministic model's runs (Couette part "
+              "of μ in |x| < 0.8a; `python benchmarks/micro_ehl_fluctuations.py A:16 G:8 I:8`):", "",
+              *_fluctuation_table(), "",
+              "  The film law is:",
+              "", *_film_law_split(records), "",
+              "  and on the grid-converged reference cases (docs/accuracy_mixed.md, `standard`; share: the "
+              "reference's asperity load share):", "",
+              "| case | λ̄ | a/β | X_h | film law error | asperity share |", "|---|---|---|---|---|---|",
+              *[f"| {r['case']} | {r['lambda_bar']:.2f} | {r['a_over_beta']:.1f} | {r['eyring_number']:.3g} | "
+                f"{100 * r['error']:+.1f} % | {r['share']:.3f} |" for r in reference_cases()], "",
+              f"- So since ehl-2026.11-12 the planner keeps the film law for narrow contacts above λ̄ = 1 or at "
+              f"X_h ≥ {NARROW_FILM_LAW_EYRING:g} (`narrow_film_law_lambda`, `narrow_film_law_eyring` of "
+              "`PlannerThresholds`; the limit is the geometric middle of the measured gap between 111 and 194, "
+              "few points bound it) and records them as within its measured range. Only the others go to the "
+              "level's `rough_model`. At `fast` and `standard` that is still the film law, recorded as outside its "
+              "validated range: no cheap model is within those levels' tolerance there (the transient solver is "
+              "high by more than the film law is low). The deterministic model (`--level reference` or "
+              "`--model deterministic`, about a minute per point at its `fast` grid) is the accurate option. "
+              "Sending them to it at `standard` is one line (`rough_model=\"deterministic\"`): in the paper's "
+              "factorial that is the 3,242 narrow points below λ̄ 1 with X_h < 150 (9 % of the 36,000 with "
+              "SR > 0; all 36 of the quick factorial's narrow points below λ̄ 1), about a day on this machine.",
               "", "## Per point", "",
-              "| sample | p_h [GPa] | r_eq [mm] | u_r [m/s] | SR | T [°C] | Rq1/Rq2 [µm] | λ̄ | a/β | transient | film law "
-              "| smooth |", "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+              "| sample | p_h [GPa] | r_eq [mm] | u_r [m/s] | SR | T [°C] | Rq1/Rq2 [µm] | λ̄ | a/β | X_h | transient "
+              "| film law | smooth |", "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     by_point: dict = {}
     for r in records:
         by_point.setdefault((r["sample"], r["case"]), {})[r["model"]] = r
@@ -149,6 +222,7 @@ def markdown(records: list[dict]) -> str:
                  for m in ("transient", "film law", "smooth")]
         lines.append(f"| {sample} | {key[0]:g} | {key[1]:g} | {key[2]:g} | {key[3]:g} | {key[4]:g} | "
                      f"{key[5]:g}/{key[6]:g} | {first['lambda_bar']:.3g} | {first['a_over_beta']:.3g} | "
+                     f"{first['eyring_number']:.3g} | "
                      + " | ".join(cells) + " |")
     return "\n".join(lines) + "\n"
 
@@ -158,7 +232,7 @@ def plot(records: list[dict], path: Path) -> None:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    fig, axes = plt.subplots(1, 2, figsize=(11, 4.2), sharey=True)
+    fig, axes = plt.subplots(1, 3, figsize=(15, 4.4), sharey=True)
     styles = {"transient": ("tab:red", "o"), "film law": ("tab:blue", "s"), "smooth": ("tab:gray", "^")}
     for ax, narrow in zip(axes, (True, False)):
         for model, (colour, marker) in styles.items():
@@ -173,6 +247,27 @@ def plot(records: list[dict], path: Path) -> None:
         ax.set_title(f"{'narrow' if narrow else 'wide'} contacts (a/β {'<' if narrow else '≥'} {WIDE_A_OVER_BETA:g})")
         ax.legend(fontsize=8)
         ax.grid(alpha=0.3)
+    ax = axes[2]
+    for model, (colour, marker) in styles.items():
+        if model == "transient":
+            continue
+        sel = [r for r in records if r["model"] == model and r["a_over_beta"] < WIDE_A_OVER_BETA
+               and r["lambda_bar"] <= 1.0]
+        ax.scatter([r["eyring_number"] for r in sel], [100 * r["error"] for r in sel], c=colour, marker=marker, s=22,
+                   alpha=0.75, label=f"{model} vs deterministic-fast ({len(sel)})")
+    refs = [r for r in reference_cases() if r["lambda_bar"] <= 1.0]
+    ax.scatter([r["eyring_number"] for r in refs], [100 * r["error"] for r in refs], c="tab:blue", marker="*", s=110,
+               edgecolors="k", label="film law vs reference case")
+    for r in refs:
+        ax.annotate(r["case"], (r["eyring_number"], 100 * r["error"]), textcoords="offset points", xytext=(5, 4),
+                    fontsize=8)
+    ax.axhline(0.0, color="k", lw=0.8)
+    ax.axvline(NARROW_FILM_LAW_EYRING, color="k", lw=0.6, ls=":")
+    ax.set_xscale("log")
+    ax.set_xlabel("X_h = η(p_h)|u_s|/(τ0 h_min,DH)")
+    ax.set_title(f"narrow contacts below λ̄ 1: the planner's limit X_h = {NARROW_FILM_LAW_EYRING:g}")
+    ax.legend(fontsize=8)
+    ax.grid(alpha=0.3)
     axes[0].set_ylabel("μ_model / μ_deterministic-fast − 1 [%]")
     fig.suptitle("Cheap rough-contact models against the deterministic model (fast, isothermal, SR > 0)", fontsize=10)
     fig.tight_layout()

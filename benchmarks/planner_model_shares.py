@@ -1,7 +1,8 @@
 """Which contact model the planner picks over a factorial: the share of points solved steady smooth, by the film-law
-homogenised model within its validated range (rough, a/β ≥ 15), by the same model outside it (rough, narrow: the
-level's rough model since ehl-2026.11-11) and by the transient solver (a level whose rough model is transient), at
-the factorial's level.
+homogenised model within its validated range (rough and a/β ≥ 15, or narrow within its measured range: λ̄ > 1 or
+X_h ≥ 150, since ehl-2026.11-12), by the same model outside it (the other narrow rough contacts: the level's rough
+model since ehl-2026.11-11) and by the transient solver (a level whose rough model is transient), at the factorial's
+level.
 
     python benchmarks/planner_model_shares.py                    # quick (all 324) and paper2009 (every 14th point)
 
@@ -28,8 +29,9 @@ def shares(name: str, stride: int) -> dict[str, int]:
     for row in factorial.points()[::stride]:
         plan = plan_effects(ContactCase(*(float(v) for v in row)), lubricant, factorial.level or "standard")
         wide = plan.reasons["numbers"]["a_over_beta"] >= plan.reasons["thresholds"]["a_over_beta_homogenised"]
+        outside = "outside its validated range" in plan.reasons["decisions"]["model"]
         counts["smooth" if not plan.roughness else "transient" if plan.transient else
-               "film_law" if wide else "film_law_narrow"] += 1
+               "film_law" if wide else "film_law_narrow" if outside else "film_law_narrow_within"] += 1
     return dict(counts)
 
 
@@ -38,11 +40,12 @@ def main() -> int:
         counts = shares(name, stride)
         total = sum(counts.values())
         rough = total - counts.get("smooth", 0)
-        narrow = counts.get("film_law_narrow", 0) + counts.get("transient", 0)
+        narrow = counts.get("film_law_narrow", 0) + counts.get("transient", 0)  # outside the film law's range
         print(f"{name} (every {stride}th point, {total} points, level {load_factorial(name).level}): "
               f"smooth {counts.get('smooth', 0)}, film-law (a/beta >= 15) {counts.get('film_law', 0)}, film-law "
+              f"within its measured range (narrow) {counts.get('film_law_narrow_within', 0)}, film-law "
               f"outside its validated range (narrow) {counts.get('film_law_narrow', 0)}, transient "
-              f"{counts.get('transient', 0)} (narrow: {100 * narrow / max(rough, 1):.0f} % of the rough points, "
+              f"{counts.get('transient', 0)} (outside: {100 * narrow / max(rough, 1):.0f} % of the rough points, "
               f"{100 * narrow / total:.0f} % of all)")
     return 0
 

@@ -42,7 +42,7 @@ from .solvers.steady import solve_steady
 from .solvers.transient import TransientOptions, solve_transient
 from .validation import InputError, check_time_limit
 
-SOLVER_VERSION = "ehl-2026.11-11"
+SOLVER_VERSION = "ehl-2026.11-12"
 """Version of the numerics behind :func:`solve_contact`. The dataset store records it and refuses to resume a file
 computed with another version: bump it with every change that can alter a solved value."""
 
@@ -62,7 +62,9 @@ ehl-2026.11-9 makes ``auto`` solve wide rough contacts (a/β ≥ 15 at ``fast`` 
 homogenised model instead of the transient solver; ehl-2026.11-10 makes ``auto`` at ``reference`` solve rough
 contacts by the deterministic solver (the accuracy reference) instead of the transient solver; ehl-2026.11-11 makes
 ``auto`` at ``fast`` and ``standard`` solve narrow rough contacts (a/β < 15) by the film-law homogenised model too,
-instead of the transient solver (docs/narrow_contacts.md)."""
+instead of the transient solver (docs/narrow_contacts.md); ehl-2026.11-12 keeps the film law for narrow contacts
+within its measured range (λ̄ > 1 or X_h ≥ 150) whatever the level's rough model, and its deterministic model
+det-2026.11-10 accepts a Newton solve stalled at the round-off floor instead of splitting the step."""
 
 __all__ = ["solve_contact", "checked_inputs", "SOLVER_VERSION", "MODELS"]
 

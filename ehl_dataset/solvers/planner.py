@@ -12,10 +12,12 @@ threshold says it does not change the result beyond the level's tolerance (the c
   The ``model`` decision says which solver that means: steady smooth; for a rough contact at least
   ``a_over_beta_homogenised`` roughness correlation lengths wide (a/β, β of the roughness profile), the steady
   homogenised model with the film-law closure (the roughness is a homogeneous micro-scale there: measured against the
-  deterministic model in docs/homogenised_model.md, "Film-law closure"), so ``transient`` is off; a narrower rough
-  contact goes to the level's ``rough_model``: the same film-law model at ``fast`` and ``standard``, recorded as
-  outside its validated range (no cheap model is within those levels' tolerance there, and the transient mixed solver
-  is further off than the film law: docs/narrow_contacts.md), the deterministic solver at ``reference``.
+  deterministic model in docs/homogenised_model.md, "Film-law closure"), so ``transient`` is off; so is a narrower
+  rough contact above λ̄ = 1 or with an Eyring-saturated traction (X_h ≥ 150, see below), where the film law is
+  measured within 10 % (docs/narrow_contacts.md); the other narrow rough contacts go to the level's ``rough_model``:
+  the same film-law model at ``fast`` and ``standard``, recorded as outside its validated range (no cheap model is
+  within those levels' tolerance there, and the transient mixed solver is further off than the film law), the
+  deterministic solver at ``reference``.
 * **shear thinning** — inlet Eyring number X_in = η0·|u_s|/(τ0·h_min,DH): sinh(τ_m/τ0) of the Couette shear where
   the film is formed (the inlet, at ambient viscosity). The Eyring flow factor is √(1 + X²), and only the inlet
   flow shapes the film: in the Hertz zone the Poiseuille flow is negligible whatever its factor. The Eyring number
@@ -69,7 +71,11 @@ class PlannerThresholds:
     correction is skipped [-];
     ``a_over_beta_homogenised`` a/β (Hertz half width over the roughness correlation length) at or above which a
     rough contact is solved by the steady film-law homogenised model, within its validated range [-];
-    ``rough_model`` the solver of the other (narrower) rough contacts: ``"homogenised"`` (the same film-law model,
+    ``narrow_film_law_lambda``, ``narrow_film_law_eyring`` a narrower rough contact is still within the film law's
+    measured range above this λ̄ or at or above this Eyring number at the Hertz pressure X_h (an Eyring-saturated
+    traction, τ ≈ τ0 ln(2X) linear in the pressure, which the micro-EHL pressure fluctuations the film law does not
+    model leave unchanged in the mean), and is solved by it [-] (docs/narrow_contacts.md);
+    ``rough_model`` the solver of the other narrow rough contacts: ``"homogenised"`` (the same film-law model,
     recorded as outside its validated range), ``"transient"`` (the transient mixed solver,
     :mod:`ehl_dataset.solvers.transient`, a median +84 % high below λ̄ = 1 on narrow contacts:
     docs/narrow_contacts.md) or
@@ -83,17 +89,27 @@ class PlannerThresholds:
     thermal_change: float = 0.0
     a_over_beta_homogenised: float = math.inf
     rough_model: str = "transient"
+    narrow_film_law_lambda: float = math.inf
+    narrow_film_law_eyring: float = math.inf
 
     def __post_init__(self):
         if self.rough_model not in ROUGH_MODELS:
             raise InputError("rough_model", self.rough_model, f"one of {list(ROUGH_MODELS)}")
 
 
+NARROW_FILM_LAW_EYRING = 150.0
+"""X_h from which the film law holds on narrow contacts below λ̄ 1 (ehl-2026.11-12). Against the deterministic
+model, narrow rough contacts below λ̄ 1: at X_h ≥ 194 the film law is within 10 % on every point (4 factorial points
+at fast; the reference cases I and J, −6.0 % and +6.6 %), at X_h ≤ 111 it is 16–80 % low on 10 of 11 points and on the
+reference cases A, C and G (docs/narrow_contacts.md); 150 is the geometric middle of the gap."""
+
 THRESHOLDS: dict[str, PlannerThresholds] = {
     "fast": PlannerThresholds(lambda_smooth=3.5, eyring_newtonian=0.01, tolerance=0.05, thermal_change=0.04,
-                              a_over_beta_homogenised=WIDE_A_OVER_BETA, rough_model="homogenised"),
+                              a_over_beta_homogenised=WIDE_A_OVER_BETA, rough_model="homogenised",
+                              narrow_film_law_lambda=1.0, narrow_film_law_eyring=NARROW_FILM_LAW_EYRING),
     "standard": PlannerThresholds(lambda_smooth=5.0, eyring_newtonian=0.003, tolerance=0.02, thermal_change=0.016,
-                                  a_over_beta_homogenised=WIDE_A_OVER_BETA, rough_model="homogenised"),
+                                  a_over_beta_homogenised=WIDE_A_OVER_BETA, rough_model="homogenised",
+                                  narrow_film_law_lambda=1.0, narrow_film_law_eyring=NARROW_FILM_LAW_EYRING),
     "reference": PlannerThresholds(lambda_smooth=math.inf, eyring_newtonian=0.0, tolerance=0.0, thermal_change=0.0,
                                    rough_model="deterministic"),
 }
@@ -174,7 +190,9 @@ def plan_effects(case, lubricant, level="standard", correlation_length_m: float 
     lam = nums["lambda_bar"]
     rough = not lam >= limits.lambda_smooth
     wide = nums["a_over_beta"] >= limits.a_over_beta_homogenised
-    homogenised = rough and (wide or limits.rough_model == "homogenised")
+    x_h = nums["eyring_number"]
+    narrow_valid = not wide and (lam > limits.narrow_film_law_lambda or x_h >= limits.narrow_film_law_eyring)
+    homogenised = rough and (wide or narrow_valid or limits.rough_model == "homogenised")
     a_b = f"a/beta={nums['a_over_beta']:.3g}"
     x_in = nums["eyring_inlet"]
     newtonian = x_in <= limits.eyring_newtonian
@@ -197,11 +215,16 @@ def plan_effects(case, lubricant, level="standard", correlation_length_m: float 
         "model": (f"homogenised model, film-law closure ({a_b} >= {limits.a_over_beta_homogenised:g}; against the "
                   "deterministic model's windows on the wide factorial corners: docs/homogenised_model.md)"
                   if homogenised and wide else
+                  f"homogenised model, film-law closure, on a narrow contact within its measured range ({a_b} < "
+                  f"{limits.a_over_beta_homogenised:g}, but lambda_bar={lam:.3g} > {limits.narrow_film_law_lambda:g}"
+                  f" or Eyring number at p_h X_h={x_h:.3g} >= {limits.narrow_film_law_eyring:g}: within 10 % of "
+                  "the deterministic model there, docs/narrow_contacts.md)"
+                  if homogenised and narrow_valid else
                   f"homogenised model, film-law closure, outside its validated range ({a_b} < "
-                  f"{limits.a_over_beta_homogenised:g}: micro-EHL pressure not modelled; against the deterministic "
-                  "model at fast on 25 narrow rough factorial points its mu is a median 19 % low (90th percentile "
-                  "51 %) below lambda_bar 1 and within 6 % above; the transient solver is a median 84 % high below "
-                  "1: docs/narrow_contacts.md); the "
+                  f"{limits.a_over_beta_homogenised:g}, lambda_bar={lam:.3g} <= {limits.narrow_film_law_lambda:g} "
+                  f"and X_h={x_h:.3g} < {limits.narrow_film_law_eyring:g}: the traction is not Eyring-saturated and "
+                  "the micro-EHL pressure fluctuations, not modelled, raise the mean shear stress; against the "
+                  "deterministic model such contacts are 16-80 % low: docs/narrow_contacts.md); the "
                   "reference: level reference or model=deterministic"
                   if homogenised else
                   ("deterministic mixed solver: the accuracy reference of rough contacts (the transient "

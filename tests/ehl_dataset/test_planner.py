@@ -142,6 +142,35 @@ def test_a_level_may_keep_the_transient_solver_for_narrow_rough_contacts_and_rej
         PlannerThresholds(lambda_smooth=1.0, eyring_newtonian=0.0, tolerance=0.0, rough_model="fem")
 
 
+def test_narrow_contacts_keep_the_film_law_where_it_was_measured_within_10_percent(monkeypatch):
+    """Below λ̄ 1 the film law on narrow contacts is 16–80 % low where the traction is not Eyring-saturated
+    (reference cases A, X_h 3.6, −32 %; G, 1.8, −36 %) and within 10 % at X_h ≥ 194 (reference case I, X_h 6,100,
+    −6.0 %; J, 960, +6.6 %: docs/accuracy_mixed.md, docs/narrow_contacts.md). So a level whose narrow-contact model
+    is the deterministic solver sends it only the unsaturated contacts below λ̄ 1 and keeps the film law for the
+    others, and the decision says which side of the measured limits the contact is on."""
+    monkeypatch.setitem(THRESHOLDS, "standard", dataclasses.replace(THRESHOLDS["standard"],
+                                                                    rough_model="deterministic"))
+    case_a = case(0.5, 5, 5, 0.3, 90, 0.3, 0.3)
+    case_i = case(1.5, 5, 5, 0.2, 75, 0.2, 0.5)
+    above_one = case(0.5, 5, 1, 1.0, 25, 0.05, 0.05)  # λ̄ 3.3, X_h 111: film law +5.6 % (docs/narrow_contacts.md)
+    numbers = {name: plan_effects(c, ATF, "standard").reasons["numbers"]
+               for name, c in (("A", case_a), ("I", case_i), ("above", above_one))}
+    assert numbers["A"]["a_over_beta"] < 15 and numbers["I"]["a_over_beta"] < 15
+    assert numbers["A"]["eyring_number"] == pytest.approx(3.6, rel=0.05)
+    assert numbers["I"]["eyring_number"] > 1000 and numbers["A"]["lambda_bar"] < 1 and numbers["I"]["lambda_bar"] < 1
+    assert numbers["above"]["lambda_bar"] > 1 and numbers["above"]["eyring_number"] < 150
+    plan_a = plan_effects(case_a, ATF, "standard")
+    assert plan_a.transient and "deterministic mixed solver" in plan_a.reasons["decisions"]["model"]
+    for c in (case_i, above_one):
+        plan = plan_effects(c, ATF, "standard")
+        assert not plan.transient and "within its measured range" in plan.reasons["decisions"]["model"]
+    monkeypatch.setitem(THRESHOLDS, "standard", dataclasses.replace(THRESHOLDS["standard"],
+                                                                    rough_model="homogenised"))
+    assert "outside its validated range" in plan_effects(case_a, ATF, "standard").reasons["decisions"]["model"]
+    assert "within its measured range" in plan_effects(case_i, ATF, "standard").reasons["decisions"]["model"]
+    assert plan_effects(case_i, ATF, "reference").transient  # the reference level never homogenises
+
+
 def test_the_reference_level_never_homogenises_and_the_profile_correlation_length_decides():
     """The reference level takes only exact skips; a/β is computed with the β of the profile the solve uses."""
     wide = case(r_eq_mm=80)

@@ -1,0 +1,66 @@
+"""Rerun recorded runs of the validation set under the installed deterministic model and compare them with their
+records: the evidence that a new model version may be paired with the old one's runs
+(``deterministic_validation.SAME_NUMERICS``).
+
+    python benchmarks/deterministic_rerun_check.py A:16 B:16 C:16 G:8 I:8
+
+Each argument is CASE:POINTS_PER_BETA of a run in benchmarks/results/deterministic/ (run with the same options as
+the validation script: the middle spacing as the long run). Writes benchmarks/results/deterministic_rerun_check.json.
+Runs laid out for another length (records without ``layout_passes``) see other roughness and are refused.
+"""
+
+from __future__ import annotations
+
+import json
+import platform
+import sys
+import time
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from deterministic_validation import (CASES, LAYOUT_PASSES, LUBRICANT, RUNS, options_for, run_path,  # noqa: E402
+                                      spacings)
+
+from ehl_dataset.model.contact import ContactCase  # noqa: E402
+from ehl_dataset.model.effects import Effects  # noqa: E402
+from ehl_dataset.model.lubricant import load_lubricant  # noqa: E402
+from ehl_dataset.solvers.deterministic import MODEL_VERSION, solve_deterministic  # noqa: E402
+
+OUT = RUNS.parent / "deterministic_rerun_check.json"
+
+
+def rerun(name: str, n: int) -> dict:
+    record = json.loads(run_path(name, n).read_text())
+    if record.get("layout_passes") != LAYOUT_PASSES:
+        raise SystemExit(f"{name} beta/{n}: recorded without layout_passes={LAYOUT_PASSES:g}: another roughness, "
+                         f"not comparable")
+    case = ContactCase.from_engineering(*CASES[name])
+    state = load_lubricant(LUBRICANT).state(case.temperature)
+    start = time.perf_counter()
+    result = solve_deterministic(case, state, Effects.full(), options_for(n, n == spacings(name)[1]))
+    return {"run": f"{name} beta/{n}", "recorded_version": record["solver_version"], "version": MODEL_VERSION,
+            "mu_recorded": record["mu"], "mu": result.mu, "mu_relative_change": result.mu / record["mu"] - 1.0,
+            "share_recorded": record["asperity_load_share"], "share": result.asperity_load_share,
+            "substep_steps_recorded": record["extra"]["substep_steps"],
+            "substep_steps": result.extra["substep_steps"],
+            "round_off_stops_recorded": record["extra"].get("round_off_stops"),
+            "round_off_stops": result.extra["round_off_stops"],
+            "max_mass_error_recorded": record["residuals"]["max_mass_error"],
+            "max_mass_error": result.residuals["max_mass_error"], "converged": result.converged,
+            "wall_time_s": time.perf_counter() - start}
+
+
+def main(argv=None) -> int:
+    specs = argv if argv is not None else sys.argv[1:]
+    rows = []
+    for spec in specs:
+        name, n = spec.split(":")
+        rows.append(rerun(name, int(n)))
+        print(json.dumps(rows[-1]), flush=True)
+    OUT.write_text(json.dumps({"command": "python benchmarks/deterministic_rerun_check.py " + " ".join(specs),
+                               "machine": platform.platform(), "rows": rows}, indent=1) + "\n")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
