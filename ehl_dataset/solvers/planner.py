@@ -216,9 +216,12 @@ def plan_effects(case, lubricant, level="standard", correlation_length_m: float 
                   "deterministic model's windows on the wide factorial corners: docs/homogenised_model.md)"
                   if homogenised and wide else
                   f"homogenised model, film-law closure, on a narrow contact within its measured range ({a_b} < "
-                  f"{limits.a_over_beta_homogenised:g}, but lambda_bar={lam:.3g} > {limits.narrow_film_law_lambda:g}"
-                  f" or Eyring number at p_h X_h={x_h:.3g} >= {limits.narrow_film_law_eyring:g}: within 10 % of "
-                  "the deterministic model there, docs/narrow_contacts.md)"
+                  f"{limits.a_over_beta_homogenised:g}, but "
+                  + (f"lambda_bar={lam:.3g} > {limits.narrow_film_law_lambda:g}"
+                     if lam > limits.narrow_film_law_lambda else
+                     f"Eyring number at p_h X_h={x_h:.3g} >= {limits.narrow_film_law_eyring:g}: Eyring-saturated "
+                     "traction")
+                  + ": within 10 % of the deterministic model there, docs/narrow_contacts.md)"
                   if homogenised and narrow_valid else
                   f"homogenised model, film-law closure, outside its validated range ({a_b} < "
                   f"{limits.a_over_beta_homogenised:g}, lambda_bar={lam:.3g} <= {limits.narrow_film_law_lambda:g} "

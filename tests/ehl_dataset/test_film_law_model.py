@@ -155,7 +155,8 @@ def test_random_points_of_the_paper_ranges_converge_bounded_or_are_marked(atf, p
 def test_the_command_line_says_which_model_the_planner_chose(capsys):
     """``gearloss contact solve`` on a wide rough contact (a/β 28): the planner's film-law choice in the JSON (model,
     closure, the decision with its a/β) and in the text output's ``model`` line; a narrow one takes the same model,
-    recorded as outside its validated range."""
+    recorded as within its measured range where its traction is Eyring-saturated (X_h 449 ≥ 150) and as outside its
+    validated range where it is not (at 0.5 GPa, X_h < 150; docs/narrow_contacts.md)."""
     from workflows.cli import main
 
     wide = ["contact", "solve", "--p-h-gpa", "1.2", "--r-eq-mm", "20", "--u-r", "5", "--sr", "0.3", "--temp-c", "90",
@@ -170,4 +171,9 @@ def test_the_command_line_says_which_model_the_planner_chose(capsys):
     narrow = ContactCase.from_engineering(1.2, 5, 5, 0.3, 90, 0.2, 0.2)
     narrow_result = solve_contact(narrow, load_lubricant("atf"), "fast")
     assert narrow_result.extra["model"] == "homogenised" and not narrow_result.effects["transient"]
-    assert "outside its validated range" in narrow_result.effects["reasons"]["decisions"]["model"]
+    assert "within its measured range" in narrow_result.effects["reasons"]["decisions"]["model"]
+    assert "X_h=449 >= 150" in narrow_result.effects["reasons"]["decisions"]["model"]
+    unsaturated = ContactCase.from_engineering(0.5, 5, 5, 0.3, 90, 0.3, 0.3)  # reference case A: X_h 3.6
+    unsaturated_result = solve_contact(unsaturated, load_lubricant("atf"), "fast")
+    assert unsaturated_result.extra["model"] == "homogenised" and not unsaturated_result.effects["transient"]
+    assert "outside its validated range" in unsaturated_result.effects["reasons"]["decisions"]["model"]
