@@ -12,14 +12,13 @@ Runs laid out for another length (records without ``layout_passes``) see other r
 from __future__ import annotations
 
 import json
-import platform
 import sys
 import time
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from deterministic_validation import (CASES, LAYOUT_PASSES, LUBRICANT, RUNS, options_for, run_path,  # noqa: E402
-                                      spacings)
+                                      run_case_specs, spacings)
 
 from ehl_dataset.model.contact import ContactCase  # noqa: E402
 from ehl_dataset.model.effects import Effects  # noqa: E402
@@ -51,15 +50,7 @@ def rerun(name: str, n: int) -> dict:
 
 
 def main(argv=None) -> int:
-    specs = argv if argv is not None else sys.argv[1:]
-    rows = []
-    for spec in specs:
-        name, n = spec.split(":")
-        rows.append(rerun(name, int(n)))
-        print(json.dumps(rows[-1]), flush=True)
-    OUT.write_text(json.dumps({"command": "python benchmarks/deterministic_rerun_check.py " + " ".join(specs),
-                               "machine": platform.platform(), "rows": rows}, indent=1) + "\n")
-    return 0
+    return run_case_specs("deterministic_rerun_check.py", argv if argv is not None else sys.argv[1:], rerun, OUT)
 
 
 if __name__ == "__main__":

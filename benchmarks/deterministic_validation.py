@@ -93,6 +93,20 @@ def numerics(version: str) -> str:
     return SAME_NUMERICS.get(version, version)
 
 
+def run_case_specs(script: str, specs: list[str], analyse, out: Path) -> int:
+    """Run ``analyse(name, points_per_beta)`` for every ``CASE:N`` of ``specs``; print each row as JSON and write
+    them, with the command (``python benchmarks/<script> <specs>``) and the machine, to ``out``."""
+    import platform
+    rows = []
+    for spec in specs:
+        name, n = spec.split(":")
+        rows.append(analyse(name, int(n)))
+        print(json.dumps(rows[-1]), flush=True)
+    out.write_text(json.dumps({"command": f"python benchmarks/{script} " + " ".join(specs),
+                               "machine": platform.platform(), "rows": rows}, indent=1) + "\n")
+    return 0
+
+
 def spacings(name: str) -> tuple[int, int, int]:
     return SPACINGS.get(name, POINTS_PER_BETA)
 

@@ -13,15 +13,13 @@ the zone, in p_h) and the Eyring number X_h of the planner. Writes benchmarks/re
 
 from __future__ import annotations
 
-import json
-import platform
 import sys
 from pathlib import Path
 
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from deterministic_validation import CASES, LUBRICANT, options_for  # noqa: E402
+from deterministic_validation import CASES, LUBRICANT, options_for, run_case_specs  # noqa: E402
 
 import ehl_dataset.solvers.deterministic as deterministic  # noqa: E402
 from ehl_dataset.model.contact import ContactCase  # noqa: E402
@@ -89,15 +87,7 @@ def analyse(name: str, n: int) -> dict:
 
 
 def main(argv=None) -> int:
-    specs = argv if argv is not None else sys.argv[1:]
-    rows = []
-    for spec in specs:
-        name, n = spec.split(":")
-        rows.append(analyse(name, int(n)))
-        print(json.dumps(rows[-1]), flush=True)
-    OUT.write_text(json.dumps({"command": "python benchmarks/micro_ehl_fluctuations.py " + " ".join(specs),
-                               "machine": platform.platform(), "rows": rows}, indent=1) + "\n")
-    return 0
+    return run_case_specs("micro_ehl_fluctuations.py", argv if argv is not None else sys.argv[1:], analyse, OUT)
 
 
 if __name__ == "__main__":
