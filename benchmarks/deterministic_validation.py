@@ -203,7 +203,8 @@ def summarise_case(name: str) -> dict | None:
     base = runs[middle]
     out = {"case": name, "inputs": dict(zip(("p_h_gpa", "r_eq_mm", "u_r_m_s", "sr", "temp_c", "rq1_um", "rq2_um"),
                                             CASES[name])),
-           "lambda_bar": base["lambda_bar"], "solver_version": max((r["solver_version"] for r in runs.values()), key=version_key),
+           "lambda_bar": base["lambda_bar"],
+           "solver_version": max((r["solver_version"] for r in runs.values()), key=version_key),
            "run_versions": {f"beta/{n}": runs[n]["solver_version"] for n in levels},
            "half_width_m": ContactCase.from_engineering(*CASES[name]).half_width,
            "points_per_beta": list(levels),
