@@ -42,7 +42,7 @@ from .solvers.steady import solve_steady
 from .solvers.transient import TransientOptions, solve_transient
 from .validation import InputError, check_time_limit
 
-SOLVER_VERSION = "ehl-2026.11-12"
+SOLVER_VERSION = "ehl-2026.11-13"
 """Version of the numerics behind :func:`solve_contact`. The dataset store records it and refuses to resume a file
 computed with another version: bump it with every change that can alter a solved value."""
 
@@ -64,7 +64,10 @@ contacts by the deterministic solver (the accuracy reference) instead of the tra
 ``auto`` at ``fast`` and ``standard`` solve narrow rough contacts (a/β < 15) by the film-law homogenised model too,
 instead of the transient solver (docs/narrow_contacts.md); ehl-2026.11-12 keeps the film law for narrow contacts
 within its measured range (λ̄ > 1 or X_h ≥ 150) whatever the level's rough model, and its deterministic model
-det-2026.11-10 accepts a Newton solve stalled at the round-off floor instead of splitting the step."""
+det-2026.11-10 accepts a Newton solve stalled at the round-off floor instead of splitting the step; ehl-2026.11-13
+gives the film law on narrow contacts a micro-EHL pressure-fluctuation closure (film-law-2026.11-2,
+:mod:`ehl_dataset.model.micro_pressure`) and widens its measured range to the unsaturated narrow contacts with
+λ̄ ≥ 0.1 and roughness parameter α ≤ 2.5 (docs/narrow_contacts.md)."""
 
 __all__ = ["solve_contact", "checked_inputs", "SOLVER_VERSION", "MODELS"]
 

@@ -58,12 +58,15 @@ class HomogenisedOptions:
     """Closure choices of a homogenised solve: ``closure`` (:data:`CLOSURES`), ``boundary_film_m`` h_b [m] (the
     floor of the micro gaps in the traction), ``flow_floor_sigma`` the floor of the micro gaps in the transverse
     flow factors in units of σ (None: h_b), ``transport`` the roughness transport weight
-    (:func:`ehl_dataset.model.flow_factors.transport_weight`)."""
+    (:func:`ehl_dataset.model.flow_factors.transport_weight`), ``micro_pressure_coefficient`` c of the film-law
+    closure's pressure fluctuations σ_p = c·E'Δq/4 (None: the calibrated value on narrow contacts, none on wide ones,
+    :func:`ehl_dataset.solvers.film_law_model.micro_pressure_coefficient_for`; 0: off)."""
 
     closure: str = "transverse"
     boundary_film_m: float = BOUNDARY_FILM_M
     flow_floor_sigma: float | None = None
     transport: str | float = "variance"
+    micro_pressure_coefficient: float | None = None
 
     def __post_init__(self):
         if self.closure not in CLOSURES:
@@ -71,6 +74,8 @@ class HomogenisedOptions:
         check_range("boundary_film_m", self.boundary_film_m, 0.0, 1e-6, low_inclusive=False, unit="m")
         if self.flow_floor_sigma is not None:
             check_range("flow_floor_sigma", self.flow_floor_sigma, 0.0, 10.0, low_inclusive=False)
+        if self.micro_pressure_coefficient is not None:
+            check_range("micro_pressure_coefficient", self.micro_pressure_coefficient, 0.0, 1.0)
 
 
 PSEUDO_DT = 0.3
@@ -164,7 +169,8 @@ def solve_homogenised(case: ContactCase, state: LubricantState, lvl: AccuracyLev
         smooth.extra["model"] = "homogenised"
         return smooth
     if closure == "film_law":
-        return solve_film_law(case, state, lvl, plan, roughness, h_b_m)
+        return solve_film_law(case, state, lvl, plan, roughness, h_b_m,
+                              micro_pressure_coefficient=options.micro_pressure_coefficient)
     table = dry_contact_table(roughness, case.rq1, case.rq2, case.e_reduced)
     scales = ContactScales.of(case, state, plan.shear_thinning)
     smooth_plan = Effects(False, False, plan.shear_thinning, plan.compressibility, plan.mode, {})

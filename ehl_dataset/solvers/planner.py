@@ -73,8 +73,11 @@ class PlannerThresholds:
     rough contact is solved by the steady film-law homogenised model, within its validated range [-];
     ``narrow_film_law_lambda``, ``narrow_film_law_eyring`` a narrower rough contact is still within the film law's
     measured range above this λ̄ or at or above this Eyring number at the Hertz pressure X_h (an Eyring-saturated
-    traction, τ ≈ τ0 ln(2X) linear in the pressure, which the micro-EHL pressure fluctuations the film law does not
-    model leave unchanged in the mean), and is solved by it [-] (docs/narrow_contacts.md);
+    traction, τ ≈ τ0 ln(2X) linear in the pressure, which the micro-EHL pressure fluctuations leave unchanged in the
+    mean), and is solved by it [-] (docs/narrow_contacts.md);
+    ``narrow_closure_lambda``, ``narrow_closure_roughness`` the other narrow rough contacts are within the range
+    where the film law's pressure-fluctuation closure was calibrated (:mod:`ehl_dataset.model.micro_pressure`) at
+    λ̄ at or above the first and a Greenwood–Tripp roughness parameter α = S_c·r_eq/a² at or below the second [-];
     ``rough_model`` the solver of the other narrow rough contacts: ``"homogenised"`` (the same film-law model,
     recorded as outside its validated range), ``"transient"`` (the transient mixed solver,
     :mod:`ehl_dataset.solvers.transient`, a median +84 % high below λ̄ = 1 on narrow contacts:
@@ -91,6 +94,8 @@ class PlannerThresholds:
     rough_model: str = "transient"
     narrow_film_law_lambda: float = math.inf
     narrow_film_law_eyring: float = math.inf
+    narrow_closure_lambda: float = math.inf
+    narrow_closure_roughness: float = 0.0
 
     def __post_init__(self):
         if self.rough_model not in ROUGH_MODELS:
@@ -103,13 +108,33 @@ model, narrow rough contacts below λ̄ 1: at X_h ≥ 194 the film law is within
 at fast; the reference cases I and J, −6.0 % and +6.6 %), at X_h ≤ 111 it is 16–80 % low on 10 of 11 points and on the
 reference cases A, C and G (docs/narrow_contacts.md); 150 is the geometric middle of the gap."""
 
+NARROW_CLOSURE_LAMBDA = 0.1
+"""λ̄ from which the film law with its pressure-fluctuation closure holds on narrow contacts with an unsaturated
+traction (ehl-2026.11-13). Below it the asperities carry load in the deterministic model (reference case B, λ̄ 0.054:
+asperity share 0.53, film law −85 % with the closure; factorial corner at λ̄ 0.027: share 0.18, −51 %), which the film
+law, whose fluid carries the whole load, does not model. Within the range the lowest λ̄ is 0.18 (two factorial points,
+−13 % and +4 % with the closure): benchmarks/results/micro_pressure_closure.json, docs/narrow_contacts.md."""
+
+NARROW_CLOSURE_ROUGHNESS = 2.5
+"""Greenwood–Tripp roughness parameter α = S_c·r_eq/a² up to which the closure holds (ehl-2026.11-13). The film law
+takes the smooth Hertzian pressure as the mean pressure; where the composite roughness is large against the Hertz
+approach a²/r_eq the mean pressure of a rough contact is lower and wider than Hertz's (Greenwood & Tripp 1967;
+Johnson, Contact Mechanics, 1985, §13.3). Measured with the closure: −3 % at α 1.8 (the largest α within the range,
+a factorial point at λ̄ 0.44), 24–51 % low at α 3.6 on all 4 unsaturated points there (reference case C and three
+factorial corners); 2.5 is the geometric middle (benchmarks/results/micro_pressure_closure.json)."""
+
+
 THRESHOLDS: dict[str, PlannerThresholds] = {
     "fast": PlannerThresholds(lambda_smooth=3.5, eyring_newtonian=0.01, tolerance=0.05, thermal_change=0.04,
                               a_over_beta_homogenised=WIDE_A_OVER_BETA, rough_model="homogenised",
-                              narrow_film_law_lambda=1.0, narrow_film_law_eyring=NARROW_FILM_LAW_EYRING),
+                              narrow_film_law_lambda=1.0, narrow_film_law_eyring=NARROW_FILM_LAW_EYRING,
+                              narrow_closure_lambda=NARROW_CLOSURE_LAMBDA,
+                              narrow_closure_roughness=NARROW_CLOSURE_ROUGHNESS),
     "standard": PlannerThresholds(lambda_smooth=5.0, eyring_newtonian=0.003, tolerance=0.02, thermal_change=0.016,
                                   a_over_beta_homogenised=WIDE_A_OVER_BETA, rough_model="homogenised",
-                                  narrow_film_law_lambda=1.0, narrow_film_law_eyring=NARROW_FILM_LAW_EYRING),
+                                  narrow_film_law_lambda=1.0, narrow_film_law_eyring=NARROW_FILM_LAW_EYRING,
+                                  narrow_closure_lambda=NARROW_CLOSURE_LAMBDA,
+                                  narrow_closure_roughness=NARROW_CLOSURE_ROUGHNESS),
     "reference": PlannerThresholds(lambda_smooth=math.inf, eyring_newtonian=0.0, tolerance=0.0, thermal_change=0.0,
                                    rough_model="deterministic"),
 }
@@ -155,6 +180,7 @@ def dimensionless_numbers(case, lubricant, correlation_length_m: float | None = 
     return {
         "lambda_bar": lambda_bar,
         "a_over_beta": case.half_width / beta,
+        "roughness_parameter": s_c * case.r_eq / case.half_width ** 2,
         "h_min_dh_m": h_dh,
         "s_c_m": s_c,
         "sr": float(case.sr),
@@ -191,7 +217,10 @@ def plan_effects(case, lubricant, level="standard", correlation_length_m: float 
     rough = not lam >= limits.lambda_smooth
     wide = nums["a_over_beta"] >= limits.a_over_beta_homogenised
     x_h = nums["eyring_number"]
-    narrow_valid = not wide and (lam > limits.narrow_film_law_lambda or x_h >= limits.narrow_film_law_eyring)
+    alpha = nums["roughness_parameter"]
+    saturated_or_thick = lam > limits.narrow_film_law_lambda or x_h >= limits.narrow_film_law_eyring
+    closure_range = lam >= limits.narrow_closure_lambda and alpha <= limits.narrow_closure_roughness
+    narrow_valid = not wide and (saturated_or_thick or closure_range)
     homogenised = rough and (wide or narrow_valid or limits.rough_model == "homogenised")
     a_b = f"a/beta={nums['a_over_beta']:.3g}"
     x_in = nums["eyring_inlet"]
@@ -220,15 +249,21 @@ def plan_effects(case, lubricant, level="standard", correlation_length_m: float 
                   + (f"lambda_bar={lam:.3g} > {limits.narrow_film_law_lambda:g}"
                      if lam > limits.narrow_film_law_lambda else
                      f"Eyring number at p_h X_h={x_h:.3g} >= {limits.narrow_film_law_eyring:g}: Eyring-saturated "
-                     "traction")
-                  + ": within 10 % of the deterministic model there, docs/narrow_contacts.md)"
+                     "traction"
+                     if x_h >= limits.narrow_film_law_eyring else
+                     f"lambda_bar={lam:.3g} >= {limits.narrow_closure_lambda:g} and roughness parameter "
+                     f"alpha={alpha:.3g} <= {limits.narrow_closure_roughness:g}: the unsaturated traction with the "
+                     "calibrated micro-EHL pressure-fluctuation closure")
+                  + ": docs/narrow_contacts.md)"
                   if homogenised and narrow_valid else
                   f"homogenised model, film-law closure, outside its validated range ({a_b} < "
-                  f"{limits.a_over_beta_homogenised:g}, lambda_bar={lam:.3g} <= {limits.narrow_film_law_lambda:g} "
-                  f"and X_h={x_h:.3g} < {limits.narrow_film_law_eyring:g}: the traction is not Eyring-saturated and "
-                  "the micro-EHL pressure fluctuations, not modelled, raise the mean shear stress; against the "
-                  "deterministic model such contacts are 16-80 % low: docs/narrow_contacts.md); the "
-                  "reference: level reference or model=deterministic"
+                  f"{limits.a_over_beta_homogenised:g}, X_h={x_h:.3g} < {limits.narrow_film_law_eyring:g}, "
+                  + (f"lambda_bar={lam:.3g} < {limits.narrow_closure_lambda:g}: asperities carry load, which the film "
+                     "law does not model"
+                     if lam < limits.narrow_closure_lambda else
+                     f"roughness parameter alpha={alpha:.3g} > {limits.narrow_closure_roughness:g}: the mean pressure "
+                     "is not the Hertzian one the film law takes")
+                  + "; docs/narrow_contacts.md); the reference: level reference or model=deterministic"
                   if homogenised else
                   ("deterministic mixed solver: the accuracy reference of rough contacts (the transient "
                    "solver is measured +107..+195 % high on the rough reference case G: "

@@ -121,10 +121,10 @@ def test_meets_issue_15_accuracy_against_the_deterministic_wide_route_on_the_rec
 
 
 def test_narrow_contacts_are_flagged(atf):
-    """a/β < 15: outside the validated range (the closure misses the rise of μ at low λ̄ there), said in the result."""
+    """a/β < 15: a narrow contact, with the pressure-fluctuation closure, said in the result."""
     result = solve([0.5, 5, 5, 0.3, 90, 0.5, 0.5], atf)
     assert result.converged and result.extra["narrow_contact"]
-    assert "narrow contact" in result.message
+    assert "narrow contact" in result.message and "pressure-fluctuation closure" in result.message
 
 
 @settings(max_examples=40, deadline=None, derandomize=True, suppress_health_check=[HealthCheck.too_slow])
@@ -155,8 +155,9 @@ def test_random_points_of_the_paper_ranges_converge_bounded_or_are_marked(atf, p
 def test_the_command_line_says_which_model_the_planner_chose(capsys):
     """``gearloss contact solve`` on a wide rough contact (a/β 28): the planner's film-law choice in the JSON (model,
     closure, the decision with its a/β) and in the text output's ``model`` line; a narrow one takes the same model,
-    recorded as within its measured range where its traction is Eyring-saturated (X_h 449 ≥ 150) and as outside its
-    validated range where it is not (at 0.5 GPa, X_h < 150; docs/narrow_contacts.md)."""
+    recorded as within its measured range where its traction is Eyring-saturated (X_h 449 ≥ 150) or where the
+    pressure-fluctuation closure was calibrated (reference case A: X_h 3.6, λ̄ 0.33, α 1.1), and as outside its
+    validated range where neither holds (reference case C: X_h 96, α 3.6 > 2.5; docs/narrow_contacts.md)."""
     from workflows.cli import main
 
     wide = ["contact", "solve", "--p-h-gpa", "1.2", "--r-eq-mm", "20", "--u-r", "5", "--sr", "0.3", "--temp-c", "90",
@@ -176,4 +177,9 @@ def test_the_command_line_says_which_model_the_planner_chose(capsys):
     unsaturated = ContactCase.from_engineering(0.5, 5, 5, 0.3, 90, 0.3, 0.3)  # reference case A: X_h 3.6
     unsaturated_result = solve_contact(unsaturated, load_lubricant("atf"), "fast")
     assert unsaturated_result.extra["model"] == "homogenised" and not unsaturated_result.effects["transient"]
-    assert "outside its validated range" in unsaturated_result.effects["reasons"]["decisions"]["model"]
+    decision = unsaturated_result.effects["reasons"]["decisions"]["model"]
+    assert "within its measured range" in decision and "pressure-fluctuation closure" in decision
+    assert unsaturated_result.extra["micro_pressure"]["coefficient"] > 0.0
+    rough = ContactCase.from_engineering(0.5, 5, 2, 0.7, 25, 1.0, 1.0)  # reference case C: alpha 3.6
+    decision = solve_contact(rough, load_lubricant("atf"), "fast").effects["reasons"]["decisions"]["model"]
+    assert "outside its validated range" in decision and "alpha=3.62 > 2.5" in decision

@@ -1,0 +1,146 @@
+"""Calibration and check of the film law's micro-EHL pressure-fluctuation closure on narrow contacts
+(ehl_dataset.model.micro_pressure; docs/narrow_contacts.md, "Pressure-fluctuation closure").
+
+    python benchmarks/micro_pressure_closure.py
+
+Points: every narrow rough contact (a/β < 15, SR > 0) the deterministic model solved and converged, at ``fast`` on the
+factorial (benchmarks/results/ehl_mixed_random200_fast_deterministic.json, ehl_mixed_corners_fast_deterministic.json)
+and grid-converged on the validation set (data/reference/deterministic_validation.json, its μ_extrapolated). Each is
+solved by the film-law model at ``fast``, isothermal (as the deterministic model is), without the closure (c = 0), and
+with σ_p = c·E'Δq/4 for c on a grid (the calibration set) or at the shipped c (the others). The calibration set is the unsaturated narrow contacts the closure is for:
+λ̄ ≤ 1 and X_h < 150, within the planner's closure range (λ̄ ≥ NARROW_CLOSURE_LAMBDA, roughness parameter
+α ≤ NARROW_CLOSURE_ROUGHNESS). c minimises Σ ln²(μ_film law/μ_deterministic) over it; the leave-one-out error
+(c refitted without the point) is the honest estimate of the closure's error on a new point. Every group of narrow
+points is reported without and with the closure at the shipped c. Writes benchmarks/results/micro_pressure_closure.json.
+"""
+
+from __future__ import annotations
+
+import json
+import platform
+import sys
+from pathlib import Path
+
+import numpy as np
+from scipy.optimize import minimize_scalar
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from deterministic_validation import CASES, LUBRICANT, REFERENCE  # noqa: E402
+
+from ehl_dataset.model.contact import ContactCase  # noqa: E402
+from ehl_dataset.model.lubricant import load_lubricant  # noqa: E402
+from ehl_dataset.model.micro_pressure import MICRO_PRESSURE_COEFFICIENT  # noqa: E402
+from ehl_dataset.solver import SOLVER_VERSION, solve_contact  # noqa: E402
+from ehl_dataset.solvers.homogenised import HomogenisedOptions  # noqa: E402
+from ehl_dataset.solvers.planner import (NARROW_CLOSURE_LAMBDA, NARROW_CLOSURE_ROUGHNESS,  # noqa: E402
+                                         NARROW_FILM_LAW_EYRING, dimensionless_numbers)
+from ehl_dataset.solvers.wide_contact import WIDE_A_OVER_BETA  # noqa: E402
+
+ROOT = Path(__file__).resolve().parents[1]
+RESULTS = ROOT / "benchmarks" / "results"
+OUT = RESULTS / "micro_pressure_closure.json"
+SOURCES = {"random": "ehl_mixed_random200_fast_deterministic.json", "corner": "ehl_mixed_corners_fast_deterministic.json"}
+LEVEL = "fast"
+
+
+def points(lubricant) -> list[dict]:
+    """The narrow deterministic points: label, inputs (engineering units), μ of the deterministic model, its version."""
+    out = []
+    for row in json.loads(REFERENCE.read_text())["cases"]:
+        out.append({"label": f"case {row['case']}", "inputs": list(CASES[row["case"]]), "mu_det": row["mu_extrapolated"],
+                    "det_version": row["solver_version"]})
+    for kind, name in SOURCES.items():
+        data = json.loads((RESULTS / name).read_text())
+        for i, row in enumerate(data["rows"]):
+            if row.get("converged") and row["case"][3] > 0:
+                out.append({"label": f"{kind} {i}", "inputs": list(row["case"]), "mu_det": row["mu"],
+                            "det_version": data.get("solver_version")})
+    narrow = []
+    for p in out:
+        case = ContactCase.from_engineering(*p["inputs"])
+        nums = dimensionless_numbers(case, lubricant)
+        if nums["a_over_beta"] < WIDE_A_OVER_BETA:
+            narrow.append({**p, "lambda_bar": nums["lambda_bar"], "eyring_number": nums["eyring_number"],
+                           "roughness_parameter": nums["roughness_parameter"], "a_over_beta": nums["a_over_beta"]})
+    return narrow
+
+
+def group(p: dict) -> str:
+    if p["lambda_bar"] > 1.0:
+        return "lambda_bar > 1"
+    if p["eyring_number"] >= NARROW_FILM_LAW_EYRING:
+        return "lambda_bar <= 1, X_h >= 150"
+    if p["lambda_bar"] >= NARROW_CLOSURE_LAMBDA and p["roughness_parameter"] <= NARROW_CLOSURE_ROUGHNESS:
+        return "lambda_bar <= 1, X_h < 150, closure range"
+    return "lambda_bar <= 1, X_h < 150, outside closure range"
+
+
+CALIBRATION = "lambda_bar <= 1, X_h < 150, closure range"
+
+
+def film_law_mu(p: dict, lubricant, c: float) -> float:
+    case = ContactCase.from_engineering(*p["inputs"])
+    result = solve_contact(case, lubricant, LEVEL, "isothermal", model="homogenised",
+                           homogenised=HomogenisedOptions(closure="film_law", micro_pressure_coefficient=c))
+    if not result.converged:
+        raise RuntimeError(f"{p['label']}: film law not converged: {result.message}")
+    return result.mu
+
+
+def stats(errors) -> dict:
+    e = np.abs(np.asarray(errors))
+    return {"n": int(e.size), "median_abs": float(np.median(e)), "p90_abs": float(np.percentile(e, 90)),
+            "median": float(np.median(errors))}
+
+
+def main() -> int:
+    lubricant = load_lubricant(LUBRICANT)
+    pts = points(lubricant)
+    grid = np.round(np.arange(0.0, 0.401, 0.02), 3)
+    for p in pts:
+        p["group"] = group(p)
+        p["mu_by_c"] = {float(c): film_law_mu(p, lubricant, float(c))
+                        for c in (grid if p["group"] == CALIBRATION else grid[:1])}
+        print(p["label"], p["group"], f"det {p['mu_det']:.4f}", f"c=0 {p['mu_by_c'][0.0]:.4f}", flush=True)
+    cal = [p for p in pts if p["group"] == CALIBRATION]
+
+    def fitted(sample):
+        """c minimising the squared log error over ``sample``, μ(c) interpolated on the grid (monotone in c)."""
+        def loss(c):
+            return sum(np.log(np.interp(c, grid, [q["mu_by_c"][float(g)] for g in grid]) / q["mu_det"]) ** 2
+                       for q in sample)
+        return float(minimize_scalar(loss, bounds=(0.0, float(grid[-1])), method="bounded",
+                                     options={"xatol": 1e-4}).x)
+
+    c_fit = fitted(cal)
+    leave_one_out = []
+    for i, p in enumerate(cal):
+        c_i = fitted(cal[:i] + cal[i + 1:])
+        leave_one_out.append(film_law_mu(p, lubricant, c_i) / p["mu_det"] - 1.0)
+        p["leave_one_out_c"], p["leave_one_out_error"] = c_i, leave_one_out[-1]
+    shipped = MICRO_PRESSURE_COEFFICIENT
+    for p in pts:
+        p["mu_shipped"] = film_law_mu(p, lubricant, shipped)
+        p["error_without"] = p["mu_by_c"][0.0] / p["mu_det"] - 1.0
+        p["error_with"] = p["mu_shipped"] / p["mu_det"] - 1.0
+    groups = {}
+    for name in sorted({p["group"] for p in pts}):
+        sel = [p for p in pts if p["group"] == name]
+        groups[name] = {"without_closure": stats([p["error_without"] for p in sel]),
+                        "with_closure": stats([p["error_with"] for p in sel])}
+    summary = {"command": "python benchmarks/micro_pressure_closure.py", "solver_version": SOLVER_VERSION,
+               "machine": platform.platform(), "level": LEVEL, "c_fitted": c_fit, "c_shipped": shipped,
+               "leave_one_out": stats(leave_one_out), "calibration_points": [p["label"] for p in cal],
+               "limits": {"narrow_closure_lambda": NARROW_CLOSURE_LAMBDA,
+                          "narrow_closure_roughness": NARROW_CLOSURE_ROUGHNESS,
+                          "narrow_film_law_eyring": NARROW_FILM_LAW_EYRING},
+               "groups": groups, "c_grid": grid.tolist(),
+               "points": [{**p, "mu_by_c": [p["mu_by_c"][float(c)] for c in grid if float(c) in p["mu_by_c"]]}
+                          for p in pts]}
+    OUT.write_text(json.dumps(summary, indent=1) + "\n")
+    print(json.dumps({k: summary[k] for k in ("c_fitted", "c_shipped", "leave_one_out", "groups")}, indent=1))
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

@@ -1,0 +1,83 @@
+"""Micro-EHL pressure fluctuations of a narrow rough contact as a distribution, for the film-law closure
+(docs/narrow_contacts.md, "Pressure-fluctuation closure").
+
+In the deterministic model of a narrow rough contact (a few correlation lengths wide) the local fluid pressure
+fluctuates about its time mean by about one Hertz pressure (standard deviation 0.58–2.0 p_h over |x| < 0.8a on the
+validation cases A, C, G, I), with a skewed distribution: never below zero, a long tail above. Where the Eyring
+traction is not saturated, τ grows nearly exponentially with p, and its mean over that distribution is several times
+τ at the mean pressure (benchmarks/micro_ehl_fluctuations.py). This module gives the distribution a closure uses:
+
+- shape: a gamma distribution with the local mean pressure p̄ and standard deviation σ_p (it has support p ≥ 0 and
+  the skew; with the deterministic runs' own σ_p(x) it reproduces their pressure-averaged Couette stress within
+  1–16 %, benchmarks/micro_pressure_closure.py);
+- scale: σ_p = c · E'Δq/4, where E'Δq/4 is the r.m.s. of the pressure that flattens the composite roughness
+  completely, and c < 1 the fraction an EHL film lets through, calibrated against the deterministic model
+  (:data:`MICRO_PRESSURE_COEFFICIENT`). Two elastic half-spaces in plane strain under a surface pressure p̂(k)
+  approach by 4p̂/(E'|k|) (E' the reduced modulus, 2/E' = Σ(1 − ν_i²)/E_i; Johnson, Contact Mechanics, 1985, §13.1:
+  p* = πE*Δ/λ flattens a sinusoid of amplitude Δ, E* = E'/2), so flattening heights z takes a pressure of r.m.s.
+  E'·rms(z')/4 = E'Δq/4, Δq the r.m.s. slope of z = R1 + R2.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy import stats
+
+from .dry_contact import composite_windows, profile_hash
+from .roughness import RoughnessProfile
+
+MICRO_PRESSURE_COEFFICIENT = 0.167
+"""c of σ_p = c·E'Δq/4 [-]: the value (0.1668) that minimises Σ ln²(μ_film law/μ_deterministic) on the 13 narrow
+contacts (a/β < 15) below λ̄ 1 with X_h < 150 within the closure's range (the reference cases A and G, 11 factorial
+points at fast): `python benchmarks/micro_pressure_closure.py` (benchmarks/results/micro_pressure_closure.json). Its
+leave-one-out error there is a median 7.1 %, 90th percentile 15 % (without the closure: median −24 %). It is an
+effective value: the deterministic run's own σ_p on case A (0.76 GPa at the centre, β/16) is twice c·E'Δq/4
+(0.37 GPa), because the closure pairs it with the film law's smooth pressure and gaps independent of the pressure
+instead of the joint fields."""
+
+PRESSURE_QUANTILES = 32
+"""Equal-probability levels (midpoints) of the pressure distribution in the closure's average."""
+
+_SLOPE_CACHE: dict[tuple[str, float, float], float] = {}
+
+
+def composite_slope_rms(profile: RoughnessProfile, rq1: float, rq2: float) -> float:
+    """Δq [-]: r.m.s. slope of the composite roughness z = R1 + R2 of the pair (``profile`` scaled to Rq1, Rq2 [m]),
+    pooled over the dry-contact tables' periodic windows (:func:`ehl_dataset.model.dry_contact.composite_windows`),
+    by the exact derivative of their Fourier series (cached per profile and Rq pair)."""
+    key = (profile_hash(profile), float(rq1), float(rq2))
+    if key not in _SLOPE_CACHE:
+        z, spacing = composite_windows(profile, rq1, rq2)
+        k = 2.0 * np.pi * np.fft.rfftfreq(z.shape[1], spacing)
+        slope = np.fft.irfft(1j * k * np.fft.rfft(z, axis=1), n=z.shape[1], axis=1)
+        _SLOPE_CACHE[key] = float(np.sqrt(np.mean(slope ** 2)))
+    return _SLOPE_CACHE[key]
+
+
+def flattening_pressure_rms(e_reduced: float, slope_rms: float) -> float:
+    """E'·Δq/4 [Pa]: r.m.s. of the pressure that flattens a composite roughness of r.m.s. slope Δq [-] between two
+    elastic half-spaces of reduced modulus E' [Pa] (plane strain; module docstring)."""
+    return 0.25 * e_reduced * slope_rms
+
+
+def gamma_pressure_quantiles(mean_pa, std_pa, count: int = PRESSURE_QUANTILES) -> np.ndarray:
+    """Pressures [Pa], shape (len(mean_pa), count): the equal-probability levels (i + ½)/count of a gamma
+    distribution with mean p̄ (each entry of ``mean_pa``) and standard deviation σ_p (``std_pa``, a scalar or one per
+    entry), rescaled so that their mean is p̄ exactly (the quadrature conserves the load; it truncates the tail, so
+    its standard deviation is below σ_p where σ_p > p̄). p̄ ≤ 0 gives zeros; σ_p = 0 gives p̄."""
+    mean = np.maximum(np.asarray(mean_pa, dtype=float).ravel(), 0.0)
+    std = np.broadcast_to(np.asarray(std_pa, dtype=float), mean.shape)
+    levels = (np.arange(count) + 0.5) / count
+    out = np.repeat(mean[:, None], count, axis=1)
+    spread = (mean > 0.0) & (std > 0.0)
+    if not spread.any():
+        return out
+    m, s = mean[spread], std[spread]
+    quantiles = stats.gamma.ppf(levels[None, :], ((m / s) ** 2)[:, None], scale=(s ** 2 / m)[:, None])
+    total = quantiles.mean(axis=1)
+    positive = total > 0.0  # a shape so small that every level rounds to 0: the mass goes to the last one
+    quantiles[positive] *= (m[positive] / total[positive])[:, None]
+    quantiles[~positive] = 0.0
+    quantiles[~positive, -1] = count * m[~positive]
+    out[spread] = quantiles
+    return out
