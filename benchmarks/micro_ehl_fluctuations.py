@@ -1,7 +1,7 @@
 """Why the film law is low on narrow contacts with an unsaturated traction: the micro-EHL pressure fluctuations of
 the deterministic model and what they do to the Eyring shear stress (docs/narrow_contacts.md).
 
-    python benchmarks/micro_ehl_fluctuations.py A:16 G:8 I:8
+    python benchmarks/micro_ehl_fluctuations.py A:16 G:8 I:8 C:16
 
 Each argument is CASE:POINTS_PER_BETA of the validation set (benchmarks/deterministic_validation.py, short-run
 options). Over the averaging window of the run and the zone |x| < 0.8a it integrates the fluid's Couette stress
@@ -25,6 +25,7 @@ import ehl_dataset.solvers.deterministic as deterministic  # noqa: E402
 from ehl_dataset.model.contact import ContactCase  # noqa: E402
 from ehl_dataset.model.effects import Effects  # noqa: E402
 from ehl_dataset.model.lubricant import load_lubricant  # noqa: E402
+from ehl_dataset.model.micro_pressure import gamma_pressure_quantiles  # noqa: E402
 from ehl_dataset.model.traction import eyring_shear_stress  # noqa: E402
 from ehl_dataset.solvers.planner import dimensionless_numbers  # noqa: E402
 
@@ -74,6 +75,10 @@ def analyse(name: str, n: int) -> dict:
         return float(np.mean(np.sum(tau, axis=1)) * width / case.load_per_length)
 
     p_mean, h_mean = p.mean(axis=0), h.mean(axis=0)
+    levels = gamma_pressure_quantiles(p_mean, p.std(axis=0))
+    eta_levels = state.viscosity(levels.ravel()).reshape(levels.shape)
+    tau_gamma = theta.mean(axis=0) * np.mean(eyring_shear_stress(eta_levels, case.u_s, h_mean[:, None], state.tau0),
+                                             axis=1)
     return {"run": f"{name} beta/{n}", "model_version": deterministic.MODEL_VERSION, "mu": result.mu,
             "converged": result.converged, "eyring_number": dimensionless_numbers(case, lubricant)["eyring_number"],
             "lambda_bar": result.lambda_bar, "zone_a": ZONE,
@@ -81,6 +86,7 @@ def analyse(name: str, n: int) -> dict:
             "couette_mu_mean_pressure_mean_film": mu(np.broadcast_to(p_mean, p.shape), np.broadcast_to(h_mean, h.shape)),
             "couette_mu_mean_pressure_local_film": mu(np.broadcast_to(p_mean, p.shape), h),
             "couette_mu_local_pressure_mean_film": mu(p, np.broadcast_to(h_mean, h.shape)),
+            "couette_mu_gamma_pressure_mean_film": float(np.sum(tau_gamma)) * width / case.load_per_length,
             "pressure_std_over_p_h": float(np.median(p.std(axis=0))) / case.p_h,
             "film_std_over_mean": float(np.median(h.std(axis=0) / h_mean)),
             "steps": len(window)}

@@ -38,7 +38,9 @@ from ehl_dataset.model.contact import ContactCase
 from ehl_dataset.model.lubricant import load_lubricant
 from ehl_dataset.model.roughness import baseline_profile
 from ehl_dataset.solver import SOLVER_VERSION
-from ehl_dataset.solvers.planner import NARROW_FILM_LAW_EYRING, dimensionless_numbers
+from ehl_dataset.model.micro_pressure import MICRO_PRESSURE_COEFFICIENT
+from ehl_dataset.solvers.planner import (NARROW_CLOSURE_LAMBDA, NARROW_CLOSURE_ROUGHNESS, NARROW_FILM_LAW_EYRING,
+                                         dimensionless_numbers)
 from ehl_dataset.solvers.wide_contact import WIDE_A_OVER_BETA
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -67,7 +69,7 @@ def compare() -> list[dict]:
     """One record per (sample, model, point) where the model and the deterministic model both converged, SR > 0."""
     beta = baseline_profile().correlation_length
     atf = load_lubricant("atf")
-    eyring: dict = {}  # X_h per point, shared by the models' rows
+    numbers: dict = {}  # the planner's numbers per point, shared by the models' rows
     out = []
     for sample, (reference_name, models) in SAMPLES.items():
         _, reference = _rows(reference_name)
@@ -78,10 +80,11 @@ def compare() -> list[dict]:
                 if ref is None or not (row.get("converged") and ref.get("converged")) or key[3] == 0:
                     continue
                 case = ContactCase.from_engineering(*key)
-                if key not in eyring:
-                    eyring[key] = dimensionless_numbers(case, atf)["eyring_number"]
+                if key not in numbers:
+                    numbers[key] = dimensionless_numbers(case, atf)
                 out.append({"sample": sample, "model": model, "case": key, "lambda_bar": ref["lambda_bar"],
-                            "eyring_number": eyring[key],
+                            "eyring_number": numbers[key]["eyring_number"],
+                            "roughness_parameter": numbers[key]["roughness_parameter"],
                             "a_over_beta": case.half_width / beta, "error": row["mu"] / ref["mu"] - 1.0,
                             "time_s": row.get("wall_time_s", np.nan), "reference_time_s": ref.get("wall_time_s"),
                             "version": data["solver_version"]})
@@ -116,7 +119,7 @@ def reference_cases() -> list[dict]:
                                                                         "temp_c", "rq1_um", "rq2_um")))
         numbers = dimensionless_numbers(case, atf)
         out.append({"case": run["case"], "lambda_bar": numbers["lambda_bar"], "a_over_beta": case.half_width / beta,
-                    "eyring_number": numbers["eyring_number"], "error": run["mu"] / ref["mu_extrapolated"] - 1.0,
+                    "eyring_number": numbers["eyring_number"], "roughness_parameter": numbers["roughness_parameter"], "error": run["mu"] / ref["mu_extrapolated"] - 1.0,
                     "share": ref["asperity_load_share_extrapolated"]})
     return sorted(out, key=lambda r: r["eyring_number"])
 
@@ -125,21 +128,63 @@ def _fluctuation_table() -> list[str]:
     """The micro-EHL fluctuation measurements (benchmarks/micro_ehl_fluctuations.py) as a Markdown table."""
     rows = json.loads((RESULTS / "micro_ehl_fluctuations.json").read_text())["rows"]
     lines = ["| run | X_h | std of p_f / p_h | μ_Couette, local p_f and h | mean p_f and h | mean p_f, local h | "
-             "local p_f, mean h |", "|---|---|---|---|---|---|---|"]
+             "local p_f, mean h | gamma p_f (node's mean and std), mean h |", "|---|---|---|---|---|---|---|---|"]
     for r in rows:
+        gamma = r.get("couette_mu_gamma_pressure_mean_film")
         lines.append(f"| {r['run']} ({r['model_version']}) | {r['eyring_number']:.3g} | "
                      f"{r['pressure_std_over_p_h']:.2f} | {r['couette_mu_local']:.4f} | "
                      f"{r['couette_mu_mean_pressure_mean_film']:.4f} | {r['couette_mu_mean_pressure_local_film']:.4f} | "
-                     f"{r['couette_mu_local_pressure_mean_film']:.4f} |")
+                     f"{r['couette_mu_local_pressure_mean_film']:.4f} | "
+                     + (f"{gamma:.4f} |" if gamma is not None else "n/a |"))
+    return lines
+
+
+def closure_range(r: dict) -> str:
+    """Which side of the planner's narrow-contact limits a narrow point below λ̄ 1 is on."""
+    if r["eyring_number"] >= NARROW_FILM_LAW_EYRING:
+        return f"X_h ≥ {NARROW_FILM_LAW_EYRING:g}"
+    if r["lambda_bar"] >= NARROW_CLOSURE_LAMBDA and r["roughness_parameter"] <= NARROW_CLOSURE_ROUGHNESS:
+        return f"X_h < {NARROW_FILM_LAW_EYRING:g}, closure range"
+    return f"X_h < {NARROW_FILM_LAW_EYRING:g}, outside"
+
+
+def _calibration_lines() -> list[str]:
+    """The closure's calibration (benchmarks/micro_pressure_closure.py) as a Markdown table."""
+    record = json.loads((RESULTS / "micro_pressure_closure.json").read_text())
+    lines = [f"Calibration (`{record['command']}`, EHL solver {record['solver_version']}, film law at "
+             f"`{record['level']}`, isothermal, against the deterministic model: the validation set's grid-converged "
+             f"μ and the factorial points at `fast`): c = {record['c_fitted']:.4f} fitted, {record['c_shipped']:g} "
+             f"shipped; leave-one-out error on the {record['leave_one_out']['n']} calibration contacts: median "
+             f"{100 * record['leave_one_out']['median_abs']:.1f} %, 90th percentile "
+             f"{100 * record['leave_one_out']['p90_abs']:.1f} %.", "",
+             "| contacts | points | median error without | median abs without | 90th pct abs without | "
+             "median error with | median abs with | 90th pct abs with |", "|---|---|---|---|---|---|---|---|"]
+    for name, g in record["groups"].items():
+        a, b = g["without_closure"], g["with_closure"]
+        lines.append(f"| {name} | {a['n']} | {100 * a['median']:+.1f} % | {100 * a['median_abs']:.1f} % | "
+                     f"{100 * a['p90_abs']:.1f} % | {100 * b['median']:+.1f} % | {100 * b['median_abs']:.1f} % | "
+                     f"{100 * b['p90_abs']:.1f} % |")
+    lines += ["", "Below λ̄ 1 (with: at the shipped c, which the model uses on narrow contacts only):", "",
+              "| contact | a/β | λ̄ | X_h | α | deterministic μ | without | with | leave-one-out |",
+              "|---|---|---|---|---|---|---|---|---|"]
+    for p in sorted(record["points"], key=lambda p: (p["group"], p["eyring_number"])):
+        if p["lambda_bar"] > 1.0:
+            continue
+        loo = p.get("leave_one_out_error")
+        lines.append(f"| {p['label']} | {p['a_over_beta']:.1f} | {p['lambda_bar']:.2f} | {p['eyring_number']:.3g} | "
+                     f"{p['roughness_parameter']:.2f} | {p['mu_det']:.4f} | {100 * p['error_without']:+.1f} % | "
+                     f"{100 * p['error_with']:+.1f} % | " + (f"{100 * loo:+.1f} % |" if loo is not None else "– |"))
     return lines
 
 
 def _film_law_split(records: list[dict]) -> list[str]:
-    """Film law on narrow contacts below λ̄ 1, split at the planner's X_h limit."""
+    """Film law (with its closure) on narrow contacts below λ̄ 1, split at the planner's limits."""
     lines = ["| narrow, λ̄ ≤ 1 | points | median error | median abs | 90th pct abs | max abs |", "|---|---|---|---|---|---|"]
-    for label, saturated in ((f"X_h < {NARROW_FILM_LAW_EYRING:g}", False), (f"X_h ≥ {NARROW_FILM_LAW_EYRING:g}", True)):
+    groups = (f"X_h ≥ {NARROW_FILM_LAW_EYRING:g}", f"X_h < {NARROW_FILM_LAW_EYRING:g}, closure range",
+              f"X_h < {NARROW_FILM_LAW_EYRING:g}, outside")
+    for label in groups:
         sel = [r["error"] for r in records if r["model"] == "film law" and r["a_over_beta"] < WIDE_A_OVER_BETA
-               and r["lambda_bar"] <= 1.0 and (r["eyring_number"] >= NARROW_FILM_LAW_EYRING) == saturated]
+               and r["lambda_bar"] <= 1.0 and closure_range(r) == label]
         if sel:
             e = np.asarray(sel)
             lines.append(f"| {label} | {e.size} | {100 * np.median(e):+.1f} % | {100 * np.median(np.abs(e)):.1f} % | "
@@ -186,32 +231,50 @@ def markdown(records: list[dict]) -> str:
               "- Wide contacts: the film law is within a few per cent in median (its validated range, "
               "docs/homogenised_model.md).",
               "- Narrow contacts above λ̄ = 1: the film law is within 6 %.",
-              "- **Narrow contacts below λ̄ = 1: the film law holds where the traction is Eyring-saturated.** "
-              "What decides is the Eyring number at the Hertz pressure, X_h = η(p_h)|u_s|/(τ0 h_min,DH) (its "
-              "τ_m/τ0 = asinh X_h). Deep in the Eyring plateau the shear stress τ0 ln(2X) grows linearly with "
-              "the pressure, so the micro-EHL pressure fluctuations between asperities, which the film law does "
-              "not model, average out; where X_h is small τ still grows almost exponentially with the pressure, "
-              "and the fluctuations raise the mean stress. Measured in the deterministic model's runs (Couette part "
-              "of μ in |x| < 0.8a; `python benchmarks/micro_ehl_fluctuations.py A:16 G:8 I:8`):", "",
+              "- **Narrow contacts below λ̄ = 1: micro-EHL pressure fluctuations.** What decides is the Eyring "
+              "number at the Hertz pressure, X_h = η(p_h)|u_s|/(τ0 h_min,DH) (its τ_m/τ0 = asinh X_h). Deep in the "
+              "Eyring plateau the shear stress τ0 ln(2X) grows linearly with the pressure, so the micro-EHL "
+              "pressure fluctuations between asperities average out; where X_h is small τ still grows almost "
+              "exponentially with the pressure, and the fluctuations raise the mean stress. Measured in the "
+              "deterministic model's runs (Couette part of μ in |x| < 0.8a; "
+              "`python benchmarks/micro_ehl_fluctuations.py A:16 G:8 I:8 C:16`):", "",
               *_fluctuation_table(), "",
-              "  The film law is:",
+              "  A gamma distribution with each node's own mean and standard deviation (last column) reproduces "
+              "the local pressures' mean stress (the column before it): that is the shape of the closure below.", "",
+              "## Pressure-fluctuation closure (ehl-2026.11-13)", "",
+              "On narrow contacts the film law averages the Eyring stress over a gamma distribution of the pressure "
+              "about the smooth mean p̄(x), independent of the gap heights, with standard deviation "
+              f"σ_p = c·E'Δq/4 (c = {MICRO_PRESSURE_COEFFICIENT:g}): E'Δq/4 is the r.m.s. pressure that flattens "
+              "the composite roughness of r.m.s. slope Δq on elastic half-spaces (Johnson, Contact Mechanics, "
+              "§13.1), c the fraction the film lets through, fitted (`ehl_dataset/model/micro_pressure.py`). Wide "
+              "contacts keep c = 0: the deterministic model's periodic windows agree with the film law without it "
+              "and are far below it with it (the wide rows of the table), because a window at the local mean "
+              "pressure has no fluctuation at the contact's own scale.", "",
+              *_calibration_lines(), "",
+              "Outside the closure's range the film law stays low: below λ̄ "
+              f"{NARROW_CLOSURE_LAMBDA:g} the asperities carry load (case B, share 0.53), and above a Greenwood–"
+              f"Tripp roughness parameter α = S_c r_eq/a² of {NARROW_CLOSURE_ROUGHNESS:g} the mean pressure is not "
+              "the Hertzian one the film law takes (case C and three corners at α 3.6). The limits bound few "
+              "points: λ̄ 0.1 lies between the highest λ̄ outside for that reason (0.054, case B) and the lowest "
+              "inside (0.18); α 2.5 between the largest inside (1.8) and 3.6.", "",
+              "  The film law with its closure, on the factorial points (deterministic model at `fast`):",
               "", *_film_law_split(records), "",
               "  and on the grid-converged reference cases (docs/accuracy_mixed.md, `standard`; share: the "
               "reference's asperity load share):", "",
-              "| case | λ̄ | a/β | X_h | film law error | asperity share |", "|---|---|---|---|---|---|",
+              "| case | λ̄ | a/β | X_h | α | film law error | asperity share |", "|---|---|---|---|---|---|---|",
               *[f"| {r['case']} | {r['lambda_bar']:.2f} | {r['a_over_beta']:.1f} | {r['eyring_number']:.3g} | "
-                f"{100 * r['error']:+.1f} % | {r['share']:.3f} |" for r in reference_cases()], "",
-              f"- So since ehl-2026.11-12 the planner keeps the film law for narrow contacts above λ̄ = 1 or at "
-              f"X_h ≥ {NARROW_FILM_LAW_EYRING:g} (`narrow_film_law_lambda`, `narrow_film_law_eyring` of "
-              "`PlannerThresholds`; the limit is the geometric middle of the measured gap between 111 and 194, "
-              "few points bound it) and records them as within its measured range. Only the others go to the "
-              "level's `rough_model`. At `fast` and `standard` that is still the film law, recorded as outside its "
-              "validated range: no cheap model is within those levels' tolerance there (the transient solver is "
-              "high by more than the film law is low). The deterministic model (`--level reference` or "
-              "`--model deterministic`, about a minute per point at its `fast` grid) is the accurate option. "
-              "Sending them to it at `standard` is one line (`rough_model=\"deterministic\"`): in the paper's "
-              "factorial that is the 3,242 narrow points below λ̄ 1 with X_h < 150 (9 % of the 36,000 with "
-              "SR > 0; all 36 of the quick factorial's narrow points below λ̄ 1), about a day on this machine.",
+                f"{r['roughness_parameter']:.2f} | {100 * r['error']:+.1f} % | {r['share']:.3f} |"
+                for r in reference_cases()], "",
+              "## What the planner does", "",
+              f"- Narrow contacts above λ̄ = 1, at X_h ≥ {NARROW_FILM_LAW_EYRING:g} (since ehl-2026.11-12) or within "
+              f"the closure's range, λ̄ ≥ {NARROW_CLOSURE_LAMBDA:g} and α ≤ {NARROW_CLOSURE_ROUGHNESS:g} (since "
+              "ehl-2026.11-13; `narrow_closure_lambda`, `narrow_closure_roughness` of `PlannerThresholds`), are "
+              "within the film law's measured range and are solved by it at `fast` and `standard`.",
+              "- Only the others go to the level's `rough_model`. At `fast` and `standard` that is still the film "
+              "law, recorded as outside its validated range: no cheap model is within those levels' tolerance there. "
+              "The deterministic model (`--level reference` or `--model deterministic`, about a minute per point at "
+              "its `fast` grid) is the accurate option; `python benchmarks/planner_model_shares.py` counts how many "
+              "factorial points that is.",
               "", "## Per point", "",
               "| sample | p_h [GPa] | r_eq [mm] | u_r [m/s] | SR | T [°C] | Rq1/Rq2 [µm] | λ̄ | a/β | X_h | transient "
               "| film law | smooth |", "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
@@ -254,10 +317,12 @@ def plot(records: list[dict], path: Path) -> None:
     for model, (colour, marker) in styles.items():
         if model == "transient":
             continue
-        sel = [r for r in records if r["model"] == model and r["a_over_beta"] < WIDE_A_OVER_BETA
-               and r["lambda_bar"] <= 1.0]
-        ax.scatter([r["eyring_number"] for r in sel], [100 * r["error"] for r in sel], c=colour, marker=marker, s=22,
-                   alpha=0.75, label=f"{model} vs deterministic-fast ({len(sel)})")
+        for outside in (False, True):
+            sel = [r for r in records if r["model"] == model and r["a_over_beta"] < WIDE_A_OVER_BETA
+                   and r["lambda_bar"] <= 1.0 and closure_range(r).endswith("outside") == outside]
+            ax.scatter([r["eyring_number"] for r in sel], [100 * r["error"] for r in sel], marker=marker, s=22,
+                       alpha=0.75, facecolors="none" if outside else colour, edgecolors=colour,
+                       label=f"{model} vs deterministic-fast ({len(sel)}{', outside' if outside else ''})")
     refs = [r for r in reference_cases() if r["lambda_bar"] <= 1.0]
     ax.scatter([r["eyring_number"] for r in refs], [100 * r["error"] for r in refs], c="tab:blue", marker="*", s=110,
                edgecolors="k", label="film law vs reference case")
@@ -268,7 +333,8 @@ def plot(records: list[dict], path: Path) -> None:
     ax.axvline(NARROW_FILM_LAW_EYRING, color="k", lw=0.6, ls=":")
     ax.set_xscale("log")
     ax.set_xlabel("X_h = η(p_h)|u_s|/(τ0 h_min,DH)")
-    ax.set_title(f"narrow contacts below λ̄ 1: the planner's limit X_h = {NARROW_FILM_LAW_EYRING:g}")
+    ax.set_title(f"narrow, λ̄ ≤ 1 (film law with closure; hollow: outside λ̄ ≥ {NARROW_CLOSURE_LAMBDA:g}, "
+                 f"α ≤ {NARROW_CLOSURE_ROUGHNESS:g})", fontsize=9)
     ax.legend(fontsize=8)
     ax.grid(alpha=0.3)
     axes[0].set_ylabel("μ_model / μ_deterministic-fast − 1 [%]")
