@@ -1,6 +1,7 @@
 """Which contact model the planner picks over a factorial: the share of points solved steady smooth, by the film-law
 homogenised model within its validated range (rough and a/β ≥ 15, or narrow within its measured range: λ̄ > 1 or
-X_h ≥ 150, since ehl-2026.11-12), by the same model outside it (the other narrow rough contacts: the level's rough
+X_h ≥ 150, since ehl-2026.11-12, or λ̄ ≥ 0.1 and roughness parameter α ≤ 2.5, the range of its pressure-fluctuation
+closure, since ehl-2026.11-13), by the same model outside it (the other narrow rough contacts: the level's rough
 model since ehl-2026.11-11) and by the transient solver (a level whose rough model is transient), at the factorial's
 level.
 

@@ -13,8 +13,10 @@ threshold says it does not change the result beyond the level's tolerance (the c
   ``a_over_beta_homogenised`` roughness correlation lengths wide (a/β, β of the roughness profile), the steady
   homogenised model with the film-law closure (the roughness is a homogeneous micro-scale there: measured against the
   deterministic model in docs/homogenised_model.md, "Film-law closure"), so ``transient`` is off; so is a narrower
-  rough contact above λ̄ = 1 or with an Eyring-saturated traction (X_h ≥ 150, see below), where the film law is
-  measured within 10 % (docs/narrow_contacts.md); the other narrow rough contacts go to the level's ``rough_model``:
+  rough contact above λ̄ = 1, with an Eyring-saturated traction (X_h ≥ 150, see below), or within the range where
+  the film law's micro-EHL pressure-fluctuation closure was calibrated (λ̄ ≥ 0.1 and Greenwood–Tripp roughness
+  parameter α = S_c·r_eq/a² ≤ 2.5), where the film law is measured within 10 % in median (docs/narrow_contacts.md);
+  the other narrow rough contacts go to the level's ``rough_model``:
   the same film-law model at ``fast`` and ``standard``, recorded as outside its validated range (no cheap model is
   within those levels' tolerance there, and the transient mixed solver is further off than the film law), the
   deterministic solver at ``reference``.
