@@ -240,7 +240,8 @@ def markdown(records: list[dict]) -> str:
               "`python benchmarks/micro_ehl_fluctuations.py A:16 G:8 I:8 C:16`):", "",
               *_fluctuation_table(), "",
               "  A gamma distribution with each node's own mean and standard deviation (last column) reproduces "
-              "the local pressures' mean stress (the column before it): that is the shape of the closure below.", "",
+              "the local pressures' mean stress (the column before it) within 1–12 %: that is the shape of the closure "
+              "below.", "",
               "## Pressure-fluctuation closure (ehl-2026.11-13)", "",
               "On narrow contacts the film law averages the Eyring stress over a gamma distribution of the pressure "
               "about the smooth mean p̄(x), independent of the gap heights, with standard deviation "

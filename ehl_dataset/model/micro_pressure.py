@@ -9,7 +9,7 @@ traction is not saturated, τ grows nearly exponentially with p, and its mean ov
 
 - shape: a gamma distribution with the local mean pressure p̄ and standard deviation σ_p (it has support p ≥ 0 and
   the skew; with the deterministic runs' own σ_p(x) it reproduces their pressure-averaged Couette stress within
-  1–16 %, benchmarks/micro_pressure_closure.py);
+  1–12 % on cases A, C, G, I: `python benchmarks/micro_ehl_fluctuations.py A:16 G:8 I:8 C:16`);
 - scale: σ_p = c · E'Δq/4, where E'Δq/4 is the r.m.s. of the pressure that flattens the composite roughness
   completely, and c < 1 the fraction an EHL film lets through, calibrated against the deterministic model
   (:data:`MICRO_PRESSURE_COEFFICIENT`). Two elastic half-spaces in plane strain under a surface pressure p̂(k)
