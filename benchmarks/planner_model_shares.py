@@ -30,7 +30,7 @@ def shares(name: str, stride: int) -> dict[str, int]:
     for row in factorial.points()[::stride]:
         plan = plan_effects(ContactCase(*(float(v) for v in row)), lubricant, factorial.level or "standard")
         wide = plan.reasons["numbers"]["a_over_beta"] >= plan.reasons["thresholds"]["a_over_beta_homogenised"]
-        outside = "outside its validated range" in plan.reasons["decisions"]["model"]
+        outside = not plan.reasons.get("narrow_contact", {}).get("within_measured_range", True)
         counts["smooth" if not plan.roughness else "transient" if plan.transient else
                "film_law" if wide else "film_law_narrow" if outside else "film_law_narrow_within"] += 1
     return dict(counts)

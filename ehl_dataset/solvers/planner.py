@@ -210,7 +210,10 @@ def plan_effects(case, lubricant, level="standard", correlation_length_m: float 
     (``correlation_length_m``: β of the roughness profile [m]; None: the shipped baseline profile's).
 
     Returns an :class:`~ehl_dataset.model.effects.Effects` with ``mode="auto"`` and ``reasons`` holding the numbers,
-    the thresholds and one sentence per decision. Bad input raises :class:`InputError` (unknown level,
+    the thresholds and one sentence per decision; for a rough contact narrower than ``a_over_beta_homogenised`` also
+    ``narrow_contact``: ``within_measured_range`` (whether the film law is within its measured range there) and
+    ``limit``, the limit that decided (``lambda_bar``, ``eyring_number``, ``closure_range``, ``below_closure_lambda``
+    or ``above_closure_roughness``). Bad input raises :class:`InputError` (unknown level,
     temperature outside the lubricant's data).
     """
     limits = thresholds_for(level)
@@ -290,6 +293,12 @@ def plan_effects(case, lubricant, level="standard", correlation_length_m: float 
     level_name = getattr(level, "name", level)
     reasons = {"level": str(level_name), "numbers": _json_safe(nums), "thresholds": _json_safe(asdict(limits)),
                "decisions": decisions}
+    if rough and not wide:
+        limit = ("lambda_bar" if lam > limits.narrow_film_law_lambda else
+                 "eyring_number" if x_h >= limits.narrow_film_law_eyring else
+                 "closure_range" if closure_range else
+                 "below_closure_lambda" if lam < limits.narrow_closure_lambda else "above_closure_roughness")
+        reasons["narrow_contact"] = {"within_measured_range": bool(narrow_valid), "limit": limit}
     return Effects(roughness=rough, transient=rough and not homogenised, shear_thinning=not newtonian,
                    compressibility=True,
                    mode="auto", reasons=reasons, thermal=thermal)

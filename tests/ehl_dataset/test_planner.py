@@ -179,6 +179,13 @@ def test_narrow_contacts_keep_the_film_law_where_it_was_measured(monkeypatch):
                                                                     rough_model="homogenised"))
     outside = {name: plan_effects(cases[name], ATF, "standard").reasons["decisions"]["model"] for name in "BC"}
     assert "outside its validated range" in outside["B"] and "asperities carry load" in outside["B"]
+    limits = {name: plan_effects(c, ATF, "standard").reasons["narrow_contact"] for name, c in cases.items()}
+    assert limits == {"A": {"within_measured_range": True, "limit": "closure_range"},
+                      "B": {"within_measured_range": False, "limit": "below_closure_lambda"},
+                      "C": {"within_measured_range": False, "limit": "above_closure_roughness"},
+                      "I": {"within_measured_range": True, "limit": "eyring_number"},
+                      "above": {"within_measured_range": True, "limit": "lambda_bar"}}
+    assert "narrow_contact" not in plan_effects(case(r_eq_mm=80), ATF, "standard").reasons
     assert "outside its validated range" in outside["C"] and "alpha=3.62 > 2.5" in outside["C"]
     assert plan_effects(cases["I"], ATF, "reference").transient  # the reference level never homogenises
 
