@@ -33,36 +33,14 @@ OUT = Path(__file__).resolve().parent / "results" / "micro_ehl_fluctuations.json
 ZONE = 0.8
 
 
-class _Snapshots(deterministic._Record):
-    """The run's record, keeping every step's fluid pressure [Pa], film [m] and fill fraction."""
-
-    def __init__(self):
-        super().__init__()
-        self.states = []
-
-    def add(self, problem, case, state, scales, z, h, gap, substeps, t_s):
-        super().add(problem, case, state, scales, z, h, gap, substeps, t_s)
-        pf, th, _, _ = problem.unpack(z)
-        self.states.append((pf * case.p_h, np.maximum(h, problem.h_b) * scales.film_scale, th.copy()))
-
-
 def analyse(name: str, n: int) -> dict:
     lubricant = load_lubricant(LUBRICANT)
     case = ContactCase.from_engineering(*CASES[name])
     state = lubricant.state(case.temperature)
-    records = []
-    original = deterministic._Record
-
-    def make_record():
-        records.append(_Snapshots())
-        return records[-1]
-
-    deterministic._Record = make_record
-    try:
-        result = deterministic.solve_deterministic(case, state, Effects.full(), options_for(n, False))
-    finally:
-        deterministic._Record = original
-    window = records[-1].states[result.extra["average_from_step"]:]
+    states = []
+    result = deterministic.solve_deterministic(case, state, Effects.full(), options_for(n, False),
+                                               observer=lambda t, p, h, fill: states.append((p, h, fill)))
+    window = states[result.extra["average_from_step"]:]
     x = result.x / case.half_width
     zone = np.abs(x) < ZONE
     p = np.array([s[0] for s in window])[:, zone]

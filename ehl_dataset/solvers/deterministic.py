@@ -479,8 +479,13 @@ def _traction(problem: MixedProblem, case: ContactCase, state: LubricantState, s
 
 def solve_deterministic(case: ContactCase, state: LubricantState, plan: Effects, options: DeterministicOptions,
                         roughness: RoughnessProfile | None = None, time_limit_s: float | None = None,
-                        level_name: str = "reference") -> ContactResult:
-    """Solve one rough contact with the deterministic transient model (module docstring)."""
+                        level_name: str = "reference", observer=None) -> ContactResult:
+    """Solve one rough contact with the deterministic transient model (module docstring).
+
+    ``observer``: None, or called after every accepted time step k = 1, 2, … as ``observer(t_s, p_fluid_pa, film_m,
+    fill)`` with the fluid pressure [Pa], the film max(h, h_b) [m] and the fill fraction θ on the nodes ``result.x``
+    (for analyses of the fields, e.g. benchmarks/micro_ehl_fluctuations.py; step k is ``result.extra``'s series index
+    k − 1)."""
     clock = options.clock
     start = clock()
     scales = ContactScales.of(case, state, plan.shear_thinning)
@@ -565,6 +570,9 @@ def solve_deterministic(case: ContactCase, state: LubricantState, plan: Effects,
         k += 1
         t = k * d_t
         record.add(problem, case, state, scales, z, h, g, substeps, t * time_scale)
+        if observer is not None:
+            p_fluid, fill, _, _ = problem.unpack(z)
+            observer(t * time_scale, p_fluid * case.p_h, np.maximum(h, problem.h_b) * scales.film_scale, fill.copy())
         if k > first_average:
             record.accumulate()
         if k >= n_min and (k - n_min) % check_every == 0:
