@@ -125,13 +125,25 @@ def run_path(name: str, n: int) -> Path:
     return RUNS / f"{name}_beta{n}.json"
 
 
+def solve_and_record(name: str, n: int, long: bool, max_passes: float = MAX_PASSES) -> dict:
+    """Solve case ``name`` at β/``n`` (the long run's options if ``long``, else the short run's) and return the run's
+    record as the validation set stores it (inputs, version, μ and its standard error, share, films, series)."""
+    case = ContactCase.from_engineering(*CASES[name])
+    state = load_lubricant(LUBRICANT).state(case.temperature)
+    result = solve_deterministic(case, state, Effects.full(), options_for(n, long, max_passes))
+    extra = {k: (v.tolist() if isinstance(v, np.ndarray) else v) for k, v in result.extra.items()}
+    return {"case": name, "inputs": CASES[name], "points_per_beta": n, "solver_version": MODEL_VERSION,
+            "layout_passes": LAYOUT_PASSES,
+            "mu": result.mu, "mu_sem": result.mu_sem, "asperity_load_share": result.asperity_load_share,
+            "h_min_m": result.h_min, "h_central_m": result.h_central, "converged": result.converged,
+            "message": result.message, "wall_time_s": result.wall_time, "lambda_bar": result.lambda_bar,
+            "residuals": result.residuals, "extra": extra}
+
+
 def run_case(name: str, only: int | None = None, max_passes: float = MAX_PASSES) -> None:
     """Run the case's spacings not yet on record under this model version (``only``: that spacing alone); the
     long run stops at ``max_passes`` passes if its standard-error target is not met by then (recorded in its
     message)."""
-    lubricant = load_lubricant(LUBRICANT)
-    case = ContactCase.from_engineering(*CASES[name])
-    state = lubricant.state(case.temperature)
     RUNS.mkdir(parents=True, exist_ok=True)
     coarse, middle, fine = spacings(name)
     for n in (middle, coarse, fine):
@@ -144,17 +156,10 @@ def run_case(name: str, only: int | None = None, max_passes: float = MAX_PASSES)
             if numerics(done.get("solver_version", "")) == numerics(MODEL_VERSION) and same_layout:
                 continue
         start = time.time()
-        result = solve_deterministic(case, state, Effects.full(), options_for(n, n == middle, max_passes))
-        extra = {k: (v.tolist() if isinstance(v, np.ndarray) else v) for k, v in result.extra.items()}
-        record = {"case": name, "inputs": CASES[name], "points_per_beta": n, "solver_version": MODEL_VERSION,
-                  "layout_passes": LAYOUT_PASSES,
-                  "mu": result.mu, "mu_sem": result.mu_sem, "asperity_load_share": result.asperity_load_share,
-                  "h_min_m": result.h_min, "h_central_m": result.h_central, "converged": result.converged,
-                  "message": result.message, "wall_time_s": result.wall_time, "lambda_bar": result.lambda_bar,
-                  "residuals": result.residuals, "extra": extra}
+        record = solve_and_record(name, n, n == middle, max_passes)
         path.write_text(json.dumps(record))
-        print(f"{name} beta/{n}: mu {result.mu:.5f} +- {result.mu_sem:.5f} share {result.asperity_load_share:.4f} "
-              f"{result.message} {time.time() - start:.0f} s", flush=True)
+        print(f"{name} beta/{n}: mu {record['mu']:.5f} +- {record['mu_sem']:.5f} share "
+              f"{record['asperity_load_share']:.4f} {record['message']} {time.time() - start:.0f} s", flush=True)
 
 
 def _on_grid(t_fine, y_fine, t_grid):

@@ -34,7 +34,8 @@ from ehl_dataset.model.micro_pressure import MICRO_PRESSURE_COEFFICIENT  # noqa:
 from ehl_dataset.solver import SOLVER_VERSION, solve_contact  # noqa: E402
 from ehl_dataset.solvers.homogenised import HomogenisedOptions  # noqa: E402
 from ehl_dataset.solvers.planner import (NARROW_CLOSURE_LAMBDA, NARROW_CLOSURE_ROUGHNESS,  # noqa: E402
-                                         NARROW_FILM_LAW_EYRING, dimensionless_numbers)
+                                         NARROW_FILM_LAW_EYRING, dimensionless_numbers,
+                                         narrow_film_law_range, thresholds_for)
 from ehl_dataset.solvers.wide_contact import WIDE_A_OVER_BETA  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -68,13 +69,12 @@ def group(p: dict) -> str:
         return ("wide, lambda_bar <= 1, X_h < 150 (closure not used)"
                 if p["lambda_bar"] <= 1.0 and p["eyring_number"] < NARROW_FILM_LAW_EYRING else
                 "wide, other (closure not used)")
-    if p["lambda_bar"] > 1.0:
+    within, limit = narrow_film_law_range(p, thresholds_for("standard"))
+    if limit == "lambda_bar":
         return "lambda_bar > 1"
-    if p["eyring_number"] >= NARROW_FILM_LAW_EYRING:
+    if limit == "eyring_number":
         return "lambda_bar <= 1, X_h >= 150"
-    if p["lambda_bar"] >= NARROW_CLOSURE_LAMBDA and p["roughness_parameter"] <= NARROW_CLOSURE_ROUGHNESS:
-        return "lambda_bar <= 1, X_h < 150, closure range"
-    return "lambda_bar <= 1, X_h < 150, outside closure range"
+    return "lambda_bar <= 1, X_h < 150, " + ("closure range" if within else "outside closure range")
 
 
 CALIBRATION = "lambda_bar <= 1, X_h < 150, closure range"

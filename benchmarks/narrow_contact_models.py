@@ -40,7 +40,7 @@ from ehl_dataset.model.roughness import baseline_profile
 from ehl_dataset.solver import SOLVER_VERSION
 from ehl_dataset.model.micro_pressure import MICRO_PRESSURE_COEFFICIENT
 from ehl_dataset.solvers.planner import (NARROW_CLOSURE_LAMBDA, NARROW_CLOSURE_ROUGHNESS, NARROW_FILM_LAW_EYRING,
-                                         dimensionless_numbers)
+                                         dimensionless_numbers, narrow_film_law_range, thresholds_for)
 from ehl_dataset.solvers.wide_contact import WIDE_A_OVER_BETA
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -140,12 +140,11 @@ def _fluctuation_table() -> list[str]:
 
 
 def closure_range(r: dict) -> str:
-    """Which side of the planner's narrow-contact limits a narrow point below λ̄ 1 is on."""
-    if r["eyring_number"] >= NARROW_FILM_LAW_EYRING:
+    """Which side of the planner's narrow-contact limits (at ``standard``) a narrow point below λ̄ 1 is on."""
+    within, limit = narrow_film_law_range(r, thresholds_for("standard"))
+    if limit == "eyring_number":
         return f"X_h ≥ {NARROW_FILM_LAW_EYRING:g}"
-    if r["lambda_bar"] >= NARROW_CLOSURE_LAMBDA and r["roughness_parameter"] <= NARROW_CLOSURE_ROUGHNESS:
-        return f"X_h < {NARROW_FILM_LAW_EYRING:g}, closure range"
-    return f"X_h < {NARROW_FILM_LAW_EYRING:g}, outside"
+    return f"X_h < {NARROW_FILM_LAW_EYRING:g}, " + ("closure range" if within else "outside")
 
 
 def _calibration_lines() -> list[str]:

@@ -167,8 +167,8 @@ def solve_film_law(case: ContactCase, state: LubricantState, lvl: AccuracyLevel,
     film = h_centre * rho_centre / np.asarray(state.density(pz), dtype=float)
     coefficient = (micro_pressure_coefficient_for(a_over_beta) if micro_pressure_coefficient is None
                    else micro_pressure_coefficient)
-    slope_rms = composite_slope_rms(profile, case.rq1, case.rq2)
-    pressure_std = coefficient * flattening_pressure_rms(case.e_reduced, slope_rms)
+    slope_rms = composite_slope_rms(profile, case.rq1, case.rq2) if coefficient > 0.0 else None
+    pressure_std = coefficient * flattening_pressure_rms(case.e_reduced, slope_rms) if coefficient > 0.0 else 0.0
     shear = fluctuation_averaged_shear_stress(state.viscosity, pz, pressure_std, case.u_s, film, heights,
                                               state.tau0, boundary_film_m)
     rolling = 0.5 * film * np.gradient(p_s, x_m)[zone]

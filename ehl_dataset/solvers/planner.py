@@ -205,6 +205,24 @@ def dimensionless_numbers(case, lubricant, correlation_length_m: float | None = 
     }
 
 
+def narrow_film_law_range(nums: dict, limits: PlannerThresholds) -> tuple[bool, str]:
+    """Whether the film law is within its measured range on a narrow rough contact with the planner's numbers
+    ``nums`` (:func:`dimensionless_numbers`) under ``limits``, and the limit that decides: ``lambda_bar`` (λ̄ above
+    ``narrow_film_law_lambda``), ``eyring_number`` (X_h at or above ``narrow_film_law_eyring``), ``closure_range``
+    (λ̄ ≥ ``narrow_closure_lambda`` and α ≤ ``narrow_closure_roughness``) — within —, or ``below_closure_lambda``,
+    ``above_closure_roughness`` — outside."""
+    lam, x_h, alpha = nums["lambda_bar"], nums["eyring_number"], nums["roughness_parameter"]
+    if lam > limits.narrow_film_law_lambda:
+        return True, "lambda_bar"
+    if x_h >= limits.narrow_film_law_eyring:
+        return True, "eyring_number"
+    if lam < limits.narrow_closure_lambda:
+        return False, "below_closure_lambda"
+    if alpha > limits.narrow_closure_roughness:
+        return False, "above_closure_roughness"
+    return True, "closure_range"
+
+
 def plan_effects(case, lubricant, level="standard", correlation_length_m: float | None = None) -> Effects:
     """Decide which effects to simulate for ``case`` with ``lubricant`` at accuracy ``level``
     (``correlation_length_m``: β of the roughness profile [m]; None: the shipped baseline profile's).
@@ -223,9 +241,8 @@ def plan_effects(case, lubricant, level="standard", correlation_length_m: float 
     wide = nums["a_over_beta"] >= limits.a_over_beta_homogenised
     x_h = nums["eyring_number"]
     alpha = nums["roughness_parameter"]
-    saturated_or_thick = lam > limits.narrow_film_law_lambda or x_h >= limits.narrow_film_law_eyring
-    closure_range = lam >= limits.narrow_closure_lambda and alpha <= limits.narrow_closure_roughness
-    narrow_valid = not wide and (saturated_or_thick or closure_range)
+    narrow_within, narrow_limit = narrow_film_law_range(nums, limits)
+    narrow_valid = not wide and narrow_within
     homogenised = rough and (wide or narrow_valid or limits.rough_model == "homogenised")
     a_b = f"a/beta={nums['a_over_beta']:.3g}"
     x_in = nums["eyring_inlet"]
@@ -252,10 +269,10 @@ def plan_effects(case, lubricant, level="standard", correlation_length_m: float 
                   f"homogenised model, film-law closure, on a narrow contact within its measured range ({a_b} < "
                   f"{limits.a_over_beta_homogenised:g}, but "
                   + (f"lambda_bar={lam:.3g} > {limits.narrow_film_law_lambda:g}"
-                     if lam > limits.narrow_film_law_lambda else
+                     if narrow_limit == "lambda_bar" else
                      f"Eyring number at p_h X_h={x_h:.3g} >= {limits.narrow_film_law_eyring:g}: Eyring-saturated "
                      "traction"
-                     if x_h >= limits.narrow_film_law_eyring else
+                     if narrow_limit == "eyring_number" else
                      f"lambda_bar={lam:.3g} >= {limits.narrow_closure_lambda:g} and roughness parameter "
                      f"alpha={alpha:.3g} <= {limits.narrow_closure_roughness:g}: the unsaturated traction with the "
                      "calibrated micro-EHL pressure-fluctuation closure")
@@ -265,7 +282,7 @@ def plan_effects(case, lubricant, level="standard", correlation_length_m: float 
                   f"{limits.a_over_beta_homogenised:g}, X_h={x_h:.3g} < {limits.narrow_film_law_eyring:g}, "
                   + (f"lambda_bar={lam:.3g} < {limits.narrow_closure_lambda:g}: asperities carry load, which the film "
                      "law does not model"
-                     if lam < limits.narrow_closure_lambda else
+                     if narrow_limit == "below_closure_lambda" else
                      f"roughness parameter alpha={alpha:.3g} > {limits.narrow_closure_roughness:g}: the mean pressure "
                      "is not the Hertzian one the film law takes")
                   + "; docs/narrow_contacts.md); the reference: level reference or model=deterministic"
@@ -294,11 +311,7 @@ def plan_effects(case, lubricant, level="standard", correlation_length_m: float 
     reasons = {"level": str(level_name), "numbers": _json_safe(nums), "thresholds": _json_safe(asdict(limits)),
                "decisions": decisions}
     if rough and not wide:
-        limit = ("lambda_bar" if lam > limits.narrow_film_law_lambda else
-                 "eyring_number" if x_h >= limits.narrow_film_law_eyring else
-                 "closure_range" if closure_range else
-                 "below_closure_lambda" if lam < limits.narrow_closure_lambda else "above_closure_roughness")
-        reasons["narrow_contact"] = {"within_measured_range": bool(narrow_valid), "limit": limit}
+        reasons["narrow_contact"] = {"within_measured_range": bool(narrow_valid), "limit": narrow_limit}
     return Effects(roughness=rough, transient=rough and not homogenised, shear_thinning=not newtonian,
                    compressibility=True,
                    mode="auto", reasons=reasons, thermal=thermal)
