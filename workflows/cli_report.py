@@ -226,6 +226,11 @@ def run_sweep(args: argparse.Namespace) -> int:
                "table1": {model: {d: {k: row[k] for k in ("power_loss_w", "te_pp_m", "sigma_c_pa", "sigma_b_pa",
                                                           "valid")} for d, row in rows.items()}
                           for model, rows in designs.items()},
+               "lines": {model: {column: {column: line[column].tolist(),
+                                          "power_loss_w": line["power_loss_w"].tolist(),
+                                          "valid": line["valid"].fillna(False).astype(bool).tolist()}
+                                 for column, line in by_column.items()}
+                         for model, by_column in lines.items()},
                "conditions": _point_text(point)}
 
     def human(p):

@@ -257,6 +257,28 @@ def test_12_efficiency_map_is_eta_of_gear_evaluate_and_hatches_cells_outside_val
     assert any("clipped" in r for r in p["not_valid_reasons"])
 
 
+def test_12_report_sweep_prints_the_papers_sole_influence_lines_and_table1(tmp_path, capsys):
+    """The JSON of `report sweep` carries the numbers drawn (Li & Kahraman 2009 Fig. 3a, 4a-c lines and Table 1):
+    P falls with N, Φ and Ψ and rises with Λ_wd for each friction model, as in the paper's figures, and the Table 1
+    design D is the same mesh cycle as `report mesh-cycle` (same P, to round-off)."""
+    assert main(["report", "sweep", "--limit", "12", "--out-dir", str(tmp_path), "--json"]) == 0
+    p = json.loads(capsys.readouterr().out)
+    assert p["designs_evaluated"] == 12 and all(path.endswith(".png") for path in p["figures"])
+    assert set(p["lines"]) == {"atf", "xu2007"}
+    trends = {"teeth": -1, "normal_pressure_angle_deg": -1, "helix_angle_deg": -1, "working_depth": 1}
+    for model, lines in p["lines"].items():
+        assert set(lines) == set(trends), model
+        for column, sign in trends.items():
+            x, power = lines[column][column], lines[column]["power_loss_w"]
+            assert len(x) >= 5 and x == sorted(x), (model, column)
+            assert all(sign * (b - a) > 0 for a, b in zip(power[:-1], power[1:])), (model, column, power)
+    assert main(["report", "mesh-cycle", "--out", str(tmp_path / "cycle.png"), "--json"]) == 0
+    cycle = json.loads(capsys.readouterr().out)
+    for model in ("atf", "xu2007"):
+        assert p["table1"][model]["D"]["power_loss_w"] == pytest.approx(cycle["models"][model]["power_loss_w"],
+                                                                         rel=1e-9)
+
+
 def test_12_every_docs_figure_says_under_it_the_command_and_the_solver_version_and_report_pngs_match():
     """Each image in README/docs has a caption naming the command that made it and the EHL solver version; the
     figures of gearloss report carry the same command in their PNG metadata (they are the command's output)."""
