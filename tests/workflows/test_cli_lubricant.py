@@ -108,3 +108,40 @@ def test_fit_runs_the_route_resumes_and_refuses_a_changed_lubricant(my_oil, tmp_
     assert main(["lubricant", "fit", str(my_oil), "--factorial", "smoke", "--progress", "none", "--json"]) == 2
     assert "lubricant" in _json(capsys)["error"]["parameter"]
     assert (folder / "dataset.h5").stat().st_mtime_ns == before
+
+
+@pytest.mark.slow
+def test_fit_through_a_dask_scheduler_address_gives_the_rows_and_coefficients_of_local_processes(my_oil, tmp_path,
+                                                                                                   capsys,
+                                                                                                   monkeypatch):
+    """Issue 15 deliverable 6 through the command itself: `lubricant fit ... --scheduler tcp://...` sends the points
+    to a Dask cluster (here a LocalCluster of 2 worker processes behind a TCP scheduler), records that executor, and
+    stores the same physics rows and the same coefficients as local worker processes."""
+    import os
+
+    distributed = pytest.importorskip("distributed")
+    repo = Path(__file__).resolve().parents[2]
+    monkeypatch.setenv("PYTHONPATH", os.pathsep.join([str(repo), os.environ.get("PYTHONPATH", "")]))
+    local_dir, dask_dir = tmp_path / "local", tmp_path / "dask"
+    assert main(["lubricant", "fit", str(my_oil), "--factorial", "smoke", "--workers", "2", "--progress", "none",
+                 "--out-dir", str(local_dir), "--json"]) == 0
+    local = _json(capsys)
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None,
+                                  host="127.0.0.1") as cluster:
+        address = cluster.scheduler_address
+        assert address.startswith("tcp://")
+        assert main(["lubricant", "fit", str(my_oil), "--factorial", "smoke", "--scheduler", address, "--progress",
+                     "none", "--out-dir", str(dask_dir), "--json"]) == 0
+    remote = _json(capsys)
+    executor = remote["stages"]["dataset"]["executor"]
+    assert executor["executor"] == "dask" and executor["workers"] == 2, executor
+    assert remote["stages"]["dataset"]["ok"] == local["stages"]["dataset"]["ok"] == 96
+    columns = ["point", "p_h", "r_eq", "u_r", "sr", "temperature", "mu", "h_min", "h_central", "lambda_bar"]
+    a = read_table(local_dir / "dataset.h5").sort_values("point").reset_index(drop=True)
+    b = read_table(dask_dir / "dataset.h5").sort_values("point").reset_index(drop=True)
+    assert a[columns].equals(b[columns])
+    workers = set(b["worker"])
+    assert len(workers) == 2 and not any(w.endswith(f":{os.getpid()}") for w in workers)
+    coefficients = {name: json.loads(Path(out["coefficients"]).read_text())["branches"]
+                    for name, out in (("local", local), ("dask", remote))}
+    assert coefficients["local"] == coefficients["dask"]
