@@ -46,6 +46,7 @@ ROOT = Path(__file__).resolve().parents[1]
 RUNS = ROOT / "benchmarks" / "results" / "deterministic"
 REFERENCE = ROOT / "data" / "reference" / "deterministic_validation.json"
 REPORT = ROOT / "docs" / "deterministic_validation.md"
+FILM_SAMPLING = ROOT / "benchmarks" / "results" / "deterministic_film_sampling.json"
 
 CASES = {
     # name: (p_h GPa, r_eq mm, u_r m/s, SR, T °C, Rq1 µm, Rq2 µm)
@@ -193,6 +194,39 @@ def paired_difference(run: dict, base: dict, key: str) -> tuple[float, float]:
     return diff.mean, diff.standard_error
 
 
+def averaging_passes(run: dict) -> float:
+    """Length [passes] of a run's averaging window."""
+    extra = run["extra"]
+    domain = DeterministicOptions().domain
+    case = ContactCase.from_engineering(*run["inputs"])
+    steps_per_pass = (domain[1] - domain[0]) * case.half_width / (extra["courant"] * extra["dx_m"])
+    return (extra["n_steps"] - extra["average_from_step"]) / steps_per_pass
+
+
+def central_film(name: str, fine: dict, middle: dict) -> dict:
+    """The reference's central film h_c: the time mean of the film at x = 0 over the longest averaging window
+    available, the validation's long (middle-spacing) run or the long run of benchmarks/deterministic_film_sampling.py,
+    with its standard error σ_W·√(W/P) (σ_W the measured spread of the means of windows W = 1.5 passes long, P the
+    chosen run's window). The grid moves h_c by ≤ 1.2 % between the spacings at a common window; the window length
+    moves it by up to 30 % (A, B, C: the 1.5-pass fine runs against the 40-pass middle runs), so the window decides.
+    Without a sampling run: the longer of the fine and middle runs, no standard error."""
+    out = {"h_central_m_fine": fine["h_central_m"], "h_central_m_middle": middle["h_central_m"]}
+    sampling = {r["case"]: r for r in json.loads(FILM_SAMPLING.read_text())["rows"]} if FILM_SAMPLING.exists() else {}
+    row = sampling.get(name)
+    candidates = [(averaging_passes(run), run["h_central_m"], f"beta/{run['points_per_beta']} run")
+                  for run in (fine, middle)]
+    if row is not None:
+        candidates.append((row["average_passes"], row["h_central_long_m"],
+                           f"film-sampling run at beta/{row['points_per_beta']}"))
+    passes, value, source = max(candidates, key=lambda c: c[0])
+    if row is None:
+        return {"h_central_m": value, "h_central_sem_m": math.nan, "h_central_source": f"{source} ({passes:.1f} "
+                f"passes)", **out}
+    sem = row["h_central_window_std_m"] * math.sqrt(row["validation_window_passes"] / passes)
+    return {"h_central_m": value, "h_central_sem_m": sem, "h_central_source": f"{source} ({passes:.1f} passes)",
+            "h_central_window_std_m": row["h_central_window_std_m"], **out}
+
+
 def summarise_case(name: str) -> dict | None:
     coarse, middle, fine = levels = spacings(name)
     runs = {n: json.loads(run_path(name, n).read_text()) for n in levels if run_path(name, n).exists()}
@@ -216,7 +250,7 @@ def summarise_case(name: str) -> dict | None:
            "wall_time_s": {f"beta/{n}": runs[n]["wall_time_s"] for n in levels},
            "n_nodes": {f"beta/{n}": runs[n]["extra"]["n_nodes"] for n in levels},
            "smooth_mu": base["extra"]["smooth_mu"],
-           "h_central_m": runs[fine]["h_central_m"], "h_central_m_middle": base["h_central_m"]}
+           **central_film(name, runs[fine], base)}
     for key, series in (("mu", "mu_series"), ("asperity_load_share", "share_series")):
         long_mean = time_mean(np.asarray(base["extra"][series])[base["extra"]["average_from_step"]:])
         values, errors = {middle: long_mean.mean}, {middle: long_mean.standard_error}

@@ -210,7 +210,9 @@ def markdown_mixed(study: dict, command: str, png_name: str) -> str:
              "Regenerate with:", "", f"    {command}", "",
              f"Reference: `{Path(study['reference_file']).name}` (the deterministic solver's validation set, μ "
              "Richardson-extrapolated from three grid spacings; docs/deterministic_solver.md). err μ = |μ − μ_ref|/"
-             "μ_ref; err h_c is that of the central film; Δshare the difference of the asperity load share. Wall time "
+             "μ_ref; err h_c is that of the central film, against the reference's time mean of the film at x = 0 over its "
+             "longest averaging window (± its standard error: a window of 1.5 passes scatters by up to 20 %, "
+             "benchmarks/deterministic_film_sampling.py); Δshare the difference of the asperity load share. Wall time "
              "per case on one core, around `solve_contact`.", "",
              f"EHL solver {prov.get('solver_version')}, commit `{prov.get('git_commit')}`"
              + (" (with uncommitted solver changes)" if prov.get("solver_files_modified") else "")
@@ -226,7 +228,7 @@ def markdown_mixed(study: dict, command: str, png_name: str) -> str:
     lines += ["", f"![error versus time]({png_name})", "",
               f"*Made by `{command}` (gearloss {prov.get('gearloss')}, EHL solver {prov.get('solver_version')}).*",
               "", "## Per case", "",
-              "| case | λ̄ | a/β | μ_ref ± | h_c,ref [nm] | share_ref | model | μ | err μ | h_c [nm] | err h_c | share | "
+              "| case | λ̄ | a/β | μ_ref ± | h_c,ref ± [nm] | share_ref | model | μ | err μ | h_c [nm] | err h_c | share | "
               "time [s] | converged |", "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     from ehl_dataset.model.roughness import baseline_profile
 
@@ -234,10 +236,13 @@ def markdown_mixed(study: dict, command: str, png_name: str) -> str:
     for row in study["cases"]:
         for run in (r for r in study["runs"] if r.case == row["case"]):
             hc_ref = row.get("h_central_m")
+            hc_sem = row.get("h_central_sem_m", math.nan)
+            hc_text = "n/a" if not hc_ref else f"{hc_ref * 1e9:.0f}" + (
+                f" ± {hc_sem * 1e9:.0f}" if hc_sem is not None and math.isfinite(hc_sem) else "")
             lines.append(
                 f"| {row['case']} | {row['lambda_bar']:.3g} | {row['half_width_m'] / beta:.1f} | "
                 f"{row['mu_extrapolated']:.4f} ± {row['mu_uncertainty']:.4f} | "
-                f"{'n/a' if not hc_ref else f'{hc_ref * 1e9:.0f}'} | "
+                f"{hc_text} | "
                 f"{row.get('asperity_load_share_extrapolated', math.nan):.3f} | {run.model} | {run.mu:.4f} | "
                 f"{_pct(run.mu_error)} | {run.h_central_m * 1e9:.0f} | {_pct(run.h_central_error)} | "
                 f"{run.asperity_load_share:.3f} | {run.wall_time_s:.3g} | {'yes' if run.converged else 'NO'} |")

@@ -183,3 +183,23 @@ def test_the_command_line_says_which_model_the_planner_chose(capsys):
     rough = ContactCase.from_engineering(0.5, 5, 2, 0.7, 25, 1.0, 1.0)  # reference case C: alpha 3.6
     decision = solve_contact(rough, load_lubricant("atf"), "fast").effects["reasons"]["decisions"]["model"]
     assert "outside its validated range" in decision and "alpha=3.62 > 2.5" in decision
+
+
+def test_central_film_is_within_10_percent_of_the_reference_where_the_planner_keeps_the_film_law(atf):
+    """Issue 15 acceptance, "h_min within 10 %" (the central film: a rough film's minimum is a contact spot): on the
+    reference cases where the planner keeps the film law within its measured range (E, F, K above λ̄ 1; I, J at
+    X_h ≥ 150; A, G within the pressure-fluctuation closure's range, docs/narrow_contacts.md) the film law's central
+    film is within 10 % of the reference's, the time mean of the deterministic film at x = 0 over its longest
+    averaging window (data/reference/deterministic_validation.json, ``h_central_source``; measured 0.4–9.5 %). The
+    reference's 1.5-pass windows scatter by up to 10 % (I: 378 nm against 455 ± 19 nm over 9 passes,
+    benchmarks/results/deterministic_film_sampling.json), which is why the longest window is the reference."""
+    reference = {c["case"]: c for c in json.loads(
+        (ROOT / "data" / "reference" / "deterministic_validation.json").read_text())["cases"]}
+    for name in ("A", "E", "F", "G", "I", "J", "K"):
+        row = reference[name]
+        passes = float(row["h_central_source"].split("(")[1].split()[0])
+        assert passes >= 3.0, (name, row["h_central_source"])
+        inputs = [row["inputs"][k] for k in ("p_h_gpa", "r_eq_mm", "u_r_m_s", "sr", "temp_c", "rq1_um", "rq2_um")]
+        result = solve(inputs, atf)
+        assert result.converged
+        assert result.h_central == pytest.approx(row["h_central_m"], rel=0.10), name
