@@ -554,11 +554,13 @@ def solve_deterministic(case: ContactCase, state: LubricantState, plan: Effects,
     m = problem.content(z, h)
     state_now = {"z": z, "m": m, "m_prev": m, "z_prev": None, "dt_prev": None}
     message, converged, mu_mean = "", True, None
+    time_limited = False
     k = 0
     t = 0.0
     while k < n_max:
         if time_limit_s is not None and clock() - start > time_limit_s:
             converged = k >= n_min
+            time_limited = True
             message = f"wall-time limit of {time_limit_s:g} s reached after {k} of at least {n_min} steps"
             break
         outcome = _advance(problem, state_now, gap_at, t, d_t, options)
@@ -589,8 +591,10 @@ def solve_deterministic(case: ContactCase, state: LubricantState, plan: Effects,
         message = "converged" + ("" if mu_mean.within(target) else
                                  f"; standard error of mu {mu_mean.standard_error:.2g} above the target "
                                  f"{target:.2g} after the cap of {options.max_passes:g} passes") + message
-    return _result(case, state, plan, level_name, options, problem, scales, z, h, record, start, clock, converged,
-                   message, rule, dx_m, first_average, mu_mean)
+    result = _result(case, state, plan, level_name, options, problem, scales, z, h, record, start, clock, converged,
+                     message, rule, dx_m, first_average, mu_mean)
+    result.extra["time_limited"] = time_limited
+    return result
 
 
 def _settle(problem: MixedProblem, z, gap, options: DeterministicOptions, passes: float = 4.0):

@@ -237,3 +237,16 @@ def test_level_options_refine_the_grid_and_the_averaging():
     assert fast.points_per_beta < standard.points_per_beta < reference.points_per_beta
     assert fast.mu_sem_target > standard.mu_sem_target > reference.mu_sem_target
     assert math.isclose(deterministic_options("reference", dx_m=1e-6).dx_m, 1e-6)
+
+
+def test_a_run_stopped_by_its_wall_time_budget_says_so():
+    """Never hide non-convergence: a budget spent before the minimum averaging window is a result marked not
+    converged, with the limit in its message and ``extra['time_limited']`` (counted by the benchmarks' summaries); a
+    run within its budget is not marked."""
+    case = ContactCase.from_engineering(0.5, 5, 5, 0.3, 90, 0.3, 0.3)
+    options = DeterministicOptions(dx_m=2e-6, ramp_passes=0.2, startup_passes=0.1, min_average_passes=0.1,
+                                   max_passes=0.6)
+    limited = solve_deterministic(case, ATF.state(case.temperature), Effects.full(), options, time_limit_s=1e-9)
+    assert not limited.converged and limited.extra["time_limited"] is True
+    assert "wall-time limit" in limited.message
+    assert _short_rough_run().extra["time_limited"] is False
