@@ -20,7 +20,8 @@ every step (``solve_deterministic(observer=...)``), and reports over the averagi
     python benchmarks/deterministic_film_sampling.py [CASE ...] [--passes 9]
 
 Results are cached per case in benchmarks/results/deterministic_film_sampling/<case>.json and gathered in
-benchmarks/results/deterministic_film_sampling.json (read by ``gearloss accuracy --mixed``).
+benchmarks/results/deterministic_film_sampling.json (read by ``python benchmarks/deterministic_validation.py
+--summarise``, which takes the reference's h_c from the longest window and its standard error from this spread).
 """
 
 from __future__ import annotations
@@ -33,7 +34,8 @@ from pathlib import Path
 
 import numpy as np
 
-from deterministic_validation import CASES, LAYOUT_PASSES, RUNS, SHORT_AVERAGE_PASSES, spacings
+from deterministic_validation import (CASES, LAYOUT_PASSES, RUNS, SHORT_AVERAGE_PASSES, averaging_passes, spacings,
+                                      steps_per_pass)
 from ehl_dataset.model.contact import ContactCase
 from ehl_dataset.model.effects import Effects
 from ehl_dataset.model.lubricant import load_lubricant
@@ -49,13 +51,7 @@ REFERENCE = ROOT / "data" / "reference" / "deterministic_validation.json"
 
 def validation_window_passes(name: str) -> float:
     """Length [passes] of the averaging window of the case's finest validation run (the stored h_c's)."""
-    finest = max(spacings(name))
-    run = json.loads((RUNS / f"{name}_beta{finest}.json").read_text())
-    extra = run["extra"]
-    domain = DeterministicOptions().domain
-    case = ContactCase.from_engineering(*run["inputs"])
-    steps_per_pass = (domain[1] - domain[0]) * case.half_width / (extra["courant"] * extra["dx_m"])
-    return (extra["n_steps"] - extra["average_from_step"]) / steps_per_pass
+    return averaging_passes(json.loads((RUNS / f"{name}_beta{max(spacings(name))}.json").read_text()))
 
 
 def sample_case(name: str, passes: float) -> dict:
@@ -79,12 +75,12 @@ def sample_case(name: str, passes: float) -> dict:
     start = time.perf_counter()
     result = solve_deterministic(case, state, Effects.full(), options, observer=observer)
     extra = result.extra
-    steps_per_pass = (hi - lo) * case.half_width / (extra["courant"] * extra["dx_m"])
+    per_pass = steps_per_pass(CASES[name], extra)
     series = np.asarray(film_at_centre[extra["average_from_step"]:])
     record = {"case": name, "inputs": list(CASES[name]), "points_per_beta": n, "model_version": MODEL_VERSION,
               "layout_passes": LAYOUT_PASSES, "converged": bool(result.converged), "mu": result.mu,
-              "h_central_m": result.h_central, "average_passes": len(series) / steps_per_pass,
-              "steps_per_pass": steps_per_pass, "wall_time_s": time.perf_counter() - start,
+              "h_central_m": result.h_central, "average_passes": len(series) / per_pass,
+              "steps_per_pass": per_pass, "wall_time_s": time.perf_counter() - start,
               "film_at_centre_m": series.tolist()}
     CACHE.mkdir(parents=True, exist_ok=True)
     path.write_text(json.dumps(record))

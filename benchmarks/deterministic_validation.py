@@ -194,13 +194,18 @@ def paired_difference(run: dict, base: dict, key: str) -> tuple[float, float]:
     return diff.mean, diff.standard_error
 
 
+def steps_per_pass(inputs, extra: dict) -> float:
+    """Time steps per pass (the domain length at u_r) of a run of the case ``inputs`` with the recorded ``extra``
+    (its Courant number and spacing)."""
+    domain = DeterministicOptions().domain
+    return (domain[1] - domain[0]) * ContactCase.from_engineering(*inputs).half_width / (extra["courant"]
+                                                                                           * extra["dx_m"])
+
+
 def averaging_passes(run: dict) -> float:
     """Length [passes] of a run's averaging window."""
     extra = run["extra"]
-    domain = DeterministicOptions().domain
-    case = ContactCase.from_engineering(*run["inputs"])
-    steps_per_pass = (domain[1] - domain[0]) * case.half_width / (extra["courant"] * extra["dx_m"])
-    return (extra["n_steps"] - extra["average_from_step"]) / steps_per_pass
+    return (extra["n_steps"] - extra["average_from_step"]) / steps_per_pass(run["inputs"], extra)
 
 
 def central_film(name: str, fine: dict, middle: dict) -> dict:
@@ -219,12 +224,13 @@ def central_film(name: str, fine: dict, middle: dict) -> dict:
         candidates.append((row["average_passes"], row["h_central_long_m"],
                            f"film-sampling run at beta/{row['points_per_beta']}"))
     passes, value, source = max(candidates, key=lambda c: c[0])
+    chosen = {"h_central_m": value, "h_central_passes": passes, "h_central_source": f"{source} ({passes:.1f} passes)",
+              **out}
     if row is None:
-        return {"h_central_m": value, "h_central_sem_m": math.nan, "h_central_source": f"{source} ({passes:.1f} "
-                f"passes)", **out}
-    sem = row["h_central_window_std_m"] * math.sqrt(row["validation_window_passes"] / passes)
-    return {"h_central_m": value, "h_central_sem_m": sem, "h_central_source": f"{source} ({passes:.1f} passes)",
-            "h_central_window_std_m": row["h_central_window_std_m"], **out}
+        return {**chosen, "h_central_sem_m": math.nan}
+    return {**chosen, "h_central_sem_m": row["h_central_window_std_m"] * math.sqrt(row["validation_window_passes"]
+                                                                                    / passes),
+            "h_central_window_std_m": row["h_central_window_std_m"]}
 
 
 def summarise_case(name: str) -> dict | None:
