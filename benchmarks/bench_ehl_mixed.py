@@ -73,6 +73,9 @@ def main(argv=None) -> int:
                         help="keep only the drawn points with r_eq <= this [mm] (same draws, a subset)")
     parser.add_argument("--min-r-eq-mm", type=float, default=None,
                         help="keep only the points with r_eq >= this [mm] (e.g. the wide corners)")
+    parser.add_argument("--indices", type=int, nargs="+", default=None,
+                        help="run only these positions of the drawn sample (0-based, in the order of the draws), e.g. "
+                             "the points a calibration needs first; with --resume the rest can follow later")
     parser.add_argument("--time-limit-s", type=float, default=None,
                         help="wall-time budget per case [s]; a case that spends it counts as not finished, and the "
                              "mean time is then a lower bound (reported as such)")
@@ -86,6 +89,8 @@ def main(argv=None) -> int:
                              "the report after every case (a long run that is stopped loses at most one case)")
     args = parser.parse_args(argv)
     cases = corner_cases() if args.sample == "corners" else random_cases(args.n, args.seed)
+    if args.indices is not None:
+        cases = [cases[i] for i in args.indices]
     if args.max_r_eq_mm is not None:
         cases = [c for c in cases if c[1] <= args.max_r_eq_mm]
     if args.min_r_eq_mm is not None:

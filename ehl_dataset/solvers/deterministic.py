@@ -591,10 +591,8 @@ def solve_deterministic(case: ContactCase, state: LubricantState, plan: Effects,
         message = "converged" + ("" if mu_mean.within(target) else
                                  f"; standard error of mu {mu_mean.standard_error:.2g} above the target "
                                  f"{target:.2g} after the cap of {options.max_passes:g} passes") + message
-    result = _result(case, state, plan, level_name, options, problem, scales, z, h, record, start, clock, converged,
-                     message, rule, dx_m, first_average, mu_mean)
-    result.extra["time_limited"] = time_limited
-    return result
+    return _result(case, state, plan, level_name, options, problem, scales, z, h, record, start, clock, converged,
+                   message, rule, dx_m, first_average, mu_mean, time_limited)
 
 
 def _settle(problem: MixedProblem, z, gap, options: DeterministicOptions, passes: float = 4.0):
@@ -739,7 +737,7 @@ class _Record:
 
 
 def _result(case, state, plan, level_name, options, problem, scales, z, h, record, start, clock, converged, message,
-            rule, dx_m, first_average, mu_mean) -> ContactResult:
+            rule, dx_m, first_average, mu_mean, time_limited=False) -> ContactResult:
     _, lambda_bar = dowson_higginson_lambda(case, state)
     pf, th, pc, h0 = problem.unpack(z)
     x_m = problem.x * scales.a
@@ -783,7 +781,8 @@ def _result(case, state, plan, level_name, options, problem, scales, z, h, recor
                "t_series_s": np.asarray(record.t), "h_min_local_m": local_min,
                "h_min_local_series_m": np.asarray(record.h_min), "mass_error_series": np.asarray(record.mass),
                "face_mean": options.face_mean, "layout_passes": options.roughness_layout_passes,
-               "couette_flux": options.couette_flux, **record.mean_profiles(), **problem.cost, **rule},
+               "couette_flux": options.couette_flux, "time_limited": bool(time_limited), **record.mean_profiles(),
+               **problem.cost, **rule},
     )
 
 
@@ -793,4 +792,4 @@ def _failed(case, state, plan, level_name, start, clock, message, residuals) -> 
     return ContactResult(mu=nan, h_min=nan, h_central=nan, p_max=nan, converged=False, iterations=0,
                          wall_time=clock() - start, level=level_name, effects=plan.to_dict(), lambda_bar=lambda_bar,
                          residuals=dict(residuals), message=f"not converged: {message}",
-                         extra={"model": "deterministic"})
+                         extra={"model": "deterministic", "time_limited": False})
