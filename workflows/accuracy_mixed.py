@@ -211,7 +211,7 @@ def markdown_mixed(study: dict, command: str, png_name: str) -> str:
              f"Reference: `{Path(study['reference_file']).name}` (the deterministic solver's validation set, μ "
              "Richardson-extrapolated from three grid spacings; docs/deterministic_solver.md). err μ = |μ − μ_ref|/"
              "μ_ref; err h_c is that of the central film, against the reference's time mean of the film at x = 0 over its "
-             "longest averaging window (± its standard error: windows of 1.5 passes scatter by up to 10 % (measured), "
+             "longest averaging window (± its standard error: windows of 1.5 passes scatter by 1–10 % where λ̄ > 0.25 and a/β > 5, 14–29 % on A, B, C (measured), "
              "benchmarks/deterministic_film_sampling.py); Δshare the difference of the asperity load share. Wall time "
              "per case on one core, around `solve_contact`.", "",
              f"EHL solver {prov.get('solver_version')}, commit `{prov.get('git_commit')}`"
