@@ -13,6 +13,13 @@ asperity share, λ̄, the smooth μ, and per neighbouring pair the slope d ln μ
 
     python benchmarks/deterministic_lambda_sweep.py --spacing 16 --passes 11 --rq-um 0.5 0.8 --courant 0.5 0.125
 
+    python benchmarks/deterministic_lambda_sweep.py --spacing 8 --passes 6 --conditions 1.0 10 2 0.4 50 --tag J \
+        --rq-um 0.05 0.1 0.2 0.3 0.5 0.8
+
+``--conditions`` P_GPA R_MM U_M_S SR T_C: another contact (default case A's), with ``--tag``: its own result file
+(deterministic_lambda_sweep_<tag>.json) and series directory; e.g. case J's, where the traction is Eyring-saturated
+(X_h ≈ 960) and the film law's μ falls as the roughness grows (its rough inlet feeds a thicker film).
+
 ``--courant``: instead, the time-step check of the runs already in the sweep: each ``--rq-um`` rerun at each Courant
 number, paired with the sweep's run at the default (benchmarks/results/deterministic_lambda_sweep_courant.json).
 """
@@ -43,17 +50,21 @@ MAX_PASSES = 40.0
 
 
 SERIES = RESULTS / "deterministic_lambda_sweep"
-"""The μ(t) series of each run (``<Rq>.npz``: t_s, mu over the averaging window)."""
+"""The μ(t) series of each run (``<Rq>.npz``: t_s, mu over the averaging window); a tagged sweep's in SERIES_<tag>."""
 
 
-def series(run: dict) -> tuple[np.ndarray, np.ndarray]:
-    data = np.load(SERIES / f"{run['rq_um']:g}.npz")
+def series_dir(tag: str | None) -> Path:
+    return SERIES if not tag else SERIES.with_name(f"{SERIES.name}_{tag}")
+
+
+def series(run: dict, tag: str | None = None) -> tuple[np.ndarray, np.ndarray]:
+    data = np.load(series_dir(tag) / f"{run['rq_um']:g}.npz")
     return data["t_s"], data["mu"]
 
 
-def paired(run_a: dict, run_b: dict) -> tuple[float, float]:
+def paired(run_a: dict, run_b: dict, tag: str | None = None) -> tuple[float, float]:
     """(mean, standard error) of μ_b(t) − μ_a(t) over the common times (the series of b interpolated)."""
-    (ta, ma), (tb, mb) = series(run_a), series(run_b)
+    (ta, ma), (tb, mb) = series(run_a, tag), series(run_b, tag)
     inside = (ta >= tb[0]) & (ta <= tb[-1])
     mean = time_mean(np.interp(ta[inside], tb, mb) - ma[inside])
     return mean.mean, mean.standard_error
@@ -64,24 +75,31 @@ def main(argv=None) -> int:
     parser.add_argument("--spacing", type=float, default=16.0)
     parser.add_argument("--passes", type=float, default=11.0)
     parser.add_argument("--rq-um", type=float, nargs="+", default=list(RQ_UM))
+    parser.add_argument("--conditions", type=float, nargs=5, default=list(CONDITIONS),
+                        metavar=("P_GPA", "R_MM", "U_M_S", "SR", "T_C"))
+    parser.add_argument("--tag", default=None, help="name of another contact's sweep (with --conditions)")
     parser.add_argument("--courant", type=float, nargs="+", default=None,
                         help="time-step check of the sweep's runs at these Courant numbers")
     args = parser.parse_args(argv)
     if args.courant:
         return courant_check(args)
-    path = RESULTS / "deterministic_lambda_sweep.json"
+    conditions = tuple(args.conditions)
+    if conditions != tuple(CONDITIONS) and not args.tag:
+        parser.error("--conditions other than case A's need a --tag")
+    path = RESULTS / (f"deterministic_lambda_sweep_{args.tag}.json" if args.tag else "deterministic_lambda_sweep.json")
     record = json.loads(path.read_text()) if path.exists() else {}
-    key = (MODEL_VERSION, args.spacing, args.passes)
-    if (record.get("model_version"), record.get("points_per_beta"), record.get("passes")) != key:
-        record = {"conditions": CONDITIONS, "model_version": MODEL_VERSION, "points_per_beta": args.spacing,
+    key = (MODEL_VERSION, args.spacing, args.passes, list(conditions))
+    if (record.get("model_version"), record.get("points_per_beta"), record.get("passes"),
+            list(record.get("conditions", []))) != key:
+        record = {"conditions": conditions, "model_version": MODEL_VERSION, "points_per_beta": args.spacing,
                   "passes": args.passes, "runs": {}}
-    state = load_lubricant("atf").state(CONDITIONS[4] + 273.15)
+    state = load_lubricant("atf").state(conditions[4] + 273.15)
     beta = baseline_profile().correlation_length
     for rq in sorted(args.rq_um):
         name = f"{rq:g}"
         if name in record["runs"]:
             continue
-        case = ContactCase.from_engineering(*CONDITIONS, rq, rq)
+        case = ContactCase.from_engineering(*conditions, rq, rq)
         options = DeterministicOptions(dx_m=beta / args.spacing, max_passes=MAX_PASSES, mu_sem_target=1.0,
                                        min_average_passes=args.passes - 1.5)
         start = time.time()
@@ -94,9 +112,10 @@ def main(argv=None) -> int:
             "mu_sem": time_mean(mu).standard_error, "asperity_load_share": result.asperity_load_share,
             "smooth_mu": e.get("smooth_mu"), "h_central_m": result.h_central, "converged": result.converged,
             "message": result.message, "n_steps": e["n_steps"], "wall_time_s": time.time() - start}
-        SERIES.mkdir(parents=True, exist_ok=True)
-        np.savez_compressed(SERIES / f"{rq:g}.npz", t_s=np.asarray(e["t_series_s"][window], dtype=float), mu=mu)
-        _compare(record)
+        series_dir(args.tag).mkdir(parents=True, exist_ok=True)
+        np.savez_compressed(series_dir(args.tag) / f"{rq:g}.npz", t_s=np.asarray(e["t_series_s"][window], dtype=float),
+                            mu=mu)
+        _compare(record, args.tag)
         path.write_text(json.dumps(record, indent=1))
         run = record["runs"][name]
         print(f"Rq {rq:g} µm: λ̄ {run['lambda_bar']:.3g}, μ {run['mu']:.5f} ± {run['mu_sem']:.5f}, share "
@@ -150,12 +169,12 @@ def courant_check(args) -> int:
     return 0
 
 
-def _compare(record: dict) -> None:
+def _compare(record: dict, tag: str | None = None) -> None:
     """Per neighbouring pair (ordered by falling λ̄): paired Δμ ± SE, falls within 2 SE, d ln μ / d ln λ̄."""
     runs = sorted(record["runs"].values(), key=lambda r: -r["lambda_bar"])
     pairs = []
     for thick, thin in zip(runs, runs[1:]):
-        mean, sem = paired(thick, thin)
+        mean, sem = paired(thick, thin, tag)
         slope = math.log(thin["mu"] / thick["mu"]) / math.log(thin["lambda_bar"] / thick["lambda_bar"])
         pairs.append({"lambda_bar": [thick["lambda_bar"], thin["lambda_bar"]], "delta_mu": mean, "delta_mu_sem": sem,
                       "mu_rises_as_lambda_falls_within_2_sem": bool(mean > -2.0 * sem),

@@ -4,6 +4,10 @@ paper's Fig. 2 as each model draws it, against the deterministic solver.
     python benchmarks/deterministic_lambda_sweep.py --spacing 16 --passes 11     # first: the deterministic runs
     python benchmarks/lambda_sweep_models.py                                       # then: the other models + figure
     python benchmarks/lambda_sweep_models.py --plot                                # the figure from the JSON only
+    python benchmarks/lambda_sweep_models.py --sweep J --models smooth-standard homogenised-film_law-standard
+
+``--sweep TAG``: the tagged sweep of another contact (deterministic_lambda_sweep_<TAG>.json), written to
+lambda_sweep_models_<TAG>.json and docs/figures/mu_lambda_models_<TAG>.png; ``--models``: a subset of the models.
 
 Same conditions (case A of the validation set: 0.5 GPa / 5 mm / 5 m/s / SR 0.3 / 90 °C, ATF, Rq1 = Rq2 = each Rq of
 the deterministic sweep); the models of workflows.accuracy_mixed.MIXED_MODELS except the deterministic levels.
@@ -12,6 +16,7 @@ Writes benchmarks/results/lambda_sweep_models.json (resumable) and docs/figures/
 
 from __future__ import annotations
 
+import argparse
 import json
 import sys
 import time
@@ -33,13 +38,27 @@ MODELS = ("smooth-standard", "transient-fast", "transient-standard", "homogenise
 COMMAND = "python benchmarks/lambda_sweep_models.py"
 
 
-def main() -> int:
-    if "--plot" in sys.argv:
-        plot(json.loads(OUT.read_text()))
+def paths(tag: str | None) -> tuple[Path, Path, Path]:
+    """(deterministic sweep, this script's record, figure) of the sweep ``tag`` (None: case A's)."""
+    if not tag:
+        return SWEEP, OUT, FIGURE
+    return (SWEEP.with_name(f"{SWEEP.stem}_{tag}.json"), OUT.with_name(f"{OUT.stem}_{tag}.json"),
+            FIGURE.with_name(f"{FIGURE.stem}_{tag}.png"))
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--plot", action="store_true", help="the figure from the JSON only")
+    parser.add_argument("--sweep", default=None, help="tag of another contact's deterministic sweep")
+    parser.add_argument("--models", nargs="+", default=list(MODELS), choices=MODELS)
+    args = parser.parse_args(argv)
+    sweep_path, out, figure = paths(args.sweep)
+    if args.plot:
+        plot(json.loads(out.read_text()), figure)
         return 0
-    sweep = json.loads(SWEEP.read_text())
+    sweep = json.loads(sweep_path.read_text())
     lubricant = load_lubricant("atf")
-    record = json.loads(OUT.read_text()) if OUT.exists() else {}
+    record = json.loads(out.read_text()) if out.exists() else {}
     if record.get("solver_version") != SOLVER_VERSION:
         record = {"solver_version": SOLVER_VERSION, "conditions": sweep["conditions"], "runs": {}}
     record["deterministic"] = {"model_version": sweep["model_version"], "points_per_beta": sweep["points_per_beta"],
@@ -47,10 +66,10 @@ def main() -> int:
                                "runs": {k: {f: v[f] for f in ("rq_um", "lambda_bar", "mu", "mu_sem",
                                                               "asperity_load_share", "wall_time_s")}
                                         for k, v in sweep["runs"].items()}}
-    OUT.write_text(json.dumps(record, indent=1, default=float))
+    out.write_text(json.dumps(record, indent=1, default=float))
     for key, run in sorted(sweep["runs"].items(), key=lambda kv: kv[1]["rq_um"]):
         case = ContactCase.from_engineering(*sweep["conditions"], run["rq_um"], run["rq_um"])
-        for name in MODELS:
+        for name in args.models:
             slot = record["runs"].setdefault(name, {})
             if key in slot:
                 continue
@@ -59,13 +78,13 @@ def main() -> int:
             slot[key] = {"rq_um": run["rq_um"], "lambda_bar": result.lambda_bar, "mu": result.mu,
                          "mu_sem": result.mu_sem, "asperity_load_share": result.asperity_load_share,
                          "converged": result.converged, "wall_time_s": time.perf_counter() - start}
-            OUT.write_text(json.dumps(record, indent=1, default=float))
+            out.write_text(json.dumps(record, indent=1, default=float))
             print(f"{name} Rq {run['rq_um']:g}: μ {result.mu:.5f} ({slot[key]['wall_time_s']:.1f} s)", flush=True)
-    plot(record)
+    plot(record, figure)
     return 0
 
 
-def plot(record: dict) -> Path:
+def plot(record: dict, figure: Path = FIGURE) -> Path:
     import matplotlib
 
     matplotlib.use("Agg")
@@ -103,10 +122,10 @@ def plot(record: dict) -> Path:
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=7, loc="lower right")
     fig.tight_layout()
-    FIGURE.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(FIGURE, dpi=110)
+    figure.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(figure, dpi=110)
     plt.close(fig)
-    return FIGURE
+    return figure
 
 
 if __name__ == "__main__":

@@ -147,6 +147,18 @@ def closure_range(r: dict) -> str:
     return f"X_h < {NARROW_FILM_LAW_EYRING:g}, " + ("closure range" if within else "outside")
 
 
+def _holdout_sentence(record: dict) -> str:
+    """The out-of-sample check of the shipped c: calibration-group contacts run after it was fitted."""
+    h = record.get("holdout_at_shipped_c")
+    if not h:
+        return ""
+    fitted_on = len(record["shipped_fit_points"])
+    return (f" The shipped c was fitted on the first {fitted_on} of them; the {h['n']} run since "
+            f"({', '.join(record['holdout_points'])}) are an out-of-sample check: at the shipped c their error is a "
+            f"median {100 * h['median_abs']:.1f} % (bias {100 * h['median']:+.1f} %), 90th percentile "
+            f"{100 * h['p90_abs']:.1f} %.")
+
+
 def _calibration_lines() -> list[str]:
     """The closure's calibration (benchmarks/micro_pressure_closure.py) as a Markdown table."""
     record = json.loads((RESULTS / "micro_pressure_closure.json").read_text())
@@ -155,7 +167,7 @@ def _calibration_lines() -> list[str]:
              f"μ and the factorial points at `fast`): c = {record['c_fitted']:.4f} fitted, {record['c_shipped']:g} "
              f"shipped; leave-one-out error on the {record['leave_one_out']['n']} calibration contacts: median "
              f"{100 * record['leave_one_out']['median_abs']:.1f} %, 90th percentile "
-             f"{100 * record['leave_one_out']['p90_abs']:.1f} %.", "",
+             f"{100 * record['leave_one_out']['p90_abs']:.1f} %." + _holdout_sentence(record), "",
              "| contacts | points | median error without | median abs without | 90th pct abs without | "
              "median error with | median abs with | 90th pct abs with |", "|---|---|---|---|---|---|---|---|"]
     for name, g in record["groups"].items():

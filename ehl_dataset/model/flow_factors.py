@@ -113,9 +113,9 @@ def pc_shear_stress_factor(H):
     derivative (the published form drops from 0.0127 to 0 at H = 7)."""
     a3, a4, a5, a6 = PC_SHEAR_STRESS
     H = np.asarray(H, dtype=float)
-    hp = np.maximum(H, 1e-300)
-    v = a3 * hp**a4 * np.exp(-a5 * hp + a6 * hp * hp)
     inside = (H > 0) & (H < 7.0)
+    hp = np.where(inside, H, 1.0)  # evaluated only where the fit holds (beyond, exp(0.11H²) overflows)
+    v = a3 * hp**a4 * np.exp(-a5 * hp + a6 * hp * hp)
     return np.where(inside, v, 0.0), np.where(inside, v * (a4 / hp - a5 + 2 * a6 * hp), 0.0)
 
 
