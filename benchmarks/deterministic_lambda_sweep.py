@@ -82,6 +82,8 @@ def main(argv=None) -> int:
                         help="time-step check of the sweep's runs at these Courant numbers")
     args = parser.parse_args(argv)
     if args.courant:
+        if args.tag:
+            parser.error("--courant checks case A's sweep only (no --tag)")
         return courant_check(args)
     conditions = tuple(args.conditions)
     if conditions != tuple(CONDITIONS) and not args.tag:

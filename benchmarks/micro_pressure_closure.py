@@ -132,9 +132,9 @@ def main() -> int:
         p["mu_shipped"] = film_law_mu(p, lubricant, shipped)
         p["error_without"] = p["mu_by_c"][0.0] / p["mu_det"] - 1.0
         p["error_with"] = p["mu_shipped"] / p["mu_det"] - 1.0
-    holdout = [p for p in cal if p["label"] not in SHIPPED_FIT_POINTS]
     for p in pts:
-        p["holdout"] = p in holdout
+        p["holdout"] = p["group"] == CALIBRATION and p["label"] not in SHIPPED_FIT_POINTS
+    holdout = [p for p in pts if p["holdout"]]
     groups = {}
     for name in sorted({p["group"] for p in pts}):
         sel = [p for p in pts if p["group"] == name]

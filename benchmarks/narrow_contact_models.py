@@ -159,6 +159,49 @@ def _holdout_sentence(record: dict) -> str:
             f"{100 * h['p90_abs']:.1f} %.")
 
 
+def _switch_lines() -> list[str]:
+    """What the resolved wide contacts X1, X2 and benchmarks/closure_forms.py say of the closure's a/β switch."""
+    forms = json.loads((RESULTS / "closure_forms.json").read_text())
+    grid = np.asarray(forms["c_grid"])
+    contacts = {c["label"]: c for c in forms["contacts"]}
+    runs = {tag: json.loads((RESULTS / f"deterministic_run_{tag}.json").read_text()) for tag in ("X1", "X2")}
+    window = json.loads((RESULTS / "deterministic_wide_X1.json").read_text())
+
+    def film_law_error(tag, c):
+        row = contacts[f"{tag} resolved"]
+        return 100 * (np.interp(c, grid, row["mu_grid"]) / row["mu_det"] - 1)
+
+    shipped, inlet = forms["forms"]["shipped: c0 below a/β 15, 0 above"], forms["forms"]["c0 / (1 + (L_in/(β L0))²)"]
+    c0, l0 = inlet["parameters"]
+    share = forms["paper_factorial_wide_unsaturated"]
+    x = {tag: (run, contacts[f"{tag} resolved"]) for tag, run in runs.items()}
+    described = ", ".join(f"{tag} (a/β {c['a_over_beta']:.1f}, λ̄ {c['lambda_bar']:.2f}, X_h {c['eyring_number']:.2g}) "
+                          f"μ {run['mu']:.4f} ± {run['mu_sem']:.4f}" for tag, (run, c) in x.items())
+    return [
+        "**The switch at a/β 15 is not where the physics changes (measured 2026-11-25, not yet acted on).** Two wide "
+        f"unsaturated contacts resolved whole at β/{runs['X1']['points_per_beta']:g} ({runs['X1']['model_version']}, "
+        f"{runs['X1']['passes']:g} passes; `python benchmarks/deterministic_run.py --inputs "
+        + " ".join(f"{v:g}" for v in runs["X1"]["inputs"]) + " --spacing 8 --passes 4 --tag X1`, and the same at "
+        f"r_eq {runs['X2']['inputs'][1]:g} mm with `--tag X2`): {described}. The film law is "
+        f"{film_law_error('X1', 0.0):+.0f} % and {film_law_error('X2', 0.0):+.0f} % without the closure (what the "
+        f"planner runs there) and {film_law_error('X1', MICRO_PRESSURE_COEFFICIENT):+.0f} % and "
+        f"{film_law_error('X2', MICRO_PRESSURE_COEFFICIENT):+.0f} % with c = {MICRO_PRESSURE_COEFFICIENT:g}. The "
+        f"windows of the wide route agree with the resolved X1 ({window['mu']:.4f} ± {window['mu_sem']:.4f}; `python "
+        "benchmarks/deterministic_wide.py --inputs " + " ".join(f"{v:g}" for v in window["inputs"]) + " --tag X1`), "
+        "so windows do carry the fluctuation. What separates the contacts where c = 0 fits (corners 5 and 15, random "
+        "53 and 100) from those where c ≈ 0.2 fits is the film law's inlet length in correlation lengths, "
+        "L_in/β = 6–12 against 2–3. A closure c = c0/(1 + (L_in/(β·L0))²) fitted on all "
+        f"{len(contacts)} unsaturated contacts (c0 {c0:.2f}, L0 {l0:.2f}) has a leave-one-out error of a median "
+        f"{100 * inlet['leave_one_out_median_abs']:.1f} %, 90th percentile {100 * inlet['leave_one_out_p90_abs']:.1f} "
+        f"%, against {100 * shipped['leave_one_out_median_abs']:.1f} % and {100 * shipped['leave_one_out_p90_abs']:.1f} "
+        "% for the shipped switch (not refitted), and it takes X1 and X2 to "
+        f"{100 * inlet['leave_one_out']['X1 resolved']:+.0f} % and {100 * inlet['leave_one_out']['X2 resolved']:+.0f} "
+        f"% (`{forms['command']}`, benchmarks/results/closure_forms.json; forms in λ̄ or X_h do worse). "
+        f"{100 * share['share']:.1f} % of the paper factorial's sliding points are wide, below λ̄ 1 and unsaturated "
+        f"(a sample of {share['points']:,} points; a/β " + ", ".join(f"{k}: {v}" for k, v in share["a_over_beta"].items())
+        + ")."]
+
+
 def _calibration_lines() -> list[str]:
     """The closure's calibration (benchmarks/micro_pressure_closure.py) as a Markdown table."""
     record = json.loads((RESULTS / "micro_pressure_closure.json").read_text())
@@ -261,22 +304,7 @@ def markdown(records: list[dict]) -> str:
               "§13.1), c the fraction the film lets through, fitted (`ehl_dataset/model/micro_pressure.py`). Wide "
               "contacts keep c = 0: on most wide factorial points the deterministic model's periodic windows agree "
               "with the film law without it and are far above it with it (the wide rows of the table).", "",
-              "**The switch at a/β 15 is not where the physics changes (measured 2026-11-25, not yet acted on).** "
-              "Two wide unsaturated contacts resolved whole at β/8 (det-2026.11-10, 4 passes; `python "
-              "benchmarks/deterministic_run.py --inputs 0.5 30 1 0.4 75 0.3 0.3 --spacing 8 --passes 4 --tag X1`, "
-              "and `... 0.5 40 ... --tag X2`): X1 (a/β 17.7, λ̄ 0.24, X_h 2.9) μ 0.0165 ± 0.0004, X2 (a/β 23.6, "
-              "λ̄ 0.27, X_h 2.7) μ 0.0149 ± 0.0004. The film law is −42 % and −39 % without the closure (what the "
-              "planner runs there) and −9 % and −2 % with c = 0.167. The windows of the wide route agree with the "
-              "resolved X1 (0.0165 ± 0.0004; `python benchmarks/deterministic_wide.py --inputs 0.5 30 1 0.4 75 0.3 "
-              "0.3 --tag X1`), so windows do carry the fluctuation. What separates the contacts where c = 0 fits "
-              "(corners 5 and 15, random 53 and 100: c_eff < 0.01) from those where c ≈ 0.2 fits is the inlet "
-              "length in correlation lengths, L_in/β = 6–12 against 2–3. A closure c = c0/(1 + (L_in/(β·L0))²) "
-              "fitted on all 34 unsaturated contacts (c0 0.38, L0 1.94) has a leave-one-out error of a median "
-              "8.4 %, 90th percentile 19.6 %, against 9.9 % and 18.7 % for the shipped switch (which is not "
-              "refitted here), and it takes X1 and X2 to −16 % and −18 % instead of −42 % and −39 % (`python "
-              "benchmarks/closure_forms.py`, benchmarks/results/closure_forms.json). Forms in λ̄ or X_h do worse "
-              "(median 14 %). About 7.5 % of the paper factorial is wide, below λ̄ 1 and unsaturated (a sample of "
-              "1,500 points), mostly at a/β 23.6–94.", "",
+              *_switch_lines(), "",
               *_calibration_lines(), "",
               "Outside the closure's range the film law stays low: below λ̄ "
               f"{NARROW_CLOSURE_LAMBDA:g} the asperities carry load (case B, share 0.53), and above a Greenwood–"
