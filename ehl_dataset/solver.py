@@ -42,7 +42,7 @@ from .solvers.steady import solve_steady
 from .solvers.transient import TransientOptions, solve_transient
 from .validation import InputError, check_time_limit
 
-SOLVER_VERSION = "ehl-2026.11-13"
+SOLVER_VERSION = "ehl-2026.11-14"
 """Version of the numerics behind :func:`solve_contact`. The dataset store records it and refuses to resume a file
 computed with another version: bump it with every change that can alter a solved value."""
 
@@ -67,7 +67,10 @@ within its measured range (λ̄ > 1 or X_h ≥ 150) whatever the level's rough m
 det-2026.11-10 accepts a Newton solve stalled at the round-off floor instead of splitting the step; ehl-2026.11-13
 gives the film law on narrow contacts a micro-EHL pressure-fluctuation closure (film-law-2026.11-2,
 :mod:`ehl_dataset.model.micro_pressure`) and widens its measured range to the unsaturated narrow contacts with
-λ̄ ≥ 0.1 and roughness parameter α ≤ 2.5 (docs/narrow_contacts.md)."""
+λ̄ ≥ 0.1 and roughness parameter α ≤ 2.5 (docs/narrow_contacts.md); ehl-2026.11-14 makes the closure's c a function
+of the inlet length in correlation lengths on every contact, narrow and wide, instead of a constant below a/β 15 and
+none above (film-law-2026.11-3; the wide unsaturated contacts resolved whole were 40 % above the film law without
+it), and extends the closure's measured range to wide contacts."""
 
 __all__ = ["solve_contact", "checked_inputs", "SOLVER_VERSION", "MODELS"]
 

@@ -1,4 +1,4 @@
-"""Micro-EHL pressure fluctuations of a narrow rough contact as a distribution, for the film-law closure
+"""Micro-EHL pressure fluctuations of a rough contact as a distribution, for the film-law closure
 (docs/narrow_contacts.md, "Pressure-fluctuation closure").
 
 In the deterministic model of a narrow rough contact (a few correlation lengths wide) the local fluid pressure
@@ -11,8 +11,8 @@ traction is not saturated, τ grows nearly exponentially with p, and its mean ov
   the skew; with the deterministic runs' own σ_p(x) it reproduces their pressure-averaged Couette stress within
   1–12 % on cases A, C, G, I: `python benchmarks/micro_ehl_fluctuations.py A:16 G:8 I:8 C:16`);
 - scale: σ_p = c · E'Δq/4, where E'Δq/4 is the r.m.s. of the pressure that flattens the composite roughness
-  completely, and c < 1 the fraction an EHL film lets through, calibrated against the deterministic model
-  (:data:`MICRO_PRESSURE_COEFFICIENT`). Two elastic half-spaces in plane strain under a surface pressure p̂(k)
+  completely, and c < 1 the fraction an EHL film lets through, a function of the inlet length in correlation
+  lengths calibrated against the deterministic model (:func:`micro_pressure_coefficient`). Two elastic half-spaces in plane strain under a surface pressure p̂(k)
   approach by 4p̂/(E'|k|) (E' the reduced modulus, 2/E' = Σ(1 − ν_i²)/E_i; Johnson, Contact Mechanics, 1985, §13.1:
   p* = πE*Δ/λ flattens a sinusoid of amplitude Δ, E* = E'/2), so flattening heights z takes a pressure of r.m.s.
   E'·rms(z')/4 = E'Δq/4, Δq the r.m.s. slope of z = R1 + R2.
@@ -26,15 +26,32 @@ from scipy import stats
 from .dry_contact import composite_windows, profile_hash
 from .roughness import RoughnessProfile
 
-MICRO_PRESSURE_COEFFICIENT = 0.167
-"""c of σ_p = c·E'Δq/4 [-]: the value (0.1668) that minimises Σ ln²(μ_film law/μ_deterministic) on the 13 narrow
-contacts (a/β < 15) below λ̄ 1 with X_h < 150 within the closure's range (the reference cases A and G, 11 factorial
-points at fast): `python benchmarks/micro_pressure_closure.py` (benchmarks/results/micro_pressure_closure.json). Its
-leave-one-out error there is a median 7.1 %, 90th percentile 15 % (without the closure: median −24 %). It is an
-effective value: the deterministic run's own σ_p on case A (0.76 GPa at the centre, β/16) is twice c·E'Δq/4
-(0.37 GPa), because the closure pairs it with the film law's smooth pressure and gaps independent of the pressure
-instead of the joint fields. Seven calibration-range contacts run after the fit (not seen by it) are a median 11.8 %
-off at this c (90th percentile 17 %); refitted on all 20, c would be 0.177 (leave-one-out median 10.6 %)."""
+MICRO_PRESSURE_C0 = 0.305
+"""c0 of c = c0/(1 + (L_in/(β·L0))²) [-] (:func:`micro_pressure_coefficient`), fitted with
+:data:`MICRO_PRESSURE_INLET_SCALE` by `python benchmarks/micro_pressure_closure.py`
+(benchmarks/results/micro_pressure_closure.json, EHL solver ehl-2026.11-14)."""
+
+MICRO_PRESSURE_INLET_SCALE = 2.99
+"""L0 of c = c0/(1 + (L_in/(β·L0))²) [-]: the inlet length, in correlation lengths, at which c is half of c0."""
+
+
+def micro_pressure_coefficient(inlet_over_beta: float) -> float:
+    """c of σ_p = c·E'Δq/4 [-] at the inlet length L_in/β [-] of the contact (L_in the film law's inlet length,
+    :func:`ehl_dataset.solvers.wide_contact.inlet_length`; β the correlation length):
+
+        c = c0 / (1 + (L_in/(β·L0))²)   (:data:`MICRO_PRESSURE_C0`, :data:`MICRO_PRESSURE_INLET_SCALE`).
+
+    An effective closure calibrated against the deterministic model on every unsaturated contact below λ̄ 1 within the
+    planner's closure range, narrow and wide (docs/narrow_contacts.md, "Pressure-fluctuation closure"). Physically:
+    where the inlet is long against β, the fluid smooths the micro-EHL pressure before the asperities reach the
+    Hertz zone (c → 0: the deterministic windows agree with the film law without fluctuations at L_in/β 6–12), and
+    where it is a few β, each asperity carries its own pressure peak through the contact (c ≈ 0.2 at L_in/β 2–3).
+    The spread is not the deterministic run's own σ_p (0.76 GPa at the centre of case A, β/16, about twice c·E'Δq/4)
+    because the closure pairs it with the smooth pressure and gaps independent of the pressure."""
+    if not inlet_over_beta >= 0.0:
+        raise ValueError(f"inlet_over_beta = {inlet_over_beta!r}: accepted range [0, inf)")
+    return MICRO_PRESSURE_C0 / (1.0 + (inlet_over_beta / MICRO_PRESSURE_INLET_SCALE) ** 2)
+
 
 PRESSURE_QUANTILES = 32
 """Equal-probability levels (midpoints) of the pressure distribution in the closure's average."""

@@ -18,27 +18,27 @@ The fluid carries the whole load and no asperity friction is added: in the deter
 pressure between colliding asperities holds them apart (asperity share ≤ 0.02 down to λ̄ 0.12 on the roughness
 sweep, ≤ 0.004 in the windows of the widest factorial corners), whereas the dry-contact table at the law's film
 gives part of the load to the asperities and, with μ_d on it, μ up to 325 % above the windows (measured,
-benchmarks/film_law_model.py). On a wide contact the micro-EHL pressure is not modelled: the fluid pressure is taken
-uniform over a cell. On a narrow contact (a/β < WIDE_A_OVER_BETA) it is, statistically: the pressure is gamma-
-distributed about p̄ with the calibrated spread σ_p = c·E'Δq/4 (:mod:`ehl_dataset.model.micro_pressure`), and the
-stress is averaged over pressures and gaps, taken independent:
+benchmarks/film_law_model.py). The micro-EHL pressure is modelled statistically: the pressure is gamma-distributed about p̄ with the calibrated
+spread σ_p = c·E'Δq/4, c a function of the inlet length in correlation lengths L_in/β
+(:mod:`ehl_dataset.model.micro_pressure`; c → 0 where the inlet is many β long), and the stress is averaged over
+pressures and gaps, taken independent:
 
     τ̄(x) = ⟨τ0 asinh(η(p) u_s/(τ0 max(h̄ + z, h_b)))⟩_{z, p ~ Γ(p̄(x), σ_p)}.
 
 Where the traction is not Eyring-saturated the deterministic model's μ is 1.5–2.2× the film law's without it (the
-mean of a convex τ(p) over the fluctuations), and with it within a median 7 % (docs/narrow_contacts.md). With ``plan.thermal`` the Couette stresses carry the thermal correction of the smooth solver (shear
+mean of a convex τ(p) over the fluctuations), and with it within the leave-one-out error of the calibration
+(docs/narrow_contacts.md). With ``plan.thermal`` the Couette stresses carry the thermal correction of the smooth solver (shear
 heating and flash temperature, :mod:`ehl_dataset.model.thermal`) computed for a smooth film of the model's mean
 film: outside the zone as is, inside as the node-wise ratio thermal/isothermal that scales the gap average (the
 heat source is the mean film's shear, not the gap-averaged one: an approximation).
 
 Measured against the windows on the factorial's widest corners this holds within a few per cent where the
-viscosity is saturated in the Eyring sense, and misses up to ≈ 40 % of μ at low λ̄ and low pressure
-(benchmarks/film_law_model.py, docs page above). The result says when a contact is narrower than the route's
-validated a/β (with the closure's spread) or the film law is extrapolated; the planner says whether a narrow contact
-is within the measured range.
+viscosity is saturated in the Eyring sense (benchmarks/film_law_model.py, docs page above). The result says when a
+contact is narrower than the route's validated a/β (with the closure's spread) or the film law is extrapolated; the
+planner says whether a contact is within the closure's measured range.
 
-The cost is one steady smooth solve, a table lookup and, on narrow contacts, the pressure average: this is a
-production model, not a reference.
+The cost is one steady smooth solve, a table lookup and, where c > 0, the pressure average: this is a production
+model, not a reference.
 """
 
 from __future__ import annotations
@@ -51,8 +51,8 @@ from ..model.contact import ContactCase
 from ..model.dry_contact import composite_windows, profile_hash
 from ..model.effects import Effects
 from ..model.lubricant import LubricantState
-from ..model.micro_pressure import (MICRO_PRESSURE_COEFFICIENT, composite_slope_rms, flattening_pressure_rms,
-                                    gamma_pressure_quantiles)
+from ..model.micro_pressure import (composite_slope_rms, flattening_pressure_rms, gamma_pressure_quantiles,
+                                    micro_pressure_coefficient as inlet_micro_pressure_coefficient)
 from ..model.roughness import RoughnessProfile, baseline_profile
 from ..model.thermal import ThermalTraction, thermal_couette_traction
 from ..model.traction import eyring_shear_stress, full_film_mask
@@ -63,9 +63,9 @@ from .steady import dowson_higginson_lambda, solve_steady
 from .wide_contact import (CENTRE_BAND, FILM_LAW_C, FILM_LAW_D, FILM_LAW_K, WIDE_A_OVER_BETA, WIDE_MODEL_VERSION,
                            WideOptions, _integral_outside, fed_central_film, film_law_extrapolation, inlet_length)
 
-FILM_LAW_MODEL_VERSION = "film-law-2026.11-2"
+FILM_LAW_MODEL_VERSION = "film-law-2026.11-3"
 """Version of this closure (film law of :mod:`ehl_dataset.solvers.wide_contact`, gap-averaged traction; -2: the
-micro-EHL pressure-fluctuation closure on narrow contacts)."""
+micro-EHL pressure-fluctuation closure on narrow contacts; -3: its c a function of L_in/β on every contact)."""
 
 HEIGHT_QUANTILES = 256
 """Number of equal-probability levels (midpoints) of the composite height distribution in the gap average."""
@@ -128,13 +128,6 @@ def _thermal_ratio(case: ContactCase, state: LubricantState, x_m, p_pa, film_m, 
     return thermal, ratio
 
 
-def micro_pressure_coefficient_for(a_over_beta: float) -> float:
-    """c of the pressure-fluctuation closure at a/β [-]: :data:`MICRO_PRESSURE_COEFFICIENT` on narrow contacts
-    (a/β < WIDE_A_OVER_BETA), 0 on wide ones, where the deterministic model's periodic windows agree with the
-    film law without it (median 5 % below λ̄ 1 and X_h 150, and +77 % with it: docs/narrow_contacts.md)."""
-    return MICRO_PRESSURE_COEFFICIENT if a_over_beta < WIDE_A_OVER_BETA else 0.0
-
-
 def solve_film_law(case: ContactCase, state: LubricantState, lvl: AccuracyLevel, plan: Effects,
                    roughness: RoughnessProfile | None, boundary_film_m: float,
                    edge: float = WideOptions.edge, micro_pressure_coefficient: float | None = None) -> ContactResult:
@@ -142,8 +135,8 @@ def solve_film_law(case: ContactCase, state: LubricantState, lvl: AccuracyLevel,
 
     ``boundary_film_m`` h_b [m], the floor of the micro gaps in the Eyring shear; ``edge`` the half width of the
     film-law zone [a]; ``micro_pressure_coefficient`` c of the pressure-fluctuation closure σ_p = c·E'Δq/4
-    (:mod:`ehl_dataset.model.micro_pressure`; None: :func:`micro_pressure_coefficient_for` the contact's a/β, 0 turns
-    the closure off). The smooth case (S_c = 0) is the caller's (it returns the smooth solution)."""
+    (:mod:`ehl_dataset.model.micro_pressure`; None: :func:`~ehl_dataset.model.micro_pressure.micro_pressure_coefficient`
+    of the contact's inlet length L_in/β, 0 turns the closure off). The smooth case (S_c = 0) is the caller's (it returns the smooth solution)."""
     start = time.perf_counter()
     check_range("edge", edge, 0.1, 1.0)
     if micro_pressure_coefficient is not None:
@@ -165,7 +158,7 @@ def solve_film_law(case: ContactCase, state: LubricantState, lvl: AccuracyLevel,
     zone = np.abs(x_m) <= edge * a
     xz, pz = x_m[zone], p_s[zone]
     film = h_centre * rho_centre / np.asarray(state.density(pz), dtype=float)
-    coefficient = (micro_pressure_coefficient_for(a_over_beta) if micro_pressure_coefficient is None
+    coefficient = (inlet_micro_pressure_coefficient(inlet_over_beta) if micro_pressure_coefficient is None
                    else micro_pressure_coefficient)
     slope_rms = composite_slope_rms(profile, case.rq1, case.rq2) if coefficient > 0.0 else None
     pressure_std = coefficient * flattening_pressure_rms(case.e_reduced, slope_rms) if coefficient > 0.0 else 0.0
@@ -199,8 +192,8 @@ def solve_film_law(case: ContactCase, state: LubricantState, lvl: AccuracyLevel,
     warnings = []
     if a_over_beta < WIDE_A_OVER_BETA:
         warnings.append(f"narrow contact (a/β = {a_over_beta:.1f} < {WIDE_A_OVER_BETA:g}): micro-EHL pressure-"
-                        f"fluctuation closure, sigma_p = {pressure_std / 1e9:.3g} GPa; its measured range is the "
-                        "planner's (docs/narrow_contacts.md)")
+                        f"fluctuation closure c = {coefficient:.3g} (L_in/β = {inlet_over_beta:.3g}), sigma_p = "
+                        f"{pressure_std / 1e9:.3g} GPa; its measured range is the planner's (docs/narrow_contacts.md)")
     extrapolated = film_law_extrapolation(h_smooth_centre, sigma, inlet_over_beta)
     if extrapolated:
         warnings.append(f"film law extrapolated ({extrapolated})")

@@ -59,8 +59,8 @@ class HomogenisedOptions:
     floor of the micro gaps in the traction), ``flow_floor_sigma`` the floor of the micro gaps in the transverse
     flow factors in units of σ (None: h_b), ``transport`` the roughness transport weight
     (:func:`ehl_dataset.model.flow_factors.transport_weight`), ``micro_pressure_coefficient`` c of the film-law
-    closure's pressure fluctuations σ_p = c·E'Δq/4 (None: the calibrated value on narrow contacts, none on wide ones,
-    :func:`ehl_dataset.solvers.film_law_model.micro_pressure_coefficient_for`; 0: off)."""
+    closure's pressure fluctuations σ_p = c·E'Δq/4 (None: the calibrated function of the inlet length,
+    :func:`ehl_dataset.model.micro_pressure.micro_pressure_coefficient`; 0: off)."""
 
     closure: str = "transverse"
     boundary_film_m: float = BOUNDARY_FILM_M

@@ -111,19 +111,20 @@ at fast; the reference cases I and J, −6.0 % and +6.6 %), at X_h ≤ 111 it is
 reference cases A, C and G (docs/narrow_contacts.md); 150 is the geometric middle of the gap."""
 
 NARROW_CLOSURE_LAMBDA = 0.1
-"""λ̄ from which the film law with its pressure-fluctuation closure holds on narrow contacts with an unsaturated
-traction (ehl-2026.11-13). Below it the asperities carry load in the deterministic model (reference case B, λ̄ 0.054:
-asperity share 0.53, film law −85 % with the closure; factorial corner at λ̄ 0.027: share 0.18, −51 %), which the film
-law, whose fluid carries the whole load, does not model. Within the range the lowest λ̄ is 0.18 (two factorial points,
-−13 % and +4 % with the closure): benchmarks/results/micro_pressure_closure.json, docs/narrow_contacts.md."""
+"""λ̄ from which the film law with its pressure-fluctuation closure holds on contacts with an unsaturated traction
+(ehl-2026.11-13 on narrow contacts, ehl-2026.11-14 on all). Below it the asperities carry load in the deterministic
+model, which the film law, whose fluid carries the whole load, does not model: reference case B (λ̄ 0.054, asperity
+share 0.53) is −74 % with the closure, the narrow factorial corner at λ̄ 0.027 (share 0.18) −43 %, and the wide corner
+at λ̄ 0.062 +162 % (−44 % without). Within the range the lowest λ̄ is 0.14 (+0.5 %); one factorial point at λ̄ 0.085 is
++4 %: benchmarks/results/micro_pressure_closure.json, docs/narrow_contacts.md."""
 
 NARROW_CLOSURE_ROUGHNESS = 2.5
 """Greenwood–Tripp roughness parameter α = S_c·r_eq/a² up to which the closure holds (ehl-2026.11-13). The film law
 takes the smooth Hertzian pressure as the mean pressure; where the composite roughness is large against the Hertz
 approach a²/r_eq the mean pressure of a rough contact is lower and wider than Hertz's (Greenwood & Tripp 1967;
-Johnson, Contact Mechanics, 1985, §13.3). Measured with the closure: −3 % at α 1.8 (the largest α within the range,
-a factorial point at λ̄ 0.44), 24–51 % low at α 3.6 on all 4 unsaturated points there (reference case C and three
-factorial corners); 2.5 is the geometric middle (benchmarks/results/micro_pressure_closure.json)."""
+Johnson, Contact Mechanics, 1985, §13.3). Measured with the closure (ehl-2026.11-14): −2 % at α 1.8 (the largest α
+within the range, a factorial point at λ̄ 0.44), 23–51 % low at α 3.6 on all 4 unsaturated points there (reference
+case C and three factorial corners); 2.5 is the geometric middle (benchmarks/results/micro_pressure_closure.json)."""
 
 
 THRESHOLDS: dict[str, PlannerThresholds] = {
@@ -206,7 +207,7 @@ def dimensionless_numbers(case, lubricant, correlation_length_m: float | None = 
 
 
 def narrow_film_law_range(nums: dict, limits: PlannerThresholds) -> tuple[bool, str]:
-    """Whether the film law is within its measured range on a narrow rough contact with the planner's numbers
+    """Whether the film law is within its measured range on a rough contact (narrow or wide) with the planner's numbers
     ``nums`` (:func:`dimensionless_numbers`) under ``limits``, and the limit that decides: ``lambda_bar`` (λ̄ above
     ``narrow_film_law_lambda``), ``eyring_number`` (X_h at or above ``narrow_film_law_eyring``), ``closure_range``
     (λ̄ ≥ ``narrow_closure_lambda`` and α ≤ ``narrow_closure_roughness``) — within —, or ``below_closure_lambda``,
@@ -228,10 +229,11 @@ def plan_effects(case, lubricant, level="standard", correlation_length_m: float 
     (``correlation_length_m``: β of the roughness profile [m]; None: the shipped baseline profile's).
 
     Returns an :class:`~ehl_dataset.model.effects.Effects` with ``mode="auto"`` and ``reasons`` holding the numbers,
-    the thresholds and one sentence per decision; for a rough contact narrower than ``a_over_beta_homogenised`` also
-    ``narrow_contact``: ``within_measured_range`` (whether the film law is within its measured range there) and
-    ``limit``, the limit that decided (``lambda_bar``, ``eyring_number``, ``closure_range``, ``below_closure_lambda``
-    or ``above_closure_roughness``). Bad input raises :class:`InputError` (unknown level,
+    the thresholds and one sentence per decision; for a rough contact also ``film_law_range``:
+    ``within_measured_range`` (whether the film law with its pressure-fluctuation closure is within its measured
+    range) and ``limit``, the limit that decided (``lambda_bar``, ``eyring_number``, ``closure_range``,
+    ``below_closure_lambda`` or ``above_closure_roughness``: :func:`narrow_film_law_range`), and for one narrower
+    than ``a_over_beta_homogenised`` the same under ``narrow_contact``. Bad input raises :class:`InputError` (unknown level,
     temperature outside the lubricant's data).
     """
     limits = thresholds_for(level)
@@ -265,6 +267,13 @@ def plan_effects(case, lubricant, level="standard", correlation_length_m: float 
                       "smooth surfaces under constant load: steady"),
         "model": (f"homogenised model, film-law closure ({a_b} >= {limits.a_over_beta_homogenised:g}; against the "
                   "deterministic model's windows on the wide factorial corners: docs/homogenised_model.md)"
+                  + ("" if narrow_within else
+                     f"; outside the measured range of its pressure-fluctuation closure (X_h={x_h:.3g} < "
+                     f"{limits.narrow_film_law_eyring:g}, "
+                     + (f"lambda_bar={lam:.3g} < {limits.narrow_closure_lambda:g}: asperities carry load"
+                        if narrow_limit == "below_closure_lambda" else
+                        f"roughness parameter alpha={alpha:.3g} > {limits.narrow_closure_roughness:g}")
+                     + "; docs/narrow_contacts.md)")
                   if homogenised and wide else
                   f"homogenised model, film-law closure, on a narrow contact within its measured range ({a_b} < "
                   f"{limits.a_over_beta_homogenised:g}, but "
@@ -310,6 +319,8 @@ def plan_effects(case, lubricant, level="standard", correlation_length_m: float 
     level_name = getattr(level, "name", level)
     reasons = {"level": str(level_name), "numbers": _json_safe(nums), "thresholds": _json_safe(asdict(limits)),
                "decisions": decisions}
+    if rough:
+        reasons["film_law_range"] = {"within_measured_range": bool(narrow_within), "limit": narrow_limit}
     if rough and not wide:
         reasons["narrow_contact"] = {"within_measured_range": bool(narrow_valid), "limit": narrow_limit}
     return Effects(roughness=rough, transient=rough and not homogenised, shear_thinning=not newtonian,
