@@ -1,13 +1,15 @@
-"""Which variable should the pressure-fluctuation closure's c depend on? (docs/narrow_contacts.md, "The switch at a/β 15")
+"""Which variable should the pressure-fluctuation closure's c depend on? (docs/narrow_contacts.md, "Why c depends on
+the inlet length")
 
     python benchmarks/closure_forms.py
 
-For every contact below λ̄ 1 with X_h < 150 that the deterministic model solved (the calibration group and the wide
-group of benchmarks/results/micro_pressure_closure.json, plus the resolved wide runs X1, a/β 17.7, and X2, a/β 23.6:
-benchmarks/results/deterministic_run_X1.json, _X2.json), the film law's μ on a grid of c (``fast``, isothermal);
-then each candidate form of c is fitted by least squares of ln(μ_film law/μ_deterministic) and judged by its
-leave-one-out error; and how much of the paper factorial is wide, below λ̄ 1 and unsaturated (a seeded sample).
-Writes benchmarks/results/closure_forms.json. Exploratory: the shipped model is unchanged.
+On the calibration contacts of the closure (every unsaturated contact below λ̄ 1 within the planner's closure range
+that the deterministic model solved, narrow and wide, with the resolved wide runs X1 and X2: the calibration group of
+benchmarks/results/micro_pressure_closure.json, whose film-law μ on a grid of c it reuses), each candidate form of c is
+fitted by least squares of ln(μ_film law/μ_deterministic) and judged by its leave-one-out error; and how much of the
+paper factorial is wide, below λ̄ 1 and unsaturated (a seeded sample). The form in L_in/β is the one shipped since
+EHL solver ehl-2026.11-14; ehl-2026.11-13 shipped the switch (c 0.167 below a/β 15, 0 above). Writes
+benchmarks/results/closure_forms.json.
 """
 
 from __future__ import annotations
@@ -21,39 +23,32 @@ from pathlib import Path
 import numpy as np
 from scipy.optimize import minimize
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from micro_pressure_closure import LEVEL, film_law_mu  # noqa: E402
-
 from ehl_dataset.model.contact import ContactCase  # noqa: E402
 from ehl_dataset.dataset.factorial import load_factorial  # noqa: E402
 from ehl_dataset.model.lubricant import load_lubricant  # noqa: E402
-from ehl_dataset.solver import SOLVER_VERSION, solve_contact  # noqa: E402
-from ehl_dataset.solvers.film_law_model import micro_pressure_coefficient_for  # noqa: E402
-from ehl_dataset.solvers.homogenised import HomogenisedOptions  # noqa: E402
+from ehl_dataset.solver import SOLVER_VERSION  # noqa: E402
 from ehl_dataset.solvers.planner import NARROW_FILM_LAW_EYRING, dimensionless_numbers  # noqa: E402
 from ehl_dataset.solvers.wide_contact import WIDE_A_OVER_BETA  # noqa: E402
 
 RESULTS = Path(__file__).resolve().parent / "results"
 OUT = RESULTS / "closure_forms.json"
-GRID = np.round(np.arange(0.0, 0.61, 0.03), 3)
-SHIPPED = "shipped: c0 below a/β 15, 0 above"
+SWITCH = "ehl-2026.11-13: c 0.167 below a/β 15, 0 above"
 INLET = "c0 / (1 + (L_in/(β L0))²)"
 FORMS = {
-    SHIPPED: (lambda th, r: micro_pressure_coefficient_for(r["a_over_beta"]), []),
+    SWITCH: (lambda th, r: 0.167 if r["a_over_beta"] < WIDE_A_OVER_BETA else 0.0, []),
     "c0 everywhere": (lambda th, r: th[0], [0.17]),
     "c0 exp(-λ̄/λ0)": (lambda th, r: th[0] * np.exp(-r["lambda_bar"] / abs(th[1])), [0.3, 0.4]),
     INLET: (lambda th, r: th[0] / (1 + (r["inlet_over_beta"] / abs(th[1])) ** 2), [0.2, 4.0]),
 }
 
 
-def contacts() -> list[dict]:
+def contacts() -> tuple[list[dict], list[float]]:
+    """The calibration contacts of the closure and the c grid of their film-law μ (micro_pressure_closure.json)."""
     closure = json.loads((RESULTS / "micro_pressure_closure.json").read_text())
-    out = [{"label": p["label"], "inputs": p["inputs"], "mu_det": p["mu_det"]} for p in closure["points"]
-           if p["group"].startswith(("lambda_bar <= 1, X_h < 150, closure", "wide, lambda_bar <= 1"))]
-    for tag in ("X1", "X2"):
-        run = json.loads((RESULTS / f"deterministic_run_{tag}.json").read_text())
-        out.append({"label": f"{tag} resolved", "inputs": run["inputs"], "mu_det": run["mu"]})
-    return out
+    keep = ("label", "inputs", "mu_det", "a_over_beta", "lambda_bar", "eyring_number", "inlet_over_beta")
+    rows = [{**{k: p[k] for k in keep}, "mu_grid": p["mu_by_c"]} for p in closure["points"]
+            if p["label"] in closure["calibration_points"]]
+    return rows, closure["c_grid"]
 
 
 def wide_unsaturated_share(lubricant, n: int = 1500, seed: int = 0) -> dict:
@@ -75,21 +70,10 @@ def wide_unsaturated_share(lubricant, n: int = 1500, seed: int = 0) -> dict:
             "a_over_beta": {f"{v:g}": a_over_beta.count(v) for v in sorted(set(a_over_beta))}}
 
 
-def inlet_over_beta(p: dict, lubricant) -> float:
-    """L_in/β of the film law at the contact (its ``extra``; the same at every c)."""
-    result = solve_contact(ContactCase.from_engineering(*p["inputs"]), lubricant, LEVEL, "isothermal",
-                           model="homogenised", homogenised=HomogenisedOptions(closure="film_law"))
-    return float(result.extra["inlet_over_beta"])
-
-
 def main() -> int:
     lubricant = load_lubricant("atf")
-    rows = []
-    for p in contacts():
-        nums = dimensionless_numbers(ContactCase.from_engineering(*p["inputs"]), lubricant)
-        rows.append({**p, "mu_grid": [film_law_mu(p, lubricant, float(c)) for c in GRID],
-                     "a_over_beta": float(nums["a_over_beta"]), "lambda_bar": nums["lambda_bar"],
-                     "eyring_number": nums["eyring_number"], "inlet_over_beta": inlet_over_beta(p, lubricant)})
+    rows, grid = contacts()
+    GRID = np.asarray(grid)
 
     def error(r, c):
         return float(np.log(np.interp(float(np.clip(c, 0.0, GRID[-1])), GRID, r["mu_grid"]) / r["mu_det"]))
@@ -113,7 +97,7 @@ def main() -> int:
               f"({len(wide)}) median {forms[name]['wide_median_abs']:.1%}, max {forms[name]['wide_max_abs']:.0%}")
     OUT.write_text(json.dumps(
         {"command": "python benchmarks/closure_forms.py", "solver_version": SOLVER_VERSION,
-         "machine": platform.platform(), "c_grid": GRID.tolist(), "forms": forms, "contacts": rows,
+         "machine": platform.platform(), "c_grid": grid, "forms": forms, "contacts": rows,
          "paper_factorial_wide_unsaturated": wide_unsaturated_share(lubricant)}, indent=1))
     return 0
 

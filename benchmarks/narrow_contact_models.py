@@ -38,7 +38,7 @@ from ehl_dataset.model.contact import ContactCase
 from ehl_dataset.model.lubricant import load_lubricant
 from ehl_dataset.model.roughness import baseline_profile
 from ehl_dataset.solver import SOLVER_VERSION
-from ehl_dataset.model.micro_pressure import MICRO_PRESSURE_COEFFICIENT
+from ehl_dataset.model.micro_pressure import MICRO_PRESSURE_C0, MICRO_PRESSURE_INLET_SCALE
 from ehl_dataset.solvers.planner import (NARROW_CLOSURE_LAMBDA, NARROW_CLOSURE_ROUGHNESS, NARROW_FILM_LAW_EYRING,
                                          dimensionless_numbers, narrow_film_law_range, thresholds_for)
 from ehl_dataset.solvers.wide_contact import WIDE_A_OVER_BETA
@@ -159,47 +159,45 @@ def _holdout_sentence(record: dict) -> str:
             f"{100 * h['p90_abs']:.1f} %.")
 
 
-def _switch_lines() -> list[str]:
-    """What the resolved wide contacts X1, X2 and benchmarks/closure_forms.py say of the closure's a/β switch."""
+def _inlet_lines() -> list[str]:
+    """Why c is a function of L_in/β: the resolved wide contacts X1, X2 and benchmarks/closure_forms.py."""
     forms = json.loads((RESULTS / "closure_forms.json").read_text())
-    grid = np.asarray(forms["c_grid"])
-    contacts = {c["label"]: c for c in forms["contacts"]}
+    record = {p["label"]: p for p in json.loads((RESULTS / "micro_pressure_closure.json").read_text())["points"]}
     runs = {tag: json.loads((RESULTS / f"deterministic_run_{tag}.json").read_text()) for tag in ("X1", "X2")}
     window = json.loads((RESULTS / "deterministic_wide_X1.json").read_text())
-
-    def film_law_error(tag, c):
-        row = contacts[f"{tag} resolved"]
-        return 100 * (np.interp(c, grid, row["mu_grid"]) / row["mu_det"] - 1)
-
-    shipped, inlet = forms["forms"]["shipped: c0 below a/β 15, 0 above"], forms["forms"]["c0 / (1 + (L_in/(β L0))²)"]
-    c0, l0 = inlet["parameters"]
+    switch = next(v for k, v in forms["forms"].items() if k.startswith("ehl-2026.11-13"))
+    inlet = forms["forms"]["c0 / (1 + (L_in/(β L0))²)"]
+    others = [v["leave_one_out_median_abs"] for k, v in forms["forms"].items() if "λ̄" in k or "everywhere" in k]
     share = forms["paper_factorial_wide_unsaturated"]
-    x = {tag: (run, contacts[f"{tag} resolved"]) for tag, run in runs.items()}
-    described = ", ".join(f"{tag} (a/β {c['a_over_beta']:.1f}, λ̄ {c['lambda_bar']:.2f}, X_h {c['eyring_number']:.2g}) "
-                          f"μ {run['mu']:.4f} ± {run['mu_sem']:.4f}" for tag, (run, c) in x.items())
+    x = {tag: record[f"{tag} resolved"] for tag in runs}
+    described = ", ".join(f"{tag} (a/β {p['a_over_beta']:.1f}, λ̄ {p['lambda_bar']:.2f}, X_h {p['eyring_number']:.2g}, "
+                          f"L_in/β {p['inlet_over_beta']:.2f}) μ {runs[tag]['mu']:.4f} ± {runs[tag]['mu_sem']:.4f}"
+                          for tag, p in x.items())
     return [
-        "**The switch at a/β 15 is not where the physics changes (measured 2026-11-25, not yet acted on).** Two wide "
-        f"unsaturated contacts resolved whole at β/{runs['X1']['points_per_beta']:g} ({runs['X1']['model_version']}, "
-        f"{runs['X1']['passes']:g} passes; `python benchmarks/deterministic_run.py --inputs "
-        + " ".join(f"{v:g}" for v in runs["X1"]["inputs"]) + " --spacing 8 --passes 4 --tag X1`, and the same at "
-        f"r_eq {runs['X2']['inputs'][1]:g} mm with `--tag X2`): {described}. The film law is "
-        f"{film_law_error('X1', 0.0):+.0f} % and {film_law_error('X2', 0.0):+.0f} % without the closure (what the "
-        f"planner runs there) and {film_law_error('X1', MICRO_PRESSURE_COEFFICIENT):+.0f} % and "
-        f"{film_law_error('X2', MICRO_PRESSURE_COEFFICIENT):+.0f} % with c = {MICRO_PRESSURE_COEFFICIENT:g}. The "
-        f"windows of the wide route agree with the resolved X1 ({window['mu']:.4f} ± {window['mu_sem']:.4f}; `python "
+        "**Why c depends on the inlet length (measured 2026-11-25; shipped in ehl-2026.11-14).** Until -13 c was "
+        "0.167 below a/β 15 and 0 above, because the wide route's periodic windows agreed with the film law without "
+        "the closure on the wide factorial corners. Two wide unsaturated contacts resolved whole at "
+        f"β/{runs['X1']['points_per_beta']:g} ({runs['X1']['model_version']}, {runs['X1']['passes']:g} passes; "
+        "`python benchmarks/deterministic_run.py --inputs " + " ".join(f"{v:g}" for v in runs["X1"]["inputs"])
+        + f" --spacing 8 --passes 4 --tag X1`, and the same at r_eq {runs['X2']['inputs'][1]:g} mm with `--tag X2`) "
+        f"showed that switch wrong: {described}; the film law without the closure is "
+        f"{100 * x['X1']['error_without']:+.0f} % and {100 * x['X2']['error_without']:+.0f} %. The windows of the "
+        f"wide route agree with the resolved X1 ({window['mu']:.4f} ± {window['mu_sem']:.4f}; `python "
         "benchmarks/deterministic_wide.py --inputs " + " ".join(f"{v:g}" for v in window["inputs"]) + " --tag X1`), "
         "so windows do carry the fluctuation. What separates the contacts where c = 0 fits (corners 5 and 15, random "
-        "53 and 100) from those where c ≈ 0.2 fits is the film law's inlet length in correlation lengths, "
-        "L_in/β = 6–12 against 2–3. A closure c = c0/(1 + (L_in/(β·L0))²) fitted on all "
-        f"{len(contacts)} unsaturated contacts (c0 {c0:.2f}, L0 {l0:.2f}) has a leave-one-out error of a median "
+        "53 and 165: L_in/β 9–12) from those where c ≈ 0.2 fits (L_in/β 1–3) is the film law's inlet length in "
+        "correlation lengths: where the inlet is many β long the fluid smooths the micro-EHL pressure before the "
+        "asperities reach the Hertz zone. On the "
+        f"{len(forms['contacts'])} calibration contacts (`{forms['command']}`, benchmarks/results/closure_forms.json) "
+        f"the leave-one-out error of c = c0/(1 + (L_in/(β·L0))²) is a median "
         f"{100 * inlet['leave_one_out_median_abs']:.1f} %, 90th percentile {100 * inlet['leave_one_out_p90_abs']:.1f} "
-        f"%, against {100 * shipped['leave_one_out_median_abs']:.1f} % and {100 * shipped['leave_one_out_p90_abs']:.1f} "
-        "% for the shipped switch (not refitted), and it takes X1 and X2 to "
-        f"{100 * inlet['leave_one_out']['X1 resolved']:+.0f} % and {100 * inlet['leave_one_out']['X2 resolved']:+.0f} "
-        f"% (`{forms['command']}`, benchmarks/results/closure_forms.json; forms in λ̄ or X_h do worse). "
+        f"%, against {100 * switch['leave_one_out_median_abs']:.1f} % and {100 * switch['leave_one_out_p90_abs']:.1f} "
+        "% for the -13 switch (at most "
+        f"{100 * switch['wide_max_abs']:.0f} % on a wide contact) and a median of "
+        f"{100 * min(others):.0f}–{100 * max(others):.0f} % for a constant c or c decaying with λ̄. "
         f"{100 * share['share']:.1f} % of the paper factorial's sliding points are wide, below λ̄ 1 and unsaturated "
         f"(a sample of {share['points']:,} points; a/β " + ", ".join(f"{k}: {v}" for k, v in share["a_over_beta"].items())
-        + ")."]
+        + "): the points the switch had put about 40 % low."]
 
 
 def _calibration_lines() -> list[str]:
@@ -207,10 +205,14 @@ def _calibration_lines() -> list[str]:
     record = json.loads((RESULTS / "micro_pressure_closure.json").read_text())
     lines = [f"Calibration (`{record['command']}`, EHL solver {record['solver_version']}, film law at "
              f"`{record['level']}`, isothermal, against the deterministic model: the validation set's grid-converged "
-             f"μ and the factorial points at `fast`): c = {record['c_fitted']:.4f} fitted, {record['c_shipped']:g} "
-             f"shipped; leave-one-out error on the {record['leave_one_out']['n']} calibration contacts: median "
-             f"{100 * record['leave_one_out']['median_abs']:.1f} %, 90th percentile "
-             f"{100 * record['leave_one_out']['p90_abs']:.1f} %." + _holdout_sentence(record), "",
+             "μ, the factorial points at `fast` and the resolved wide runs X1, X2): c0 = "
+             f"{record['fitted']['c0']:.4f}, L0 = {record['fitted']['inlet_scale']:.3f} fitted, "
+             f"{record['shipped']['c0']:g} and {record['shipped']['inlet_scale']:g} shipped; on the "
+             f"{record['leave_one_out']['n']} calibration contacts the error at the shipped c is a median "
+             f"{100 * record['calibration_at_shipped_c']['median_abs']:.1f} %, 90th percentile "
+             f"{100 * record['calibration_at_shipped_c']['p90_abs']:.1f} %, and the leave-one-out error (c0, L0 "
+             f"refitted without the point) a median {100 * record['leave_one_out']['median_abs']:.1f} %, 90th "
+             f"percentile {100 * record['leave_one_out']['p90_abs']:.1f} %." + _holdout_sentence(record), "",
              "| contacts | points | median error without | median abs without | 90th pct abs without | "
              "median error with | median abs with | 90th pct abs with |", "|---|---|---|---|---|---|---|---|"]
     for name, g in record["groups"].items():
@@ -218,15 +220,16 @@ def _calibration_lines() -> list[str]:
         lines.append(f"| {name} | {a['n']} | {100 * a['median']:+.1f} % | {100 * a['median_abs']:.1f} % | "
                      f"{100 * a['p90_abs']:.1f} % | {100 * b['median']:+.1f} % | {100 * b['median_abs']:.1f} % | "
                      f"{100 * b['p90_abs']:.1f} % |")
-    lines += ["", "Below λ̄ 1 (with: at the shipped c, which the model uses on narrow contacts only):", "",
-              "| contact | a/β | λ̄ | X_h | α | deterministic μ | without | with | leave-one-out |",
-              "|---|---|---|---|---|---|---|---|---|"]
+    lines += ["", "Below λ̄ 1 (with: at the shipped c(L_in/β)):", "",
+              "| contact | a/β | λ̄ | X_h | α | L_in/β | c | deterministic μ | without | with | leave-one-out |",
+              "|---|---|---|---|---|---|---|---|---|---|---|"]
     for p in sorted(record["points"], key=lambda p: (p["group"], p["eyring_number"])):
         if p["lambda_bar"] > 1.0:
             continue
         loo = p.get("leave_one_out_error")
         lines.append(f"| {p['label']} | {p['a_over_beta']:.1f} | {p['lambda_bar']:.2f} | {p['eyring_number']:.3g} | "
-                     f"{p['roughness_parameter']:.2f} | {p['mu_det']:.4f} | {100 * p['error_without']:+.1f} % | "
+                     f"{p['roughness_parameter']:.2f} | {p['inlet_over_beta']:.2f} | {p['c_shipped']:.3f} | "
+                     f"{p['mu_det']:.4f} | {100 * p['error_without']:+.1f} % | "
                      f"{100 * p['error_with']:+.1f} % | " + (f"{100 * loo:+.1f} % |" if loo is not None else "– |"))
     return lines
 
@@ -296,22 +299,24 @@ def markdown(records: list[dict]) -> str:
               "  A gamma distribution with each node's own mean and standard deviation (last column) reproduces "
               "the local pressures' mean stress (the column before it) within 1–12 %: that is the shape of the closure "
               "below.", "",
-              "## Pressure-fluctuation closure (ehl-2026.11-13)", "",
-              "On narrow contacts the film law averages the Eyring stress over a gamma distribution of the pressure "
-              "about the smooth mean p̄(x), independent of the gap heights, with standard deviation "
-              f"σ_p = c·E'Δq/4 (c = {MICRO_PRESSURE_COEFFICIENT:g}): E'Δq/4 is the r.m.s. pressure that flattens "
-              "the composite roughness of r.m.s. slope Δq on elastic half-spaces (Johnson, Contact Mechanics, "
-              "§13.1), c the fraction the film lets through, fitted (`ehl_dataset/model/micro_pressure.py`). Wide "
-              "contacts keep c = 0: on most wide factorial points the deterministic model's periodic windows agree "
-              "with the film law without it and are far above it with it (the wide rows of the table).", "",
-              *_switch_lines(), "",
+              "## Pressure-fluctuation closure (ehl-2026.11-13; c in L_in/β since ehl-2026.11-14)", "",
+              "The film law averages the Eyring stress over a gamma distribution of the pressure about the smooth mean "
+              "p̄(x), independent of the gap heights, with standard deviation σ_p = c·E'Δq/4: E'Δq/4 is the r.m.s. "
+              "pressure that flattens the composite roughness of r.m.s. slope Δq on elastic half-spaces (Johnson, "
+              "Contact Mechanics, §13.1), and c the fraction the film lets through, a function of the inlet length "
+              f"in correlation lengths, c = c0/(1 + (L_in/(β·L0))²) with c0 = {MICRO_PRESSURE_C0:g}, "
+              f"L0 = {MICRO_PRESSURE_INLET_SCALE:g}, fitted (`ehl_dataset/model/micro_pressure.py`), on narrow and "
+              "wide contacts alike.", "",
+              *_inlet_lines(), "",
               *_calibration_lines(), "",
-              "Outside the closure's range the film law stays low: below λ̄ "
-              f"{NARROW_CLOSURE_LAMBDA:g} the asperities carry load (case B, share 0.53), and above a Greenwood–"
+              "Outside the closure's range the film law is off in either direction: below λ̄ "
+              f"{NARROW_CLOSURE_LAMBDA:g} the asperities carry load (case B, share 0.53, and the narrow corner at "
+              "λ̄ 0.027 stay low; the wide corner at λ̄ 0.062 is far high with the closure), and above a Greenwood–"
               f"Tripp roughness parameter α = S_c r_eq/a² of {NARROW_CLOSURE_ROUGHNESS:g} the mean pressure is not "
-              "the Hertzian one the film law takes (case C and three corners at α 3.6). The limits bound few "
-              "points: λ̄ 0.1 lies between the highest λ̄ outside for that reason (0.054, case B) and the lowest "
-              "inside (0.18); α 2.5 between the largest inside (1.8) and 3.6.", "",
+              "the Hertzian one the film law takes (case C and three corners at α 3.6, low). The limits bound few "
+              "points: λ̄ 0.1 lies between the highest λ̄ outside for that reason (0.062, the wide corner) and the "
+              "lowest inside (0.14); a factorial point at λ̄ 0.085 is outside and met; α 2.5 lies between the largest "
+              "inside (1.8) and 3.6. Since ehl-2026.11-14 the same range applies to wide contacts.", "",
               "  The film law with its closure, on the factorial points (deterministic model at `fast`):",
               "", *_film_law_split(records), "",
               "  and on the grid-converged reference cases (docs/accuracy_mixed.md, `standard`; share: the "
@@ -324,7 +329,10 @@ def markdown(records: list[dict]) -> str:
               f"- Narrow contacts above λ̄ = 1, at X_h ≥ {NARROW_FILM_LAW_EYRING:g} (since ehl-2026.11-12) or within "
               f"the closure's range, λ̄ ≥ {NARROW_CLOSURE_LAMBDA:g} and α ≤ {NARROW_CLOSURE_ROUGHNESS:g} (since "
               "ehl-2026.11-13; `narrow_closure_lambda`, `narrow_closure_roughness` of `PlannerThresholds`), are "
-              "within the film law's measured range and are solved by it at `fast` and `standard`.",
+              "within the film law's measured range and are solved by it at `fast` and `standard`. Wide rough "
+              "contacts are solved by it whatever their numbers; since ehl-2026.11-14 those below λ̄ 1 with X_h < "
+              f"{NARROW_FILM_LAW_EYRING:g} outside the closure's range are flagged the same way (the plan's "
+              "`film_law_range`).",
               "- Only the others go to the level's `rough_model`. At `fast` and `standard` that is still the film "
               "law, recorded as outside its validated range: no cheap model is within those levels' tolerance there. "
               "The deterministic model (`--level reference` or `--model deterministic`, about a minute per point at "

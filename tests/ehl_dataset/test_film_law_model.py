@@ -111,7 +111,8 @@ def test_meets_issue_15_accuracy_against_the_deterministic_wide_route_on_the_rec
     corners --level fast --resume --out benchmarks/results/ehl_mixed_corners_fast_deterministic.json``): same smooth
     pressure and film law, so this measures the gap-averaged traction against the windows' micro-EHL. Issue 15's
     acceptance for the homogenised model: median |Δμ| ≤ 10 %, 90th percentile ≤ 25 %. (The worst corner, λ̄ 0.06 at
-    0.5 GPa and 100 °C, is −44 %: docs/homogenised_model.md.)"""
+    0.5 GPa and 100 °C, outside the closure's range and flagged so, is +162 % with the closure since ehl-2026.11-14,
+    −44 % without: docs/homogenised_model.md.)"""
     rows = [r for r in json.loads(CORNERS.read_text())["rows"]
             if r.get("route") == "wide" and r["converged"] and r["case"][3] > 0.0]
     assert len(rows) >= 12

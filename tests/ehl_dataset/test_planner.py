@@ -190,6 +190,25 @@ def test_narrow_contacts_keep_the_film_law_where_it_was_measured(monkeypatch):
     assert plan_effects(cases["I"], ATF, "reference").transient  # the reference level never homogenises
 
 
+def test_wide_contacts_outside_the_closures_range_are_flagged():
+    """Since ehl-2026.11-14 the closure's measured range (λ̄ ≥ 0.1, α ≤ 2.5 where X_h < 150) holds for wide contacts
+    too: the wide factorial corner at λ̄ 0.062 (0.5 GPa, 80 mm, 1 m/s, SR 1, 100 °C, Rq 1/1 µm; +162 % with the
+    closure, −44 % without against the deterministic model: benchmarks/results/micro_pressure_closure.json) is
+    flagged below the closure's λ̄, the resolved wide contact X1 (λ̄ 0.24, film law −5.5 %) is within; both keep the
+    film-law model and record no narrow-contact entry."""
+    corner = ContactCase.from_engineering(0.5, 80, 1, 1, 100, 1.0, 1.0)
+    x1 = ContactCase.from_engineering(0.5, 30, 1, 0.4, 75, 0.3, 0.3)
+    plans = {name: plan_effects(c, ATF, "standard") for name, c in (("corner", corner), ("X1", x1))}
+    for plan in plans.values():
+        assert plan.roughness and not plan.transient and "narrow_contact" not in plan.reasons
+        assert plan.reasons["numbers"]["a_over_beta"] >= 15
+    assert plans["corner"].reasons["film_law_range"] == {"within_measured_range": False,
+                                                          "limit": "below_closure_lambda"}
+    assert "asperities carry load" in plans["corner"].reasons["decisions"]["model"]
+    assert plans["X1"].reasons["film_law_range"] == {"within_measured_range": True, "limit": "closure_range"}
+    assert "outside the measured range" not in plans["X1"].reasons["decisions"]["model"]
+
+
 def test_the_reference_level_never_homogenises_and_the_profile_correlation_length_decides():
     """The reference level takes only exact skips; a/β is computed with the β of the profile the solve uses."""
     wide = case(r_eq_mm=80)
