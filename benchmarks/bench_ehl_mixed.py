@@ -133,9 +133,12 @@ def main(argv=None) -> int:
                    # a converged run may have had only its averaging-window extension cut by the budget
                    "time_limited": bool(res.extra.get("time_limited", False)) and not res.converged,
                    "route": res.extra.get("route"), "film_law_extrapolated": res.extra.get("film_law_extrapolated"),
+                   "model_version": res.extra.get("model_version"),
+                   "wide_model_version": res.extra.get("wide_model_version"),
                    "message": res.message}
         except Exception as err:  # recorded, the sweep goes on
             row = {"case": case_args, "converged": False, "error": f"{type(err).__name__}: {err}"}
+        row["solver_version"] = SOLVER_VERSION  # per row: a resumed file may span versions
         row["wall_time_s"] = time.perf_counter() - start
         row["cpu_time_s"] = time.process_time() - cpu_start  # one BLAS thread: unaffected by other processes
         rows.append(row)
@@ -187,11 +190,23 @@ def _report(args, lub, rows, suffix, out: Path | None = None, quiet: bool = Fals
               "closure": args.closure if args.model == "homogenised" else None,
               "effects": args.effects, "summary": summary,
               "solver_version": SOLVER_VERSION,
+              "rows_by_version": rows_by_version(rows),
               "rows": rows, "machine": machine_info()}
     write_report(out or args.out or RESULTS_DIR / f"ehl_mixed_{args.sample}_{args.level}{suffix}.json", report)
     if not quiet:
         print(json.dumps(summary, indent=2, default=float))
     return 0
+
+
+def rows_by_version(rows) -> dict:
+    """How many rows each (solver version, model version) made, as "solver/model" keys; rows written before the
+    versions were recorded per row (session 19) count as "unrecorded"."""
+    counts: dict[str, int] = {}
+    for row in rows:
+        key = (f"{row['solver_version']}/{row.get('model_version')}" if "solver_version" in row
+               else "unrecorded")
+        counts[key] = counts.get(key, 0) + 1
+    return counts
 
 
 def _extrapolated_time(row) -> float:
