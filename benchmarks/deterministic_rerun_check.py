@@ -5,7 +5,8 @@ records: the evidence that a new model version may be paired with the old one's 
     python benchmarks/deterministic_rerun_check.py A:16 B:16 C:16 G:8 I:8
 
 Each argument is CASE:POINTS_PER_BETA of a run in benchmarks/results/deterministic/ (run with the same options as
-the validation script: the middle spacing as the long run). Writes benchmarks/results/deterministic_rerun_check.json.
+the validation script: the middle spacing as the long run). Writes
+benchmarks/results/deterministic_rerun_check_<installed model version>.json.
 Runs laid out for another length (records without ``layout_passes``) see other roughness and are refused.
 """
 
@@ -25,7 +26,7 @@ from ehl_dataset.model.effects import Effects  # noqa: E402
 from ehl_dataset.model.lubricant import load_lubricant  # noqa: E402
 from ehl_dataset.solvers.deterministic import MODEL_VERSION, solve_deterministic  # noqa: E402
 
-OUT = RUNS.parent / "deterministic_rerun_check.json"
+OUT = RUNS.parent / f"deterministic_rerun_check_{MODEL_VERSION}.json"
 
 
 def rerun(name: str, n: int) -> dict:

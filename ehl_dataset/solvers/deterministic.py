@@ -53,9 +53,11 @@ from .result import ContactResult
 from .steady import ContactScales, dowson_higginson_lambda, moes_h_c, solve_steady
 from .time_average import time_mean
 
-MODEL_VERSION = "det-2026.11-10"
+MODEL_VERSION = "det-2026.11-11"
 """Version of the deterministic model's numerics (recorded with its results; bump with any change that can alter a
-solved value). :data:`ehl_dataset.solver.SOLVER_VERSION` covers the whole solver."""
+solved value). :data:`ehl_dataset.solver.SOLVER_VERSION` covers the whole solver. det-2026.11-11: the logarithmic
+face mean is evaluated without cancellation (:func:`~ehl_dataset.discretisation.mixed_system.logarithmic_mean`),
+which removes the 2–5e-10 floor of the global mass balance on contact-dominated runs."""
 BOUNDARY_FILM_M = 5e-9
 """Default film-breakdown (boundary-film) thickness h_b [m]: below it the surfaces are in solid contact through
 their adsorbed/reacted boundary films, which carry load and friction μ_d·p_c. Representative value: adsorbed

@@ -256,6 +256,8 @@ def test_a_deterministic_file_is_not_resumed_under_other_deterministic_numerics(
     config = solver_config("ehl_dataset.solver:solve_contact", "fast", "auto", model="deterministic")
     assert config["model_version"] == MODEL_VERSION
     assert "model_version" not in solver_config("ehl_dataset.solver:solve_contact", "fast", "auto")
+    # the reference level's planner sends every rough contact to the deterministic model
+    assert solver_config("ehl_dataset.solver:solve_contact", "reference", "auto")["model_version"] == MODEL_VERSION
     path = tmp_path / "det.h5"
     make_store(path, plan, lubricant, **{**config, "model_version": "det-2026.11-1"}).close()
     with DatasetStore.open(path, "r+") as store:
