@@ -65,10 +65,15 @@ CASES = {
 }
 POINTS_PER_BETA = (8, 16, 32)
 CONTACT_SPACINGS = (16, 32, 64)
-SPACINGS = {"A": CONTACT_SPACINGS, "B": CONTACT_SPACINGS, "C": CONTACT_SPACINGS}
+SPACINGS = {"A": CONTACT_SPACINGS, "B": CONTACT_SPACINGS, "C": CONTACT_SPACINGS, "D": CONTACT_SPACINGS}
 """Points per correlation length of each case (default POINTS_PER_BETA; the middle one carries the long run).
 A, B and C: μ moves by 7–14 % between β/16 and β/32 under det-2026.11-6 (benchmarks/results/
-deterministic_convergence_<case>.json), so their finest pair has to be β/32–β/64."""
+deterministic_convergence_<case>.json), so their finest pair has to be β/32–β/64; D (λ̄ 0.07) is contact-dominated
+like B."""
+EXTRA_SPACINGS = {"B": (128,), "C": (128,)}
+"""Finer short runs beyond a case's three spacings (``python benchmarks/deterministic_extra_spacing.py CASE N``),
+chained onto them by paired differences: the extrapolation then takes the three finest spacings. B and C were not
+grid-converged at β/64 (docs/deterministic_solver.md)."""
 MAX_PASSES = 40.0
 LAYOUT_PASSES = 100.0
 """Run length [passes] every run's roughness is laid out for, whatever its own cap: the paired differences need
@@ -237,9 +242,13 @@ def central_film(name: str, fine: dict, middle: dict) -> dict:
 
 
 def summarise_case(name: str) -> dict | None:
-    coarse, middle, fine = levels = spacings(name)
-    runs = {n: json.loads(run_path(name, n).read_text()) for n in levels if run_path(name, n).exists()}
-    if set(runs) != set(levels) or not all(r["converged"] for r in runs.values()):
+    """The reference entry of case ``name``: μ and the asperity share at each spacing (the long run's time mean at
+    the middle spacing, the other spacings by paired differences, :data:`EXTRA_SPACINGS` chained onto the finest),
+    Richardson-extrapolated from the three finest; None until every run is on record and converged."""
+    coarse, middle, fine = spacings(name)
+    chain = (coarse, middle, fine) + EXTRA_SPACINGS.get(name, ())
+    runs = {n: json.loads(run_path(name, n).read_text()) for n in chain if run_path(name, n).exists()}
+    if set(runs) != set(chain) or not all(r["converged"] for r in runs.values()):
         return None
     if len({numerics(r["solver_version"]) for r in runs.values()}) != 1:
         return None  # the three spacings must share one model version (a rerun in progress mixes them)
@@ -249,17 +258,20 @@ def summarise_case(name: str) -> dict | None:
               f"short runs", file=sys.stderr)
         return None
     base = runs[middle]
+    levels = chain[-3:]  # the spacings of the extrapolation
     out = {"case": name, "inputs": dict(zip(("p_h_gpa", "r_eq_mm", "u_r_m_s", "sr", "temp_c", "rq1_um", "rq2_um"),
                                             CASES[name])),
            "lambda_bar": base["lambda_bar"],
            "solver_version": max((r["solver_version"] for r in runs.values()), key=version_key),
-           "run_versions": {f"beta/{n}": runs[n]["solver_version"] for n in levels},
+           "run_versions": {f"beta/{n}": runs[n]["solver_version"] for n in chain},
            "half_width_m": ContactCase.from_engineering(*CASES[name]).half_width,
            "points_per_beta": list(levels),
-           "wall_time_s": {f"beta/{n}": runs[n]["wall_time_s"] for n in levels},
-           "n_nodes": {f"beta/{n}": runs[n]["extra"]["n_nodes"] for n in levels},
+           "long_run_points_per_beta": middle,
+           "wall_time_s": {f"beta/{n}": runs[n]["wall_time_s"] for n in chain},
+           "n_nodes": {f"beta/{n}": runs[n]["extra"]["n_nodes"] for n in chain},
            "smooth_mu": base["extra"]["smooth_mu"],
            **central_film(name, runs[fine], base)}
+    low, mid, high = levels
     for key, series in (("mu", "mu_series"), ("asperity_load_share", "share_series")):
         long_mean = time_mean(np.asarray(base["extra"][series])[base["extra"]["average_from_step"]:])
         values, errors = {middle: long_mean.mean}, {middle: long_mean.standard_error}
@@ -267,25 +279,29 @@ def summarise_case(name: str) -> dict | None:
             d, se = paired_difference(runs[n], base, series)
             values[n] = long_mean.mean + d
             errors[n] = math.hypot(long_mean.standard_error, se)
-        e_coarse = values[coarse] - values[middle]
-        e_fine = values[middle] - values[fine]
+        for previous, n in zip(chain[2:], chain[3:]):
+            d, se = paired_difference(runs[n], runs[previous], series)
+            values[n] = values[previous] + d
+            errors[n] = math.hypot(errors[previous], se)
+        e_coarse = values[low] - values[mid]
+        e_fine = values[mid] - values[high]
         order = math.nan
         if e_coarse * e_fine > 0 and abs(e_coarse) > abs(e_fine):
             order = math.log2(e_coarse / e_fine)
         if math.isfinite(order) and order > 0.5:
-            correction = (values[fine] - values[middle]) / (2.0**order - 1.0)
-            extrapolated = values[fine] + correction
+            correction = (values[high] - values[mid]) / (2.0**order - 1.0)
+            extrapolated = values[high] + correction
             grid_uncertainty = SAFETY * abs(correction)
         else:
-            extrapolated = values[fine]
-            grid_uncertainty = abs(values[fine] - values[middle])
-        out[key] = {f"beta/{n}": values[n] for n in levels}
-        out[key + "_sem"] = {f"beta/{n}": errors[n] for n in levels}
+            extrapolated = values[high]
+            grid_uncertainty = abs(values[high] - values[mid])
+        out[key] = {f"beta/{n}": values[n] for n in chain}
+        out[key + "_sem"] = {f"beta/{n}": errors[n] for n in chain}
         out[key + "_observed_order"] = order
         out[key + "_extrapolated"] = extrapolated
-        out[key + "_uncertainty"] = math.hypot(grid_uncertainty, errors[fine])
-        out[key + "_fine_step"] = values[fine] - values[middle]
-    out["mu_fine_step_relative"] = out["mu_fine_step"] / out["mu"][f"beta/{fine}"]
+        out[key + "_uncertainty"] = math.hypot(grid_uncertainty, errors[high])
+        out[key + "_fine_step"] = values[high] - values[mid]
+    out["mu_fine_step_relative"] = out["mu_fine_step"] / out["mu"][f"beta/{high}"]
     return out
 
 
@@ -328,21 +344,24 @@ def summarise() -> None:
              f"{', '.join(sorted({r['solver_version'] for r in rows})) or '-'}, per case in the data); the data: "
              f"`data/reference/deterministic_validation.json`.",
              "", "| case | p_h GPa | r_eq mm | u_r m/s | SR | T °C | Rq µm | λ̄ | a/β | spacings β/n | μ coarse | "
-             "μ middle | μ fine | fine step | order | μ extrapolated | ± | sem of μ middle | share fine | "
-             "share fine step | smooth μ | time per spacing [s] |",
+             "μ middle | μ fine | fine step | order | μ extrapolated | ± | sem of μ (long run) | share fine | "
+             "share fine step | smooth μ | time per spacing, coarsest first [s] |",
              "|---|" + "---|" * 21]
     beta = baseline_profile().correlation_length
     for r in rows:
         i = r["inputs"]
         coarse, middle, fine = r["points_per_beta"]
-        times = " / ".join(f"{r['wall_time_s'][f'beta/{n}']:.0f}" for n in (coarse, middle, fine))
+        long_n = r.get("long_run_points_per_beta", middle)
+        chain = sorted(int(k.split("/")[1]) for k in r["wall_time_s"])
+        times = " / ".join(f"{r['wall_time_s'][f'beta/{n}']:.0f}" for n in chain)
+        spacing_text = f"{coarse}/{middle}/{fine}" + (f" (long run {long_n})" if long_n != middle else "")
         lines.append(
             f"| {r['case']} | {i['p_h_gpa']} | {i['r_eq_mm']} | {i['u_r_m_s']} | {i['sr']} | {i['temp_c']} | "
             f"{i['rq1_um']}/{i['rq2_um']} | {r['lambda_bar']:.3f} | {r['half_width_m'] / beta:.1f} | "
-            f"{coarse}/{middle}/{fine} | {r['mu'][f'beta/{coarse}']:.4f} | {r['mu'][f'beta/{middle}']:.4f} | "
+            f"{spacing_text} | {r['mu'][f'beta/{coarse}']:.4f} | {r['mu'][f'beta/{middle}']:.4f} | "
             f"{r['mu'][f'beta/{fine}']:.4f} | {100 * r['mu_fine_step_relative']:+.1f} % | "
             f"{r['mu_observed_order']:.1f} | {r['mu_extrapolated']:.4f} | {r['mu_uncertainty']:.4f} | "
-            f"{100 * r['mu_sem'][f'beta/{middle}'] / r['mu'][f'beta/{middle}']:.1f} % | "
+            f"{100 * r['mu_sem'][f'beta/{long_n}'] / r['mu'][f'beta/{long_n}']:.1f} % | "
             f"{r['asperity_load_share'][f'beta/{fine}']:.3f} | "
             f"{r['asperity_load_share_fine_step']:+.3f} | {r['smooth_mu']:.4f} | {times} |")
     REPORT.write_text("\n".join(lines) + "\n")

@@ -114,7 +114,7 @@ NARROW_CLOSURE_LAMBDA = 0.1
 """λ̄ from which the film law with its pressure-fluctuation closure holds on contacts with an unsaturated traction
 (ehl-2026.11-13 on narrow contacts, ehl-2026.11-14 on all). Below it the asperities carry load in the deterministic
 model, which the film law, whose fluid carries the whole load, does not model: reference case B (λ̄ 0.054, asperity
-share 0.53) is −74 % with the closure, the narrow factorial corner at λ̄ 0.027 (share 0.18) −43 %, and the wide corner
+share 0.66 at β/128) is −78 % with the closure, the narrow factorial corner at λ̄ 0.027 (share 0.18) −43 %, and the wide corner
 at λ̄ 0.062 +162 % (−44 % without). Within the range the lowest λ̄ is 0.14 (+0.5 %); one factorial point at λ̄ 0.085 is
 +4 %: benchmarks/results/micro_pressure_closure.json, docs/narrow_contacts.md."""
 
@@ -123,7 +123,7 @@ NARROW_CLOSURE_ROUGHNESS = 2.5
 takes the smooth Hertzian pressure as the mean pressure; where the composite roughness is large against the Hertz
 approach a²/r_eq the mean pressure of a rough contact is lower and wider than Hertz's (Greenwood & Tripp 1967;
 Johnson, Contact Mechanics, 1985, §13.3). Measured with the closure (ehl-2026.11-14): −2 % at α 1.8 (the largest α
-within the range, a factorial point at λ̄ 0.44), 23–51 % low at α 3.6 on all 4 unsaturated points there (reference
+within the range, a factorial point at λ̄ 0.44), 23–43 % low at α 3.6 on all 4 unsaturated points there (reference
 case C and three factorial corners); 2.5 is the geometric middle (benchmarks/results/micro_pressure_closure.json)."""
 
 

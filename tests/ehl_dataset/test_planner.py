@@ -151,8 +151,8 @@ def test_narrow_contacts_keep_the_film_law_where_it_was_measured(monkeypatch):
     """Narrow contacts below λ̄ 1 against the deterministic model (benchmarks/results/micro_pressure_closure.json,
     docs/narrow_contacts.md): the film law is within 10 % where the traction is Eyring-saturated (X_h ≥ 150; reference
     case I, X_h 6,100, −6.0 %), and with its pressure-fluctuation closure where λ̄ ≥ 0.1 and the roughness parameter
-    α = S_c r_eq/a² ≤ 2.5 (reference case A, −12 %; leave-one-out median 7.1 %, 90th percentile 15 % on 13 contacts);
-    outside (reference case C, α 3.6: −51 %; case B, λ̄ 0.054, asperity share 0.53: −85 %) a level whose narrow-contact
+    α = S_c r_eq/a² ≤ 2.5 (reference case A, −2 %; leave-one-out median 5.3 %, 90th percentile 15 % on 33 contacts);
+    outside (reference case C, α 3.6: −43 %; case B, λ̄ 0.054, asperity share 0.66: −78 %) a level whose narrow-contact
     model is the deterministic solver sends it the contact, and the decision names the limit that failed."""
     monkeypatch.setitem(THRESHOLDS, "standard", dataclasses.replace(THRESHOLDS["standard"],
                                                                     rough_model="deterministic"))
