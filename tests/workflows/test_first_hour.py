@@ -130,7 +130,7 @@ def test_6_help_shows_the_level_defaults_and_the_fast_standard_difference(capsys
     # the measured fast/standard difference (docs/accuracy_random_levels.md) and the narrow-contact caveat
     # (docs/narrow_contacts.md) are in the help
     assert "fast for quick and smoke" in text and "agree within 0.1 % in median" in text
-    assert "within a median 7 % of the deterministic model" in text and "24-85 % low" in text
+    assert "within a median 5.3 % of the deterministic model" in text and "23-78 % low" in text
 
 
 # ---------------------------------------------------------------------- 7. the smoke pipeline, all stages, seconds
