@@ -210,6 +210,12 @@ def _bad_file(path, detail: str) -> InputError:
                       detail)
 
 
+def _unreadable(path, err: OSError) -> InputError:
+    """A file h5py opened but could not read: corrupt, or read without a lock while its writer was flushing."""
+    return _bad_file(path, f"its contents could not be read ({err}); if a run is writing it, read it again "
+                           "after the next flush")
+
+
 def _open_h5(path, mode: str):
     import h5py
 
@@ -327,6 +333,9 @@ class DatasetStore:
         handle = _open_h5(path, mode)
         try:
             return cls(handle, Path(path), mode == "r+")
+        except OSError as err:
+            handle.close()
+            raise _unreadable(path, err) from None
         except BaseException:
             handle.close()
             raise
@@ -611,7 +620,10 @@ def read_table(path, status: str | None = "ok"):
     A corrupt, truncated or foreign file raises :class:`InputError` naming the file and the problem.
     """
     with DatasetStore.open(path, "r") as store:
-        return store.table(status)
+        try:
+            return store.table(status)
+        except OSError as err:
+            raise _unreadable(path, err) from None
 
 
 def read_metadata(path) -> dict[str, Any]:
@@ -619,7 +631,10 @@ def read_metadata(path) -> dict[str, Any]:
     solver (dict: function, version, level, effects, ...), lubricant (dict as parsed from the lubricant TOML:
     rebuild with :func:`ehl_dataset.model.lubricant.lubricant_from_dict`), sessions, n_points and counts by status."""
     with DatasetStore.open(path, "r") as store:
-        return store.metadata()
+        try:
+            return store.metadata()
+        except OSError as err:
+            raise _unreadable(path, err) from None
 
 
 def iter_status_names(codes: Iterable[int]) -> list[str]:

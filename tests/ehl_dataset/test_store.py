@@ -185,6 +185,29 @@ def test_truncated_foreign_and_non_hdf5_files_give_one_clear_error(tmp_path, pla
         read_table(tmp_path / "missing.h5")
 
 
+@pytest.mark.parametrize("reader, failing_key", [
+    (read_table, "sessions"),  # met while the file is validated on opening
+    (read_metadata, "sessions"),
+    (read_metadata, "package_version"),  # met after the file was opened and validated
+])
+def test_a_read_error_inside_the_file_is_one_clear_error(tmp_path, plan, lubricant, monkeypatch, reader, failing_key):
+    """A reader without a lock can meet a half-written attribute while the run's writer flushes (the h5py OSError
+    'len not positive after adjustment for EOA' seen in CI): it gets the store's InputError naming the file, which a
+    caller polling a live run catches and retries, not a raw h5py error."""
+    path = tmp_path / "run.h5"
+    make_store(path, plan, lubricant).close()
+    original = h5py.AttributeManager.__getitem__
+
+    def failing(self, name):
+        if name == failing_key:
+            raise OSError("Can't synchronously read data (len not positive after adjustment for EOA)")
+        return original(self, name)
+
+    monkeypatch.setattr(h5py.AttributeManager, "__getitem__", failing)
+    with pytest.raises(InputError, match=r"run\.h5.*could not be read.*EOA"):
+        reader(path)
+
+
 @pytest.mark.parametrize("damage, message", [
     (lambda h5: h5.attrs.__setitem__("format_version", 99), "format_version 99"),
     (lambda h5: h5["points"].__delitem__("mu"), "points/mu"),
