@@ -186,6 +186,32 @@ def test_the_command_line_says_which_model_the_planner_chose(capsys):
     assert "outside its validated range" in decision and "alpha=3.62 > 2.5" in decision
 
 
+def test_the_planners_model_meets_issue_15_accuracy_on_every_reference_case_it_counts_within_its_range(atf):
+    """Issue 15 acceptance, "median |Δμ| ≤ 10 %, 90th percentile ≤ 25 %" on the reference cases where the planner picks
+    the homogenised model: the default model (auto, `standard`, isothermal like the reference) on every case of the
+    deterministic validation set (data/reference/deterministic_validation.json, μ extrapolated from three grid
+    spacings). The planner counts A, E, F, G, H, I, J, K within the film law's measured range and B, C (λ̄ 0.054
+    < 0.1; α 3.6 > 2.5) outside it (docs/planner.md); within it every case is within 10 % (measured under
+    ehl-2026.11-14: −5.5 % (I) to +5.3 % (K), median |Δμ| 2.7 %; H, λ̄ 0.051 at X_h 3,470, −1.8 %, the range's
+    claim for saturated contacts below λ̄ 0.1 checked at reference grids), outside it B and C are 78 % and 43 % low,
+    which is why they are flagged."""
+    cases = json.loads((ROOT / "data" / "reference" / "deterministic_validation.json").read_text())["cases"]
+    errors, outside = {}, set()
+    for row in cases:
+        inputs = [row["inputs"][k] for k in ("p_h_gpa", "r_eq_mm", "u_r_m_s", "sr", "temp_c", "rq1_um", "rq2_um")]
+        result = solve_contact(ContactCase.from_engineering(*inputs), atf, "standard", "isothermal")
+        assert result.converged and result.extra.get("model") == "homogenised", (row["case"], result.message)
+        error = result.mu / row["mu_extrapolated"] - 1.0
+        if "within its measured range" in result.effects["reasons"]["decisions"]["model"]:
+            errors[row["case"]] = error
+        else:
+            outside.add(row["case"])
+            assert abs(error) > 0.25, row["case"]  # flagged because it is off, not by accident
+    assert {"A", "E", "F", "G", "H", "I", "J", "K"} <= set(errors) and outside == {"B", "C"}
+    assert max(abs(e) for e in errors.values()) <= 0.10, errors
+    assert np.median(np.abs(list(errors.values()))) <= 0.10
+
+
 def test_central_film_is_within_10_percent_of_the_reference_where_the_planner_keeps_the_film_law(atf):
     """Issue 15 acceptance, "h_min within 10 %" (the central film: a rough film's minimum is a contact spot): on the
     reference cases where the planner keeps the film law within its measured range (E, F, K above λ̄ 1; I, J at
