@@ -214,15 +214,16 @@ def test_the_planners_model_meets_issue_15_accuracy_on_every_reference_case_it_c
 
 def test_central_film_is_within_10_percent_of_the_reference_where_the_planner_keeps_the_film_law(atf):
     """Issue 15 acceptance, "h_min within 10 %" (the central film: a rough film's minimum is a contact spot): on the
-    reference cases where the planner keeps the film law within its measured range (E, F, K above λ̄ 1; I, J at
+    reference cases where the planner keeps the film law within its measured range (E, F, K above λ̄ 1; I, J, H at
     X_h ≥ 150; A, G within the pressure-fluctuation closure's range, docs/narrow_contacts.md) the film law's central
     film is within 10 % of the reference's, the time mean of the deterministic film at x = 0 over its longest
-    averaging window (data/reference/deterministic_validation.json, ``h_central_source``; measured 0.4–9.5 %). The
+    averaging window (data/reference/deterministic_validation.json, ``h_central_source``; measured 0.4–9.5 %; H
+    +5.8 % against 344 ± 34 nm over 9 passes, where its 2.2-pass validation window gave 323 nm). The
     reference's 1.5-pass windows scatter by up to 10 % (I: 378 nm against 455 ± 19 nm over 9 passes,
     benchmarks/results/deterministic_film_sampling.json), which is why the longest window is the reference."""
     reference = {c["case"]: c for c in json.loads(
         (ROOT / "data" / "reference" / "deterministic_validation.json").read_text())["cases"]}
-    for name in ("A", "E", "F", "G", "I", "J", "K"):
+    for name in ("A", "E", "F", "G", "H", "I", "J", "K"):
         row = reference[name]
         assert row["h_central_passes"] >= 3.0, (name, row["h_central_source"])
         inputs = [row["inputs"][k] for k in ("p_h_gpa", "r_eq_mm", "u_r_m_s", "sr", "temp_c", "rq1_um", "rq2_um")]
