@@ -32,6 +32,7 @@ import os
 import socket
 import subprocess
 import time
+from contextlib import contextmanager
 from dataclasses import dataclass
 from importlib import metadata as _metadata
 from pathlib import Path
@@ -609,6 +610,16 @@ def _as_str(value) -> str:
 # ---------------------------------------------------------------------------------------------------------------
 # The reader contract (used by the surrogate stage)
 # ---------------------------------------------------------------------------------------------------------------
+@contextmanager
+def _reading(path):
+    """The store opened for reading; an h5py error while reading it is the store's InputError naming the file."""
+    with DatasetStore.open(path, "r") as store:
+        try:
+            yield store
+        except OSError as err:
+            raise _unreadable(path, err) from None
+
+
 def read_table(path, status: str | None = "ok"):
     """Tidy table of a dataset file as a :class:`pandas.DataFrame` (SI units), rows filtered by ``status``.
 
@@ -619,22 +630,16 @@ def read_table(path, status: str | None = "ok"):
     ``finished_at`` [s since the epoch], ``worker``, ``warnings``. ``status=None`` returns every row.
     A corrupt, truncated or foreign file raises :class:`InputError` naming the file and the problem.
     """
-    with DatasetStore.open(path, "r") as store:
-        try:
-            return store.table(status)
-        except OSError as err:
-            raise _unreadable(path, err) from None
+    with _reading(path) as store:
+        return store.table(status)
 
 
 def read_metadata(path) -> dict[str, Any]:
     """Provenance of a dataset file: format_version, package_version, created, git_revision, factorial (dict),
     solver (dict: function, version, level, effects, ...), lubricant (dict as parsed from the lubricant TOML:
     rebuild with :func:`ehl_dataset.model.lubricant.lubricant_from_dict`), sessions, n_points and counts by status."""
-    with DatasetStore.open(path, "r") as store:
-        try:
-            return store.metadata()
-        except OSError as err:
-            raise _unreadable(path, err) from None
+    with _reading(path) as store:
+        return store.metadata()
 
 
 def iter_status_names(codes: Iterable[int]) -> list[str]:
@@ -653,7 +658,7 @@ def summarize(path, slowest: int = 5, failures: int = 5) -> dict[str, Any]:
     worker-side times (retries included), ``session_wall_time_s`` the coordinator's wall time over the sessions
     that ended; ``open_sessions`` counts sessions without an end (still running, or killed).
     """
-    with DatasetStore.open(path, "r") as store:
+    with _reading(path) as store:
         meta = store.metadata()
         table = store.table(None)
     done = table[table["status"] != "pending"]

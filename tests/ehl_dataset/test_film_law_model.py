@@ -186,6 +186,16 @@ def test_the_command_line_says_which_model_the_planner_chose(capsys):
     assert "outside its validated range" in decision and "alpha=3.62 > 2.5" in decision
 
 
+def reference_cases() -> list[dict]:
+    """The deterministic validation set (data/reference/deterministic_validation.json)."""
+    return json.loads((ROOT / "data" / "reference" / "deterministic_validation.json").read_text())["cases"]
+
+
+def engineering_inputs(row: dict) -> list[float]:
+    """A reference case's inputs in ContactCase.from_engineering's order."""
+    return [row["inputs"][k] for k in ("p_h_gpa", "r_eq_mm", "u_r_m_s", "sr", "temp_c", "rq1_um", "rq2_um")]
+
+
 def test_the_planners_model_meets_issue_15_accuracy_on_every_reference_case_it_counts_within_its_range(atf):
     """Issue 15 acceptance, "median |Δμ| ≤ 10 %, 90th percentile ≤ 25 %" on the reference cases where the planner picks
     the homogenised model: the default model (auto, `standard`, isothermal like the reference) on every case of the
@@ -195,11 +205,9 @@ def test_the_planners_model_meets_issue_15_accuracy_on_every_reference_case_it_c
     ehl-2026.11-14: −5.5 % (I) to +5.3 % (K), median |Δμ| 2.7 %; H, λ̄ 0.051 at X_h 3,470, −1.8 %, the range's
     claim for saturated contacts below λ̄ 0.1 checked at reference grids), outside it B and C are 78 % and 43 % low,
     which is why they are flagged."""
-    cases = json.loads((ROOT / "data" / "reference" / "deterministic_validation.json").read_text())["cases"]
     errors, outside = {}, set()
-    for row in cases:
-        inputs = [row["inputs"][k] for k in ("p_h_gpa", "r_eq_mm", "u_r_m_s", "sr", "temp_c", "rq1_um", "rq2_um")]
-        result = solve_contact(ContactCase.from_engineering(*inputs), atf, "standard", "isothermal")
+    for row in reference_cases():
+        result = solve_contact(ContactCase.from_engineering(*engineering_inputs(row)), atf, "standard", "isothermal")
         assert result.converged and result.extra.get("model") == "homogenised", (row["case"], result.message)
         error = result.mu / row["mu_extrapolated"] - 1.0
         if "within its measured range" in result.effects["reasons"]["decisions"]["model"]:
@@ -221,13 +229,11 @@ def test_central_film_is_within_10_percent_of_the_reference_where_the_planner_ke
     +5.8 % against 344 ± 34 nm over 9 passes, where its 2.2-pass validation window gave 323 nm). The
     reference's 1.5-pass windows scatter by up to 10 % (I: 378 nm against 455 ± 19 nm over 9 passes,
     benchmarks/results/deterministic_film_sampling.json), which is why the longest window is the reference."""
-    reference = {c["case"]: c for c in json.loads(
-        (ROOT / "data" / "reference" / "deterministic_validation.json").read_text())["cases"]}
+    reference = {c["case"]: c for c in reference_cases()}
     for name in ("A", "E", "F", "G", "H", "I", "J", "K"):
         row = reference[name]
         assert row["h_central_passes"] >= 3.0, (name, row["h_central_source"])
-        inputs = [row["inputs"][k] for k in ("p_h_gpa", "r_eq_mm", "u_r_m_s", "sr", "temp_c", "rq1_um", "rq2_um")]
-        result = solve(inputs, atf)
+        result = solve(engineering_inputs(row), atf)
         assert result.converged
         assert result.h_central == pytest.approx(row["h_central_m"], rel=0.10), name
 

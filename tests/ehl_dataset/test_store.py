@@ -11,7 +11,7 @@ from ehl_dataset.dataset.factorial import POINT_FIELDS, POINT_UNITS, factorial_f
 from ehl_dataset.model.lubricant import load_lubricant, lubricant_from_dict
 from ehl_dataset.solvers.result import RECORD_UNITS, ContactResult
 from ehl_dataset.dataset.store import (EFFECTS_WIDTH, ERROR_WIDTH, FAILED, FORMAT_VERSION, OK, TABLE_COLUMNS, DatasetStore,
-                               encode_effects, read_metadata, read_table)
+                               encode_effects, read_metadata, read_table, summarize)
 from ehl_dataset.validation import InputError
 
 CONTRACT_COLUMNS = ["point", "p_h", "r_eq", "u_r", "sr", "temperature", "rq1", "rq2", "mu", "mu_std", "h_min",
@@ -189,6 +189,7 @@ def test_truncated_foreign_and_non_hdf5_files_give_one_clear_error(tmp_path, pla
     (read_table, "sessions"),  # met while the file is validated on opening
     (read_metadata, "sessions"),
     (read_metadata, "package_version"),  # met after the file was opened and validated
+    (summarize, "package_version"),  # `gearloss dataset info` on a live run
 ])
 def test_a_read_error_inside_the_file_is_one_clear_error(tmp_path, plan, lubricant, monkeypatch, reader, failing_key):
     """A reader without a lock can meet a half-written attribute while the run's writer flushes (the h5py OSError
