@@ -3,10 +3,10 @@ layout and options, recorded like the validation runs (benchmarks/deterministic_
 
     python benchmarks/deterministic_extra_spacing.py B 128 benchmarks/results/deterministic/B_beta128.json
 
-Pair it with a recorded run by ``deterministic_validation.paired_difference(run, base, "mu_series")``.
+A stopped run continues from its saved state when the command is given again (deterministic_validation.py's
+``checkpoint_path``). Pair it with a recorded run by ``deterministic_validation.paired_difference(run, base, "mu_series")``.
 """
 
-import json
 import sys
 from pathlib import Path
 
@@ -16,8 +16,7 @@ from deterministic_validation import solve_and_record  # noqa: E402
 
 def main(argv=None) -> int:
     name, n, out = argv if argv is not None else sys.argv[1:]
-    record = solve_and_record(name, int(n), long=False)
-    Path(out).write_text(json.dumps(record))
+    record = solve_and_record(name, int(n), long=False, out=Path(out))
     print(name, n, record["mu"], record["mu_sem"], record["asperity_load_share"], record["converged"],
           record["message"], record["wall_time_s"], flush=True)
     return 0

@@ -20,7 +20,9 @@ index with safety factor 1.25 (or |μ̂_32 − μ̂_16| when no order can be obs
     python benchmarks/deterministic_validation.py --case G --spacing 32 [--max-passes 12]
                                                      # one spacing only (spacings can run in parallel processes)
 
-Runs are cached as benchmarks/results/deterministic/<case>_beta<n>.json (the series and the run's record).
+Runs are cached as benchmarks/results/deterministic/<case>_beta<n>.json (the series and the run's record). A run
+saves its state every 10 min under benchmarks/results/deterministic/checkpoints/ (git-ignored): started again after
+a stop (restart, end of a session), the same command continues it where it was saved, to the same result.
 """
 
 from __future__ import annotations
@@ -34,6 +36,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ehl_dataset.dataset.checkpoint import FileCheckpoint
 from ehl_dataset.model.contact import ContactCase
 from ehl_dataset.model.effects import Effects
 from ehl_dataset.model.lubricant import load_lubricant
@@ -44,6 +47,7 @@ from ehl_dataset.solvers.time_average import time_mean
 
 ROOT = Path(__file__).resolve().parents[1]
 RUNS = ROOT / "benchmarks" / "results" / "deterministic"
+CHECKPOINTS = RUNS / "checkpoints"
 REFERENCE = ROOT / "data" / "reference" / "deterministic_validation.json"
 REPORT = ROOT / "docs" / "deterministic_validation.md"
 FILM_SAMPLING = ROOT / "benchmarks" / "results" / "deterministic_film_sampling.json"
@@ -65,11 +69,13 @@ CASES = {
 }
 POINTS_PER_BETA = (8, 16, 32)
 CONTACT_SPACINGS = (16, 32, 64)
-SPACINGS = {"A": CONTACT_SPACINGS, "B": CONTACT_SPACINGS, "C": CONTACT_SPACINGS, "D": CONTACT_SPACINGS}
+SPACINGS = {"A": CONTACT_SPACINGS, "B": CONTACT_SPACINGS, "C": CONTACT_SPACINGS}
 """Points per correlation length of each case (default POINTS_PER_BETA; the middle one carries the long run).
 A, B and C: μ moves by 7–14 % between β/16 and β/32 under det-2026.11-6 (benchmarks/results/
-deterministic_convergence_<case>.json), so their finest pair has to be β/32–β/64; D (λ̄ 0.07) is contact-dominated
-like B."""
+deterministic_convergence_<case>.json), so their finest pair has to be β/32–β/64. D (λ̄ 0.07) was given the contact
+spacings too, expected to be contact-dominated like B; its β/16 run under det-2026.11-11 carries an asperity share of
+0.0013 (B: ≈ 0.3), a film-dominated case like H (λ̄ 0.05, share 0.007, fine step +1.0 % at β/8/16/32), so it takes
+the default spacings."""
 EXTRA_SPACINGS = {"B": (128,), "C": (128,)}
 """Finer short runs beyond a case's three spacings (``python benchmarks/deterministic_extra_spacing.py CASE N``),
 chained onto them by paired differences: the extrapolation then takes the three finest spacings. B and C were not
@@ -134,19 +140,32 @@ def run_path(name: str, n: int) -> Path:
     return RUNS / f"{name}_beta{n}.json"
 
 
-def solve_and_record(name: str, n: int, long: bool, max_passes: float = MAX_PASSES) -> dict:
+def checkpoint_path(name: str, n: int, long: bool) -> Path:
+    """Where a run of case ``name`` at β/``n`` keeps its state while it runs (git-ignored; removed once the run's
+    record is written): a run stopped by a restart or a session's end continues from it when started again."""
+    return CHECKPOINTS / f"{name}_beta{n}_{'long' if long else 'short'}.pickle"
+
+
+def solve_and_record(name: str, n: int, long: bool, max_passes: float = MAX_PASSES, out: Path | None = None) -> dict:
     """Solve case ``name`` at β/``n`` (the long run's options if ``long``, else the short run's) and return the run's
-    record as the validation set stores it (inputs, version, μ and its standard error, share, films, series)."""
+    record as the validation set stores it (inputs, version, μ and its standard error, share, films, series). The
+    run saves its state every 10 min (:func:`checkpoint_path`) and continues from a saved state; with ``out`` the
+    record is written there and the saved state removed."""
     case = ContactCase.from_engineering(*CASES[name])
     state = load_lubricant(LUBRICANT).state(case.temperature)
-    result = solve_deterministic(case, state, Effects.full(), options_for(n, long, max_passes))
+    checkpoint = FileCheckpoint(checkpoint_path(name, n, long))
+    result = solve_deterministic(case, state, Effects.full(), options_for(n, long, max_passes), checkpoint=checkpoint)
     extra = {k: (v.tolist() if isinstance(v, np.ndarray) else v) for k, v in result.extra.items()}
-    return {"case": name, "inputs": CASES[name], "points_per_beta": n, "solver_version": MODEL_VERSION,
-            "layout_passes": LAYOUT_PASSES,
-            "mu": result.mu, "mu_sem": result.mu_sem, "asperity_load_share": result.asperity_load_share,
-            "h_min_m": result.h_min, "h_central_m": result.h_central, "converged": result.converged,
-            "message": result.message, "wall_time_s": result.wall_time, "lambda_bar": result.lambda_bar,
-            "residuals": result.residuals, "extra": extra}
+    record = {"case": name, "inputs": CASES[name], "points_per_beta": n, "solver_version": MODEL_VERSION,
+              "layout_passes": LAYOUT_PASSES,
+              "mu": result.mu, "mu_sem": result.mu_sem, "asperity_load_share": result.asperity_load_share,
+              "h_min_m": result.h_min, "h_central_m": result.h_central, "converged": result.converged,
+              "message": result.message, "wall_time_s": result.wall_time, "lambda_bar": result.lambda_bar,
+              "residuals": result.residuals, "extra": extra}
+    if out is not None:
+        out.write_text(json.dumps(record))
+        checkpoint.remove()
+    return record
 
 
 def run_case(name: str, only: int | None = None, max_passes: float = MAX_PASSES) -> None:
@@ -165,8 +184,7 @@ def run_case(name: str, only: int | None = None, max_passes: float = MAX_PASSES)
             if numerics(done.get("solver_version", "")) == numerics(MODEL_VERSION) and same_layout:
                 continue
         start = time.time()
-        record = solve_and_record(name, n, n == middle, max_passes)
-        path.write_text(json.dumps(record))
+        record = solve_and_record(name, n, n == middle, max_passes, out=path)
         print(f"{name} beta/{n}: mu {record['mu']:.5f} +- {record['mu_sem']:.5f} share "
               f"{record['asperity_load_share']:.4f} {record['message']} {time.time() - start:.0f} s", flush=True)
 

@@ -25,9 +25,10 @@ quantities a homogenised model predicts); the time-averaged minimum of the insta
 
 from __future__ import annotations
 
+import hashlib
 import math
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
 from typing import Callable
 
 import numpy as np
@@ -481,13 +482,19 @@ def _traction(problem: MixedProblem, case: ContactCase, state: LubricantState, s
 
 def solve_deterministic(case: ContactCase, state: LubricantState, plan: Effects, options: DeterministicOptions,
                         roughness: RoughnessProfile | None = None, time_limit_s: float | None = None,
-                        level_name: str = "reference", observer=None) -> ContactResult:
+                        level_name: str = "reference", observer=None, checkpoint=None) -> ContactResult:
     """Solve one rough contact with the deterministic transient model (module docstring).
 
     ``observer``: None, or called after every accepted time step k = 1, 2, … as ``observer(t_s, p_fluid_pa, film_m,
     fill)`` with the fluid pressure [Pa], the film max(h, h_b) [m] and the fill fraction θ on the nodes ``result.x``
     (for analyses of the fields, e.g. benchmarks/micro_ehl_fluctuations.py; step k is ``result.extra``'s series index
-    k − 1)."""
+    k − 1).
+
+    ``checkpoint``: None, or an object with ``every_s``, ``load()`` and ``save(state)``
+    (:class:`ehl_dataset.dataset.checkpoint.FileCheckpoint`): the run saves its state every ``every_s`` seconds of
+    wall time and, given a state saved by the same run (same case, lubricant state, roughness, options and model
+    version; anything else is an InputError), continues from it. The result is step for step that of an
+    uninterrupted run; its wall time adds up the segments. Runs of hours (validation spacings beyond a session)."""
     clock = options.clock
     start = clock()
     scales = ContactScales.of(case, state, plan.shear_thinning)
@@ -559,6 +566,21 @@ def solve_deterministic(case: ContactCase, state: LubricantState, plan: Effects,
     time_limited = False
     k = 0
     t = 0.0
+    if checkpoint is not None:
+        fingerprint = _fingerprint(case, state, options, problem, z, gap_at(0.5 * n_ramp * d_t + d_t))
+        saved = checkpoint.load()
+        if saved is not None:
+            if saved.get("fingerprint") != fingerprint:
+                raise InputError("checkpoint", str(getattr(checkpoint, "path", checkpoint)),
+                                 "a state saved by this same run (same case, lubricant, roughness, options and model "
+                                 f"version {MODEL_VERSION}); this one was saved by another run: delete it or give "
+                                 "another path")
+            k, t, z, h, record = saved["k"], saved["t"], saved["z"], saved["h"], saved["record"]
+            state_now = saved["state_now"]
+            for name, value in saved["problem"].items():
+                setattr(problem, name, value)
+            start = clock() - saved["elapsed_s"]
+        last_save = clock()
     while k < n_max:
         if time_limit_s is not None and clock() - start > time_limit_s:
             converged = k >= n_min
@@ -584,6 +606,11 @@ def solve_deterministic(case: ContactCase, state: LubricantState, plan: Effects,
             tolerance = options.mu_sem_target * max(abs(mu_mean.mean), 0.01)
             if mu_mean.within(tolerance):
                 break
+        if checkpoint is not None and clock() - last_save >= checkpoint.every_s:
+            checkpoint.save({"fingerprint": fingerprint, "k": k, "t": t, "z": z, "h": h, "record": record,
+                             "state_now": state_now, "elapsed_s": clock() - start,
+                             "problem": {name: getattr(problem, name) for name in _PROBLEM_STATE}})
+            last_save = clock()
     if converged and k < n_min:
         converged = False
     if k > first_average + 1:
@@ -595,6 +622,24 @@ def solve_deterministic(case: ContactCase, state: LubricantState, plan: Effects,
                                  f"{target:.2g} after the cap of {options.max_passes:g} passes") + message
     return _result(case, state, plan, level_name, options, problem, scales, z, h, record, start, clock, converged,
                    message, rule, dx_m, first_average, mu_mean, time_limited)
+
+
+_PROBLEM_STATE = ("m_ref", "preconditioner", "cost", "last_residual")
+"""The attributes of a :class:`MixedProblem` that change during a run (a checkpoint saves them; the rest is built
+from the inputs)."""
+
+
+def _fingerprint(case: ContactCase, state: LubricantState, options: DeterministicOptions, problem: MixedProblem,
+                 z_start: np.ndarray, gap: np.ndarray) -> str:
+    """A digest of everything that determines a run: the model version, the case, the lubricant state, the options
+    (but the clock), the grid, the steady start ``z_start`` and a gap of the rough surfaces ``gap``."""
+    options_text = repr({f.name: getattr(options, f.name) for f in fields(options) if f.name != "clock"})
+    digest = hashlib.sha256()
+    for text in (MODEL_VERSION, repr(case), repr(state), options_text, repr((problem.n, problem.dx))):
+        digest.update(text.encode())
+    for array in (z_start, gap):
+        digest.update(np.ascontiguousarray(array, dtype=float).tobytes())
+    return digest.hexdigest()
 
 
 def _settle(problem: MixedProblem, z, gap, options: DeterministicOptions, passes: float = 4.0):

@@ -5,10 +5,12 @@ docs/deterministic_solver.md with the commands that make them; the tests here ch
 """
 
 import math
+import pickle
 
 import numpy as np
 import pytest
 
+from ehl_dataset.dataset.checkpoint import FileCheckpoint
 from ehl_dataset.discretisation.deflection import inverse_kernel_band, uniform_kernel, deflection_fft
 from ehl_dataset.discretisation.mixed_system import FACE_MEANS, _face_partials, logarithmic_mean
 from ehl_dataset.model.contact import ContactCase
@@ -165,11 +167,11 @@ def test_smooth_surfaces_reproduce_the_steady_solver():
     assert result.h_min == pytest.approx(reference.h_min, rel=5e-3)
 
 
-def _short_rough_run(**overrides):
+def _short_rough_run(checkpoint=None, **overrides):
     case = ContactCase.from_engineering(0.5, 5, 5, 0.3, 90, 0.3, 0.3)
     options = DeterministicOptions(**{**dict(dx_m=2e-6, ramp_passes=0.2, startup_passes=0.1, min_average_passes=0.1,
                                              max_passes=0.6), **overrides})
-    return solve_deterministic(case, ATF.state(case.temperature), Effects.full(), options)
+    return solve_deterministic(case, ATF.state(case.temperature), Effects.full(), options, checkpoint=checkpoint)
 
 
 def test_mass_and_load_are_balanced_at_every_step():
@@ -285,3 +287,75 @@ def test_a_run_stopped_by_its_wall_time_budget_says_so():
     assert not limited.converged and limited.extra["time_limited"] is True
     assert "wall-time limit" in limited.message
     assert _short_rough_run().extra["time_limited"] is False
+
+
+class _Killed(Exception):
+    pass
+
+
+class _MemoryCheckpoint:
+    """A checkpoint kept in memory (through a pickle round trip, as on disk) that stops the run like a kill after
+    ``saves`` saves; ``every_s`` = 0 saves after every step, ∞ never."""
+
+    def __init__(self, saves=None, state=None, every_s=0.0):
+        self.saves, self.state, self.every_s, self.count = saves, state, every_s, 0
+
+    def load(self):
+        return self.state
+
+    def save(self, state):
+        self.state = pickle.loads(pickle.dumps(state))
+        self.count += 1
+        if self.count == self.saves:
+            raise _Killed
+
+
+def test_a_run_stopped_part_way_continues_from_its_checkpoint_step_for_step():
+    """A validation spacing can take longer than a session (B at β/256 ≈ 5 h): a run that saves its state and is
+    stopped after step 40 continues from that state to the result of an uninterrupted run, every recorded series
+    identical (the solve is deterministic: same arrays, same operations)."""
+    uninterrupted = _short_rough_run(mu_sem_target=1e-9)
+    stopped = _MemoryCheckpoint(saves=40)
+    with pytest.raises(_Killed):
+        _short_rough_run(checkpoint=stopped, mu_sem_target=1e-9)
+    assert stopped.state["k"] == 40
+    resumed = _short_rough_run(checkpoint=_MemoryCheckpoint(state=stopped.state, every_s=math.inf),
+                               mu_sem_target=1e-9)
+    assert resumed.converged, resumed.message
+    assert resumed.extra["n_steps"] == uninterrupted.extra["n_steps"] > 40
+    for key in ("mu_series", "share_series", "mass_error_series", "h_min_local_series_m", "mean_pressure_profile_pa"):
+        np.testing.assert_array_equal(resumed.extra[key], uninterrupted.extra[key])
+    assert resumed.mu == uninterrupted.mu and resumed.mu_sem == uninterrupted.mu_sem
+    assert resumed.extra["newton_iterations"] == uninterrupted.extra["newton_iterations"]
+
+
+def test_a_checkpoint_of_another_run_or_a_corrupt_file_is_one_clear_error(tmp_path):
+    """A saved state is used only by the run that saved it (here: another grid spacing), and an unreadable file
+    names itself; the file is written atomically and survives a round trip."""
+    path = tmp_path / "run.ckpt"
+    saved = FileCheckpoint(path, every_s=0.0)
+    with pytest.raises(_Killed):
+        _short_rough_run(checkpoint=_FileThenKill(saved, saves=3), max_passes=0.3)
+    assert path.exists() and not (tmp_path / "run.ckpt.partial").exists()
+    assert FileCheckpoint(path).load()["k"] == 3
+    with pytest.raises(InputError, match="checkpoint.*same run"):
+        _short_rough_run(checkpoint=FileCheckpoint(path), dx_m=2.5e-6, max_passes=0.3)
+    path.write_bytes(b"not a pickle")
+    with pytest.raises(InputError, match="checkpoint.*could not be read"):
+        _short_rough_run(checkpoint=FileCheckpoint(path), max_passes=0.3)
+    FileCheckpoint(path).remove()
+    assert not path.exists()
+
+
+class _FileThenKill:
+    def __init__(self, inner, saves):
+        self.inner, self.saves, self.count, self.every_s = inner, saves, 0, inner.every_s
+
+    def load(self):
+        return self.inner.load()
+
+    def save(self, state):
+        self.inner.save(state)
+        self.count += 1
+        if self.count == self.saves:
+            raise _Killed
