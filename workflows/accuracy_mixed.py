@@ -144,9 +144,11 @@ def run_mixed_study(models: Sequence[str] = CHEAP_MODELS, reference: str | Path 
                     lubricant: str = "atf", checkpoint: str | Path | None = None, solve: Callable | None = None,
                     progress: Callable[[str], None] | None = None) -> dict:
     """Solve every reference case with every model; resume from ``checkpoint`` (runs of the same case and model
-    already there are kept when the solver version matches) and rewrite it after each solve."""
+    already there are kept when the solver version matches, and for the deterministic models the deterministic
+    model's version too) and rewrite it after each solve."""
     from ehl_dataset.model.lubricant import load_lubricant
     from ehl_dataset.solver import SOLVER_VERSION
+    from ehl_dataset.solvers.deterministic import MODEL_VERSION
 
     for name in models:
         if name not in MIXED_MODELS:
@@ -156,8 +158,10 @@ def run_mixed_study(models: Sequence[str] = CHEAP_MODELS, reference: str | Path 
     done: dict[tuple[str, str], MixedRun] = {}
     if checkpoint is not None and Path(checkpoint).exists():
         old = json.loads(Path(checkpoint).read_text(encoding="utf-8"))
+        same_deterministic = old.get("deterministic_model_version") == MODEL_VERSION
         if old.get("solver_version") == SOLVER_VERSION:
-            done = {(r["case"], r["model"]): MixedRun(**r) for r in old.get("runs", [])}
+            done = {(r["case"], r["model"]): MixedRun(**r) for r in old.get("runs", [])
+                    if same_deterministic or not r["model"].startswith("deterministic")}
     runs: list[MixedRun] = []
     for row in cases:
         case = reference_case(row)
@@ -170,9 +174,11 @@ def run_mixed_study(models: Sequence[str] = CHEAP_MODELS, reference: str | Path 
                          f"err {run.mu_error:.1%}) in {run.wall_time_s:.3g} s")
             if checkpoint is not None:
                 Path(checkpoint).write_text(json.dumps(
-                    {"solver_version": SOLVER_VERSION, "runs": [dataclasses.asdict(r) for r in done.values()]},
+                    {"solver_version": SOLVER_VERSION, "deterministic_model_version": MODEL_VERSION,
+                     "runs": [dataclasses.asdict(r) for r in done.values()]},
                     default=float), encoding="utf-8")
-    return {"runs": runs, "cases": cases, "models": list(models), "provenance": provenance(),
+    return {"runs": runs, "cases": cases, "models": list(models),
+            "provenance": {**provenance(), "deterministic_model_version": MODEL_VERSION},
             "reference_file": str(reference)}
 
 
@@ -214,7 +220,8 @@ def markdown_mixed(study: dict, command: str, png_name: str) -> str:
              "longest averaging window (± its standard error: windows of 1.5 passes scatter by 1–10 % where λ̄ > 0.25 and a/β > 5, 14–29 % on A, B, C (measured), "
              "benchmarks/deterministic_film_sampling.py); Δshare the difference of the asperity load share. Wall time "
              "per case on one core, around `solve_contact`.", "",
-             f"EHL solver {prov.get('solver_version')}, commit `{prov.get('git_commit')}`"
+             f"EHL solver {prov.get('solver_version')} (deterministic model "
+             f"{prov.get('deterministic_model_version', 'not recorded')}), commit `{prov.get('git_commit')}`"
              + (" (with uncommitted solver changes)" if prov.get("solver_files_modified") else "")
              + f", {prov.get('date_utc')}; {prov.get('platform')}, {prov.get('cpu_count')} CPUs.", "",
              "## Summary", "",

@@ -54,11 +54,12 @@ from .result import ContactResult
 from .steady import ContactScales, dowson_higginson_lambda, moes_h_c, solve_steady
 from .time_average import time_mean
 
-MODEL_VERSION = "det-2026.11-11"
+MODEL_VERSION = "det-2026.11-12"
 """Version of the deterministic model's numerics (recorded with its results; bump with any change that can alter a
 solved value). :data:`ehl_dataset.solver.SOLVER_VERSION` covers the whole solver. det-2026.11-11: the logarithmic
 face mean is evaluated without cancellation (:func:`~ehl_dataset.discretisation.mixed_system.logarithmic_mean`),
-which removes the 2–5e-10 floor of the global mass balance on contact-dominated runs."""
+which removes the 2–5e-10 floor of the global mass balance on contact-dominated runs. det-2026.11-12: the inlet term
+of the grid rule depends on the level (:data:`LEVEL_OPTIONS`); a run with a given ``dx_m`` is unchanged."""
 BOUNDARY_FILM_M = 5e-9
 """Default film-breakdown (boundary-film) thickness h_b [m]: below it the surfaces are in solid contact through
 their adsorbed/reacted boundary films, which carry load and friction μ_d·p_c. Representative value: adsorbed
@@ -75,6 +76,11 @@ YIELD_PRESSURE_PA = 6.8e9
 """Hardness of case-hardened gear steel, 60 HRC ≈ 697 HV ≈ 6.8 GPa (ASTM E140): the cap of the solid contact
 pressure (elastic–perfectly-plastic asperities; Johnson 1985, §6)."""
 
+INLET_RESOLUTION = 0.1
+"""Default largest spacing relative to the inlet length scale a·H_c^(2/3) of the smooth EHL solution (H_c =
+h_c r/a², Moes' central film): the heavy-load inlet and outlet zones shrink like H_c^(2/3) (the steady solver's rule,
+docs/ehl_solver.md). The ``reference`` level's; ``fast`` and ``standard`` take 0.3 and 0.2
+(:data:`LEVEL_OPTIONS`)."""
 
 WIDE_ROUTES = ("auto", "resolve", "windows")
 """How a deterministic run covers the contact (:class:`DeterministicOptions` ``wide``)."""
@@ -84,7 +90,8 @@ WIDE_ROUTES = ("auto", "resolve", "windows")
 class DeterministicOptions:
     """Discretisation and stopping rules of a deterministic run (all physical inputs are in the case/lubricant).
 
-    ``dx_m`` grid spacing [m] (None: :func:`grid_spacing` with ``points_per_beta``, ``points_per_ell``);
+    ``dx_m`` grid spacing [m] (None: :func:`grid_spacing` with ``points_per_beta``, ``points_per_ell`` and
+    ``inlet_resolution``, the largest spacing in units of the smooth inlet length a·H_c^(2/3));
     ``boundary_film_m`` h_b [m] (None: :data:`BOUNDARY_FILM_M`); ``yield_pressure_pa`` the contact-pressure cap;
     ``courant`` u_r Δt/Δx; ``domain`` (x_start, x_end) [a]; ``ramp_passes`` the roughness amplitude grows from 0
     to 1 over this many passes (one pass: the domain length at u_r); ``startup_passes`` passes after the ramp before
@@ -112,6 +119,7 @@ class DeterministicOptions:
     dx_m: float | None = None
     points_per_beta: float = 32.0
     points_per_ell: float = 2.5
+    inlet_resolution: float = INLET_RESOLUTION
     boundary_film_m: float | None = None
     yield_pressure_pa: float = YIELD_PRESSURE_PA
     courant: float = COURANT
@@ -140,6 +148,7 @@ class DeterministicOptions:
         if self.boundary_film_m is not None:
             check_range("boundary_film_m", self.boundary_film_m, 0.0, 1e-6, low_inclusive=False, unit="m")
         check_range("courant", self.courant, 0.0, 8.0, low_inclusive=False)
+        check_range("inlet_resolution", self.inlet_resolution, 0.0, 10.0, low_inclusive=False)
         check_range("mu_sem_target", self.mu_sem_target, 0.0, 1.0)
         if self.layout_passes is not None:
             check_range("layout_passes", self.layout_passes, self.max_passes, 1e4, unit="passes")
@@ -160,12 +169,19 @@ class DeterministicOptions:
 
 
 LEVEL_OPTIONS = {
-    "fast": dict(points_per_beta=8.0, points_per_ell=0.625, mu_sem_target=0.10, max_passes=6.0),
-    "standard": dict(points_per_beta=16.0, points_per_ell=1.25, mu_sem_target=0.03, max_passes=12.0),
-    "reference": dict(points_per_beta=32.0, points_per_ell=2.5, mu_sem_target=0.015, max_passes=40.0),
+    "fast": dict(points_per_beta=8.0, points_per_ell=0.625, inlet_resolution=0.3, mu_sem_target=0.10,
+                 max_passes=6.0),
+    "standard": dict(points_per_beta=16.0, points_per_ell=1.25, inlet_resolution=0.2, mu_sem_target=0.03,
+                     max_passes=12.0),
+    "reference": dict(points_per_beta=32.0, points_per_ell=2.5, inlet_resolution=INLET_RESOLUTION,
+                      mu_sem_target=0.015, max_passes=40.0),
 }
 """Grid rule and averaging target of the deterministic model per accuracy level (the level names an error budget;
-what each costs and gives is measured in docs/deterministic_solver.md)."""
+what each costs and gives is measured in docs/deterministic_solver.md). The inlet term (det-2026.11-12; 0.1 at every
+level before): on the smooth solution of the uniform grid against the steady solver's reference, over the
+validation cases and six slow, hot, heavily loaded factorial corners, 0.3 L_in moves μ by ≤ 0.6 % and h_c by ≤ 3.2 %,
+0.2 L_in by ≤ 0.6 % and ≤ 1.5 % (benchmarks/results/deterministic_inlet_resolution.json), within the ``fast`` and
+``standard`` budgets, where 0.1 L_in made ``fast`` on case H (1.5 GPa, 1 m/s) a β/23 grid and a 1,830 s run."""
 
 
 def deterministic_options(level: str = "reference", **overrides) -> DeterministicOptions:
@@ -202,21 +218,17 @@ REFACTOR_ITERATIONS = 20
 FILM_FLOOR = 1e-3
 """The conductance ε reads films below FILM_FLOOR·H_b (interfering asperities) as that floor."""
 
-INLET_RESOLUTION = 0.1
-"""Largest spacing relative to the inlet length scale a·H_c^(2/3) of the smooth EHL solution (H_c = h_c r/a²,
-Moes' central film): the heavy-load inlet and outlet zones shrink like H_c^(2/3) (the steady solver's rule,
-docs/ehl_solver.md)."""
 
 
 def grid_spacing(profile: RoughnessProfile, rq1: float, rq2: float, h_b: float, options: DeterministicOptions,
                  inlet_length: float = math.inf) -> tuple[float, dict]:
     """Grid spacing [m] that resolves the roughness (β/``points_per_beta``), the micro-EHL length
     ℓ = √(2 R_asp h_b) (ℓ/``points_per_ell``) and the smooth inlet length scale ``inlet_length`` [m]
-    (:data:`INLET_RESOLUTION` of it), and the numbers it came from."""
+    (``options.inlet_resolution`` of it), and the numbers it came from."""
     beta = profile.correlation_length
     r_asp = asperity_radius(profile, rq1, rq2)
     ell = math.sqrt(2.0 * r_asp * h_b)
-    dx = min(beta / options.points_per_beta, ell / options.points_per_ell, INLET_RESOLUTION * inlet_length)
+    dx = min(beta / options.points_per_beta, ell / options.points_per_ell, options.inlet_resolution * inlet_length)
     return dx, {"beta_m": beta, "asperity_radius_m": r_asp, "micro_ehl_length_m": ell,
                 "inlet_length_m": inlet_length}
 

@@ -274,6 +274,40 @@ def test_level_options_refine_the_grid_and_the_averaging():
     assert fast.points_per_beta < standard.points_per_beta < reference.points_per_beta
     assert fast.mu_sem_target > standard.mu_sem_target > reference.mu_sem_target
     assert math.isclose(deterministic_options("reference", dx_m=1e-6).dx_m, 1e-6)
+    assert fast.inlet_resolution > standard.inlet_resolution > reference.inlet_resolution
+
+
+@pytest.mark.parametrize("level", ["fast", "standard"])
+def test_the_levels_inlet_spacing_keeps_the_smooth_solution_within_the_levels_tolerance(level):
+    """The grid rule's inlet term at ``fast`` and ``standard`` (0.3 and 0.2 of the inlet length a·H_c^(2/3) instead
+    of the reference's 0.1) on the shortest inlet of the paper's factorial (2.5 GPa, 5 mm, 1 m/s, SR 0.5, 100 °C,
+    Rq 0.4 µm; at fast the inlet term sets the spacing, at standard ℓ/1.25 is finer): the smooth solution on the
+    uniform grid of the inlet term's spacing, from which every
+    rough run starts, stays within the level's tolerance (planner thresholds: 5 % and 2 %) of the steady solver's
+    reference level in μ and h_c (measured: −0.28 % / +3.2 % at fast, −0.13 % / +1.5 % at standard;
+    benchmarks/results/deterministic_inlet_resolution.json)."""
+    from ehl_dataset.model.roughness import baseline_profile
+    from ehl_dataset.solvers.deterministic import BOUNDARY_FILM_M, grid_spacing
+    from ehl_dataset.solvers.levels import get_level
+    from ehl_dataset.solvers.planner import thresholds_for
+    from ehl_dataset.solvers.steady import moes_h_c, solve_steady
+
+    rough = ContactCase.from_engineering(2.5, 5, 1, 0.5, 100, 0.4, 0.4)
+    smooth = ContactCase.from_engineering(2.5, 5, 1, 0.5, 100, 0.0, 0.0)
+    state = ATF.state(smooth.temperature)
+    scales = ContactScales.of(smooth, state, True)
+    inlet = scales.a * moes_h_c(smooth, state, scales) ** (2.0 / 3.0)
+    profile = baseline_profile()
+    dx = deterministic_options(level).inlet_resolution * inlet  # the coarsest spacing the inlet term allows
+    assert grid_spacing(profile, rough.rq1, rough.rq2, BOUNDARY_FILM_M, deterministic_options(level), inlet)[0] <= dx
+    assert dx > grid_spacing(profile, rough.rq1, rough.rq2, BOUNDARY_FILM_M, deterministic_options("reference"),
+                             inlet)[0]
+    plan = Effects(False, False, True, True, "forced", {})
+    reference = solve_steady(smooth, state, get_level("reference"), plan)
+    result = solve_deterministic(smooth, state, plan, DeterministicOptions(dx_m=dx))
+    tolerance = thresholds_for(level).tolerance
+    assert result.mu == pytest.approx(reference.mu, rel=tolerance)
+    assert result.h_central == pytest.approx(reference.h_central, rel=tolerance)
 
 
 def test_a_run_stopped_by_its_wall_time_budget_says_so():
