@@ -73,9 +73,9 @@ SPACINGS = {"A": CONTACT_SPACINGS, "B": CONTACT_SPACINGS, "C": CONTACT_SPACINGS}
 """Points per correlation length of each case (default POINTS_PER_BETA; the middle one carries the long run).
 A, B and C: μ moves by 7–14 % between β/16 and β/32 under det-2026.11-6 (benchmarks/results/
 deterministic_convergence_<case>.json), so their finest pair has to be β/32–β/64. D (λ̄ 0.07) was given the contact
-spacings too, expected to be contact-dominated like B; its β/16 run under det-2026.11-11 carries an asperity share of
-0.0013 (B: ≈ 0.3), a film-dominated case like H (λ̄ 0.05, share 0.007, fine step +1.0 % at β/8/16/32), so it takes
-the default spacings."""
+spacings too, expected to be contact-dominated like B; under det-2026.11-11 its asperity share is 0.0013 at β/16 and
+0.0063 at β/32 (short runs; B: 0.13 at β/32, 0.53 at β/64), a film-dominated case like H (λ̄ 0.05, share 0.007, fine
+step +1.0 % at β/8/16/32), so it takes the default spacings."""
 EXTRA_SPACINGS = {"B": (128,), "C": (128,)}
 """Finer short runs beyond a case's three spacings (``python benchmarks/deterministic_extra_spacing.py CASE N``),
 chained onto them by paired differences: the extrapolation then takes the three finest spacings. B and C were not
