@@ -94,7 +94,7 @@ def solve_contact(case: ContactCase, lubricant: Lubricant | str, level: str | Ac
                   effects: str | Effects = "auto", roughness=None, time_limit_s: float | None = None,
                   transient_options: TransientOptions | None = None, model: str = "auto",
                   deterministic: DeterministicOptions | None = None,
-                  homogenised: HomogenisedOptions | None = None) -> ContactResult:
+                  homogenised: HomogenisedOptions | None = None, checkpoint=None) -> ContactResult:
     """Solve one line contact; see the module docstring. Bad input raises :class:`InputError`.
 
     ``time_limit_s``: wall-time budget [s] of a transient (rough) solve; when it runs out the result is returned
@@ -112,6 +112,10 @@ def solve_contact(case: ContactCase, lubricant: Lubricant | str, level: str | Ac
     level, :func:`~ehl_dataset.solvers.deterministic.deterministic_options`). ``homogenised``: the closure options of
     the homogenised model (None: :class:`~ehl_dataset.solvers.homogenised.HomogenisedOptions` defaults). Smooth
     surfaces (S_c = 0) asked for either mixed model get the steady smooth solve, with the reason recorded.
+
+    ``checkpoint``: for a resolved deterministic run only, where it saves its state and continues from it (e.g.
+    :class:`ehl_dataset.dataset.checkpoint.FileCheckpoint`; runs of hours at ``reference``); any other route
+    refuses it.
     """
     lubricant = checked_inputs(case, lubricant)
     if roughness is not None and not isinstance(roughness, RoughnessProfile):
@@ -133,16 +137,22 @@ def solve_contact(case: ContactCase, lubricant: Lubricant | str, level: str | Ac
                            roughness.correlation_length if roughness is not None else None)
     # one BLAS thread per solve: the dense solves are small, and workers run one case per core
     with threadpool_limits(limits=1):
+        planned_deterministic = plan.mode == "auto" and thresholds_for(lvl).rough_model == "deterministic"
+        deterministic_route = model == "deterministic" or (plan.roughness and case.s_c > 0.0 and planned_deterministic
+                                                           and model == "auto")
+        if checkpoint is not None and not deterministic_route:
+            raise InputError("checkpoint", str(getattr(checkpoint, "path", checkpoint)),
+                             "None unless the deterministic model solves the contact (model='deterministic', or the "
+                             "reference level's plan for a rough contact)")
         if model == "homogenised":
             options = homogenised or HomogenisedOptions()
             # the film-law closure has the smooth solver's thermal correction; the flow-factor closures have none
             return solve_homogenised(case, state, lvl, plan if options.closure == "film_law"
                                      else _isothermal(plan, "homogenised"), roughness, options)
-        planned_deterministic = plan.mode == "auto" and thresholds_for(lvl).rough_model == "deterministic"
-        if model == "deterministic" or (plan.roughness and case.s_c > 0.0 and planned_deterministic):
+        if deterministic_route:
             return solve_deterministic_contact(case, state, _isothermal(plan, "deterministic"),
                                                deterministic or deterministic_options(lvl.name), roughness,
-                                               time_limit_s, lvl.name)
+                                               time_limit_s, lvl.name, checkpoint)
         if plan.roughness and case.s_c > 0.0 and not plan.transient:  # the planner's homogenised choice
             return solve_homogenised(case, state, lvl, plan, roughness, HomogenisedOptions(closure="film_law"))
         if plan.roughness and case.s_c > 0.0:

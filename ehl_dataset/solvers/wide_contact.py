@@ -238,15 +238,21 @@ def wide_options(case: ContactCase, profile: RoughnessProfile, options: Determin
 
 def solve_deterministic_contact(case: ContactCase, state: LubricantState, plan: Effects,
                                 options: DeterministicOptions, roughness: RoughnessProfile | None = None,
-                                time_limit_s: float | None = None, level_name: str = "reference") -> ContactResult:
+                                time_limit_s: float | None = None, level_name: str = "reference",
+                                checkpoint=None) -> ContactResult:
     """The deterministic model on any contact: the whole contact resolved
     (:func:`~ehl_dataset.solvers.deterministic.solve_deterministic`) or, for a wide one, windows fed by the film law
-    (:func:`solve_wide`), as ``options.wide`` says."""
+    (:func:`solve_wide`), as ``options.wide`` says. ``checkpoint`` (a resolved contact only): the saved state a long
+    run continues from (:func:`~ehl_dataset.solvers.deterministic.solve_deterministic`)."""
     profile = roughness if roughness is not None else baseline_profile()
     if takes_windows(case, profile, options):
+        if checkpoint is not None:
+            raise InputError("checkpoint", str(getattr(checkpoint, "path", checkpoint)),
+                             "None for a wide contact solved by windows (a checkpoint holds one resolved run: "
+                             "wide='resolve' solves the whole contact)")
         return solve_wide(case, state, plan, wide_options(case, profile, options), profile, time_limit_s, level_name,
                           MODEL_VERSION)
-    return solve_deterministic(case, state, plan, options, roughness, time_limit_s, level_name)
+    return solve_deterministic(case, state, plan, options, roughness, time_limit_s, level_name, checkpoint=checkpoint)
 
 
 def _failed(case, plan, recorded, level_name, start, lambda_bar, message, extra) -> ContactResult:

@@ -393,3 +393,20 @@ class _FileThenKill:
         self.count += 1
         if self.count == self.saves:
             raise _Killed
+
+
+def test_solve_contact_hands_the_checkpoint_to_a_resolved_deterministic_run_and_refuses_it_elsewhere():
+    """``solve_contact(..., checkpoint=...)`` reaches the deterministic run (it saves after its first step here, and
+    the stand-in stops it there); the homogenised model and the windows of a wide contact refuse one by name."""
+    case = ContactCase.from_engineering(0.5, 5, 5, 0.3, 90, 0.3, 0.3)
+    options = DeterministicOptions(dx_m=2e-6, ramp_passes=0.2, startup_passes=0.1, min_average_passes=0.1,
+                                   max_passes=0.6)
+    stopped = _MemoryCheckpoint(saves=1)
+    with pytest.raises(_Killed):
+        solve_contact(case, "atf", "fast", "auto", model="deterministic", deterministic=options, checkpoint=stopped)
+    assert stopped.state["k"] == 1
+    with pytest.raises(InputError, match="checkpoint"):
+        solve_contact(case, "atf", "fast", "auto", model="homogenised", checkpoint=_MemoryCheckpoint())
+    wide = ContactCase.from_engineering(1.0, 80, 5, 0.3, 90, 0.3, 0.3)
+    with pytest.raises(InputError, match="checkpoint.*wide"):
+        solve_contact(wide, "atf", "fast", "auto", model="deterministic", checkpoint=_MemoryCheckpoint())

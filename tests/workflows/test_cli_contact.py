@@ -84,3 +84,14 @@ def test_console_script_subprocess():
                           capture_output=True, text=True, timeout=120)
     assert proc.returncode == 0, proc.stderr
     assert json.loads(proc.stdout)["converged"] is True
+
+
+def test_checkpoint_flag_is_refused_where_no_deterministic_run_takes_it(capsys, tmp_path):
+    """--checkpoint FILE belongs to a resolved deterministic run (saved every 10 min, continued after a stop;
+    tests/ehl_dataset/test_deterministic.py checks the continuation): with another model it is one error line."""
+    path = tmp_path / "run.pickle"
+    assert main(BASE + ["--rq1-um", "0.4", "--rq2-um", "0.4", "--model", "homogenised", "--checkpoint", str(path),
+                        "--json"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and "checkpoint" in err and str(path) in err
+    assert not path.exists()
