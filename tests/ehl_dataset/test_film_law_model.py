@@ -200,12 +200,14 @@ def test_the_planners_model_meets_issue_15_accuracy_on_every_reference_case_it_c
     """Issue 15 acceptance, "median |Δμ| ≤ 10 %, 90th percentile ≤ 25 %" on the reference cases where the planner picks
     the homogenised model: the default model (auto, `standard`, isothermal like the reference) on every case of the
     deterministic validation set (data/reference/deterministic_validation.json, μ extrapolated from three grid
-    spacings). The planner counts A, E, F, G, H, I, J, K within the film law's measured range and B, C (λ̄ 0.054
-    < 0.1; α 3.6 > 2.5) outside it (docs/planner.md); within it every case is within 10 % (measured under
-    ehl-2026.11-14: −5.5 % (I) to +5.3 % (K), median |Δμ| 2.7 %; H, λ̄ 0.051 at X_h 3,470, −1.8 %, the range's
-    claim for saturated contacts below λ̄ 0.1 checked at reference grids), outside it B and C are 78 % and 43 % low,
-    which is why they are flagged."""
-    errors, outside = {}, set()
+    spacings). The planner counts A, E, F, G, H, I, J, K within the film law's measured range and B, C, D (λ̄ 0.054
+    and 0.073 < 0.1 with X_h < 150; α 3.6 > 2.5) outside it (docs/planner.md); within it every case is within 10 %
+    (measured under ehl-2026.11-14: −5.5 % (I) to +5.3 % (K), median |Δμ| 2.7 %; H, λ̄ 0.051 at X_h 3,470, −1.8 %,
+    the range's claim for saturated contacts below λ̄ 0.1 checked at reference grids), outside it B and C are 78 %
+    and 43 % low, which is why they are flagged. D (λ̄ 0.073, X_h 93, asperity share 0.009 at β/32) is flagged by the
+    λ̄ limit although its asperities carry little load: the film law is −8.9 % there, so the limit is conservative
+    on D (one case; the limit stays until more cases between λ̄ 0.05 and 0.1 are resolved)."""
+    errors, outside = {}, {}
     for row in reference_cases():
         result = solve_contact(ContactCase.from_engineering(*engineering_inputs(row)), atf, "standard", "isothermal")
         assert result.converged and result.extra.get("model") == "homogenised", (row["case"], result.message)
@@ -213,9 +215,11 @@ def test_the_planners_model_meets_issue_15_accuracy_on_every_reference_case_it_c
         if "within its measured range" in result.effects["reasons"]["decisions"]["model"]:
             errors[row["case"]] = error
         else:
-            outside.add(row["case"])
-            assert abs(error) > 0.25, row["case"]  # flagged because it is off, not by accident
-    assert {"A", "E", "F", "G", "H", "I", "J", "K"} <= set(errors) and outside == {"B", "C"}
+            outside[row["case"]] = error
+    assert {"A", "E", "F", "G", "H", "I", "J", "K"} <= set(errors) and {"B", "C", "D"} <= set(outside)
+    assert set(outside) - {"B", "C", "D"} == set(), outside
+    assert abs(outside["B"]) > 0.25 and abs(outside["C"]) > 0.25  # flagged because they are off, not by accident
+    assert abs(outside["D"]) <= 0.10  # the conservative flag, recorded
     assert max(abs(e) for e in errors.values()) <= 0.10, errors
     assert np.median(np.abs(list(errors.values()))) <= 0.10
 
