@@ -336,6 +336,12 @@ def version_key(version: str) -> tuple[int, ...]:
     return (*(int(v) for v in date.split(".")), int(number))
 
 
+def _order_text(order: float) -> str:
+    """The observed order, or "n/o" where none is observable (steps that do not shrink or change sign: the
+    extrapolated μ is then the finest one, with the fine step as its grid uncertainty)."""
+    return f"{order:.1f}" if math.isfinite(order) else "n/o"
+
+
 def summarise() -> None:
     """Write the reference data and the docs table. Each case enters with its three runs if they share one model
     version (not older than OLDEST_ACCEPTED), else keeps its entry of the existing reference file; the newer of the
@@ -380,10 +386,17 @@ def summarise() -> None:
             f"{i['rq1_um']}/{i['rq2_um']} | {r['lambda_bar']:.3f} | {r['half_width_m'] / beta:.1f} | "
             f"{spacing_text} | {r['mu'][f'beta/{coarse}']:.4f} | {r['mu'][f'beta/{middle}']:.4f} | "
             f"{r['mu'][f'beta/{fine}']:.4f} | {100 * r['mu_fine_step_relative']:+.1f} % | "
-            f"{r['mu_observed_order']:.1f} | {r['mu_extrapolated']:.4f} | {r['mu_uncertainty']:.4f} | "
+            f"{_order_text(r['mu_observed_order'])} | {r['mu_extrapolated']:.4f} | {r['mu_uncertainty']:.4f} | "
             f"{100 * r['mu_sem'][f'beta/{long_n}'] / r['mu'][f'beta/{long_n}']:.1f} % | "
             f"{r['asperity_load_share'][f'beta/{fine}']:.3f} | "
             f"{r['asperity_load_share_fine_step']:+.3f} | {r['smooth_mu']:.4f} | {times} |")
+    lines += ["", "μ coarse / middle / fine: the three finest spacings (paired with the long run at the middle one, or at "
+              "the one named); fine step: μ fine / μ middle − 1 (target ≤ 5 %); order: the observed order of "
+              "convergence p = log2(Δ_coarse/Δ_fine), n/o where none is observable (the steps do not shrink or change "
+              "sign); with n/o or p ≤ 0.5 μ extrapolated is μ fine and ± the fine step combined with the standard error, else "
+              "Richardson's value with Roache's GCI (safety 1.25) combined with it; sem of μ: "
+              "the long run's standard error (target ≤ 1.5 %); share fine step: the asperity load share's change "
+              "between the two finest spacings (target ≤ 0.03)."]
     REPORT.write_text("\n".join(lines) + "\n")
     print("\n".join(lines))
 
