@@ -93,7 +93,7 @@ LUBRICANT = "atf"
 
 
 SAME_NUMERICS = {"det-2026.11-9": "det-2026.11-10", "det-2026.11-11": "det-2026.11-10",
-                 "det-2026.11-12": "det-2026.11-10"}
+                 "det-2026.11-12": "det-2026.11-10", "det-2026.11-13": "det-2026.11-10"}
 """Model versions whose runs may be paired with runs of the version they map to. det-2026.11-10 changed only the
 Newton stop at the round-off floor (a step that stalls there is accepted instead of split); rerun under it, the short
 runs A β/16, B β/16, G β/8 and I β/8 reproduce det-2026.11-9's μ within 1e-12 (relative) and C β/16 within 8e-5
@@ -102,7 +102,10 @@ benchmarks/results/deterministic_rerun_check_det-2026.11-10.json). det-2026.11-1
 without cancellation; rerun under it, the same runs reproduce the recorded μ within 3e-8 (C β/16 within 8.7e-5, as
 under det-10) while B β/16's round-off stops fall from 1,037 to 54 and its largest mass-balance error from 3.2e-10 to
 1.0e-10 (benchmarks/results/deterministic_rerun_check_det-2026.11-11.json). det-2026.11-12 changed only the grid
-rule of runs without ``dx_m`` (every validation run gives it)."""
+rule of runs without ``dx_m`` (every validation run gives it). det-2026.11-13 changed the logarithmic face mean only
+where neighbouring fluid factors differ by more than 1e16, where det-11 and -12 returned NaN partials: a state with
+such a face fails every Newton solve that starts from it, so a run under det-11/-12 that converged never accepted
+one, and its steps solve det-13's equations too."""
 
 
 def numerics(version: str) -> str:

@@ -84,11 +84,13 @@ def logarithmic_mean(a, b):
     factor changes by 1e-4–1e-6 from node to node, the Poiseuille flux then carries a noise of 1e-12–1e-10 of the
     inlet flux, which set a floor of 2–5e-10 under the global mass balance (docs/deterministic_solver.md, "Mass
     balance"). Here a − b is exact (Sterbenz) for b/2 ≤ a ≤ 2b, t = log1p((a − b)/b) is accurate to a few ulp, and
-    the partials come from their Taylor series where |t| < :data:`LOG_MEAN_SERIES`."""
+    the partials come from their Taylor series where |t| < :data:`LOG_MEAN_SERIES`. Far from a = b (|a − b| > b/2)
+    t = ln a − ln b: log1p(d/b) would read d/b = −1 + 1e-18 as −1 when a < 1e-16·b (a micro-EHL pressure peak of a
+    viscous oil next to an unloaded node) and return t = −∞, L = 0 and NaN partials (det-2026.11-11 and -12)."""
     d = a - b
     if d == 0.0:
         return a, 0.5, 0.5
-    t = math.log1p(d / b)
+    t = math.log1p(d / b) if abs(d) <= 0.5 * b else math.log(a) - math.log(b)
     if abs(t) < LOG_MEAN_SERIES:
         t2 = t * t
         even = 0.5 + t2 * (1.0 / 24.0 + t2 / 720.0)

@@ -54,12 +54,15 @@ from .result import ContactResult
 from .steady import ContactScales, dowson_higginson_lambda, moes_h_c, solve_steady
 from .time_average import time_mean
 
-MODEL_VERSION = "det-2026.11-12"
+MODEL_VERSION = "det-2026.11-13"
 """Version of the deterministic model's numerics (recorded with its results; bump with any change that can alter a
 solved value). :data:`ehl_dataset.solver.SOLVER_VERSION` covers the whole solver. det-2026.11-11: the logarithmic
 face mean is evaluated without cancellation (:func:`~ehl_dataset.discretisation.mixed_system.logarithmic_mean`),
 which removes the 2–5e-10 floor of the global mass balance on contact-dominated runs. det-2026.11-12: the inlet term
-of the grid rule depends on the level (:data:`LEVEL_OPTIONS`); a run with a given ``dx_m`` is unchanged."""
+of the grid rule depends on the level (:data:`LEVEL_OPTIONS`); a run with a given ``dx_m`` is unchanged.
+det-2026.11-13: the logarithmic face mean takes t = ln a − ln b far from a = b; det-11's log1p form read fluid factors
+more than 1e16 apart as t = −∞ (face conductance 0, NaN partials), which failed every Newton solve from such a state
+(case E at ``fast``, 25 °C, at step 1,134; case G at step 426; docs/deterministic_solver.md, "Robustness")."""
 BOUNDARY_FILM_M = 5e-9
 """Default film-breakdown (boundary-film) thickness h_b [m]: below it the surfaces are in solid contact through
 their adsorbed/reacted boundary films, which carry load and friction μ_d·p_c. Representative value: adsorbed
