@@ -139,9 +139,10 @@ def main(argv: list[str] | None = None) -> int:
         return fail(exit_codes.STAGE_FAILED, f"solver error: {err}", as_json)
     except exit_codes.Interrupted as err:
         return fail(err.exit_code, str(err), as_json, resume_command=err.resume_command)
-    except (KeyboardInterrupt, _Terminated, SystemError) as err:
-        # a signal handler's exception raised while compiled (numba) code ran comes back as the cause of a
-        # SystemError ("returned a result with an exception set")
+    except (KeyboardInterrupt, _Terminated, SystemError, ImportError) as err:
+        # a signal handler's exception raised while compiled code ran comes back as the cause of another error:
+        # numba's SystemError ("returned a result with an exception set"), or the ImportError ("initialization
+        # failed") of an extension module whose initialisation it interrupted (scipy's HiGHS wrapper, for one)
         interrupt = _signal_behind(err)
         if interrupt is None:
             raise

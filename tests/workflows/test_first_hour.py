@@ -314,13 +314,18 @@ def test_12_the_accuracy_report_figure_is_not_older_than_the_solver_or_says_so()
     assert not math.isnan(float(version.rsplit("-", 1)[1]))
 
 
+@pytest.mark.parametrize("wrapper, message", [
+    (SystemError, "<CPUDispatcher> returned a result with an exception set"),  # numba, SIGTERM during a contact solve
+    (ImportError, "initialization failed"),  # scipy's HiGHS extension, Ctrl-C during its import (CI, stop 32)
+])
 @pytest.mark.parametrize("interrupt, code, words", [("_CtrlC", 130, "interrupted by SIGINT"),
                                                     ("_Terminated", 143, "terminated by SIGTERM")])
 def test_a_signal_that_arrives_inside_compiled_code_still_gives_its_exit_code(monkeypatch, capsys, interrupt, code,
-                                                                              words):
-    """A signal handler's exception raised while numba-compiled code runs comes back as the cause of a SystemError
-    ("returned a result with an exception set", seen with SIGTERM during the gear sweep's contact solve): it still
-    exits 130/143 with the one-line message; a SystemError without an interrupt behind it is not swallowed."""
+                                                                              words, wrapper, message):
+    """A signal handler's exception raised while compiled code runs comes back as the cause of another error: a
+    SystemError from numba-compiled code, an ImportError from an extension module whose initialisation it stopped.
+    It still exits 130/143 with the one-line message; the same error without an interrupt behind it is not
+    swallowed."""
     import workflows.cli as cli
     import workflows.cli_gear_studies as studies
 
@@ -328,15 +333,15 @@ def test_a_signal_that_arrives_inside_compiled_code_still_gives_its_exit_code(mo
         try:
             raise getattr(cli, interrupt)()
         except BaseException as err:
-            raise SystemError("<CPUDispatcher> returned a result with an exception set") from err
+            raise wrapper(message) from err
 
     monkeypatch.setattr(studies, "run_sweep", interrupted_sweep)
     assert cli.main(["gear", "sweep", "--friction", "xu2007"]) == code
     assert capsys.readouterr().err.strip() == f"gearloss: {words}: gearloss gear sweep --friction xu2007 stopped"
 
     def broken_sweep(args):
-        raise SystemError("a genuine interpreter error")
+        raise wrapper("a genuine error")
 
     monkeypatch.setattr(studies, "run_sweep", broken_sweep)
-    with pytest.raises(SystemError, match="genuine"):
+    with pytest.raises(wrapper, match="genuine"):
         cli.main(["gear", "sweep", "--friction", "xu2007"])
