@@ -1,0 +1,100 @@
+"""Benchmark (issue 14, Speed): the deterministic mixed solver against the transient solver on the same random
+factorial points, in the same run, one core.
+
+    python benchmarks/deterministic_speed.py                 # the first 50 draws of the seed-1 random sample
+    python benchmarks/deterministic_speed.py --n 20          # fewer; given again, it resumes and runs the rest
+
+The points are the first ``--n`` draws of ``bench_ehl_mixed.random_cases(200, seed=1)`` (the 200-point sweep of
+``benchmarks/results/ehl_mixed_random200_fast_deterministic.json``). For each point, one after the other in this
+process, ``solve_contact(..., level, model="deterministic")`` and ``solve_contact(..., level, effects="full")`` (the
+transient solver) each get ``--time-limit-s``; a stopped run counts at its time (the medians are lower bounds where
+runs stop). Rows are written after each solve (resumable; rows of another EHL solver or deterministic model version
+are not reused). Writes ``benchmarks/results/deterministic_speed_<level>.json``: per-point rows (wall and process CPU
+time, μ, converged, route), medians, means and the per-point time ratio deterministic/transient.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import statistics
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+from ehl_dataset.model.contact import ContactCase
+from ehl_dataset.model.lubricant import load_lubricant
+from ehl_dataset.solver import SOLVER_VERSION, solve_contact
+from ehl_dataset.solvers.deterministic import MODEL_VERSION
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from _common import RESULTS_DIR, machine_info, write_report  # noqa: E402
+from bench_ehl_mixed import random_cases  # noqa: E402
+
+SOLVERS = {"deterministic": {"model": "deterministic"}, "transient": {"effects": "full"}}
+
+
+def solve_row(point, solver: str, level: str, time_limit_s: float, lub) -> dict:
+    case = ContactCase.from_engineering(*point)
+    wall, cpu = time.perf_counter(), time.process_time()
+    res = solve_contact(case, lub, level, time_limit_s=time_limit_s, **SOLVERS[solver])
+    return {"case": list(point), "solver": solver, "converged": bool(res.converged),
+            "mu": float(res.mu) if res.mu is not None else math.nan, "lambda_bar": float(res.lambda_bar),
+            "route": res.extra.get("route"), "time_limited": bool(res.extra.get("time_limited", False)),
+            "message": res.message or "", "wall_time_s": time.perf_counter() - wall,
+            "cpu_time_s": time.process_time() - cpu}
+
+
+def summarise(rows: list[dict]) -> dict:
+    out: dict = {}
+    by = {s: {tuple(r["case"]): r for r in rows if r["solver"] == s} for s in SOLVERS}
+    paired = [c for c in by["deterministic"] if c in by["transient"]]
+    for s in SOLVERS:
+        t = [by[s][c]["cpu_time_s"] for c in paired]
+        out[s] = {"points": len(t), "converged": sum(by[s][c]["converged"] for c in paired),
+                  "time_limited": sum(by[s][c]["time_limited"] for c in paired),
+                  "median_cpu_time_s": statistics.median(t) if t else math.nan,
+                  "mean_cpu_time_s": statistics.fmean(t) if t else math.nan,
+                  "p90_cpu_time_s": float(np.percentile(t, 90)) if t else math.nan}
+    ratio = [by["deterministic"][c]["cpu_time_s"] / by["transient"][c]["cpu_time_s"] for c in paired]
+    out["paired_points"] = len(paired)
+    out["median_time_ratio_deterministic_over_transient"] = statistics.median(ratio) if ratio else math.nan
+    return out
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--n", type=int, default=50)
+    parser.add_argument("--level", default="fast")
+    parser.add_argument("--time-limit-s", type=float, default=600.0)
+    parser.add_argument("--out", default=None)
+    args = parser.parse_args(argv)
+    out = Path(args.out) if args.out else RESULTS_DIR / f"deterministic_speed_{args.level}.json"
+    rows: list[dict] = []
+    if out.exists():
+        old = json.loads(out.read_text(encoding="utf-8"))
+        if old.get("solver_version") == SOLVER_VERSION and old.get("model_version") == MODEL_VERSION:
+            rows = old["rows"]
+    done = {(tuple(r["case"]), r["solver"]) for r in rows}
+    lub = load_lubricant("atf")
+    for i, point in enumerate(random_cases(200, 1)[:args.n]):
+        for solver in SOLVERS:
+            if (tuple(point), solver) in done:
+                continue
+            row = solve_row(point, solver, args.level, args.time_limit_s, lub)
+            rows.append(row)
+            print(f"{i:3d} {solver:13s} {point} mu={row['mu']:.4g} conv={row['converged']} "
+                  f"{row['cpu_time_s']:.1f} s", flush=True)
+            write_report(out, {"benchmark": "deterministic_speed", "level": args.level, "sample": "random seed 1",
+                               "time_limit_s": args.time_limit_s, "solver_version": SOLVER_VERSION,
+                               "model_version": MODEL_VERSION, "summary": summarise(rows), "rows": rows,
+                               "machine": machine_info()})
+    print(json.dumps(summarise(rows), indent=1))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
