@@ -3,13 +3,16 @@ factorial points, in the same run, one core.
 
     python benchmarks/deterministic_speed.py                 # the first 50 draws of the seed-1 random sample
     python benchmarks/deterministic_speed.py --n 20          # fewer; given again, it resumes and runs the rest
+    python benchmarks/deterministic_speed.py --shard 0/2 & python benchmarks/deterministic_speed.py --shard 1/2
+    python benchmarks/deterministic_speed.py --merge          # the shards' rows into the one results file
 
 The points are the first ``--n`` draws of ``bench_ehl_mixed.random_cases(200, seed=1)`` (the 200-point sweep of
 ``benchmarks/results/ehl_mixed_random200_fast_deterministic.json``). For each point, one after the other in this
 process, ``solve_contact(..., level, model="deterministic")`` and ``solve_contact(..., level, effects="full")`` (the
 transient solver) each get ``--time-limit-s``; a stopped run counts at its time (the medians are lower bounds where
 runs stop). Rows are written after each solve (resumable; rows of another EHL solver or deterministic model version
-are not reused). Writes ``benchmarks/results/deterministic_speed_<level>.json``: per-point rows (wall and process CPU
+are not reused; ``--shard I/N`` runs every N-th point from the I-th into its own file, and every process skips the
+points any results file of the level already holds). Writes ``benchmarks/results/deterministic_speed_<level>.json``: per-point rows (wall and process CPU
 time, μ, converged, route), medians, means and the per-point time ratio deterministic/transient.
 """
 
@@ -65,33 +68,54 @@ def summarise(rows: list[dict]) -> dict:
     return out
 
 
+def _rows_of(path: Path) -> list[dict]:
+    """The rows of a results file made under the current EHL solver and deterministic model versions."""
+    if not path.exists():
+        return []
+    old = json.loads(path.read_text(encoding="utf-8"))
+    if old.get("solver_version") != SOLVER_VERSION or old.get("model_version") != MODEL_VERSION:
+        return []
+    return old["rows"]
+
+
+def _write(path: Path, rows: list[dict], args) -> None:
+    write_report(path, {"benchmark": "deterministic_speed", "level": args.level, "sample": "random seed 1",
+                        "time_limit_s": args.time_limit_s, "solver_version": SOLVER_VERSION,
+                        "model_version": MODEL_VERSION, "summary": summarise(rows), "rows": rows,
+                        "machine": machine_info()})
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--n", type=int, default=50)
     parser.add_argument("--level", default="fast")
     parser.add_argument("--time-limit-s", type=float, default=600.0)
-    parser.add_argument("--out", default=None)
+    parser.add_argument("--shard", default=None, help="I/N: every N-th point from the I-th, into its own file")
+    parser.add_argument("--merge", action="store_true", help="merge the shard files into the results file")
     args = parser.parse_args(argv)
-    out = Path(args.out) if args.out else RESULTS_DIR / f"deterministic_speed_{args.level}.json"
-    rows: list[dict] = []
-    if out.exists():
-        old = json.loads(out.read_text(encoding="utf-8"))
-        if old.get("solver_version") == SOLVER_VERSION and old.get("model_version") == MODEL_VERSION:
-            rows = old["rows"]
-    done = {(tuple(r["case"]), r["solver"]) for r in rows}
+    main_file = RESULTS_DIR / f"deterministic_speed_{args.level}.json"
+    siblings = lambda: [main_file, *sorted(RESULTS_DIR.glob(f"deterministic_speed_{args.level}_shard*.json"))]  # noqa: E731
+    if args.merge:
+        merged = {(tuple(r["case"]), r["solver"]): r for path in siblings() for r in _rows_of(path)}
+        _write(main_file, list(merged.values()), args)
+        print(json.dumps(summarise(list(merged.values())), indent=1))
+        return 0
+    first, every = (int(v) for v in args.shard.split("/")) if args.shard else (0, 1)
+    out = RESULTS_DIR / f"deterministic_speed_{args.level}_shard{first}of{every}.json" if args.shard else main_file
+    rows = _rows_of(out)
     lub = load_lubricant("atf")
     for i, point in enumerate(random_cases(200, 1)[:args.n]):
+        if i % every != first:
+            continue
         for solver in SOLVERS:
+            done = {(tuple(r["case"]), r["solver"]) for path in siblings() for r in _rows_of(path)}
             if (tuple(point), solver) in done:
                 continue
             row = solve_row(point, solver, args.level, args.time_limit_s, lub)
             rows.append(row)
             print(f"{i:3d} {solver:13s} {point} mu={row['mu']:.4g} conv={row['converged']} "
                   f"{row['cpu_time_s']:.1f} s", flush=True)
-            write_report(out, {"benchmark": "deterministic_speed", "level": args.level, "sample": "random seed 1",
-                               "time_limit_s": args.time_limit_s, "solver_version": SOLVER_VERSION,
-                               "model_version": MODEL_VERSION, "summary": summarise(rows), "rows": rows,
-                               "machine": machine_info()})
+            _write(out, rows, args)
     print(json.dumps(summarise(rows), indent=1))
     return 0
 
