@@ -12,8 +12,9 @@ process, ``solve_contact(..., level, model="deterministic")`` and ``solve_contac
 transient solver) each get ``--time-limit-s``; a stopped run counts at its time (the medians are lower bounds where
 runs stop). Rows are written after each solve (resumable; rows of another EHL solver or deterministic model version
 are not reused; ``--shard I/N`` runs every N-th point from the I-th into its own file, and every process skips the
-points any results file of the level already holds). Writes ``benchmarks/results/deterministic_speed_<level>.json``: per-point rows (wall and process CPU
-time, μ, converged, route), medians, means and the per-point time ratio deterministic/transient.
+points any results file of the level already holds). Writes ``benchmarks/results/deterministic_speed_<level>.json``:
+per-point rows (wall and process CPU time, μ, converged, route), medians, means and the per-point time ratio
+deterministic/transient.
 """
 
 from __future__ import annotations
@@ -94,7 +95,10 @@ def main(argv=None) -> int:
     parser.add_argument("--merge", action="store_true", help="merge the shard files into the results file")
     args = parser.parse_args(argv)
     main_file = RESULTS_DIR / f"deterministic_speed_{args.level}.json"
-    siblings = lambda: [main_file, *sorted(RESULTS_DIR.glob(f"deterministic_speed_{args.level}_shard*.json"))]  # noqa: E731
+
+    def siblings() -> list[Path]:  # every results file of the level: the merged one and the shards'
+        return [main_file, *sorted(RESULTS_DIR.glob(f"deterministic_speed_{args.level}_shard*.json"))]
+
     if args.merge:
         merged = {(tuple(r["case"]), r["solver"]): r for path in siblings() for r in _rows_of(path)}
         _write(main_file, list(merged.values()), args)
