@@ -69,16 +69,64 @@ class _CtrlC(KeyboardInterrupt):
     happens when Ctrl-C arrives during some imports), even after ``main`` caught it and returned 130."""
 
 
+class _Redelivery:
+    """Sends a caught signal to this process again every ``interval_s`` until :meth:`stop`.
+
+    A signal handler's exception is lost when it lands where Python cannot propagate it: a ctypes callback (numba's
+    object-cache hook, CI of stop 33), a ``__del__`` or a weakref callback print it as "Exception ignored" and run
+    on. Sending the signal again raises it anew, at a later bytecode of the main thread, until it gets through."""
+
+    def __init__(self, signum: int, interval_s: float):
+        import threading
+
+        self._signum = signum
+        self._interval_s = interval_s
+        self._lock = threading.Lock()
+        self._stopped = threading.Event()
+        self._thread = threading.Thread(target=self._run, name=f"gearloss-resend-{signum}", daemon=True)
+        self._thread.start()
+
+    def _run(self) -> None:
+        import os
+
+        while not self._stopped.wait(self._interval_s):
+            with self._lock:
+                if self._stopped.is_set():
+                    return
+                os.kill(os.getpid(), self._signum)
+
+    def stop(self) -> None:
+        with self._lock:
+            self._stopped.set()
+        self._thread.join(timeout=1.0)
+
+
+RESEND_INTERVAL_S = 2.0
+"""Seconds between re-sends of a signal whose exception has not yet stopped the command (see :class:`_Redelivery`)."""
+
+
 @contextmanager
 def _signals_raise():
     """SIGTERM raises :class:`_Terminated` in the main thread (exit 143 with a message, not a silent death); SIGINT,
-    unless ignored, raises :class:`_CtrlC` (exit 130)."""
+    unless ignored, raises :class:`_CtrlC` (exit 130). A caught signal is sent again every
+    :data:`RESEND_INTERVAL_S` until the command has stopped (:class:`_Redelivery`), and the "Exception ignored"
+    report of one that was lost is silenced: the re-send stands in for it."""
+    resends: dict[int, _Redelivery] = {}
+
+    def raise_and_resend(signum: int, exception: type[BaseException]):
+        if signum not in resends:
+            resends[signum] = _Redelivery(signum, RESEND_INTERVAL_S)
+        raise exception()
 
     def on_sigterm(signum, frame):
-        raise _Terminated()
+        raise_and_resend(signum, _Terminated)
 
     def on_sigint(signum, frame):
-        raise _CtrlC()
+        raise_and_resend(signum, _CtrlC)
+
+    def quiet_lost_signal(unraisable):
+        if not isinstance(unraisable.exc_value, (_Terminated, _CtrlC)):
+            previous_hook(unraisable)
 
     try:
         previous_term = signal.signal(signal.SIGTERM, on_sigterm)
@@ -88,9 +136,14 @@ def _signals_raise():
     previous_int = signal.getsignal(signal.SIGINT)
     if previous_int is signal.default_int_handler:
         signal.signal(signal.SIGINT, on_sigint)
+    previous_hook = sys.unraisablehook
+    sys.unraisablehook = quiet_lost_signal
     try:
         yield
     finally:
+        for resend in resends.values():
+            resend.stop()
+        sys.unraisablehook = previous_hook
         signal.signal(signal.SIGTERM, previous_term)
         if previous_int is signal.default_int_handler:
             signal.signal(signal.SIGINT, previous_int)

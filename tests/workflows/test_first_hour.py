@@ -5,6 +5,9 @@ The real-subprocess acceptance (main job / smoke / main job again, Ctrl-C → 13
 
 import json
 import math
+import os
+import signal
+import sys
 import time
 
 import pytest
@@ -345,3 +348,38 @@ def test_a_signal_that_arrives_inside_compiled_code_still_gives_its_exit_code(mo
     monkeypatch.setattr(studies, "run_sweep", broken_sweep)
     with pytest.raises(wrapper, match="genuine"):
         cli.main(["gear", "sweep", "--friction", "xu2007"])
+
+
+@pytest.mark.parametrize("sig, code, words", [(signal.SIGINT, 130, "interrupted by SIGINT"),
+                                              (signal.SIGTERM, 143, "terminated by SIGTERM")])
+def test_a_signal_whose_exception_is_lost_is_sent_again_until_the_command_stops(monkeypatch, capsys, sig, code, words):
+    """A handler's exception raised inside a ``__del__`` (or a ctypes callback: numba's object-cache hook, CI of
+    stop 33) is printed as "Exception ignored" and lost. The command must still stop with its exit code and one
+    line, within a re-send interval, not run to its end."""
+    import threading
+
+    import workflows.cli as cli
+    import workflows.cli_gear_studies as studies
+
+    class SignalledOnDelete:
+        def __del__(self):
+            os.kill(os.getpid(), sig)
+            for _ in range(10_000):  # bytecodes for the handler to run on, inside __del__
+                pass
+
+    finished = []
+
+    def sweep_that_loses_the_signal(args):
+        SignalledOnDelete()
+        time.sleep(5 * cli.RESEND_INTERVAL_S)
+        finished.append(True)
+        return 0
+
+    monkeypatch.setattr(studies, "run_sweep", sweep_that_loses_the_signal)
+    hook, term_handler = sys.unraisablehook, signal.getsignal(signal.SIGTERM)
+    started = time.monotonic()
+    assert cli.main(["gear", "sweep", "--friction", "xu2007"]) == code
+    assert time.monotonic() - started < 3 * cli.RESEND_INTERVAL_S and not finished
+    assert capsys.readouterr().err.strip() == f"gearloss: {words}: gearloss gear sweep --friction xu2007 stopped"
+    assert not [t for t in threading.enumerate() if t.name.startswith("gearloss-resend")]
+    assert sys.unraisablehook is hook and signal.getsignal(signal.SIGTERM) is term_handler
