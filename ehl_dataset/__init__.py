@@ -5,8 +5,8 @@ Layers (each imports only from the ones before it; ``tests/test_architecture.py`
 * :mod:`ehl_dataset.model` — physical models: contact case, materials, lubricant, roughness, effect plan, film
   formulas, traction;
 * :mod:`ehl_dataset.discretisation` — grids, the Reynolds residual and Jacobian, the deflection matrix;
-* :mod:`ehl_dataset.solvers` — Newton solver, steady and transient solves, time averaging, accuracy levels, the
-  effect planner, the result record;
+* :mod:`ehl_dataset.solvers` — Newton solver, the steady smooth solve, the homogenised and deterministic mixed
+  models, time averaging, accuracy levels, the effect planner, the result record;
 * :mod:`ehl_dataset.solver` — the public entry :func:`solve_contact` (recorded in every dataset file);
 * :mod:`ehl_dataset.dataset` — factorials, the HDF5 store, the runner and its executors.
 
@@ -35,7 +35,7 @@ _LAZY = {
     "get_level": "ehl_dataset.solvers.levels",
     "plan_effects": "ehl_dataset.solvers.planner",
     "ContactResult": "ehl_dataset.solvers.result",
-    "TransientOptions": "ehl_dataset.solvers.transient",
+    "DeterministicOptions": "ehl_dataset.solvers.deterministic",
     "Factorial": "ehl_dataset.dataset.factorial",
     "load_factorial": "ehl_dataset.dataset.factorial",
     "run_factorial": "ehl_dataset.dataset.runner",

@@ -12,10 +12,10 @@ Smooth cases (no roughness effect, or S_c = 0) go to the steady solver (:mod:`eh
 contact under constant load and speed has a steady solution, which is what a transient run would settle to, so the
 ````transient`` flag changes nothing for smooth surfaces); rough surfaces with the ``roughness`` effect go where the
 plan's ``model`` decision sends them (:data:`MODELS`): the steady film-law homogenised model
-(:mod:`ehl_dataset.solvers.homogenised`) at ``fast`` and ``standard``, the deterministic mixed reference
-(:mod:`ehl_dataset.solvers.deterministic`) at ``reference``, and the transient mixed solver
-(:mod:`ehl_dataset.solvers.transient`) where the effects are forced with ``transient`` on (``effects="full"``).
-``model="homogenised"`` and ``model="deterministic"`` ask for those models whatever the plan.
+(:mod:`ehl_dataset.solvers.homogenised`) at ``fast`` and ``standard``, and the deterministic mixed reference
+(:mod:`ehl_dataset.solvers.deterministic`) at ``reference`` and wherever the effects are forced with ``transient``
+on (``effects="full"``): it is the package's one transient rough solver. ``model="homogenised"`` and
+``model="deterministic"`` ask for those models whatever the plan.
 
 Every dataset file records ``ehl_dataset.solver:solve_contact`` and imports it on resume, and the store compares
 :data:`SOLVER_VERSION` with the recorded one: both stay here whatever moves behind them.
@@ -36,13 +36,12 @@ from .solvers.deterministic import DeterministicOptions, deterministic_options
 from .solvers.wide_contact import solve_deterministic_contact
 from .solvers.homogenised import HomogenisedOptions, solve_homogenised
 from .solvers.levels import AccuracyLevel, get_level
-from .solvers.planner import resolve_effects, thresholds_for, without_thermal
+from .solvers.planner import resolve_effects, without_thermal
 from .solvers.result import ContactResult
 from .solvers.steady import solve_steady
-from .solvers.transient import TransientOptions, solve_transient
 from .validation import InputError, check_time_limit
 
-SOLVER_VERSION = "ehl-2026.11-14"
+SOLVER_VERSION = "ehl-2026.11-15"
 """Version of the numerics behind :func:`solve_contact`. The dataset store records it and refuses to resume a file
 computed with another version: bump it with every change that can alter a solved value. The deterministic model's
 numerics carry their own version (:data:`ehl_dataset.solvers.deterministic.MODEL_VERSION`, recorded in the files that
@@ -54,7 +53,7 @@ MODELS = ("auto", "smooth", "homogenised", "deterministic")
 surfaces the steady homogenised model with the film-law closure where the contact is at least the planner's
 ``a_over_beta_homogenised`` correlation lengths wide, else the level's ``rough_model``: the same film-law model at
 ``fast`` and ``standard`` (outside its validated range, recorded), the deterministic solver at ``reference``; forced
-effects with ``transient`` on run the transient mixed solver of :mod:`ehl_dataset.solvers.transient`), ``smooth``
+effects with ``transient`` on run the deterministic solver at the level's grid rule too), ``smooth``
 (steady smooth surfaces whatever the roughness), ``homogenised``
 (the steady two-scale mixed model, :mod:`ehl_dataset.solvers.homogenised`, with the closure of ``homogenised``;
 errors against the reference in docs/homogenised_model.md), ``deterministic`` (the deterministic mixed reference
@@ -73,7 +72,9 @@ gives the film law on narrow contacts a micro-EHL pressure-fluctuation closure (
 λ̄ ≥ 0.1 and roughness parameter α ≤ 2.5 (docs/narrow_contacts.md); ehl-2026.11-14 makes the closure's c a function
 of the inlet length in correlation lengths on every contact, narrow and wide, instead of a constant below a/β 15 and
 none above (film-law-2026.11-3; the wide unsaturated contacts resolved whole were 40 % above the film law without
-it), and extends the closure's measured range to wide contacts."""
+it), and extends the closure's measured range to wide contacts; ehl-2026.11-15 deletes the transient mixed solver
+(its grid-dependent μ, recorded in docs/transient_solver_record.md) and sends forced effects with ``transient`` on
+(``effects="full"``) on rough contacts to the deterministic solver at the level's grid rule."""
 
 __all__ = ["solve_contact", "checked_inputs", "SOLVER_VERSION", "MODELS"]
 
@@ -92,21 +93,18 @@ def checked_inputs(case, lubricant) -> Lubricant:
 
 def solve_contact(case: ContactCase, lubricant: Lubricant | str, level: str | AccuracyLevel = "standard",
                   effects: str | Effects = "auto", roughness=None, time_limit_s: float | None = None,
-                  transient_options: TransientOptions | None = None, model: str = "auto",
+                  model: str = "auto",
                   deterministic: DeterministicOptions | None = None,
                   homogenised: HomogenisedOptions | None = None, checkpoint=None) -> ContactResult:
     """Solve one line contact; see the module docstring. Bad input raises :class:`InputError`.
 
-    ``time_limit_s``: wall-time budget [s] of a transient (rough) solve; when it runs out the result is returned
+    ``time_limit_s``: wall-time budget [s] of a deterministic (rough, transient) solve; when it runs out the result is returned
     ``converged=False`` with a message naming the step reached (a sweep is not held up by one pathological point;
     the resumable pipeline can retry it). None: no limit. Steady smooth solves ignore it (they take < 1 s).
 
     ``roughness``: a :class:`~ehl_dataset.model.roughness.RoughnessProfile` (e.g. a measured trace from
     :func:`~ehl_dataset.model.roughness.load_profile`) whose shape both surfaces take in rough runs, scaled to the
     case's Rq1 and Rq2; None uses the shipped synthetic baseline profile.
-
-    ``transient_options``: the model choices of the transient solver
-    (:class:`~ehl_dataset.solvers.transient.TransientOptions`; None: the defaults, which every dataset uses).
 
     ``model``: one of :data:`MODELS`. ``deterministic``: the options of the deterministic model (None: those of the
     level, :func:`~ehl_dataset.solvers.deterministic.deterministic_options`). ``homogenised``: the closure options of
@@ -120,8 +118,6 @@ def solve_contact(case: ContactCase, lubricant: Lubricant | str, level: str | Ac
     lubricant = checked_inputs(case, lubricant)
     if roughness is not None and not isinstance(roughness, RoughnessProfile):
         raise InputError("roughness", type(roughness).__name__, "a RoughnessProfile or None")
-    if transient_options is not None and not isinstance(transient_options, TransientOptions):
-        raise InputError("transient_options", type(transient_options).__name__, "a TransientOptions or None")
     if model not in MODELS:
         raise InputError("model", model, f"one of {list(MODELS)}")
     if deterministic is not None and not isinstance(deterministic, DeterministicOptions):
@@ -137,13 +133,14 @@ def solve_contact(case: ContactCase, lubricant: Lubricant | str, level: str | Ac
                            roughness.correlation_length if roughness is not None else None)
     # one BLAS thread per solve: the dense solves are small, and workers run one case per core
     with threadpool_limits(limits=1):
-        planned_deterministic = plan.mode == "auto" and thresholds_for(lvl).rough_model == "deterministic"
-        deterministic_route = model == "deterministic" or (plan.roughness and case.s_c > 0.0 and planned_deterministic
+        # a rough plan with the transient on (the reference level's rough model, or forced effects) runs the
+        # package's one transient rough solver: the deterministic model
+        deterministic_route = model == "deterministic" or (plan.roughness and plan.transient and case.s_c > 0.0
                                                            and model == "auto")
         if checkpoint is not None and not deterministic_route:
             raise InputError("checkpoint", str(getattr(checkpoint, "path", checkpoint)),
-                             "None unless the deterministic model solves the contact (model='deterministic', or the "
-                             "reference level's plan for a rough contact)")
+                             "None unless the deterministic model solves the contact (model='deterministic', the "
+                             "reference level's plan for a rough contact, or effects='full' on a rough contact)")
         if model == "homogenised":
             options = homogenised or HomogenisedOptions()
             # the film-law closure has the smooth solver's thermal correction; the flow-factor closures have none
@@ -153,11 +150,8 @@ def solve_contact(case: ContactCase, lubricant: Lubricant | str, level: str | Ac
             return solve_deterministic_contact(case, state, _isothermal(plan, "deterministic"),
                                                deterministic or deterministic_options(lvl.name), roughness,
                                                time_limit_s, lvl.name, checkpoint)
-        if plan.roughness and case.s_c > 0.0 and not plan.transient:  # the planner's homogenised choice
+        if plan.roughness and case.s_c > 0.0:  # the planner's homogenised choice
             return solve_homogenised(case, state, lvl, plan, roughness, HomogenisedOptions(closure="film_law"))
-        if plan.roughness and case.s_c > 0.0:
-            return solve_transient(case, state, lvl, _isothermal(plan, "transient"), roughness, time_limit_s,
-                                   transient_options or TransientOptions())
         return solve_steady(case, state, lvl, plan)
 
 

@@ -418,3 +418,8 @@ def surface_pair(case, x_m, t_s, t_end_s: float, profile: RoughnessProfile | Non
     :func:`plan_surfaces` once per run when calling at many time steps.
     """
     return plan_surfaces(case, x_m, t_end_s, profile).at(t_s)
+
+
+def profile_record(profile: RoughnessProfile) -> dict:
+    """What a rough result records of the profile both surfaces took: its source and correlation length [m]."""
+    return {"roughness_profile": profile.source, "roughness_correlation_length_m": float(profile.correlation_length)}

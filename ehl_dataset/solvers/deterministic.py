@@ -45,7 +45,7 @@ negative at such jumps), or first-order upwind; docs/deterministic_solver.md."""
 from ..model.contact import ContactCase
 from ..model.effects import Effects
 from ..model.lubricant import LubricantState
-from ..model.roughness import RoughnessProfile, baseline_profile, plan_surfaces
+from ..model.roughness import RoughnessProfile, baseline_profile, plan_surfaces, profile_record
 from ..model.traction import eyring_shear_stress
 from ..validation import InputError, check_range
 from .krylov import BandedPreconditioner, gmres
@@ -635,8 +635,10 @@ def solve_deterministic(case: ContactCase, state: LubricantState, plan: Effects,
         message = "converged" + ("" if mu_mean.within(target) else
                                  f"; standard error of mu {mu_mean.standard_error:.2g} above the target "
                                  f"{target:.2g} after the cap of {options.max_passes:g} passes") + message
-    return _result(case, state, plan, level_name, options, problem, scales, z, h, record, start, clock, converged,
-                   message, rule, dx_m, first_average, mu_mean, time_limited)
+    result = _result(case, state, plan, level_name, options, problem, scales, z, h, record, start, clock, converged,
+                     message, rule, dx_m, first_average, mu_mean, time_limited)
+    result.extra.update(profile_record(profile))
+    return result
 
 
 _PROBLEM_STATE = ("m_ref", "preconditioner", "cost", "last_residual")

@@ -53,7 +53,7 @@ from ..model.effects import Effects
 from ..model.lubricant import LubricantState
 from ..model.micro_pressure import (composite_slope_rms, flattening_pressure_rms, gamma_pressure_quantiles,
                                     micro_pressure_coefficient as inlet_micro_pressure_coefficient)
-from ..model.roughness import RoughnessProfile, baseline_profile
+from ..model.roughness import RoughnessProfile, baseline_profile, profile_record
 from ..model.thermal import ThermalTraction, thermal_couette_traction
 from ..model.traction import eyring_shear_stress, full_film_mask
 from ..validation import check_range
@@ -226,5 +226,5 @@ def solve_film_law(case: ContactCase, state: LubricantState, lvl: AccuracyLevel,
                "smooth_h_min_m": smooth.h_min, "boundary_film_m": boundary_film_m, "zone_edge": edge,
                "micro_pressure": {"coefficient": coefficient, "slope_rms": slope_rms, "std_pa": pressure_std},
                "floored_gap_fraction_max": float(np.mean(film[:, None] + heights[None, :] < boundary_film_m,
-                                                          axis=1).max())},
+                                                          axis=1).max()), **profile_record(profile)},
     )

@@ -6,7 +6,7 @@ threshold says it does not change the result beyond the level's tolerance (the c
 
 * **roughness and transient** — film parameter λ̄ = h_min,DH/S_c (Dowson–Higginson minimum film over the
   composite roughness S_c = √(Rq1² + Rq2²), as in the paper). At λ̄ ≥ ``lambda_smooth`` the surfaces no longer
-  touch and μ of the transient rough solve equals that of the steady smooth solve within the level's tolerance:
+  touch and μ of the rough solve equals that of the steady smooth solve within the level's tolerance:
   solve the steady smooth problem (the saving: one steady solve instead of hundreds of time steps). Moving
   roughness is what makes a line contact transient, so both flags go together. S_c = 0 gives λ̄ = ∞.
   The ``model`` decision says which solver that means: steady smooth; for a rough contact at least
@@ -18,8 +18,8 @@ threshold says it does not change the result beyond the level's tolerance (the c
   parameter α = S_c·r_eq/a² ≤ 2.5), where the film law is measured within 10 % in median (docs/narrow_contacts.md);
   the other narrow rough contacts go to the level's ``rough_model``:
   the same film-law model at ``fast`` and ``standard``, recorded as outside its validated range (no cheap model is
-  within those levels' tolerance there, and the transient mixed solver is further off than the film law), the
-  deterministic solver at ``reference``.
+  within those levels' tolerance there), the deterministic solver (the package's transient rough solver) at
+  ``reference``.
 * **shear thinning** — inlet Eyring number X_in = η0·|u_s|/(τ0·h_min,DH): sinh(τ_m/τ0) of the Couette shear where
   the film is formed (the inlet, at ambient viscosity). The Eyring flow factor is √(1 + X²), and only the inlet
   flow shapes the film: in the Hertz zone the Poiseuille flow is negligible whatever its factor. The Eyring number
@@ -58,7 +58,7 @@ from .levels import get_level
 from .wide_contact import WIDE_A_OVER_BETA
 
 
-ROUGH_MODELS = ("homogenised", "transient", "deterministic")
+ROUGH_MODELS = ("homogenised", "deterministic")
 
 
 @dataclass(frozen=True)
@@ -81,10 +81,7 @@ class PlannerThresholds:
     where the film law's pressure-fluctuation closure was calibrated (:mod:`ehl_dataset.model.micro_pressure`) at
     λ̄ at or above the first and a Greenwood–Tripp roughness parameter α = S_c·r_eq/a² at or below the second [-];
     ``rough_model`` the solver of the other narrow rough contacts: ``"homogenised"`` (the same film-law model,
-    recorded as outside its validated range), ``"transient"`` (the transient mixed solver,
-    :mod:`ehl_dataset.solvers.transient`, a median +84 % high below λ̄ = 1 on narrow contacts:
-    docs/narrow_contacts.md) or
-    ``"deterministic"`` (the deterministic reference solver, :mod:`ehl_dataset.solvers.deterministic`, which solves
+    recorded as outside its validated range) or ``"deterministic"`` (the deterministic reference solver, :mod:`ehl_dataset.solvers.deterministic`, which solves
     contacts wider than its window limit by periodic windows; about a minute per narrow contact at its ``fast`` grid).
     """
 
@@ -93,7 +90,7 @@ class PlannerThresholds:
     tolerance: float
     thermal_change: float = 0.0
     a_over_beta_homogenised: float = math.inf
-    rough_model: str = "transient"
+    rough_model: str = "homogenised"
     narrow_film_law_lambda: float = math.inf
     narrow_film_law_eyring: float = math.inf
     narrow_closure_lambda: float = math.inf
@@ -296,12 +293,8 @@ def plan_effects(case, lubricant, level="standard", correlation_length_m: float 
                      "is not the Hertzian one the film law takes")
                   + "; docs/narrow_contacts.md); the reference: level reference or model=deterministic"
                   if homogenised else
-                  ("deterministic mixed solver: the accuracy reference of rough contacts (the transient "
-                   "solver is measured +107..+195 % high on the rough reference case G: "
-                   "docs/accuracy_mixed.md); no thermal model"
-                   if limits.rough_model == "deterministic" else
-                   f"transient mixed solver ({a_b} < {limits.a_over_beta_homogenised:g}: too narrow for the "
-                   "homogenised model); the reference itself: model=deterministic")
+                  "deterministic mixed solver: the accuracy reference of rough contacts (docs/deterministic_solver.md);"
+                  " no thermal model"
                   if rough else "steady smooth solver"),
         "shear_thinning": (f"inlet Eyring number X_in={x_in:.3g} <= {limits.eyring_newtonian:g}: Newtonian "
                            f"flow (factor sqrt(1+X^2)-1={math.sqrt(1 + x_in ** 2) - 1:.2g})"

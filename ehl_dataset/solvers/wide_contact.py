@@ -37,7 +37,7 @@ from scipy.integrate import trapezoid
 from ..model.contact import ContactCase
 from ..model.effects import Effects
 from ..model.lubricant import LubricantState
-from ..model.roughness import RoughnessProfile, baseline_profile
+from ..model.roughness import RoughnessProfile, baseline_profile, profile_record
 from ..model.traction import eyring_shear_stress, full_film_mask
 from ..validation import InputError, check_range
 from .deterministic import MODEL_VERSION, BOUNDARY_FILM_M, DeterministicOptions, grid_spacing, solve_deterministic
@@ -154,7 +154,8 @@ def solve_wide(case: ContactCase, state: LubricantState, plan: Effects, options:
              "model_version": deterministic_version, "film_law": {"c": FILM_LAW_C, "d": FILM_LAW_D,
                                                                    "k": FILM_LAW_K,
                                                                    "offset_sigma": options.film_offset_sigma},
-             "a_over_beta": a / profile.correlation_length, "smooth_mu": smooth.mu, "smooth_h_min_m": smooth.h_min}
+             "a_over_beta": a / profile.correlation_length, "smooth_mu": smooth.mu, "smooth_h_min_m": smooth.h_min,
+             **profile_record(profile)}
     if not smooth.converged:
         return _failed(case, plan, recorded, level_name, start, lambda_bar, f"smooth start: {smooth.message}", extra)
     x_m, p_s, h_s = smooth.x, smooth.pressure, smooth.film

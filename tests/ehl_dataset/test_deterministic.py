@@ -17,7 +17,7 @@ from ehl_dataset.model.contact import ContactCase
 from ehl_dataset.model.effects import Effects
 from ehl_dataset.model.lubricant import load_lubricant
 from ehl_dataset.solver import solve_contact
-from ehl_dataset.solvers.deterministic import (MAX_STEP_RATIO, DeterministicOptions, MixedProblem,
+from ehl_dataset.solvers.deterministic import (MAX_STEP_RATIO, YIELD_PRESSURE_PA, DeterministicOptions, MixedProblem,
                                                deterministic_options, solve_deterministic, substep_sizes)
 from ehl_dataset.solvers.krylov import BandedPreconditioner, gmres
 from ehl_dataset.solvers.steady import ContactScales
@@ -412,3 +412,8 @@ def test_solve_contact_hands_the_checkpoint_to_a_resolved_deterministic_run_and_
     wide = ContactCase.from_engineering(1.0, 80, 5, 0.3, 90, 0.3, 0.3)
     with pytest.raises(InputError, match="checkpoint.*wide"):
         solve_contact(wide, "atf", "fast", "auto", model="deterministic", checkpoint=_MemoryCheckpoint())
+
+
+def test_yield_cap_is_the_hardness_of_case_hardened_steel():
+    """The plastic cap of the asperity contacts, P_Y = 6.8 GPa: 60 HRC ≈ 697 HV (ASTM E140) × 9.807 MPa per HV unit = 6.84 GPa."""
+    assert YIELD_PRESSURE_PA == pytest.approx(697 * 9.807e6, rel=0.01)

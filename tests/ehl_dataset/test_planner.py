@@ -14,7 +14,7 @@ from ehl_dataset.model.film_formulas import dowson_higginson_min_film
 from ehl_dataset.model.lubricant import load_lubricant
 from ehl_dataset.solver import solve_contact as solve
 from ehl_dataset.solvers.homogenised import HomogenisedOptions
-from ehl_dataset.solvers.planner import (THRESHOLDS, PlannerThresholds, dimensionless_numbers, plan_effects,
+from ehl_dataset.solvers.planner import (ROUGH_MODELS, THRESHOLDS, PlannerThresholds, dimensionless_numbers, plan_effects,
                                          resolve_effects)
 from ehl_dataset.validation import InputError
 
@@ -100,24 +100,23 @@ def test_wide_rough_contacts_take_the_homogenised_model_from_a_over_beta_15(leve
 
 
 def test_the_reference_level_sends_rough_contacts_to_the_deterministic_solver(monkeypatch):
-    """At ``reference`` the planner's rough model is the deterministic solver (the accuracy reference; the transient
-    solver is +107..+195 % high on the rough reference case G, docs/accuracy_mixed.md); at ``fast`` and ``standard``
-    narrow rough contacts outside the film law's measured range (here validation case C, roughness parameter α 3.6 >
-    2.5) go to the same film-law homogenised model, recorded as outside that range (the transient solver is a median
-    +84 % above the deterministic model at fast on narrow contacts below λ̄ = 1: docs/narrow_contacts.md). Forced effects (``effects="full"``) keep the
-    transient path at every level, and smooth surfaces the steady solve. The routing is checked with the solvers
-    replaced by recorders (a deterministic solve at the reference grid costs minutes)."""
+    """At ``reference`` the planner's rough model is the deterministic solver (the accuracy reference:
+    docs/deterministic_validation.md); at ``fast`` and ``standard`` narrow rough contacts outside the film law's
+    measured range (here validation case C, roughness parameter α 3.6 > 2.5) go to the same film-law homogenised
+    model, recorded as outside that range. Forced effects (``effects="full"``) on a rough contact run the package's
+    one transient rough solver, the deterministic model, at every level; smooth surfaces the steady solve. The
+    routing is checked with the solvers replaced by recorders (a deterministic solve at the reference grid costs
+    minutes)."""
     import ehl_dataset.solver as solver_module
     calls = []
 
     def recorder(name):
         def solve_stub(*args, **kwargs):
-            calls.append(name)
+            calls.append((name, args[6] if name == "deterministic" else None))
             return name
         return solve_stub
 
     monkeypatch.setattr(solver_module, "solve_deterministic_contact", recorder("deterministic"))
-    monkeypatch.setattr(solver_module, "solve_transient", recorder("transient"))
     monkeypatch.setattr(solver_module, "solve_steady", recorder("steady"))
     monkeypatch.setattr(solver_module, "solve_homogenised", recorder("homogenised"))
     narrow = case(0.5, 5, 2, 0.7, 25, 1.0, 1.0)
@@ -128,23 +127,22 @@ def test_the_reference_level_sends_rough_contacts_to_the_deterministic_solver(mo
     assert solve(narrow, ATF, "reference") == "deterministic"
     assert solve(narrow, ATF, "standard") == "homogenised"
     assert solve(narrow, ATF, "fast") == "homogenised"
-    assert solve(narrow, ATF, "reference", "full") == "transient"
-    assert solve(narrow, ATF, "standard", "full") == "transient"
+    assert solve(narrow, ATF, "standard", "full") == "deterministic"
+    assert solve(narrow, ATF, "fast", "full") == "deterministic"
     assert solve(case(rq1_um=0, rq2_um=0), ATF, "reference") == "steady"
-    assert calls == ["deterministic", "homogenised", "homogenised", "transient", "transient", "steady"]
+    assert solve(case(rq1_um=0, rq2_um=0), ATF, "fast", "full") == "steady"
+    # the deterministic grid rule is the level's: options of the level asked for
+    assert calls == [("deterministic", "reference"), ("homogenised", None), ("homogenised", None),
+                     ("deterministic", "standard"), ("deterministic", "fast"), ("steady", None), ("steady", None)]
 
 
-def test_a_level_may_keep_the_transient_solver_for_narrow_rough_contacts_and_rejects_unknown_models(monkeypatch):
-    """``rough_model="transient"`` (the behaviour before ehl-2026.11-11) still routes narrow rough contacts to the
-    transient solver (those outside the film law's measured range: validation case C) and wide ones to the film law;
-    an unknown rough model is a clear error."""
-    monkeypatch.setitem(THRESHOLDS, "fast", dataclasses.replace(THRESHOLDS["fast"], rough_model="transient"))
-    narrow = plan_effects(case(0.5, 5, 2, 0.7, 25, 1.0, 1.0), ATF, "fast")
-    wide = plan_effects(case(r_eq_mm=80), ATF, "fast")
-    assert narrow.transient and "transient mixed solver" in narrow.reasons["decisions"]["model"]
-    assert not wide.transient and "outside" not in wide.reasons["decisions"]["model"]
+def test_the_rough_model_of_a_level_is_one_of_the_two_and_an_unknown_one_is_refused():
+    """A level's rough model for narrow contacts outside the film law's range is the film-law homogenised model or
+    the deterministic solver (the transient mixed solver was deleted at ehl-2026.11-15); anything else is a clear
+    error naming the parameter."""
+    assert ROUGH_MODELS == ("homogenised", "deterministic")
     with pytest.raises(InputError, match="rough_model"):
-        PlannerThresholds(lambda_smooth=1.0, eyring_newtonian=0.0, tolerance=0.0, rough_model="fem")
+        PlannerThresholds(lambda_smooth=1.0, eyring_newtonian=0.0, tolerance=0.0, rough_model="transient")
 
 
 def test_narrow_contacts_keep_the_film_law_where_it_was_measured(monkeypatch):

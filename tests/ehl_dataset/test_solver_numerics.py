@@ -12,6 +12,7 @@ from ehl_dataset.model.lubricant import load_lubricant
 from ehl_dataset.model.materials import Material
 from ehl_dataset.solver import solve_contact
 from ehl_dataset.solvers.levels import get_level
+from ehl_dataset.solvers.newton import _fb
 
 NEWTONIAN = Effects(roughness=False, transient=False, shear_thinning=False, compressibility=True, mode="forced")
 
@@ -112,3 +113,17 @@ def test_grid_convergence_is_second_order():
     # the standard level (factor 1) is within 1 % of the Richardson extrapolation
     extrapolated = values[3] + (values[3] - values[2]) / 3.0
     assert np.all(np.abs(values[2] / extrapolated - 1.0) < 0.01)
+
+
+def test_fischer_burmeister_zero_set_and_no_cancellation():
+    """φ(a, b) = 0 ⇔ a ≥ 0, b ≥ 0, ab = 0 (Fischer 1992); with a huge b the value must still be a (the limit
+    φ → a as b → ∞), not the 0 that a + b − √(a² + b²) gives in floating point. Smoothed: φ_s = 0 ⇔ ab = s²."""
+    a = np.array([0.0, 2.0, 0.0, -1.0, 1.0, -1.37])
+    b = np.array([3.0, 0.0, 0.0, 0.0, -1.0, 1.6e20])
+    phi = _fb(a, b)[0]
+    assert phi[:3] == pytest.approx([0.0, 0.0, 0.0], abs=1e-15)
+    assert phi[3] == pytest.approx(-2.0)  # a + b − |a| with b = 0, a < 0
+    assert phi[4] == pytest.approx(-math.sqrt(2.0))
+    assert phi[5] == pytest.approx(-1.37, rel=1e-12)
+    s = 1e-3
+    assert _fb(np.array([0.5]), np.array([s * s / 0.5]), s)[0][0] == pytest.approx(0.0, abs=1e-15)
