@@ -156,8 +156,8 @@ def test_every_layer_is_mapped_and_the_graph_is_read(graph):
     # a function-local import is seen (cli_contact imports the solver inside its handler)
     assert "ehl_dataset.solver" in graph["workflows.cli_contact"]
     # relative imports are resolved, across sub-packages too
-    assert "ehl_dataset.solvers.steady" in graph["ehl_dataset.solvers.transient"]
-    assert "ehl_dataset.model.contact" in graph["ehl_dataset.solvers.transient"]
+    assert "ehl_dataset.solvers.steady" in graph["ehl_dataset.solvers.deterministic"]
+    assert "ehl_dataset.model.contact" in graph["ehl_dataset.solvers.deterministic"]
     assert "ehl_dataset.validation" in graph["ehl_dataset.dataset.runner"]
 
 

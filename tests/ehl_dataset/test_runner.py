@@ -374,7 +374,7 @@ def test_warm_up_covers_each_distinct_effect_plan_once():
     all_keys = {key(i) for i in candidates}
     assert len(all_keys) >= 2 and sorted(key(i) for i in chosen) == sorted(all_keys)
     assert all(key(i) != key(j) for i in chosen for j in chosen if i < j)
-    # each chosen point is a narrowest contact of its plan (cheapest transient grid): minimal p_h·r_eq
+    # each chosen point is a narrowest contact of its plan (cheapest rough grid): minimal p_h·r_eq
     for i in chosen:
         same = [j for j in candidates if key(j) == key(i)]
         assert points[i][0] * points[i][1] == min(points[j][0] * points[j][1] for j in same)
@@ -431,9 +431,9 @@ def budget_solve(case, lubricant, level="fast", effects="auto", time_limit_s=Non
     return result
 
 
-# p_h 0.5 GPa, r_eq 5 mm, u_r 20 m/s, SR 0.1, 75 °C, all effects (the transient solver: the planner's own rough
-# model at fast is steady): smooth surfaces are solved steady whatever the effects, Rq 0.4 µm transient rough
-# (λ̄ 0.87); the narrowest contact, so the smooth start of the rough solve takes ~20 ms.
+# p_h 0.5 GPa, r_eq 5 mm, u_r 20 m/s, SR 0.1, 75 °C, all effects (the deterministic transient solver: the
+# planner's own rough model at fast is steady): smooth surfaces are solved steady whatever the effects, Rq 0.4 µm
+# transient rough (λ̄ 0.87); the narrowest contact, so the smooth start of the rough solve is short.
 BUDGET_PLAN = {"name": "budget", "level": "fast", "effects": "full",
                "axes": {"p_h_gpa": [0.5], "r_eq_mm": [5.0], "u_r_m_s": [20.0], "sr": [0.1], "temp_c": [75.0],
                         "roughness_um": [[0.0, 0.0], [0.4, 0.4]]}}
@@ -523,7 +523,7 @@ def test_the_budget_is_not_part_of_the_solver_configuration(tmp_path, plan):
 
 
 def test_a_non_converged_message_is_stored_with_one_prefix():
-    """The transient solver's messages already start with "not converged"; the stored error text names it once."""
+    """The deterministic solver's messages already start with "not converged"; the stored error text names it once."""
     from ehl_dataset.dataset.runner import judge_record
 
     status, text = judge_record({"converged": False}, "not converged: wall-time limit of 1 s reached")

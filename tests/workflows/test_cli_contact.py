@@ -70,7 +70,7 @@ def test_bad_input_one_line_nonzero_exit(capsys, args, parameter):
     assert len(err.splitlines()) == 1 and parameter in err
 
 
-def test_time_limit_flag_reaches_the_transient_solver(capsys):
+def test_time_limit_flag_reaches_the_deterministic_transient_solver(capsys):
     """--time-limit-s: a rough case whose budget is spent is reported not converged, with the reason (exit 1)."""
     assert main(BASE + ["--rq1-um", "0.4", "--rq2-um", "0.4", "--effects", "full", "--time-limit-s", "0.001",
                         "--json"]) == 1

@@ -115,8 +115,8 @@ def test_bad_input_is_one_line_and_exit_2(tmp_path, plan_file, capsys, argv, fra
 
 
 # one steady smooth point (Rq 0.05 µm, λ̄ 7.0) and one transient rough point (Rq 0.4 µm, λ̄ 0.87), narrow contact
-# all effects: the rough point runs the transient solver, which honours the budget (the planner's own rough model at
-# fast is steady); the smooth surfaces are solved steady whatever the effects
+# all effects: the rough point runs the deterministic transient solver, which honours the budget (the planner's own
+# rough model at fast is steady); the smooth surfaces are solved steady whatever the effects
 BUDGET_PLAN = ('name = "budget"\nlevel = "fast"\neffects = "full"\n[axes]\np_h_gpa = [0.5]\nr_eq_mm = [5]\n'
                'u_r_m_s = [20]\nsr = [0.1]\ntemp_c = [75]\nroughness_um = [[0.0, 0.0], [0.4, 0.4]]\n')
 

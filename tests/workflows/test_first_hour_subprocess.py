@@ -20,7 +20,7 @@ import pytest
 from ehl_dataset.dataset.store import read_metadata
 
 REPO = Path(__file__).resolve().parents[2]
-# the main job with every effect forced: the transient solver on the 300 rough points, each stopped by the 0.5 s
+# the main job with every effect forced: the deterministic solver on the 300 rough points, each stopped by the 0.5 s
 # budget, keeps it running for minutes, so the signals below arrive mid-run (the planned main job takes about 20 s
 # with one worker since solver ehl-2026.11-11 and could finish first)
 MAIN_JOB = ["pipeline", "quick", "--workers", "1", "--effects", "full", "--time-limit-s", "0.5", "--progress", "log"]

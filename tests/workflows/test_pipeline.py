@@ -1,6 +1,5 @@
 """The end-to-end pipeline (workflows.pipeline, `gearloss pipeline`): EHL factorial → Eq. 9 fit → Design D."""
 
-import importlib.util
 import json
 import math
 import warnings
@@ -15,7 +14,6 @@ from ehl_dataset.validation import SolverError
 from workflows.cli import main
 from workflows.pipeline import DATASET_FILE, dataset_stage, design_stage, fit_stage, run_pipeline
 
-TRANSIENT_SOLVER = importlib.util.find_spec("ehl_dataset.solvers.transient") is not None
 
 # 2 × 1 × 2 × 2 × 2 × 3 = 48 points at light load (p_h ≤ 1 GPa, the cheap solves): a factorial of the paper's levels
 # found to determine both branches of Eq. 9 (10 and 14 coefficients) with full rank — 24 rows with
@@ -189,8 +187,6 @@ def test_fit_and_design_stages_on_a_stage1_file(synthetic_store, tmp_path):
 
 
 @pytest.mark.slow
-@pytest.mark.skipif(not TRANSIENT_SOLVER, reason="the transient mixed-EHL solver (ehl_dataset.solvers.transient) is not "
-                    "in the tree yet: rough points fail and the lambda <= 1 branch of Eq. 9 cannot be fitted")
 def test_pipeline_end_to_end_with_the_ehl_solver(tmp_path, capsys):
     """All three stages with the real solver through the CLI, on a 48-point factorial passed as a file: every
     artefact exists and is consistent, and Design D's efficiency is finite and in (0.9, 1)."""
