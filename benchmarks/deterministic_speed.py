@@ -1,5 +1,9 @@
-"""Benchmark (issue 14, Speed): the deterministic mixed solver against the transient solver on the same random
-factorial points, in the same run, one core.
+"""Benchmark (issue 14, Speed): the deterministic mixed solver's time per case on random factorial points, one core.
+
+The comparison with the transient mixed solver on the same points in the same run is recorded in
+``benchmarks/results/deterministic_speed_fast.json`` (EHL solver ehl-2026.11-14, commit 8019d33): that solver was
+deleted at ehl-2026.11-15 (docs/transient_solver_record.md), so this script now runs the deterministic side only
+(a new run under the current version writes its own rows; the transient rows of the recorded file are not reused).
 
     python benchmarks/deterministic_speed.py                 # the first 50 draws of the seed-1 random sample
     python benchmarks/deterministic_speed.py --n 20          # fewer; given again, it resumes and runs the rest
@@ -8,13 +12,12 @@ factorial points, in the same run, one core.
 
 The points are the first ``--n`` draws of ``bench_ehl_mixed.random_cases(200, seed=1)`` (the 200-point sweep of
 ``benchmarks/results/ehl_mixed_random200_fast_deterministic.json``). For each point, one after the other in this
-process, ``solve_contact(..., level, model="deterministic")`` and ``solve_contact(..., level, effects="full")`` (the
-transient solver) each get ``--time-limit-s``; a stopped run counts at its time (the medians are lower bounds where
+process, ``solve_contact(..., level, model="deterministic")`` gets ``--time-limit-s``; a stopped run counts at its time (the medians are lower bounds where
 runs stop). Rows are written after each solve (resumable; rows of another EHL solver or deterministic model version
 are not reused; ``--shard I/N`` runs every N-th point from the I-th into its own file, and every process skips the
 points any results file of the level already holds). Writes ``benchmarks/results/deterministic_speed_<level>.json``:
-per-point rows (wall and process CPU time, μ, converged, route), medians, means and the per-point time ratio
-deterministic/transient.
+per-point rows (wall and process CPU time, μ, converged, route), medians and means (the per-point time ratio
+deterministic/transient where a file holds both).
 """
 
 from __future__ import annotations
@@ -38,7 +41,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _common import RESULTS_DIR, machine_info, write_report  # noqa: E402
 from bench_ehl_mixed import random_cases  # noqa: E402
 
-SOLVERS = {"deterministic": {"model": "deterministic"}, "transient": {"effects": "full"}}
+SOLVERS = {"deterministic": {"model": "deterministic"}}
 
 
 def solve_row(point, solver: str, level: str, time_limit_s: float, lub) -> dict:
@@ -53,19 +56,23 @@ def solve_row(point, solver: str, level: str, time_limit_s: float, lub) -> dict:
 
 
 def summarise(rows: list[dict]) -> dict:
+    """Per solver: points, converged, time-limited, median / mean / 90th-percentile CPU time; where the rows hold the
+    transient solver's too (the recorded file), over the points both solved, with the median time ratio."""
     out: dict = {}
-    by = {s: {tuple(r["case"]): r for r in rows if r["solver"] == s} for s in SOLVERS}
-    paired = [c for c in by["deterministic"] if c in by["transient"]]
-    for s in SOLVERS:
-        t = [by[s][c]["cpu_time_s"] for c in paired]
-        out[s] = {"points": len(t), "converged": sum(by[s][c]["converged"] for c in paired),
-                  "time_limited": sum(by[s][c]["time_limited"] for c in paired),
+    names = sorted({r["solver"] for r in rows}, key=lambda s: s != "deterministic")
+    by = {s: {tuple(r["case"]): r for r in rows if r["solver"] == s} for s in names}
+    points = [c for c in by.get("deterministic", {}) if all(c in by[s] for s in names)]
+    for s in names:
+        t = [by[s][c]["cpu_time_s"] for c in points]
+        out[s] = {"points": len(t), "converged": sum(by[s][c]["converged"] for c in points),
+                  "time_limited": sum(by[s][c]["time_limited"] for c in points),
                   "median_cpu_time_s": statistics.median(t) if t else math.nan,
                   "mean_cpu_time_s": statistics.fmean(t) if t else math.nan,
                   "p90_cpu_time_s": float(np.percentile(t, 90)) if t else math.nan}
-    ratio = [by["deterministic"][c]["cpu_time_s"] / by["transient"][c]["cpu_time_s"] for c in paired]
-    out["paired_points"] = len(paired)
-    out["median_time_ratio_deterministic_over_transient"] = statistics.median(ratio) if ratio else math.nan
+    if "transient" in by:
+        ratio = [by["deterministic"][c]["cpu_time_s"] / by["transient"][c]["cpu_time_s"] for c in points]
+        out["paired_points"] = len(points)
+        out["median_time_ratio_deterministic_over_transient"] = statistics.median(ratio) if ratio else math.nan
     return out
 
 

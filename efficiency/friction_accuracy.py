@@ -31,7 +31,7 @@ class FrictionModelRow:
     """One friction model on one loaded mesh: mean power loss P [W], η [-], load-weighted mean μ over the cycle,
     ``rel_error`` (P − P_ref)/P_ref against the reference model (NaN for the reference itself or when it failed),
     ``wall_time_s`` of the loss evaluation (friction model included), EHL solves if any, and ``error`` (empty
-    unless the model raised, e.g. a rough point while the transient solver is missing)."""
+    unless the model raised)."""
 
     name: str
     description: str

@@ -8,8 +8,13 @@ level as a user runs it (``effects="auto"``: the planner's approximations are pa
 
 the wall time per case (``time.perf_counter`` around :func:`ehl_dataset.solver.solve_contact`, numba compiled before),
 and whether each solve converged. :func:`write_report` writes ``<stem>.md`` (Markdown tables) and ``<stem>.png``
-(error versus time, log axes); :func:`convergence_study` measures μ and h_min under refinement of the grid spacing
-(and, for rough transient runs, the time step and the averaging window) with the observed order of convergence.
+(error versus time, log axes); :func:`convergence_study` measures μ and h_min under refinement of the level's grid
+spacing with the observed order of convergence (steady solves; the deterministic rough model's grid convergence is
+its validation, docs/deterministic_validation.md).
+
+Rough cases solved at the ``reference`` level, or with every effect (``effects="full"``), run the deterministic
+transient model: minutes to hours per case. The accuracy of the mixed regime's models is measured against its
+twelve-case reference set by :mod:`workflows.accuracy_mixed` (``gearloss accuracy --mixed``).
 """
 
 from __future__ import annotations
@@ -79,7 +84,7 @@ class CaseRun:
     mu_error: float = math.nan
     h_min_error: float = math.nan
     mu_sem: float = math.nan
-    """Standard error of a transient run's time-averaged μ (0 for steady solves; NaN in studies made before it)."""
+    """Standard error of a rough run's time-averaged μ (0 for steady solves; NaN in studies made before it)."""
 
 
 @dataclass
@@ -248,14 +253,11 @@ def run_study(cases: Sequence[CaseSpec] = ACCURACY_CASES, levels: Sequence[str] 
 # Convergence under refinement
 # ---------------------------------------------------------------------------------------------------------------
 REFINEMENTS: dict[str, tuple[str, ...]] = {
-    "grid": ("dx_fine", "dx_coarse", "dx_rough", "dx_rough_max", "inlet_resolution"),
-    "time_step": ("courant",),
-    "window": ("n_passes",),
+    "grid": ("dx_fine", "dx_coarse", "inlet_resolution"),
 }
-"""Which :class:`~ehl_dataset.solvers.levels.AccuracyLevel` fields each refinement scales (grid and time step are divided
-by the factor; the averaging window, ``n_passes``, is multiplied by it). The caps ``max_nodes_rough`` (grid) and
-``max_steps_rough`` (every kind: the number of steps grows with each) are multiplied by the factor so that the
-refinement is not silently capped."""
+"""Which :class:`~ehl_dataset.solvers.levels.AccuracyLevel` fields each refinement divides by the factor. (The time
+step and averaging window refinements were the deleted transient solver's: docs/accuracy_convergence.md records
+them.)"""
 
 
 def refined_level(base, kind: str, factor: float):
@@ -265,15 +267,7 @@ def refined_level(base, kind: str, factor: float):
     lvl = get_level(base)
     if kind not in REFINEMENTS:
         raise InputError("refinement", kind, f"one of {sorted(REFINEMENTS)}")
-    changes = {}
-    for name in REFINEMENTS[kind]:
-        if hasattr(lvl, name):
-            value = getattr(lvl, name)
-            changes[name] = value * factor if kind == "window" else value / factor
-    if kind == "grid" and hasattr(lvl, "max_nodes_rough"):
-        changes["max_nodes_rough"] = int(math.ceil(lvl.max_nodes_rough * factor))
-    if hasattr(lvl, "max_steps_rough"):
-        changes["max_steps_rough"] = int(math.ceil(lvl.max_steps_rough * factor))
+    changes = {name: getattr(lvl, name) / factor for name in REFINEMENTS[kind]}
     return dataclasses.replace(lvl, **changes)
 
 
@@ -293,13 +287,21 @@ def convergence_study(spec: CaseSpec, kind: str = "grid", base_level: str = "sta
                       lubricant="atf", effects="auto", solve: Callable | None = None) -> dict[str, Any]:
     """μ and h_min of one case as one aspect of the level is refined by each factor (relative to ``base_level``).
 
-    Returns the table rows and the observed orders of μ and h_min from the three finest runs.
+    Returns the table rows and the observed orders of μ and h_min from the three finest runs. A plan with the
+    transient rough solve (every effect on a rough case, or the reference level's rough model) is refused: the
+    deterministic model's grid is its own rule, not the level's fields (its convergence: docs/deterministic_validation.md).
     """
     from ehl_dataset.model.lubricant import Lubricant, load_lubricant
+    from ehl_dataset.solvers.planner import resolve_effects
 
     lub = lubricant if isinstance(lubricant, Lubricant) else load_lubricant(lubricant)
     solve = solve or _default_solver()
     case = case_from_spec(spec)
+    plan = resolve_effects(effects_argument(effects), case, lub, base_level)
+    if plan.roughness and plan.transient and case.s_c > 0.0:
+        raise InputError("effects", str(effects), f"a plan without the transient rough solve for {spec[0]} at "
+                         f"{base_level} (the deterministic model's spacing is not the level's: its grid "
+                         "convergence is benchmarks/deterministic_validation.py)")
     rows = []
     for factor in factors:
         lvl = refined_level(base_level, kind, factor)
@@ -379,7 +381,7 @@ def markdown_report(study: AccuracyStudy, convergence: Sequence[dict] = (), png_
     for spec in study.cases:
         name = spec[0]
         for run in (r for r in study.runs if r.case == name):
-            plan = "rough transient" if run.roughness else "smooth steady"
+            plan = "rough" if run.roughness else "smooth steady"
             lines.append(
                 f"| {name} | {spec[1]:g} | {spec[2]:g} | {spec[3]:g} | {spec[4]:g} | {spec[5]:g} | "
                 f"{spec[6]:g}/{spec[7]:g} | {run.lambda_bar:.3g} | {run.level}"

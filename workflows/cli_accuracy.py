@@ -13,7 +13,7 @@ import sys
 DEFAULT_OUT = "gearloss_accuracy"
 """Default report directory: outside docs/, so a trial run never overwrites the shipped reports."""
 CONVERGENCE_CASES = ("gear-typical", "full-film-9")
-"""Cases of the convergence study: one the planner solves rough and transient, one smooth and steady."""
+"""Cases of the convergence study: one the planner solves rough (film law, steady), one smooth and steady."""
 
 
 def register(subparsers) -> None:
@@ -30,12 +30,13 @@ def register(subparsers) -> None:
                         help="effects of the measured levels (default auto: the planner's savings are measured; "
                              "smooth: steady smooth physics for every case)")
     parser.add_argument("--reference-effects", choices=("auto", "full", "smooth"), default="full",
-                        help="effects of the reference solves (default full)")
+                        help="effects of the reference solves (default full; rough cases then run the deterministic "
+                             "model: hours per case at the reference level; the mixed regime's accuracy is --mixed)")
     parser.add_argument("--stem", default=None,
                         help="file name stem of the report (default accuracy_levels_rough, workflows.accuracy.DEFAULT_STEM)")
     parser.add_argument("--lubricant", default="atf", metavar="NAME|FILE")
     parser.add_argument("--convergence", action="store_true",
-                        help="also refine grid, time step and averaging window on two cases (slow)")
+                        help="also refine the level's grid on two cases (steady solves)")
     parser.add_argument("--convergence-base", default="fast", metavar="LEVEL",
                         help="level refined by factors 0.5, 1, 2, 4 in the convergence study (default fast)")
     parser.add_argument("--note", action="append", default=[], metavar="TEXT",
@@ -48,8 +49,9 @@ def register(subparsers) -> None:
                              "(data/reference/deterministic_validation.json); stem accuracy_mixed")
     parser.add_argument("--models", nargs="+", default=None, metavar="MODEL",
                         help="with --mixed: models to measure (default: the steady ones, smooth-standard "
-                             "homogenised-transverse-standard homogenised-isotropic-standard; also transient-fast, "
-                             "transient-standard, deterministic-fast, deterministic-standard: minutes per case)")
+                             "homogenised-transverse-standard homogenised-isotropic-standard; also "
+                             "homogenised-film_law-standard, deterministic-fast, deterministic-standard: minutes per "
+                             "case)")
     parser.add_argument("--reference-file", default=None, metavar="FILE",
                         help="with --mixed: the reference set (default data/reference/deterministic_validation.json)")
     parser.add_argument("--json", action="store_true", help="print one JSON object")
@@ -130,11 +132,9 @@ def run_accuracy(args) -> int:
     if args.convergence:
         by_name = {spec[0]: spec for spec in accuracy.ACCURACY_CASES}
         for name in CONVERGENCE_CASES:
-            for kind in ("grid", "time_step", "window"):
+            for kind in accuracy.REFINEMENTS:
                 result = accuracy.convergence_study(by_name[name], kind, base_level=args.convergence_base,
                                                     lubricant=args.lubricant)
-                if kind != "grid" and not any(row["roughness"] for row in result["rows"]):
-                    continue  # steady smooth solve: no time step or averaging window to refine
                 convergence.append(result)
                 progress(f"convergence {name} {kind}: order mu {result['order_mu']:.2f}")
     command = (f"gearloss accuracy --levels {' '.join(levels)} --reference {args.reference} --effects {args.effects}"

@@ -10,7 +10,7 @@ def register(subparsers) -> None:
     contact_sub = parser.add_subparsers(dest="contact_command", metavar="COMMAND")
     parser.set_defaults(handler=lambda args: parser.print_help() or 2)
     solve = contact_sub.add_parser(
-        "solve", help="solve one line contact (smooth steady or transient mixed, as the effect plan says)",
+        "solve", help="solve one line contact (smooth steady, homogenised or deterministic mixed, as the effect plan says)",
         description="Solve one EHL line contact. Inputs in engineering units; --json prints SI units.")
     solve.add_argument("--p-h-gpa", type=float, required=True, help="maximum Hertz pressure [GPa]")
     solve.add_argument("--r-eq-mm", type=float, required=True, help="equivalent radius of curvature [mm]")
@@ -49,7 +49,7 @@ def register(subparsers) -> None:
                             "Hertzian zone fed by the film law when a/β > 15 and no --dx-um is given, else the whole "
                             "contact resolved), resolve, windows (docs/deterministic_solver.md, \"Wide contacts\")")
     solve.add_argument("--time-limit-s", type=float, default=None,
-                       help="wall-time budget of a transient (rough) solve [s]; when spent the result is marked "
+                       help="wall-time budget of a deterministic (rough, transient) solve [s]; when spent the result is marked "
                             "not converged (default: none)")
     solve.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
     solve.set_defaults(handler=_solve)
@@ -109,7 +109,7 @@ def _solve(args) -> int:
         "half_width_m": case.half_width,
         "lubricant": lubricant.name,
         "roughness_profile": result.extra.get("roughness_profile"),
-        "model": result.extra.get("model", "transient" if result.effects.get("roughness") else "smooth"),
+        "model": result.extra.get("model", "smooth"),
         "closure": result.extra.get("closure"),
         "route": result.extra.get("route"),
         "dx_m": result.extra.get("dx_m"),

@@ -5,6 +5,7 @@ import math
 
 import pytest
 
+from ehl_dataset.validation import InputError
 from workflows import accuracy
 from workflows.cli import main
 
@@ -39,12 +40,17 @@ def test_refined_level_scales_the_right_fields():
     base = get_level("standard")
     finer = accuracy.refined_level("standard", "grid", 2.0)
     assert finer.dx_fine == base.dx_fine / 2 and finer.dx_coarse == base.dx_coarse / 2
-    assert finer.dx_rough == base.dx_rough / 2
-    assert accuracy.refined_level("standard", "time_step", 2.0).courant == base.courant / 2
-    assert accuracy.refined_level("standard", "window", 2.0).n_passes == base.n_passes * 2
-    # the caps grow with the refinement so that it is not silently capped
-    assert finer.max_nodes_rough == 2 * base.max_nodes_rough
-    assert accuracy.refined_level("standard", "time_step", 4.0).max_steps_rough == 4 * base.max_steps_rough
+    assert finer.inlet_resolution == base.inlet_resolution / 2 and finer.tol_residual == base.tol_residual
+    with pytest.raises(InputError, match="refinement"):
+        accuracy.refined_level("standard", "time_step", 2.0)  # the deleted transient solver's
+
+
+def test_the_convergence_study_refuses_a_plan_whose_grid_the_level_does_not_set():
+    """A rough case with every effect runs the deterministic model, whose spacing is its own grid rule: refining
+    the level's fields would change nothing and report a false order, so it is refused with the parameter named."""
+    rough = next(spec for spec in accuracy.ACCURACY_CASES if spec[0] == "gear-typical")
+    with pytest.raises(InputError, match="effects.*deterministic"):
+        accuracy.convergence_study(rough, "grid", base_level="fast", effects="full")
 
 
 def test_study_against_itself_has_zero_error(tmp_path):
