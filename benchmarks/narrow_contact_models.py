@@ -291,11 +291,12 @@ def markdown(records: list[dict]) -> str:
     lines += ["", "![error of each model against the deterministic model](figures/narrow_contacts.png)", "",
               f"*Made by `{COMMAND}` (EHL solver {SOLVER_VERSION}).*", "",
               "## What the planner does with it", "",
-              "- The transient mixed solver is a median 80–106 % high below λ̄ = 1, narrow and wide: it puts about a "
+              "- The transient mixed solver was a median 80–106 % high below λ̄ = 1, narrow and wide: it puts about a "
               "third of the load on asperities where the deterministic model, with its physical film-breakdown "
-              "thickness, has almost none (docs/transient_vs_deterministic_random.md). It is no longer a production "
-              "model: since ehl-2026.11-11, `model=\"auto\"` runs it only when the effects are forced "
-              "(`effects=\"full\"`).",
+              "thickness, has almost none (docs/transient_vs_deterministic_random.md). It was no longer a production "
+              "model from ehl-2026.11-11 (`model=\"auto\"` ran it only when the effects were forced, "
+              "`effects=\"full\"`) and was deleted at ehl-2026.11-15: forced effects on a rough contact now run the "
+              "deterministic model at the level's grid rule (docs/transient_solver_record.md).",
               "- Wide contacts: the film law is within a few per cent in median (its validated range, "
               "docs/homogenised_model.md).",
               "- Narrow contacts above λ̄ = 1: the film law is within 6 %.",

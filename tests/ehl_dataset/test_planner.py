@@ -317,7 +317,7 @@ def test_roughness_skip_agrees_with_the_levels_rough_model(level, contact):
     """Where the planner skips roughness (λ̄ ≥ lambda_smooth), the level's own rough model, the film-law homogenised
     model (isothermal on both sides), gives μ within the level's tolerance of the smooth solve at the threshold itself
     (the narrow contacts are outside its validated range but still its rough model). Contacts: the calibration
-    contact of the transient comparison below, a narrow one, and the light-load, low-SR contact where the film law
+    contact of the comparison with every effect below (its wide version), a narrow one, and the light-load, low-SR contact where the film law
     departs most from smooth (+69 % at λ̄ = 1, +1.1 % at 3.5)."""
     limits = THRESHOLDS[level]
     smooth_case = case(*contact, 0, 0)
