@@ -487,7 +487,8 @@ class DatasetStore:
                              f"({self.factorial.get('name')!r}, points_sha256 {recorded_hash[:16]}...)", hint)
         if solver is not None:
             recorded, solver = {**SOLVER_DEFAULTS, **self.solver}, {**SOLVER_DEFAULTS, **solver}
-            for key in sorted(set(recorded) | set(solver)):
+            # the version first: a file of another solver version differs in more fields, and the version says why
+            for key in sorted(set(recorded) | set(solver), key=lambda k: (k != "version", k)):
                 if canonical_json(recorded.get(key)) != canonical_json(solver.get(key)):
                     raise InputError(f"solver.{key}", solver.get(key),
                                      f"{recorded.get(key)!r} as recorded in {self.path}", hint)
