@@ -487,8 +487,9 @@ class DatasetStore:
                              f"({self.factorial.get('name')!r}, points_sha256 {recorded_hash[:16]}...)", hint)
         if solver is not None:
             recorded, solver = {**SOLVER_DEFAULTS, **self.solver}, {**SOLVER_DEFAULTS, **solver}
-            # the version first: a file of another solver version differs in more fields, and the version says why
-            for key in sorted(set(recorded) | set(solver), key=lambda k: (k != "version", k)):
+            # the level definition last: it changes with the code, and the version (or the option the user
+            # changed) says why
+            for key in sorted(set(recorded) | set(solver), key=lambda k: (k == "level_definition", k)):
                 if canonical_json(recorded.get(key)) != canonical_json(solver.get(key)):
                     raise InputError(f"solver.{key}", solver.get(key),
                                      f"{recorded.get(key)!r} as recorded in {self.path}", hint)
