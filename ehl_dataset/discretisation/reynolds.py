@@ -10,9 +10,9 @@ Node i owns the control volume between the face midpoints; the flux through face
 
 with the Couette flux C_k = m_k (first-order upwind, m = ρ̄H, u_r > 0) or the linear-upwind value
 m_k + ½Δ_k/Δ_{k−1} (m_k − m_{k−1}) (second order on smooth grids). The residual of node i is
-R_i = Q_i − Q_{i−1} − w_i (m_i − m_i^old)/ΔT (w_i the control-volume width; the last term only for transient runs).
-Where the film closes (unified Reynolds, Hu & Zhu 2000) the caller sets ε = 0, leaving the pure Couette/squeeze
-balance of paper Eq. 2.
+R_i = Q_i − Q_{i−1} − w_i (m_i − m_i^old)/ΔT (w_i the control-volume width; the last term only for time steps,
+e.g. the steady solver's pseudo-transient continuation). The deterministic mixed model has its own discretisation
+(:mod:`ehl_dataset.discretisation.mixed_system`).
 
 :func:`assemble` returns R and the two banded derivative blocks ∂R/∂P and ∂R/∂H (columns i−2 … i+1), from which the
 Newton solver forms the full Jacobian ∂R/∂P + (∂R/∂H)·K with the dense deflection matrix K.
@@ -33,7 +33,7 @@ def face_flux(x, p, eps, eps_p, eps_h, m, m_p, m_h, k, order, poiseuille=1.0, ha
 
     Returns (Q_k, ∂Q/∂P_{k−1}, ∂Q/∂P_k, ∂Q/∂P_{k+1}, ∂Q/∂H_{k−1}, ∂Q/∂H_k, ∂Q/∂H_{k+1}). ``order`` scales the
     linear-upwind correction of the Couette flux (1: second order, 0: first-order upwind); ``poiseuille`` the
-    pressure-driven part (0 on faces next to an asperity contact, whose pressure is a solid contact pressure);
+    pressure-driven part (1 in every present caller);
     ``harmonic`` uses the face mean 2 ε_k ε_{k+1}/(ε_k + ε_{k+1}) instead of the arithmetic one (series
     resistances: controlled by the smaller coefficient, zero next to a node with ε = 0).
     """
@@ -72,7 +72,7 @@ def assemble(x, p, eps, eps_p, eps_h, m, m_p, m_h, squeeze, m_old, face_order, f
     Inputs per node: ``eps`` ε, ``eps_p`` ∂ε/∂P, ``eps_h`` ∂ε/∂H, ``m`` ρ̄H, ``m_p`` ∂m/∂P, ``m_h`` ∂m/∂H,
     ``squeeze`` w_i/ΔT (zeros for steady runs), ``m_old`` ρ̄H at the previous time step; per face (N − 1)
     ``face_order`` the weight of the linear-upwind correction (1 second order, 0 first order) and
-    ``face_poiseuille`` the weight of the Poiseuille term (1, or 0 next to asperity contacts); ``harmonic`` the
+    ``face_poiseuille`` the weight of the Poiseuille term (1 in every present caller); ``harmonic`` the
     face mean of ε (see :func:`face_flux`). Rows 0 and N − 1
     (the boundary nodes, P = 0) are left zero.
     """
@@ -106,67 +106,6 @@ def assemble(x, p, eps, eps_p, eps_h, m, m_p, m_h, squeeze, m_old, face_order, f
             dp[i, 2] -= squeeze[i] * m_p[i]
             dh[i, 2] -= squeeze[i] * m_h[i]
     return res, dp, dh
-
-
-@numba.njit(cache=True)
-def reroute_patch_fluxes(x, p, eps, eps_p, eps_h, m, m_p, m_h, face_order, face_poiseuille, squeeze, m_old, res,
-                         starts, ends):
-    """Carry the flux that enters each closed-film patch to the first open node behind it (mass conservation
-    through an asperity contact in 1-D).
-
-    A patch is the run of closed nodes i … j (``starts``, ``ends``); its rows are contact conditions, not
-    Reynolds rows. The open node j + 1 receives Q_{i−1}, the flux that left node i − 1 into the patch, instead of
-    Q_j, plus what the patch lost from storage during the step, Σ_k w_k (m_k^old − m_k)/ΔT (lubricant in nodes
-    that closed during the step is pushed out downstream): the mass balance of the patch as a whole holds exactly.
-    The storage term enters the residual only (its derivative, w ρ̄' H_c/ΔT, is negligible). ``res`` is corrected
-    in place. Returns the out-of-band Jacobian entries of the receiving rows as arrays
-    (row, node, ∂R/∂P, ∂R/∂H), node indices counted on the full grid.
-    """
-    n_links = starts.size
-    rows = np.zeros(6 * n_links, dtype=np.int64)
-    nodes = np.zeros(6 * n_links, dtype=np.int64)
-    vals_p = np.zeros(6 * n_links)
-    vals_h = np.zeros(6 * n_links)
-    for s in range(n_links):
-        i, j = starts[s], ends[s]
-        r = j + 1
-        q_in = face_flux(x, p, eps, eps_p, eps_h, m, m_p, m_h, i - 1, face_order[i - 1], face_poiseuille[i - 1])
-        q_out = face_flux(x, p, eps, eps_p, eps_h, m, m_p, m_h, j, face_order[j], face_poiseuille[j])
-        # row r held −Q_j; it now holds −Q_{i−1}
-        storage = 0.0
-        for k in range(i, j + 1):
-            storage += squeeze[k] * (m[k] - m_old[k])
-        res[r] += q_out[0] - q_in[0] - storage
-        for o in range(3):
-            e = 6 * s + o
-            rows[e] = r
-            nodes[e] = i - 2 + o
-            vals_p[e] = -q_in[1 + o]
-            vals_h[e] = -q_in[4 + o]
-            e = 6 * s + 3 + o
-            rows[e] = r
-            nodes[e] = j - 1 + o
-            vals_p[e] = q_out[1 + o]
-            vals_h[e] = q_out[4 + o]
-    return rows, nodes, vals_p, vals_h
-
-
-@numba.njit(cache=True)
-def add_links(jac, kmat, rows, nodes, vals_p, vals_h):
-    """Add out-of-band entries (row, node, ∂R/∂P, ∂R/∂H) to the full Jacobian of :func:`full_jacobian`."""
-    n = kmat.shape[0]
-    n_in = n - 2
-    for e in range(rows.size):
-        r = rows[e] - 1
-        j = nodes[e]
-        if j < 0 or j >= n:
-            continue
-        if vals_h[e] != 0.0:
-            for c in range(n_in):
-                jac[r, c] += vals_h[e] * kmat[j, c + 1]
-            jac[r, n_in] += vals_h[e]
-        if 1 <= j <= n - 2:
-            jac[r, j - 1] += vals_p[e]
 
 
 @numba.njit(cache=True)

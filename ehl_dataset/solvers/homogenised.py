@@ -99,7 +99,7 @@ class HomogenisedProblem(ReynoldsProblem):
         self.h_b_m = h_b_m
         self.flow_floor_m = h_b_m if flow_floor_m is None else flow_floor_m
         self.transport = transport
-        self.h_closed = 1e-300  # the mean gap may close (plastic asperities): no open-film check in Newton
+        self.film_may_close = True  # the mean gap may close (plastic asperities): no open-film check in Newton
 
     def asperity(self, h):
         """(p_a [p_h], ∂p_a/∂H) at mean gaps H."""

@@ -22,7 +22,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.linalg
 
-from ..discretisation.reynolds import add_links, assemble, full_jacobian, reroute_patch_fluxes
+from ..discretisation.reynolds import assemble, full_jacobian
 
 LOG = logging.getLogger(__name__)
 """Every Newton iteration is logged at DEBUG level (norms, step, where the pressure moved most):
@@ -40,18 +40,10 @@ class ReynoldsProblem:
     ``x`` nodes [a]; ``kmat`` dense deflection matrix [dimensionless]; ``gap`` rigid gap X²/2 minus roughness;
     ``lam`` λ̄ = 12 η0 u_r r_eq²/(a³ p_h); ``p_h`` [Pa]; ``state`` the :class:`~ehl_dataset.model.lubricant.LubricantState`;
     ``compressible``; ``shear`` S = η0 |u_s| r_eq/(τ0 a²) (0 switches the Eyring flow factor off);
-    ``second_order`` linear-upwind Couette flux; ``squeeze`` w_i/ΔT and ``m_old`` for transient steps;
-    ``h_closed`` film below which the Poiseuille term is dropped (unified Reynolds; 0 for smooth runs);
-    ``p_cap`` plastic pressure cap P_Y [p_h] (∞: off; :func:`_capped`); ``closed`` mask (N) of closed-film
-    (asperity contact) nodes, which take the dry-contact condition and carry the flux ρ̄H_c (needs ``p_cap``);
-    ``closed_film`` (N) the film whose flux closed nodes carry (None: H_closed; ``closure="upstream_film"``);
-    ``closure`` how flux crosses a closed patch: ``"patch"`` (the flux entering the patch is delivered to the
-    first open node behind it, :func:`~ehl_dataset.discretisation.reynolds.reroute_patch_fluxes`) or ``"upstream_film"`` (closed
-    nodes carry the Couette flux of ``closed_film``);
-    ``scaled_norm`` judges convergence on max |Φ| [p_h] at every node (rough runs: the flux residual relative to
-    the centre flux is not a meaningful scale where films close and reopen);
-    ``smoothing`` s [p_h] of the Fischer–Burmeister functions, a number or one per interior node (0: exact
-    complementarity; see :func:`_fb`).
+    ``second_order`` linear-upwind Couette flux; ``squeeze`` w_i/ΔT and ``m_old`` for time steps (zero: steady);
+    ``film_may_close`` lets Newton iterates pass through a closed film (the homogenised model, whose mean gap may
+    close where the asperities carry the load; else a step must keep the film open). (The closed-film, plastic-cap
+    and patch-closure fields of the transient mixed solver went with it at ehl-2026.11-15.)
     """
 
     x: np.ndarray
@@ -65,14 +57,7 @@ class ReynoldsProblem:
     second_order: bool = True
     squeeze: np.ndarray | None = None
     m_old: np.ndarray | None = None
-    h_closed: float = 0.0
-    p_cap: float = math.inf
-    closed: np.ndarray | None = None
-    scaled_norm: bool = False
-    closed_film: np.ndarray | None = None
-    closure: str = "patch"
-    contact_faces_couette: bool = False
-    smoothing: float | np.ndarray = 0.0
+    film_may_close: bool = False
     weights: np.ndarray = field(init=False, repr=False)
     rows: np.ndarray = field(init=False, repr=False)
 
@@ -85,7 +70,6 @@ class ReynoldsProblem:
         w[1:] += 0.5 * dx
         self.weights = w
         self.rows = np.arange(1, self.x.size - 1)
-        self.contact_sigma = 1.0 / np.maximum(np.diag(self.kmat)[1:-1], 1e-300)
         if self.squeeze is None:
             self.squeeze = np.zeros_like(self.x)
             self.m_old = np.zeros_like(self.x)
@@ -127,7 +111,7 @@ class ReynoldsProblem:
     def fluid(self, p: np.ndarray, h: np.ndarray, homotopy: float = 1.0):
         """ε, ∂ε/∂P, ∂ε/∂H, m = ρ̄H, ∂m/∂P, ∂m/∂H at the nodes (viscosity exponent scaled by ``homotopy``)."""
         phi, phi_p, rho, rho_p = self.rheology(p, homotopy)
-        hp = np.maximum(h, 1e-12)  # closed films (rough runs): the Poiseuille terms fade out there anyway
+        hp = np.maximum(h, 1e-12)  # a wild iterate's film
         inv_eta2 = np.exp(-2.0 * phi)
         shear2 = (self.shear / hp) ** 2
         g2 = np.maximum(inv_eta2 + shear2, 1e-300)  # (cosh(τ_m/τ0)/η̄)², Eyring flow factor over viscosity
@@ -137,66 +121,24 @@ class ReynoldsProblem:
         dlng_dh = -shear2 / (hp * g2)
         eps_p = eps * (rho_p / rho + dlng_dp)
         eps_h = eps * (3.0 / hp + dlng_dh)
-        if self.h_closed > 0.0:
-            # unified Reynolds: the Poiseuille coefficient fades out with a C¹ smoothstep between 2 h_closed and
-            # h_closed (zero below), so the residual stays continuously differentiable for Newton
-            z = np.clip(h / self.h_closed - 1.0, 0.0, 1.0)
-            fade = z * z * (3.0 - 2.0 * z)
-            fade_h = 6.0 * z * (1.0 - z) / self.h_closed
-            eps_h = eps_h * fade + eps * fade_h
-            eps = eps * fade
-            eps_p = eps_p * fade
-        if self.closed is not None:  # closed-film nodes: their Couette flux is fixed during the solve
-            h_c = self.h_closed if (self.closed_film is None or self.closure == "patch") else self.closed_film
-            h_m = np.where(self.closed, h_c, h)
-            return eps, eps_p, eps_h, rho * h_m, rho_p * h_m, np.where(self.closed, 0.0, rho)
         m = rho * h
         return eps, eps_p, eps_h, m, rho_p * h, rho
 
     def face_order(self) -> np.ndarray:
-        """Weight of the linear-upwind Couette correction per face: 1 (second order) or 0 (first order, also on
-        the faces next to closed nodes, where extrapolating ρ̄H across the contact would be meaningless)."""
-        order = np.full(self.x.size - 1, 1.0 if self.second_order else 0.0)
-        if self.closed is not None and self.second_order:
-            order[self.closed[:-1]] = 0.0
-            order[1:][self.closed[:-2]] = 0.0
-        return order
+        """Weight of the linear-upwind Couette correction per face: 1 (second order) or 0 (first order)."""
+        return np.full(self.x.size - 1, 1.0 if self.second_order else 0.0)
 
     def face_poiseuille(self) -> np.ndarray:
-        """Weight of the Poiseuille term per face: 0 on the faces of closed (asperity-contact) nodes when
-        ``contact_faces_couette`` — the pressure there is the solid contact pressure, which drives no lubricant —
-        else 1 (the unified Reynolds equation's own fade of ε applies in any case)."""
-        weight = np.ones(self.x.size - 1)
-        if self.closed is not None and self.contact_faces_couette:
-            weight[self.closed[:-1] | self.closed[1:]] = 0.0
-        return weight
-
-    def patches(self) -> tuple[np.ndarray, np.ndarray]:
-        """First and last node of every run of closed interior nodes that has open interior nodes on both sides."""
-        if self.closed is None or self.closure != "patch" or not self.closed[1:-1].any():
-            return np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int64)
-        c = self.closed.astype(np.int8).copy()
-        c[0] = c[-1] = 0
-        edges = np.diff(c)
-        starts = np.nonzero(edges == 1)[0] + 1
-        ends = np.nonzero(edges == -1)[0]
-        keep = (starts >= 2) & (ends <= self.x.size - 3)
-        return starts[keep].astype(np.int64), ends[keep].astype(np.int64)
+        """Weight of the Poiseuille term per face: 1 everywhere."""
+        return np.ones(self.x.size - 1)
 
     def residual(self, p, h, homotopy=1.0):
-        """Reynolds residual R (N), banded ∂R/∂P, ∂R/∂H, m = ρ̄H with ∂m/∂P, ∂m/∂H, and the out-of-band
-        Jacobian entries of rerouted patch fluxes (None without closed patches)."""
+        """Reynolds residual R (N), banded ∂R/∂P, ∂R/∂H, m = ρ̄H with ∂m/∂P, ∂m/∂H, and out-of-band Jacobian
+        entries (None: the discretisation is banded)."""
         eps, eps_p, eps_h, m, m_p, m_h = self.fluid(p, h, homotopy)
-        order = self.face_order()
-        poiseuille = self.face_poiseuille()
-        res, dp, dh = assemble(self.x, p, eps, eps_p, eps_h, m, m_p, m_h, self.squeeze, self.m_old, order,
-                               poiseuille)
-        starts, ends = self.patches()
-        links = None
-        if starts.size:
-            links = reroute_patch_fluxes(self.x, p, eps, eps_p, eps_h, m, m_p, m_h, order, poiseuille,
-                                         self.squeeze, self.m_old, res, starts, ends)
-        return res, dp, dh, (m, m_p, m_h), links
+        res, dp, dh = assemble(self.x, p, eps, eps_p, eps_h, m, m_p, m_h, self.squeeze, self.m_old,
+                               self.face_order(), self.face_poiseuille())
+        return res, dp, dh, (m, m_p, m_h), None
 
     def cavitation_offset(self, h):
         """(s, ∂s/∂H) per node when the cavitation condition applies to P − s(H) rather than to P (the homogenised
@@ -204,11 +146,8 @@ class ReynoldsProblem:
         return None
 
     def jacobian(self, dp, dh, links):
-        """Full Jacobian (see :func:`~ehl_dataset.discretisation.reynolds.full_jacobian`) including the rerouted patch fluxes."""
-        jac = full_jacobian(dp, dh, self.kmat, self.rows)
-        if links is not None:
-            add_links(jac, self.kmat, *links)
-        return jac
+        """Full Jacobian (see :func:`~ehl_dataset.discretisation.reynolds.full_jacobian`); ``links`` is None."""
+        return full_jacobian(dp, dh, self.kmat, self.rows)
 
 
 @dataclass
@@ -238,7 +177,7 @@ def _complementarity(problem: ReynoldsProblem, p, res, kappa):
     (P = 0) and the flow would pull the pressure below zero there. Ψ = ½|φ|² is continuously differentiable, so the
     Armijo line search on it is well defined (semi-smooth Newton; De Luca, Facchinei & Kanzow 1996).
     """
-    phi, d_a, d_b = _fb(p[1:-1], -res[1:-1] * kappa, problem.smoothing)
+    phi, d_a, d_b = _fb(p[1:-1], -res[1:-1] * kappa)
     return phi, d_a, d_b * kappa
 
 
@@ -260,55 +199,11 @@ def _fb(a, b, smoothing=0.0):
     return phi, d_a, d_b
 
 
-def _capped(problem: ReynoldsProblem, p, h, res, kappa):
-    """Cavitation and a plastic pressure cap together: the box complementarity 0 ≤ P ≤ P_Y with F = −κR.
-
-    Three node states: cavitated (P = 0, R ≤ 0), film (0 < P < P_Y, R = 0) and yielded (P = P_Y, R ≥ 0: the
-    asperities flatten plastically, the gap the elastic solids would need is lost and the equation is released).
-    Billups' nested Fischer–Burmeister form Φ = φ(P, −ψ), ψ = φ(P_Y − P, κR), is zero exactly in these states.
-    Returns Φ, ∂Φ/∂P_i (diagonal part) and the factor of κ·∂R/∂x (so that dΦ = c_p dP_i − c_r κ dR), and the
-    mask of yielded nodes.
-
-    Closed-film nodes (``problem.closed``, asperity contact decided at the start of a time step) take the
-    elastic–perfectly-plastic dry-contact condition instead of Reynolds: the same box 0 ≤ P ≤ P_Y with
-    F = σ(H − H_c), σ = 1/K_ii, i.e. H = H_c while 0 < P < P_Y, H ≥ H_c at P = 0, H ≤ H_c at P = P_Y (plastic
-    flattening). Their rows then depend on the film: the last return value c_gap gives dΦ = c_p dP + c_gap dH.
-    """
-    p_in = p[1:-1]
-    b_in = res[1:-1] * kappa
-    closed = problem.closed[1:-1] if problem.closed is not None else None
-    if closed is not None:
-        b_in = np.where(closed, -problem.contact_sigma * (h[1:-1] - problem.h_closed), b_in)
-    psi, dpsi_a, dpsi_b = _fb(problem.p_cap - p_in, b_in, problem.smoothing)
-    big_phi, d_a, d_b = _fb(p_in, -psi, problem.smoothing)
-    # dΦ = d_a dP − d_b dψ,  dψ = −dpsi_a dP + dpsi_b db;  db = κ dR (film), −σ dH (closed)
-    c_p = d_a + d_b * dpsi_a
-    c_r = d_b * dpsi_b
-    c_gap = None
-    if closed is not None:
-        c_gap = np.where(closed, c_r * problem.contact_sigma, 0.0)
-        c_r = np.where(closed, 0.0, c_r)
-    yielded = (problem.p_cap - p_in) < b_in
-    if closed is not None:
-        yielded |= closed
-    return big_phi, c_p, c_r * kappa, yielded, c_gap
-
-
-def _norms(p, res, m_ref, phi, kappa, contact=None, smoothing=0.0, scaled=False):
-    """(max |R|/m_ref on film nodes, max |φ| on the other nodes), film meaning P_i > −κ_i R_i (and not yielded
-    when the pressure cap is on; ``phi`` is then the nested function Φ). With smoothed
-    complementarity functions (s_i > 0) the node's |Φ| [p_h] counts in the second norm. With ``scaled`` both
-    norms are max |Φ| over all nodes: the Jacobi-scaled residual, the local Newton pressure correction [p_h]."""
-    if scaled:
-        r_phi = float(np.max(np.abs(phi)))
-        return r_phi, r_phi
+def _norms(p, res, m_ref, phi, kappa):
+    """(max |R|/m_ref on film nodes, max |φ| on the other nodes), film meaning P_i > −κ_i R_i."""
     a = p[1:-1]
     b = -res[1:-1] * kappa
     pressurised = (a > b) & (a >= 0.0)  # a negative pressure is judged by φ, never by R alone
-    if contact is not None:
-        pressurised &= ~contact
-    # smoothed conditions: R_i = −s²/(κ_i P_i) ≠ 0 at film nodes, so there Φ is the equation and its norm
-    pressurised &= ~(np.broadcast_to(np.asarray(smoothing), a.shape) > 0.0)
     r_free = float(np.max(np.abs(res[1:-1][pressurised]))) / m_ref if pressurised.any() else 0.0
     r_cav = float(np.max(np.abs(phi[~pressurised]))) if (~pressurised).any() else 0.0
     return r_free, r_cav
@@ -342,7 +237,7 @@ def newton_solve(problem: ReynoldsProblem, p0: np.ndarray, h00: float, *, homoto
     h0 = float(h00)
     centre = int(np.argmin(np.abs(problem.x)))
     h = problem.film(p, h0)
-    if problem.h_closed == 0.0 and np.any(h <= 0.0):
+    if not problem.film_may_close and np.any(h <= 0.0):
         return NewtonOutcome(p, h0, h, False, 0, math.inf, math.inf, math.inf, math.inf, "initial film not open")
     res, dp, dh, mm, links = problem.residual(p, h, homotopy)
     m_ref = max(abs(float(mm[0][centre])), 1e-300) if m_ref is None else float(m_ref)
@@ -360,14 +255,10 @@ def newton_solve(problem: ReynoldsProblem, p0: np.ndarray, h00: float, *, homoto
         shift = problem.cavitation_offset(h)
         p_cav = p if shift is None else p - shift[0]
         phi, d_a, d_b = _complementarity(problem, p_cav, res, kappa)
-        contact = c_gap = None
-        if math.isfinite(problem.p_cap):
-            phi, d_a, d_b, contact, c_gap = _capped(problem, p, h, res, kappa)
-        r_free, r_cav = _norms(p_cav, res, m_ref, phi, kappa, contact, problem.smoothing,
-                                problem.scaled_norm)
+        r_free, r_cav = _norms(p_cav, res, m_ref, phi, kappa)
         # the step test is waived when the equations hold 1000× below tolerance: a nearly singular Jacobian
-        # (closed-film pockets in rough runs) can keep the step from settling although the residual vanishes
-        waiver = 0.1 if problem.scaled_norm else 1e-3
+        # can keep the step from settling although the residual vanishes
+        waiver = 1e-3
         if (r_free <= tol_residual and r_cav <= tol_residual and abs(load_err) <= tol_load
                 and (step_norm <= tol_step or max(r_free, r_cav) <= waiver * tol_residual)):
             return NewtonOutcome(p, h0, h, True, iteration - 1, r_free, load_err, step_norm, r_cav, "converged")
@@ -384,10 +275,6 @@ def newton_solve(problem: ReynoldsProblem, p0: np.ndarray, h00: float, *, homoto
         # dφ/dx = d_a e_i − d_b J_i  (b = −κ R)
         system = -jac * d_b[:, None]
         system[np.arange(n - 2), np.arange(n - 2)] += d_a
-        if c_gap is not None and np.any(c_gap != 0.0):  # closed nodes: dH_i = K_i· dP + dH0
-            rows = np.nonzero(c_gap)[0]
-            system[rows, :-1] += c_gap[rows, None] * problem.kmat[rows + 1, 1:-1]
-            system[rows, -1] += c_gap[rows]
         if shift is not None:  # a = P_i − s(H_i): dH_i = K_i· dP + dH0
             coupling = d_a * shift[1][1:-1]
             system[:, :-1] -= coupling[:, None] * problem.kmat[1:-1, 1:-1]
@@ -412,7 +299,7 @@ def newton_solve(problem: ReynoldsProblem, p0: np.ndarray, h00: float, *, homoto
             p_new = p + omega * d_p
             h0_new = h0 + omega * d_h0
             h_new = problem.film(p_new, h0_new)
-            if problem.h_closed > 0.0 or np.all(h_new > 0.0):
+            if problem.film_may_close or np.all(h_new > 0.0):
                 res_new, dp_new, dh_new, m_new, links_new = problem.residual(p_new, h_new, homotopy)
                 if pseudo_dt > 0.0 and np.all(np.isfinite(res_new)):
                     accepted = True
@@ -421,8 +308,6 @@ def newton_solve(problem: ReynoldsProblem, p0: np.ndarray, h00: float, *, homoto
                     shift_new = problem.cavitation_offset(h_new)
                     phi_new = _complementarity(problem, p_new if shift_new is None else p_new - shift_new[0],
                                                res_new, kappa)[0]
-                    if math.isfinite(problem.p_cap):
-                        phi_new = _capped(problem, p_new, h_new, res_new, kappa)[0]
                     merit1 = float(phi_new @ phi_new) + problem.load(p_new) ** 2
                     if merit1 <= (1.0 - 1e-4 * omega) * merit0 or (not monotone and omega < 0.3):
                         accepted = True
@@ -441,9 +326,5 @@ def newton_solve(problem: ReynoldsProblem, p0: np.ndarray, h00: float, *, homoto
     shift = problem.cavitation_offset(h)
     p_cav = p if shift is None else p - shift[0]
     phi = _complementarity(problem, p_cav, res, kappa)[0]
-    contact = None
-    if math.isfinite(problem.p_cap):
-        phi, _, _, contact, _ = _capped(problem, p, h, res, kappa)
-    r_free, r_cav = _norms(p_cav, res, m_ref, phi, kappa, contact, problem.smoothing,
-                                problem.scaled_norm)
+    r_free, r_cav = _norms(p_cav, res, m_ref, phi, kappa)
     return NewtonOutcome(p, h0, h, False, max_iterations, r_free, problem.load(p), step_norm, r_cav, message)
