@@ -2,7 +2,7 @@
 
 Every script: the machine description (:func:`machine_info`; a script adds its own extras such as load averages or
 library versions), the median wall time of repeated calls (:func:`median_time`, :func:`repeat_times`) and printing /
-writing its JSON (:func:`emit_json`). The transient mixed EHL benchmark (bench_ehl_mixed.py) also: per-case
+writing its JSON (:func:`emit_json`). The mixed EHL benchmark (bench_ehl_mixed.py) also: per-case
 result rows → timing summary, shard merging and writing the JSON report.
 """
 

@@ -1,5 +1,5 @@
-"""Benchmark: the dense linear solve that every Newton iteration of the transient mixed solver performs, and the
-floor it puts under the time per rough case.
+"""Benchmark: the dense linear solve of every Newton iteration of the steady solver (and of the transient mixed
+solver deleted at ehl-2026.11-15, whose rough-case floor ``--floor-from`` computes from its recorded reports).
 
     python benchmarks/bench_dense_lu.py [--sizes 150 300 500 750 1000] [--repeats 7]
         [--floor-from benchmarks/results/ehl_mixed_random20_standard.json ...] [--out FILE]
@@ -9,7 +9,7 @@ The full-system Newton of ``ehl_dataset.solvers.newton`` solves one dense (N −
 Measured here on random diagonally dominant matrices with one BLAS thread (the solver's own setting): the median
 time per solve for each N, and the power law t = c·N^k fitted to them.
 
-``--floor-from`` reads transient benchmark reports (bench_ehl_mixed.py) and computes for each row the *floor*
+``--floor-from`` reads the transient solver's recorded benchmark reports (bench_ehl_mixed.py, before ehl-2026.11-15) and computes for each row the *floor*
 n_steps × t(n_nodes) (n_steps: the steps run, at least the planned base run for a budget-stopped row): the time
 a run of that many time steps on that grid would take if every step needed a single Newton iteration (one LU) and
 nothing else cost anything. The measured per-row cost record (Newton iterations per
