@@ -800,6 +800,12 @@ class _Record:
         self.substep_steps += substeps > 1
 
 
+def _window_mean(values) -> float:
+    """Mean of an averaging window's values; NaN (without numpy's empty-slice warning) for a run stopped before its
+    window began (a wall-time budget spent in the start-up)."""
+    return float(np.mean(values)) if len(values) else math.nan
+
+
 def _result(case, state, plan, level_name, options, problem, scales, z, h, record, start, clock, converged, message,
             rule, dx_m, first_average, mu_mean, time_limited=False) -> ContactResult:
     _, lambda_bar = dowson_higginson_lambda(case, state)
@@ -807,16 +813,16 @@ def _result(case, state, plan, level_name, options, problem, scales, z, h, recor
     x_m = problem.x * scales.a
     if record.mu:
         window = slice(first_average, None)
-        mu = mu_mean.mean if mu_mean is not None else float(np.mean(record.mu[window]))
+        mu = mu_mean.mean if mu_mean is not None else _window_mean(record.mu[window])
         sem = mu_mean.standard_error if mu_mean is not None else math.nan
-        share = float(np.mean(record.share[window]))
+        share = _window_mean(record.share[window])
         share_sem = time_mean(record.share[window]).standard_error if len(record.share[window]) > 1 else math.nan
         mean_film = record.film_sum / record.film_count if record.film_count else h * scales.film_scale
         h_min = float(np.min(mean_film))
         h_c = float(np.interp(0.0, problem.x, mean_film))
-        local_min = float(np.mean(record.h_min[window]))
-        mu_std = float(np.std(record.mu[window]))
-        yielded = float(np.mean(record.yielded[window]))
+        local_min = _window_mean(record.h_min[window])
+        mu_std = float(np.std(record.mu[window])) if len(record.mu[window]) else math.nan
+        yielded = _window_mean(record.yielded[window])
     else:
         mu = record.smooth["mu"]
         sem = share = mu_std = yielded = 0.0

@@ -325,6 +325,25 @@ def test_a_run_stopped_by_its_wall_time_budget_says_so():
     assert _short_rough_run().extra["time_limited"] is False
 
 
+def test_a_run_stopped_before_its_averaging_window_gives_nan_without_warnings():
+    """A budget spent in the start-up (steps run, none of them averaged: a clock that ticks 1 s per reading stops it
+    after 20 steps of at least 143, averaging from step 107) gives μ NaN, marked not converged, and no numpy
+    empty-slice warnings."""
+    import itertools
+    import warnings
+
+    case = ContactCase.from_engineering(0.5, 5, 5, 0.3, 90, 0.3, 0.3)
+    ticks = itertools.count()
+    options = DeterministicOptions(dx_m=2e-6, ramp_passes=0.2, startup_passes=0.1, min_average_passes=0.1,
+                                   max_passes=0.6, clock=lambda: float(next(ticks)))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        stopped = solve_deterministic(case, ATF.state(case.temperature), Effects.full(), options, time_limit_s=20)
+    assert not stopped.converged and stopped.extra["time_limited"] is True
+    assert 0 < stopped.extra["n_steps"] < stopped.extra["average_from_step"]
+    assert math.isnan(stopped.mu) and math.isnan(stopped.asperity_load_share)
+
+
 class _Killed(Exception):
     pass
 
