@@ -49,7 +49,7 @@ import json
 import math
 import os
 import time
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
@@ -507,6 +507,52 @@ def _resample_periodic(y: np.ndarray, n_new: int) -> np.ndarray:
     return sfft.irfft(out, n=n_new, axis=-1) * (n_new / n)
 
 
+MIN_WINDOW_CORRELATION_LENGTHS = 64.0
+"""Shortest window [correlation lengths] :func:`windows_that_fit` shortens to for a short measured trace."""
+
+
+def _window_layout(profile: RoughnessProfile, settings: DryContactSettings) -> tuple[int, int, int]:
+    """(nodes of a window, profile samples of a window, profile samples of its blend) of :func:`composite_windows`."""
+    beta = profile.correlation_length
+    spacing_target = beta / settings.points_per_correlation_length
+    n_nodes = sfft.next_fast_len(int(math.ceil(settings.window_correlation_lengths
+                                               * settings.points_per_correlation_length - 1e-6)), real=True)
+    n_nodes += n_nodes % 2
+    n_window = int(round(n_nodes * spacing_target / profile.spacing))
+    n_blend = int(math.ceil(settings.blend_correlation_lengths * beta / profile.spacing))
+    return n_nodes, n_window, n_blend
+
+
+def _samples_needed(profile: RoughnessProfile, settings: DryContactSettings) -> int:
+    """Samples of ``profile`` that :func:`composite_windows` reads with ``settings``."""
+    _, n_window, n_blend = _window_layout(profile, settings)
+    return 2 * settings.n_windows * (n_window + n_blend)
+
+
+def windows_that_fit(profile: RoughnessProfile, settings: DryContactSettings | None = None) -> DryContactSettings:
+    """``settings`` (default :class:`DryContactSettings`) if ``profile`` is long enough for them; else the most
+    windows (down to 1) of the same length that fit, and then, with one window, the longest window (down to
+    :data:`MIN_WINDOW_CORRELATION_LENGTHS` correlation lengths, in halvings) that fits: a measured trace of a few
+    millimetres (a few hundred correlation lengths) still gives the composite height and slope statistics of the
+    film-law model, from less data. InputError naming the length needed when not even that fits."""
+    settings = settings or DryContactSettings()
+    if not (math.isfinite(profile.correlation_length) and profile.correlation_length > 0):
+        return settings  # composite_windows names the problem
+    candidate = settings
+    while _samples_needed(profile, candidate) > profile.z.size:
+        if candidate.n_windows > 1:
+            candidate = replace(candidate, n_windows=candidate.n_windows - 1)
+        elif candidate.window_correlation_lengths / 2 >= MIN_WINDOW_CORRELATION_LENGTHS:
+            candidate = replace(candidate, window_correlation_lengths=candidate.window_correlation_lengths / 2)
+        else:
+            shortest = replace(candidate, window_correlation_lengths=MIN_WINDOW_CORRELATION_LENGTHS)
+            raise InputError("roughness profile", profile.source or "<profile>",
+                             f"at least {_samples_needed(profile, shortest)} samples (two stretches of "
+                             f"{MIN_WINDOW_CORRELATION_LENGTHS:g} correlation lengths of "
+                             f"{profile.correlation_length * 1e6:.3g} µm)", f"it has {profile.z.size}")
+    return candidate
+
+
 def composite_windows(profile: RoughnessProfile, rq1: float, rq2: float,
                       settings: DryContactSettings | None = None) -> tuple[np.ndarray, float]:
     """The composite roughness z = R1 + R2 [m] of ``settings.n_windows`` independent periodic windows, shape
@@ -527,19 +573,15 @@ def composite_windows(profile: RoughnessProfile, rq1: float, rq2: float,
     rq0 = profile.rq
     if not (math.isfinite(beta) and beta > 0 and rq0 > 0):
         raise InputError("roughness profile", profile.source, "a rough profile with a finite correlation length")
-    spacing_target = beta / settings.points_per_correlation_length
-    n_nodes = sfft.next_fast_len(int(math.ceil(settings.window_correlation_lengths
-                                               * settings.points_per_correlation_length - 1e-6)), real=True)
-    n_nodes += n_nodes % 2
-    n_window = int(round(n_nodes * spacing_target / profile.spacing))
-    n_blend = int(math.ceil(settings.blend_correlation_lengths * beta / profile.spacing))
+    n_nodes, n_window, n_blend = _window_layout(profile, settings)
     stretch = n_window + n_blend
     needed = 2 * settings.n_windows * stretch
     if needed > profile.z.size:
         raise InputError("roughness profile", profile.source or "<profile>",
                          f"at least {needed} samples for {settings.n_windows} windows of "
                          f"{settings.window_correlation_lengths:g} correlation lengths",
-                         f"it has {profile.z.size}; lower n_windows or window_correlation_lengths")
+                         f"it has {profile.z.size}; lower n_windows or window_correlation_lengths "
+                         "(windows_that_fit finds the settings a profile allows)")
     length = n_window * profile.spacing
     rows = []
     for w in range(settings.n_windows):

@@ -23,7 +23,7 @@ from __future__ import annotations
 import numpy as np
 from scipy import stats
 
-from .dry_contact import composite_windows, profile_hash
+from .dry_contact import composite_windows, profile_hash, windows_that_fit
 from .roughness import RoughnessProfile
 
 MICRO_PRESSURE_C0 = 0.305
@@ -65,7 +65,7 @@ def composite_slope_rms(profile: RoughnessProfile, rq1: float, rq2: float) -> fl
     by the exact derivative of their Fourier series (cached per profile and Rq pair)."""
     key = (profile_hash(profile), float(rq1), float(rq2))
     if key not in _SLOPE_CACHE:
-        z, spacing = composite_windows(profile, rq1, rq2)
+        z, spacing = composite_windows(profile, rq1, rq2, windows_that_fit(profile))
         k = 2.0 * np.pi * np.fft.rfftfreq(z.shape[1], spacing)
         slope = np.fft.irfft(1j * k * np.fft.rfft(z, axis=1), n=z.shape[1], axis=1)
         _SLOPE_CACHE[key] = float(np.sqrt(np.mean(slope ** 2)))

@@ -48,7 +48,7 @@ import time
 import numpy as np
 
 from ..model.contact import ContactCase
-from ..model.dry_contact import composite_windows, profile_hash
+from ..model.dry_contact import composite_windows, profile_hash, windows_that_fit
 from ..model.effects import Effects
 from ..model.lubricant import LubricantState
 from ..model.micro_pressure import (composite_slope_rms, flattening_pressure_rms, gamma_pressure_quantiles,
@@ -79,7 +79,7 @@ def composite_height_quantiles(profile: RoughnessProfile, rq1: float, rq2: float
     levels (i + ½)/count, pooled over the dry-contact tables' windows (cached per profile and Rq pair)."""
     key = (profile_hash(profile), float(rq1), float(rq2), int(count))
     if key not in _QUANTILE_CACHE:
-        z, _ = composite_windows(profile, rq1, rq2)
+        z, _ = composite_windows(profile, rq1, rq2, windows_that_fit(profile))
         _QUANTILE_CACHE[key] = np.quantile(z.ravel(), (np.arange(count) + 0.5) / count)
     return _QUANTILE_CACHE[key]
 
@@ -226,5 +226,7 @@ def solve_film_law(case: ContactCase, state: LubricantState, lvl: AccuracyLevel,
                "smooth_h_min_m": smooth.h_min, "boundary_film_m": boundary_film_m, "zone_edge": edge,
                "micro_pressure": {"coefficient": coefficient, "slope_rms": slope_rms, "std_pa": pressure_std},
                "floored_gap_fraction_max": float(np.mean(film[:, None] + heights[None, :] < boundary_film_m,
-                                                          axis=1).max()), **profile_record(profile)},
+                                                          axis=1).max()), **profile_record(profile),
+               "roughness_windows": {key: getattr(windows_that_fit(profile), key)
+                                     for key in ("n_windows", "window_correlation_lengths")}},
     )

@@ -49,7 +49,7 @@ def test_a_measured_profile_file_reaches_the_solver_and_is_recorded(tmp_path, ca
     µm text file with a tilt that the loader must remove, changes the result and is named in it; the CLI gives the
     same μ as the library call (the production route: the film-law model, whose planner reads the correlation
     length)."""
-    other = generate_profile(90_000, 0.5e-6, 5e-6, 0.5e-6, seed=7)  # long enough for the film law's 8 windows of 512 β
+    other = generate_profile(8192, 0.5e-6, 5e-6, 0.5e-6, seed=7)  # a 4 mm trace: 820 β
     tilted = other.z + 2e-3 * np.arange(other.z.size) * other.spacing  # a form error of 2 µm per mm
     path = tmp_path / "my_trace.txt"
     _write(path, type(other)(tilted, other.spacing, "tilted"))
@@ -63,6 +63,8 @@ def test_a_measured_profile_file_reaches_the_solver_and_is_recorded(tmp_path, ca
     assert res.mu != base.mu
     production = solve_contact(CASE, LUB, "fast", "auto", roughness=profile)
     assert production.converged and production.effects["roughness"]
+    # too short for the default 8 windows of 512 β: one window of 256 β (dry_contact.windows_that_fit)
+    assert production.extra["roughness_windows"] == {"n_windows": 1, "window_correlation_lengths": 256.0}
     assert production.mu != solve_contact(CASE, LUB, "fast", "auto").mu
     code = main(["contact", "solve", "--p-h-gpa", "1", "--r-eq-mm", "5", "--u-r", "5", "--sr", "0.5", "--temp-c",
                  "25", "--rq1-um", "0.3", "--rq2-um", "0.3", "--level", "fast", "--roughness-file", str(path),
@@ -75,3 +77,18 @@ def test_a_measured_profile_file_reaches_the_solver_and_is_recorded(tmp_path, ca
 def test_a_roughness_that_is_not_a_profile_is_refused():
     with pytest.raises(InputError, match="roughness"):
         solve_contact(CASE, LUB, "fast", Effects.full(), roughness=np.zeros(10))
+
+
+def test_the_film_law_takes_what_a_short_trace_allows_and_names_the_length_it_needs():
+    """``windows_that_fit``: the default windows (8 of 512 β) for a long profile (the shipped baseline, unchanged
+    results); fewer, then shorter windows for a short measured trace; below two stretches of 64 β one clear error
+    naming the samples needed and those given."""
+    from ehl_dataset.model.dry_contact import DryContactSettings, windows_that_fit
+
+    assert windows_that_fit(baseline_profile()) == DryContactSettings()
+    two_windows = generate_profile(2 * 2 * 520 * 10 + 10, 0.5e-6, 5e-6, 0.5e-6, seed=3)  # 10 samples per β
+    fitted = windows_that_fit(two_windows)
+    assert fitted.n_windows in (1, 2) and fitted.window_correlation_lengths == 512.0
+    tiny = generate_profile(1000, 0.5e-6, 5e-6, 0.5e-6, seed=3)  # 100 β
+    with pytest.raises(InputError, match="roughness profile.*samples.*it has 1000"):
+        windows_that_fit(tiny)
