@@ -41,7 +41,7 @@ from .film_law_model import solve_film_law
 from .levels import AccuracyLevel
 from .newton import ReynoldsProblem, newton_solve
 from .result import ContactResult
-from .steady import ContactScales, dowson_higginson_lambda, moes_h_c, solve_steady, solve_steady_problem, steady_grid
+from .steady import ContactScales, dowson_higginson_lambda, solve_steady, solve_steady_problem
 
 CLOSURES = ("transverse", "isotropic", "film_law")
 """Closures: the flow factors ``transverse`` (1-D roughness as in the paper's model, no side leakage) and
@@ -150,7 +150,7 @@ class HomogenisedProblem(ReynoldsProblem):
             j = nodes + o - 2
             valid = (j >= 0) & (j < n)
             dh[valid, o] -= dp[valid, o] * p_a_h[j[valid]]
-        return res, dp, dh, (m, m_p, m_h - m_p * p_a_h), None
+        return res, dp, dh, (m, m_p, m_h - m_p * p_a_h)
 
 
 def solve_homogenised(case: ContactCase, state: LubricantState, lvl: AccuracyLevel, plan: Effects,

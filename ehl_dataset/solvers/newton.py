@@ -133,20 +133,19 @@ class ReynoldsProblem:
         return np.ones(self.x.size - 1)
 
     def residual(self, p, h, homotopy=1.0):
-        """Reynolds residual R (N), banded ∂R/∂P, ∂R/∂H, m = ρ̄H with ∂m/∂P, ∂m/∂H, and out-of-band Jacobian
-        entries (None: the discretisation is banded)."""
+        """Reynolds residual R (N), banded ∂R/∂P, ∂R/∂H, and m = ρ̄H with ∂m/∂P, ∂m/∂H."""
         eps, eps_p, eps_h, m, m_p, m_h = self.fluid(p, h, homotopy)
         res, dp, dh = assemble(self.x, p, eps, eps_p, eps_h, m, m_p, m_h, self.squeeze, self.m_old,
                                self.face_order(), self.face_poiseuille())
-        return res, dp, dh, (m, m_p, m_h), None
+        return res, dp, dh, (m, m_p, m_h)
 
     def cavitation_offset(self, h):
         """(s, ∂s/∂H) per node when the cavitation condition applies to P − s(H) rather than to P (the homogenised
         model, whose unknown is the total pressure and whose fluid pressure is P − p_a(H)); None here."""
         return None
 
-    def jacobian(self, dp, dh, links):
-        """Full Jacobian (see :func:`~ehl_dataset.discretisation.reynolds.full_jacobian`); ``links`` is None."""
+    def jacobian(self, dp, dh):
+        """Full Jacobian (see :func:`~ehl_dataset.discretisation.reynolds.full_jacobian`)."""
         return full_jacobian(dp, dh, self.kmat, self.rows)
 
 
@@ -239,7 +238,7 @@ def newton_solve(problem: ReynoldsProblem, p0: np.ndarray, h00: float, *, homoto
     h = problem.film(p, h0)
     if not problem.film_may_close and np.any(h <= 0.0):
         return NewtonOutcome(p, h0, h, False, 0, math.inf, math.inf, math.inf, math.inf, "initial film not open")
-    res, dp, dh, mm, links = problem.residual(p, h, homotopy)
+    res, dp, dh, mm = problem.residual(p, h, homotopy)
     m_ref = max(abs(float(mm[0][centre])), 1e-300) if m_ref is None else float(m_ref)
     r_start = None
     step_norm = math.inf
@@ -248,7 +247,7 @@ def newton_solve(problem: ReynoldsProblem, p0: np.ndarray, h00: float, *, homoto
     load_row[:-1] = problem.weights[1:-1] / (0.5 * math.pi)
     for iteration in range(1, max_iterations + 1):
         load_err = problem.load(p)
-        jac = problem.jacobian(dp, dh, links)
+        jac = problem.jacobian(dp, dh)
         if iteration == 1 or not freeze_scaling:
             diag = np.abs(jac[np.arange(n - 2), np.arange(n - 2)])
             kappa = 1.0 / np.maximum(diag, 1e-12 * max(float(diag.max()), 1e-300))
@@ -271,7 +270,7 @@ def newton_solve(problem: ReynoldsProblem, p0: np.ndarray, h00: float, *, homoto
             dh = dh.copy()
             dp[:, 2] -= sq * mm[1]
             dh[:, 2] -= sq * mm[2]
-            jac = problem.jacobian(dp, dh, links)
+            jac = problem.jacobian(dp, dh)
         # dφ/dx = d_a e_i − d_b J_i  (b = −κ R)
         system = -jac * d_b[:, None]
         system[np.arange(n - 2), np.arange(n - 2)] += d_a
@@ -300,7 +299,7 @@ def newton_solve(problem: ReynoldsProblem, p0: np.ndarray, h00: float, *, homoto
             h0_new = h0 + omega * d_h0
             h_new = problem.film(p_new, h0_new)
             if problem.film_may_close or np.all(h_new > 0.0):
-                res_new, dp_new, dh_new, m_new, links_new = problem.residual(p_new, h_new, homotopy)
+                res_new, dp_new, dh_new, m_new = problem.residual(p_new, h_new, homotopy)
                 if pseudo_dt > 0.0 and np.all(np.isfinite(res_new)):
                     accepted = True
                     break
@@ -322,7 +321,7 @@ def newton_solve(problem: ReynoldsProblem, p0: np.ndarray, h00: float, *, homoto
             LOG.debug("it %d: r %.2e %.2e merit %.3e omega %.3g step %.3e load %.1e at x=%.4f p=%.4g->%.4g h=%.3e "
                       "phi_max_at=%.4f", iteration, r_free, r_cav, merit0, omega, step_norm, load_err, problem.x[j],
                       p[j], p_new[j], h[j], problem.x[1 + int(np.argmax(np.abs(phi)))])
-        p, h0, h, res, dp, dh, mm, links = p_new, h0_new, h_new, res_new, dp_new, dh_new, m_new, links_new
+        p, h0, h, res, dp, dh, mm = p_new, h0_new, h_new, res_new, dp_new, dh_new, m_new
     shift = problem.cavitation_offset(h)
     p_cav = p if shift is None else p - shift[0]
     phi = _complementarity(problem, p_cav, res, kappa)[0]

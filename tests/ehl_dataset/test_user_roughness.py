@@ -83,12 +83,17 @@ def test_the_film_law_takes_what_a_short_trace_allows_and_names_the_length_it_ne
     """``windows_that_fit``: the default windows (8 of 512 β) for a long profile (the shipped baseline, unchanged
     results); fewer, then shorter windows for a short measured trace; below two stretches of 64 β one clear error
     naming the samples needed and those given."""
-    from ehl_dataset.model.dry_contact import DryContactSettings, windows_that_fit
+    from dataclasses import replace
+
+    from ehl_dataset.model.dry_contact import DryContactSettings, _samples_needed, windows_that_fit
 
     assert windows_that_fit(baseline_profile()) == DryContactSettings()
-    two_windows = generate_profile(2 * 2 * 520 * 10 + 10, 0.5e-6, 5e-6, 0.5e-6, seed=3)  # 10 samples per β
-    fitted = windows_that_fit(two_windows)
-    assert fitted.n_windows in (1, 2) and fitted.window_correlation_lengths == 512.0
+    short = generate_profile(2 * 2 * 520 * 10 + 10, 0.5e-6, 5e-6, 0.5e-6, seed=3)  # about two windows of 512 β
+    fitted = windows_that_fit(short)
+    assert fitted.window_correlation_lengths == 512.0 and 1 <= fitted.n_windows < 8
+    # the most windows that fit: these fit, one more does not
+    assert _samples_needed(short, fitted) <= short.z.size
+    assert _samples_needed(short, replace(fitted, n_windows=fitted.n_windows + 1)) > short.z.size
     tiny = generate_profile(1000, 0.5e-6, 5e-6, 0.5e-6, seed=3)  # 100 β
     with pytest.raises(InputError, match="roughness profile.*samples.*it has 1000"):
         windows_that_fit(tiny)
