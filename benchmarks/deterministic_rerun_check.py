@@ -18,8 +18,8 @@ import time
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from deterministic_validation import (CASES, LAYOUT_PASSES, LUBRICANT, RUNS, options_for, run_path,  # noqa: E402
-                                      run_case_specs, spacings)
+from deterministic_validation import (CASES, LUBRICANT, RUNS, layout_passes, long_max_passes,  # noqa: E402
+                                      options_for, run_case_specs, run_path, spacings)
 
 from ehl_dataset.model.contact import ContactCase  # noqa: E402
 from ehl_dataset.model.effects import Effects  # noqa: E402
@@ -31,13 +31,15 @@ OUT = RUNS.parent / f"deterministic_rerun_check_{MODEL_VERSION}.json"
 
 def rerun(name: str, n: int) -> dict:
     record = json.loads(run_path(name, n).read_text())
-    if record.get("layout_passes") != LAYOUT_PASSES:
-        raise SystemExit(f"{name} beta/{n}: recorded without layout_passes={LAYOUT_PASSES:g}: another roughness, "
-                         f"not comparable")
+    if record.get("layout_passes") != layout_passes(name):
+        raise SystemExit(f"{name} beta/{n}: recorded without layout_passes={layout_passes(name):g}: another "
+                         f"roughness, not comparable")
     case = ContactCase.from_engineering(*CASES[name])
     state = load_lubricant(LUBRICANT).state(case.temperature)
     start = time.perf_counter()
-    result = solve_deterministic(case, state, Effects.full(), options_for(n, n == spacings(name)[1]))
+    result = solve_deterministic(case, state, Effects.full(), options_for(n, n == spacings(name)[1],
+                                                                                 long_max_passes(name),
+                                                                                 layout_passes(name)))
     return {"run": f"{name} beta/{n}", "recorded_version": record["solver_version"], "version": MODEL_VERSION,
             "mu_recorded": record["mu"], "mu": result.mu, "mu_relative_change": result.mu / record["mu"] - 1.0,
             "share_recorded": record["asperity_load_share"], "share": result.asperity_load_share,
