@@ -58,7 +58,7 @@ def store_overhead(tmp: Path, repeats: int) -> dict:
     record = ContactResult(mu=0.05, h_min=1e-7, h_central=1.2e-7, p_max=1e9, converged=True, iterations=12,
                            wall_time=0.3, level="fast", effects=json.loads(_PLANNER_LIKE_EFFECTS),
                            lambda_bar=1.0).to_record()
-    per_point, flush_per_point = [], []
+    per_point = []
     for r in range(repeats):
         path = tmp / f"overhead_{r}.h5"
         store = DatasetStore.create(path, points, factorial=plan.to_dict(), solver={"function": "bench"},

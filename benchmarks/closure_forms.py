@@ -17,7 +17,6 @@ from __future__ import annotations
 import itertools
 import json
 import platform
-import sys
 from pathlib import Path
 
 import numpy as np

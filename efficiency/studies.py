@@ -39,7 +39,7 @@ import pandas as pd
 
 from ehl_dataset.validation import InputError, SolverError, check_range
 
-from .feasibility import DesignSpace, FeasibilityLimits, feasibility_masks, thickness_allowance
+from .feasibility import DesignSpace, FeasibilityLimits, feasibility_masks
 from .geometry import GearPair
 from .mesh_cycle import MeshOptions, evaluate_mesh
 from .modifications import Modifications

@@ -20,8 +20,6 @@ from __future__ import annotations
 import argparse
 import math
 
-from .cli_output import emit
-
 
 def register(gear_subparsers) -> None:
     parser = gear_subparsers.add_parser(
@@ -254,8 +252,6 @@ def _friction_inputs(args) -> tuple[float, float, float]:
 def _power_loss(mesh, args) -> dict:
     """Mean and instantaneous friction power loss (Li & Kahraman 2009, Eq. 10-11) with the chosen model."""
     import warnings
-
-    import numpy as np
 
     from efficiency.friction import friction_from_spec
     from efficiency.friction_accuracy import load_weighted_mu, pitch_region_share

@@ -431,7 +431,7 @@ class MixedProblem:
                     largest = max(float(np.max(np.abs(step[0:-1:3]))), float(np.max(np.abs(step[2:-1:3]))), 1e-300)
                     omega = min(1.0, max_pressure_step / largest)
                 trial = z + omega * step
-                res_t, h_t, jac_t, dfilm_t = self.evaluate(trial, gap, storage)
+                res_t, _, jac_t, dfilm_t = self.evaluate(trial, gap, storage)
                 scaled_t = res_t * scale
                 merit_t = float(scaled_t @ scaled_t)
                 if np.isfinite(merit_t) and merit_t <= (1.0 - 1e-4 * omega) * merit:
@@ -443,7 +443,7 @@ class MixedProblem:
                 if at_floor:
                     return self._round_off_stop(z, res, iteration + 1, norm)
                 return z, False, iteration + 1, norm
-            z, res, h, jac, dfilm = trial, res_t, h_t, jac_t, dfilm_t
+            z, res, jac, dfilm = trial, res_t, jac_t, dfilm_t
         scaled = res * scale
         norm = max(float(np.max(np.abs(scaled))), abs(float(np.sum(scaled[3:-1:3]))))
         if tol < norm <= ROUND_OFF_MARGIN * tol:

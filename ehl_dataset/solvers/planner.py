@@ -251,7 +251,7 @@ def plan_effects(case, lubricant, level="standard", correlation_length_m: float 
     decisions = {
         "roughness": (f"lambda_bar={lam:.3g} < {limits.lambda_smooth:g}: asperities and moving roughness matter"
                       if rough else
-                      (f"S_c=0: smooth surfaces" if math.isinf(lam) else
+                      ("S_c=0: smooth surfaces" if math.isinf(lam) else
                        f"lambda_bar={lam:.3g} >= {limits.lambda_smooth:g}: roughness does not change mu within "
                        f"the level tolerance, steady smooth solve")),
         "transient": (f"{a_b} >= {limits.a_over_beta_homogenised:g}: the roughness is a homogeneous micro-scale, its "

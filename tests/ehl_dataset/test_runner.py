@@ -225,7 +225,6 @@ def test_sigkill_part_way_then_resume_completes_without_recomputing(tmp_path):
                "--progress", "none"]
     process = subprocess.Popen(command, cwd=REPO, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
     deadline = time.monotonic() + 60
-    done_before = None
     try:
         while time.monotonic() < deadline and process.poll() is None:
             time.sleep(0.05)
