@@ -15,7 +15,8 @@ plan's ``model`` decision sends them (:data:`MODELS`): the steady film-law homog
 (:mod:`ehl_dataset.solvers.homogenised`) at ``fast`` and ``standard``, and the deterministic mixed reference
 (:mod:`ehl_dataset.solvers.deterministic`) at ``reference`` and wherever the effects are forced with ``transient``
 on (``effects="full"``): it is the package's one transient rough solver. ``model="homogenised"`` and
-``model="deterministic"`` ask for those models whatever the plan.
+``model="deterministic"`` ask for those models whatever the plan; the result's effects then record what that model
+simulates, with the planner's choice kept in the reasons (:func:`~ehl_dataset.solvers.planner.with_model`).
 
 Every dataset file records ``ehl_dataset.solver:solve_contact`` and imports it on resume, and the store compares
 :data:`SOLVER_VERSION` with the recorded one: both stay here whatever moves behind them.
@@ -36,7 +37,7 @@ from .solvers.deterministic import DeterministicOptions, deterministic_options
 from .solvers.wide_contact import solve_deterministic_contact
 from .solvers.homogenised import HomogenisedOptions, solve_homogenised
 from .solvers.levels import AccuracyLevel, get_level
-from .solvers.planner import resolve_effects, without_thermal
+from .solvers.planner import resolve_effects, with_model, without_thermal
 from .solvers.result import ContactResult
 from .solvers.steady import solve_steady
 from .validation import InputError, check_time_limit
@@ -131,6 +132,8 @@ def solve_contact(case: ContactCase, lubricant: Lubricant | str, level: str | Ac
         effects = Effects.smooth_steady(forced="model=smooth")
     plan = resolve_effects(effects, case, lubricant, lvl.name,
                            roughness.correlation_length if roughness is not None else None)
+    if model in ("homogenised", "deterministic"):
+        plan = with_model(plan, model, case.s_c > 0.0)
     # one BLAS thread per solve: the dense solves are small, and workers run one case per core
     with threadpool_limits(limits=1):
         # a rough plan with the transient on (the reference level's rough model, or forced effects) runs the

@@ -197,11 +197,12 @@ def deterministic_options(level: str = "reference", **overrides) -> Deterministi
 def asperity_radius(profile: RoughnessProfile, rq1: float, rq2: float) -> float:
     """Mean summit radius [m] of the composite roughness, 1/√m4 with m4 the fourth spectral moment (mean square
     curvature) of the profile scaled to σ = √(Rq1² + Rq2²); a Gaussian ACF of correlation length β gives
-    β²/(√12 σ) (Nayak 1971)."""
+    β²/(√12 σ) (Nayak 1971). Smooth surfaces (σ = 0) have no summits: ∞."""
     sigma = math.hypot(rq1, rq2)
     z = profile.z * (sigma / profile.rq)
     curvature = np.diff(z, 2) / profile.spacing**2
-    return 1.0 / math.sqrt(float(np.mean(curvature**2)))
+    mean_square = float(np.mean(curvature**2))
+    return 1.0 / math.sqrt(mean_square) if mean_square > 0.0 else math.inf
 
 
 ROUND_OFF_MARGIN = 10.0
@@ -830,9 +831,7 @@ def _result(case, state, plan, level_name, options, problem, scales, z, h, recor
         mean_film = h * scales.film_scale
         h_min = local_min = float(np.min(h)) * scales.film_scale
         h_c = float(np.interp(0.0, problem.x, h)) * scales.film_scale
-    recorded = plan.to_dict()
-    recorded["reasons"] = dict(recorded.get("reasons") or {})
-    recorded["reasons"]["model"] = "deterministic transient mixed EHL (contact complementarity, mass-conserving)"
+    recorded = recorded_effects(plan, case.s_c > 0.0)
     n_steps = len(record.mu)
     return ContactResult(
         mu=float(mu), h_min=h_min, h_central=h_c, p_max=float(np.max(pf + pc)) * case.p_h, converged=bool(converged),
@@ -856,10 +855,22 @@ def _result(case, state, plan, level_name, options, problem, scales, z, h, recor
     )
 
 
+def recorded_effects(plan: Effects, rough: bool) -> dict:
+    """The effects a deterministic run records: ``plan`` with roughness and the transient on for rough surfaces
+    (``rough``: S_c > 0; the model time-steps the moving roughness whatever the plan says) and off for smooth ones
+    (the steady smooth start is the solution), and the model named in its reasons."""
+    recorded = plan.to_dict()
+    recorded["reasons"] = dict(recorded.get("reasons") or {})
+    recorded["reasons"]["model"] = "deterministic transient mixed EHL (contact complementarity, mass-conserving)"
+    recorded["roughness"] = recorded["transient"] = bool(rough)
+    return recorded
+
+
 def _failed(case, state, plan, level_name, start, clock, message, residuals) -> ContactResult:
     _, lambda_bar = dowson_higginson_lambda(case, state)
     nan = math.nan
     return ContactResult(mu=nan, h_min=nan, h_central=nan, p_max=nan, converged=False, iterations=0,
-                         wall_time=clock() - start, level=level_name, effects=plan.to_dict(), lambda_bar=lambda_bar,
+                         wall_time=clock() - start, level=level_name,
+                         effects=recorded_effects(plan, case.s_c > 0.0), lambda_bar=lambda_bar,
                          residuals=dict(residuals), message=f"not converged: {message}",
                          extra={"model": "deterministic", "time_limited": False})

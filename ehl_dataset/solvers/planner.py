@@ -328,6 +328,28 @@ def without_thermal(plan: Effects, why: str) -> Effects:
     return replace(plan, thermal=False, reasons=reasons)
 
 
+def with_model(plan: Effects, model: str, rough: bool) -> Effects:
+    """``plan`` as an explicitly requested ``model`` ("homogenised" or "deterministic") runs it, whatever the planner
+    chose: roughness on for rough surfaces (``rough``: S_c > 0), the transient on for the deterministic model (it
+    time-steps the moving roughness) and off for the homogenised one (steady: the ensemble average replaces the time
+    average); smooth surfaces get the steady smooth solve. Each decision that changes, and the model decision, say
+    so and keep the planner's own text."""
+    roughness = rough
+    transient = rough and model == "deterministic"
+    reasons = dict(plan.reasons)
+    decisions = dict(reasons.get("decisions", {}))
+    changed = {"roughness": (plan.roughness, roughness), "transient": (plan.transient, transient)}
+    for name, (planned, run) in changed.items():
+        if planned != run:
+            decisions[name] = (f"model={model} requested: {name} {'on' if run else 'off'}"
+                               + (f" (the planner: {decisions[name]})" if name in decisions else ""))
+    planner_model = decisions.get("model")
+    decisions["model"] = (f"model={model} requested" + ("" if rough else ": smooth surfaces, steady smooth solve")
+                          + (f" (the planner: {planner_model})" if planner_model else ""))
+    reasons["decisions"] = decisions
+    return replace(plan, roughness=roughness, transient=transient, reasons=reasons)
+
+
 EFFECT_PLANS = ("auto", "isothermal", "full")
 """Named plans :func:`resolve_effects` accepts besides an :class:`Effects` instance."""
 

@@ -147,6 +147,7 @@ def solve_wide(case: ContactCase, state: LubricantState, plan: Effects, options:
     _, lambda_bar = dowson_higginson_lambda(case, state)
     recorded = plan.to_dict()
     recorded["reasons"] = dict(recorded.get("reasons") or {})
+    recorded["roughness"] = recorded["transient"] = True  # every window time-steps its moving roughness
     recorded["reasons"]["model"] = (
         f"deterministic mixed EHL by {options.points} periodic windows across the Hertzian zone (a/β = "
         f"{a / profile.correlation_length:.0f}), fed the smooth pressure and the film law")

@@ -75,3 +75,26 @@ def test_non_convergence_is_reported_not_hidden():
     assert res.converged is False
     assert res.message.startswith("not converged")
     assert res.residuals["reynolds"] > level.tol_residual or res.residuals["step"] > level.tol_step
+
+
+def test_a_requested_model_is_recorded_as_it_ran_with_the_planners_choice_kept():
+    """The homogenised model asked for on a narrow rough contact whose plan has the transient on (at ``reference``
+    the planner's own choice, the deterministic model) runs steady: the record says transient off, why, and what the
+    planner chose; the deterministic model asked for on smooth surfaces solves the steady smooth contact and records
+    no roughness."""
+    from ehl_dataset.solvers.planner import plan_effects
+
+    narrow = ContactCase.from_engineering(0.5, 5, 5, 0.3, 90, 0.3, 0.3)
+    planned = plan_effects(narrow, load_lubricant("atf"), "reference")
+    assert planned.transient and "deterministic" in planned.reasons["decisions"]["model"]
+    steady = solve_contact(narrow, "atf", "fast", planned, model="homogenised")
+    decisions = steady.effects["reasons"]["decisions"]
+    assert steady.effects["roughness"] and not steady.effects["transient"]
+    assert decisions["transient"].startswith("model=homogenised requested: transient off (the planner: ")
+    assert decisions["model"].startswith("model=homogenised requested (the planner: ")
+    smooth = ContactCase.from_engineering(0.5, 5, 5, 0.3, 90, 0.0, 0.0)
+    forced = solve_contact(smooth, "atf", "fast", model="deterministic")
+    assert not forced.effects["roughness"] and not forced.effects["transient"]
+    assert "smooth surfaces, steady smooth solve" in forced.effects["reasons"]["decisions"]["model"]
+    # issue 14's smooth limit: the smooth solver's μ within 0.5 %
+    assert forced.mu == pytest.approx(solve_contact(smooth, "atf", "fast", model="smooth").mu, rel=5e-3)

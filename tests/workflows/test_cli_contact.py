@@ -95,3 +95,40 @@ def test_checkpoint_flag_is_refused_where_no_deterministic_run_takes_it(capsys, 
     err = capsys.readouterr().err.strip()
     assert len(err.splitlines()) == 1 and "checkpoint" in err and str(path) in err
     assert not path.exists()
+
+
+def test_deterministic_model_json_carries_its_grid_steps_and_the_requested_model(capsys):
+    """Issue 14, deliverable 2: ``--model deterministic --dx-um D`` reports the run's grid and steps. A narrow rough
+    contact (0.5 GPa, 5 mm, a = 44 µm, Rq 0.3 µm) at D = 4 µm: the grid spans the domain (−2.5a, 1.5a) with
+    round(4a/D) + 1 nodes, so dx_m = 4a/(n − 1); the run lasts at least the ramp, the start-up and the shortest
+    averaging window, and at most the level's cap, in time steps of Courant·dx/u_r; the effects record the transient
+    solve that ran (at ``fast`` the planner would have chosen the steady film-law model) and the JSON μ is the
+    Python API's."""
+    import math
+
+    from ehl_dataset import ContactCase, solve_contact
+    from ehl_dataset.solvers.deterministic import deterministic_options
+
+    inputs = dict(p_h_gpa=0.5, r_eq_mm=5, u_r=5, sr=0.3, temp_c=90, rq1_um=0.3, rq2_um=0.3)
+    argv = ["contact", "solve"] + [item for k, v in inputs.items() for item in (f"--{k.replace('_', '-')}", str(v))]
+    assert main(argv + ["--model", "deterministic", "--dx-um", "4", "--level", "fast", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    for key in ("mu", "mu_sem", "asperity_load_share", "h_min_m", "lambda_bar", "dx_m", "n_nodes", "n_steps",
+                "converged", "effects", "wall_time_s"):
+        assert key in out
+    case = ContactCase.from_engineering(0.5, 5, 5, 0.3, 90, 0.3, 0.3)
+    options = deterministic_options("fast", dx_m=4e-6)
+    span = (options.domain[1] - options.domain[0]) * case.half_width
+    assert out["n_nodes"] == round(span / 4e-6) + 1
+    assert out["dx_m"] == pytest.approx(span / (out["n_nodes"] - 1), rel=1e-12)
+    steps_per_pass = span / (options.courant * out["dx_m"])
+    shortest = sum(math.ceil(passes * steps_per_pass) for passes in
+                   (options.ramp_passes, options.startup_passes, options.min_average_passes))
+    assert shortest <= out["n_steps"] <= math.ceil(options.max_passes * steps_per_pass)
+    assert out["converged"] is True and out["route"] == "resolve"
+    assert out["effects"]["roughness"] and out["effects"]["transient"]
+    assert out["effects"]["reasons"]["decisions"]["model"].startswith("model=deterministic requested (the planner: "
+                                                                      "homogenised model")
+    assert 0.0 < out["mu_sem"] < out["mu"] and 0.0 <= out["asperity_load_share"] <= 1.0
+    api = solve_contact(case, "atf", "fast", model="deterministic", deterministic=options)
+    assert out["mu"] == pytest.approx(api.mu, rel=1e-12) and out["n_steps"] == api.extra["n_steps"]
