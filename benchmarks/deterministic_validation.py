@@ -367,6 +367,33 @@ def _order_text(order: float) -> str:
     return f"{order:.1f}" if math.isfinite(order) else "n/o"
 
 
+GRID_TARGET, SHARE_TARGET, SEM_TARGET = 0.05, 0.03, LONG_TARGET
+"""Issue 14's grid targets: μ at the two finest spacings within 5 % and the asperity share within 0.03, with the
+standard error of μ ≤ 1.5 %."""
+
+
+def acceptance_lines(rows: list[dict]) -> list[str]:
+    """One line per grid target of issue 14: how many cases meet it and which do not (the standard error rounded to
+    0.1 % as in the table)."""
+    def sem(r):
+        long_n = r.get("long_run_points_per_beta", r["points_per_beta"][1])
+        return round(100 * r["mu_sem"][f"beta/{long_n}"] / r["mu"][f"beta/{long_n}"], 1) / 100
+
+    checks = (("μ fine step ≤ 5 %", lambda r: abs(r["mu_fine_step_relative"]) <= GRID_TARGET,
+               lambda r: f"{100 * r['mu_fine_step_relative']:+.1f} %"),
+              ("asperity share fine step ≤ 0.03", lambda r: abs(r["asperity_load_share_fine_step"]) <= SHARE_TARGET,
+               lambda r: f"{r['asperity_load_share_fine_step']:+.3f}"),
+              ("standard error of μ (long run) ≤ 1.5 %", lambda r: sem(r) <= SEM_TARGET,
+               lambda r: f"{100 * sem(r):.1f} %"))
+    lines = ["Targets of issue 14 on this set:", ""]
+    for text, met, value in checks:
+        failing = [r for r in rows if not met(r)]
+        lines.append(f"- {text}: met on {len(rows) - len(failing)} of {len(rows)} cases"
+                     + ("" if not failing else "; not on " + ", ".join(f"{r['case']} ({value(r)})"
+                                                                    for r in failing)))
+    return lines
+
+
 def summarise() -> None:
     """Write the reference data and the docs table. Each case enters with its three runs if they share one model
     version (not older than OLDEST_ACCEPTED), else keeps its entry of the existing reference file; the newer of the
@@ -422,6 +449,7 @@ def summarise() -> None:
               "Richardson's value with Roache's GCI (safety 1.25) combined with it; sem of μ: "
               "the long run's standard error (target ≤ 1.5 %); share fine step: the asperity load share's change "
               "between the two finest spacings (target ≤ 0.03)."]
+    lines += ["", *acceptance_lines(rows)]
     REPORT.write_text("\n".join(lines) + "\n")
     print("\n".join(lines))
 
