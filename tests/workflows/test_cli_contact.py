@@ -107,7 +107,9 @@ def test_deterministic_model_json_carries_its_grid_steps_and_the_requested_model
     import math
 
     from ehl_dataset import ContactCase, solve_contact
+    from ehl_dataset.model.lubricant import load_lubricant
     from ehl_dataset.solvers.deterministic import deterministic_options
+    from ehl_dataset.solvers.planner import plan_effects
 
     inputs = dict(p_h_gpa=0.5, r_eq_mm=5, u_r=5, sr=0.3, temp_c=90, rq1_um=0.3, rq2_um=0.3)
     argv = ["contact", "solve"] + [item for k, v in inputs.items() for item in (f"--{k.replace('_', '-')}", str(v))]
@@ -127,8 +129,9 @@ def test_deterministic_model_json_carries_its_grid_steps_and_the_requested_model
     assert shortest <= out["n_steps"] <= math.ceil(options.max_passes * steps_per_pass)
     assert out["converged"] is True and out["route"] == "resolve"
     assert out["effects"]["roughness"] and out["effects"]["transient"]
-    assert out["effects"]["reasons"]["decisions"]["model"].startswith("model=deterministic requested (the planner: "
-                                                                      "homogenised model")
+    planner = plan_effects(case, load_lubricant("atf"), "fast").reasons["decisions"]["model"]
+    assert planner.startswith("homogenised model")
+    assert out["effects"]["reasons"]["decisions"]["model"] == f"model=deterministic requested (the planner: {planner})"
     assert 0.0 < out["mu_sem"] < out["mu"] and 0.0 <= out["asperity_load_share"] <= 1.0
     api = solve_contact(case, "atf", "fast", model="deterministic", deterministic=options)
     assert out["mu"] == pytest.approx(api.mu, rel=1e-12) and out["n_steps"] == api.extra["n_steps"]
