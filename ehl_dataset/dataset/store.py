@@ -14,6 +14,8 @@ Columns: the inputs (:data:`ehl_dataset.dataset.factorial.POINT_FIELDS`, SI), th
 solver's message for a non-converged result), ``attempts`` (how many computations of the point were recorded, over
 all sessions), ``worker_time`` [s] (worker-side time including retries), ``finished_at`` [s since the Unix epoch],
 ``worker`` (host:pid) and ``warnings`` (Python warnings raised during the solve, counted by category and place).
+The grid of a solve (``dx``, ``n_nodes``, ``n_steps``), ``mu_sem`` and ``warnings`` were added within format version 1
+(:data:`OPTIONAL_COLUMNS`): files without them are read and resumed.
 
 Crash safety. Every dataset is contiguous, fixed-size and written in full when the file is created (strings are
 fixed-length UTF-8), and the file is built under a temporary name and renamed into place. After creation a run
@@ -54,11 +56,13 @@ EFFECTS_WIDTH = 1536
 ERROR_WIDTH = 512
 """Bytes reserved per row for the error text (longer text is cut, keeping its start and end)."""
 
-OPTIONAL_COLUMNS = frozenset({"warnings", "mu_sem"})
+OPTIONAL_COLUMNS = frozenset({"warnings", "mu_sem", "dx", "n_nodes", "n_steps"})
 """Columns added within format version 1: files written before them are read (as "") and resumed without them."""
 
 WARNINGS_WIDTH = 256
 """Bytes reserved per row for the summary of Python warnings raised during the solve."""
+
+_GRID_OUTPUTS = ("dx", "n_nodes", "n_steps")
 
 _FLOAT_OUTPUTS = ("mu", "mu_std", "mu_sem", "h_min", "h_central", "lambda_bar", "asperity_load_share", "p_max", "wall_time")
 
@@ -90,6 +94,9 @@ _DESCRIPTIONS: dict[str, str] = {
     "finished_at": "time the result was received, seconds since the Unix epoch (UTC)",
     "worker": "host:pid of the worker process",
     "warnings": "Python warnings raised during the solve: category x count (file:line); ...",
+    "dx": "uniform grid spacing of the deterministic model (NaN: a steady solver's graded grid)",
+    "n_nodes": "grid nodes of the solve (-1: not recorded)",
+    "n_steps": "time steps of the solve (0: steady; -1: not recorded)",
 }
 
 
@@ -128,6 +135,9 @@ def _columns() -> tuple[Column, ...]:
         Column("finished_at", "<f8", math.nan, "s since 1970-01-01T00:00:00Z"),
         Column("worker", _str_dtype(64), b"", "host:pid"),
         Column("warnings", _str_dtype(WARNINGS_WIDTH), b"", "text"),
+        Column("dx", "<f8", math.nan, RECORD_UNITS["dx"]),
+        Column("n_nodes", "<i4", -1, RECORD_UNITS["n_nodes"]),
+        Column("n_steps", "<i8", -1, RECORD_UNITS["n_steps"]),
     ]
     return tuple(cols)
 
@@ -135,7 +145,7 @@ def _columns() -> tuple[Column, ...]:
 TABLE_COLUMNS: tuple[str, ...] = (
     "point", *POINT_FIELDS, "mu", "mu_std", "h_min", "h_central", "lambda_bar", "asperity_load_share", "p_max",
     "iterations", "converged", "wall_time", "effects", "level", "status", "error",
-    "attempts", "worker_time", "finished_at", "worker", "warnings", "mu_sem",
+    "attempts", "worker_time", "finished_at", "worker", "warnings", "mu_sem", "dx", "n_nodes", "n_steps",
 )
 """Column order of :func:`read_table` (the first 22 are the contract used by the surrogate stage)."""
 
@@ -518,10 +528,13 @@ class DatasetStore:
         if status not in (OK, FAILED):
             raise ValueError("status must be OK or FAILED")
         row: dict[str, Any] = {name: self._columns[name].fill for name in
-                               (*_FLOAT_OUTPUTS, "iterations", "converged", "effects", "level")}
+                               (*_FLOAT_OUTPUTS, "iterations", "converged", "effects", "level", *_GRID_OUTPUTS)}
         if record:
             for name in _FLOAT_OUTPUTS:
                 row[name] = float(record.get(name, math.nan))
+            row["dx"] = float(record.get("dx", math.nan))
+            row["n_nodes"] = int(record.get("n_nodes", -1))
+            row["n_steps"] = int(record.get("n_steps", -1))
             row["iterations"] = int(record.get("iterations", -1))
             row["converged"] = bool(record.get("converged", False))
             row["effects"] = encode_effects(record["effects"]) if record.get("effects") else b""
@@ -629,7 +642,8 @@ def read_table(path, status: str | None = "ok"):
     ``rq1``, ``rq2`` [m], ``mu``, ``mu_std``, ``h_min`` [m], ``h_central`` [m], ``lambda_bar``,
     ``asperity_load_share``, ``p_max`` [Pa], ``iterations``, ``converged``, ``wall_time`` [s], ``effects`` (JSON
     str), ``level``, ``status`` (pending/ok/failed), ``error``; then ``attempts``, ``worker_time`` [s],
-    ``finished_at`` [s since the epoch], ``worker``, ``warnings``. ``status=None`` returns every row.
+    ``finished_at`` [s since the epoch], ``worker``, ``warnings``, ``mu_sem``, ``dx`` [m], ``n_nodes``, ``n_steps``
+    (the last four absent from older files: read as their fill, NaN or -1). ``status=None`` returns every row.
     A corrupt, truncated or foreign file raises :class:`InputError` naming the file and the problem.
     """
     with _reading(path) as store:

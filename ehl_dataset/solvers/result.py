@@ -23,6 +23,9 @@ RECORD_UNITS: dict[str, str] = {
     "wall_time": "s",
     "effects": "json",
     "level": "name",
+    "dx": "m",
+    "n_nodes": "1",
+    "n_steps": "1",
 }
 """Scalar outputs stored per factorial point and their units (also the HDF5 column names)."""
 
@@ -78,4 +81,15 @@ class ContactResult:
             "wall_time": float(self.wall_time),
             "effects": json.dumps(self.effects, sort_keys=True),
             "level": str(self.level),
+            **self.grid_record(),
         }
+
+    def grid_record(self) -> dict[str, Any]:
+        """The discretisation a solve used, from ``extra``: ``dx`` the uniform grid spacing [m] of the deterministic
+        model (NaN for the steady solvers' graded grids), ``n_nodes`` the grid nodes (-1: not recorded), ``n_steps``
+        the time steps (0 for a steady solve, -1: not recorded)."""
+        steps = self.extra.get("n_steps")
+        if steps is None:
+            steps = -1 if self.effects.get("transient") else 0
+        return {"dx": float(self.extra.get("dx_m", math.nan)), "n_nodes": int(self.extra.get("n_nodes", -1)),
+                "n_steps": int(steps)}

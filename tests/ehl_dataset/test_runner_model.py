@@ -56,3 +56,31 @@ def test_a_file_without_a_recorded_model_reads_as_auto(tmp_path):
     assert "model" not in read_metadata(path)["solver"]
     with pytest.raises(InputError, match=r"solver\.model='smooth'.*'auto' as recorded"):
         resume_run(path, workers=0, model="smooth")
+
+
+def gridded_solve(case, lubricant, level="fast", effects="auto", model="auto"):
+    """Stand-in: a deterministic run on 401 nodes at 0.5 µm over 2,000 steps for SR 0.7, a steady solve on a graded
+    grid of 300 nodes for SR 0.1."""
+    if case.sr > 0.5:
+        return ContactResult(mu=0.05, h_min=1e-7, h_central=1e-7, p_max=case.p_h, converged=True, iterations=9,
+                             wall_time=0.0, level=level, effects={"transient": True}, lambda_bar=0.5,
+                             extra={"dx_m": 5e-7, "n_nodes": 401, "n_steps": 2000})
+    return ContactResult(mu=0.02, h_min=1e-7, h_central=1e-7, p_max=case.p_h, converged=True, iterations=9,
+                         wall_time=0.0, level=level, effects={"transient": False}, lambda_bar=0.5,
+                         extra={"n_nodes": 300})
+
+
+def test_the_grid_and_time_steps_of_each_point_are_stored(tmp_path):
+    """Issue 14, deliverable 2 in ``dataset run``: every point stores the grid spacing, nodes and time steps its
+    solve took (a steady solve: no time steps, and no uniform spacing); files written before these columns read them
+    as not recorded (NaN, -1)."""
+    import numpy as np
+
+    path = tmp_path / "g.h5"
+    run_factorial(path, PLAN, workers=0, solver=f"{__name__}:gridded_solve", progress="none")
+    table = read_table(path).set_index("sr")
+    assert table.loc[0.7, "dx"] == 5e-7 and table.loc[0.7, "n_nodes"] == 401 and table.loc[0.7, "n_steps"] == 2000
+    assert np.isnan(table.loc[0.1, "dx"]) and table.loc[0.1, "n_nodes"] == 300 and table.loc[0.1, "n_steps"] == 0
+    old = Path(__file__).parent / "data" / "smoke_partial_v7.h5"
+    legacy = read_table(old, status=None)
+    assert legacy["dx"].isna().all() and (legacy["n_nodes"] == -1).all() and (legacy["n_steps"] == -1).all()
