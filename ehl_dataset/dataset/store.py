@@ -532,9 +532,8 @@ class DatasetStore:
         if record:
             for name in _FLOAT_OUTPUTS:
                 row[name] = float(record.get(name, math.nan))
-            row["dx"] = float(record.get("dx", math.nan))
-            row["n_nodes"] = int(record.get("n_nodes", -1))
-            row["n_steps"] = int(record.get("n_steps", -1))
+            for name in _GRID_OUTPUTS:  # cast to the column's dtype at flush
+                row[name] = record.get(name, self._columns[name].fill)
             row["iterations"] = int(record.get("iterations", -1))
             row["converged"] = bool(record.get("converged", False))
             row["effects"] = encode_effects(record["effects"]) if record.get("effects") else b""
