@@ -286,6 +286,25 @@ def central_film(name: str, fine: dict, middle: dict) -> dict:
             "h_central_window_std_m": row["h_central_window_std_m"]}
 
 
+BALANCE_TARGET = 1e-10
+"""Issue 14's conservation target: lubricant mass and load balanced to ≤ 1e-10 (relative) at every step."""
+
+
+def balance_record(runs: dict[int, dict], chain: tuple[int, ...]) -> dict:
+    """Per spacing of ``chain``: the largest per-step global mass-balance error (relative to the central film's
+    flux, ``extra["mass_error_series"]``), the number of steps above :data:`BALANCE_TARGET` and of all steps, and the
+    largest load-balance error (``residuals["max_load_error"]``)."""
+    out = {"mass_error_max": {}, "mass_error_steps_over_target": {}, "steps": {}, "load_error_max": {}}
+    for n in chain:
+        errors = np.abs(np.asarray(runs[n]["extra"]["mass_error_series"], dtype=float))
+        key = f"beta/{n}"
+        out["mass_error_max"][key] = float(errors.max())
+        out["mass_error_steps_over_target"][key] = int(np.count_nonzero(errors > BALANCE_TARGET))
+        out["steps"][key] = int(errors.size)
+        out["load_error_max"][key] = float(runs[n]["residuals"]["max_load_error"])
+    return out
+
+
 def summarise_case(name: str) -> dict | None:
     """The reference entry of case ``name``: μ and the asperity share at each spacing (the long run's time mean at
     the middle spacing, the other spacings by paired differences, :data:`EXTRA_SPACINGS` chained onto the finest),
@@ -315,6 +334,7 @@ def summarise_case(name: str) -> dict | None:
            "wall_time_s": {f"beta/{n}": runs[n]["wall_time_s"] for n in chain},
            "n_nodes": {f"beta/{n}": runs[n]["extra"]["n_nodes"] for n in chain},
            "smooth_mu": base["extra"]["smooth_mu"],
+           **balance_record(runs, chain),
            **central_film(name, runs[fine], base)}
     low, mid, high = levels
     for key, series in (("mu", "mu_series"), ("asperity_load_share", "share_series")):
@@ -391,6 +411,24 @@ def acceptance_lines(rows: list[dict]) -> list[str]:
         lines.append(f"- {text}: met on {len(rows) - len(failing)} of {len(rows)} cases"
                      + ("" if not failing else "; not on " + ", ".join(f"{r['case']} ({value(r)})"
                                                                     for r in failing)))
+    return lines + balance_lines(rows)
+
+
+def balance_lines(rows: list[dict]) -> list[str]:
+    """The conservation target over every step of every run of the set (cases whose entry predates the balance
+    record are counted as not recorded)."""
+    recorded = [r for r in rows if "mass_error_max" in r]
+    lines = []
+    for text, key in (("load", "load_error_max"), ("lubricant mass", "mass_error_max")):
+        failing = [r for r in recorded if max(r[key].values()) > BALANCE_TARGET]
+        worst = max((max(r[key].values()) for r in recorded), default=math.nan)
+        detail = "; not on " + ", ".join(
+            f"{r['case']} ({max(r[key].values()):.1e}"
+            + (f", {sum(r['mass_error_steps_over_target'].values()):,} of {sum(r['steps'].values()):,} steps"
+               if key == "mass_error_max" else "") + ")" for r in failing) if failing else ""
+        lines.append(f"- {text} balance ≤ 1e-10 (relative) at every step of every run: met on "
+                     f"{len(recorded) - len(failing)} of {len(recorded)} cases (largest {worst:.1e}){detail}"
+                     + (f"; {len(rows) - len(recorded)} cases not recorded" if len(recorded) < len(rows) else ""))
     return lines
 
 

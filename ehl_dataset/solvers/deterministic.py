@@ -11,7 +11,8 @@ density, μ_d·p where asperities touch and the time-averaged μ (Eq. 8). What m
 * lubricant mass is conserved exactly: flux-form finite volumes with mass-conserving (Elrod–Adams) cavitation,
   through contacts as everywhere else;
 * the grid resolves the roughness and the micro-EHL length ℓ = √(2 R_asp h_b) (:func:`grid_spacing`), the time
-  integrator is second order (variable-step BDF2) at Courant ≈ 1;
+  integrator is second order (variable-step BDF2) at Courant 0.25 (:data:`COURANT`; Courant 0.5 and 1 put μ high
+  where asperities touch, docs/deterministic_solver.md section "Roughness sweep");
 * each time step is a semismooth Newton solve whose linear systems are solved by GMRES with FFT products of the
   deflection and a banded preconditioner (:mod:`ehl_dataset.solvers.krylov`): O(N log N) per iteration.
 
