@@ -7,8 +7,8 @@ thickness h_b, on one case at one spacing, paired with the base run of benchmark
         --variant base --variant courant_0.5 --variant courant_0.25          # (det-7: base at Courant 1)
 
 Variants: Courant 1, 0.5, 0.25 and 0.125 (the default is 0.25 since det-2026.11-9, 0.5 in det-8, 1 before: under
-det-7 the base run and ``courant_1`` are the same, under det-8 the base run and ``courant_0.5``), Newton tolerance 1e-9 (10× looser), h_b ×
-0.5 and × 2 (physical, reported). Writes benchmarks/results/deterministic_sensitivity_<case>[_<tag>].json (μ, its standard error, and for each variant the
+det-7 the base run and ``courant_1`` are the same, under det-8 the base run and ``courant_0.5``), Newton tolerance 1e-9 (10× looser), the
+conductance's film floor (``film_floor``, a regularisation) × 10 and × 0.1, h_b × 0.5 and × 2 (physical, reported). Writes benchmarks/results/deterministic_sensitivity_<case>[_<tag>].json (μ, its standard error, and for each variant the
 paired difference to the base run with its standard error) and the μ(t) series of every run in
 benchmarks/results/deterministic_sensitivity/<case>[_<tag>]_<variant>.npz.
 """
@@ -27,7 +27,7 @@ from ehl_dataset.model.contact import ContactCase
 from ehl_dataset.model.effects import Effects
 from ehl_dataset.model.lubricant import load_lubricant
 from ehl_dataset.model.roughness import baseline_profile
-from ehl_dataset.solvers.deterministic import (BOUNDARY_FILM_M, MODEL_VERSION, DeterministicOptions,
+from ehl_dataset.solvers.deterministic import (BOUNDARY_FILM_M, FILM_FLOOR, MODEL_VERSION, DeterministicOptions,
                                                solve_deterministic)
 from ehl_dataset.solvers.time_average import time_mean
 
@@ -42,6 +42,8 @@ VARIANTS = {
     "courant_0.25": {"courant": 0.25},
     "courant_0.125": {"courant": 0.125},
     "tolerance_1e-9": {"newton_tolerance": 1e-9},
+    "film_floor_x10": {"film_floor": 10.0 * FILM_FLOOR},
+    "film_floor_x0.1": {"film_floor": 0.1 * FILM_FLOOR},
     "h_b_x0.5": {"boundary_film_m": 0.5 * BOUNDARY_FILM_M},
     "h_b_x2": {"boundary_film_m": 2.0 * BOUNDARY_FILM_M},
 }

@@ -70,6 +70,10 @@ their adsorbed/reacted boundary films, which carry load and friction μ_d·p_c. 
 friction-modifier layers are a few nm thick, and deterministic mixed-EHL becomes mesh-dependent once films fall
 below ~10–20 nm (Liu, Wang, Wang, Hu & Zhu, J. Tribol. 128 (2006) 641); its effect on μ is reported as a
 sensitivity (h_b × 0.5, × 2) in docs/deterministic_solver.md."""
+FILM_FLOOR = 1e-3
+"""The conductance ε reads films below FILM_FLOOR·H_b (interfering asperities) as that floor: a regularisation that
+keeps ε > 0 where plastically flattened tips close the gap (``DeterministicOptions.film_floor``; its 10× sensitivity
+in docs/deterministic_solver.md, "Sensitivity")."""
 COURANT = 0.25
 """Default u_r Δt/Δx (det-2026.11-9; 0.5 in det-8, 1.0 before). Measured where asperities carry load, case A's
 conditions with Rq 0.5 µm (λ̄ 0.2) at β/16 over 11 paired passes: Courant 0.5 → 0.25 moves μ by −8.9 % ± 6.2 % and
@@ -139,6 +143,7 @@ class DeterministicOptions:
     band: int = 12
     newton_tolerance: float = 1e-10
     newton_iterations: int = 50
+    film_floor: float = FILM_FLOOR
     max_substeps: int = 128
     max_nodes: int = 20000
     wide: str = "auto"
@@ -154,6 +159,7 @@ class DeterministicOptions:
         check_range("courant", self.courant, 0.0, 8.0, low_inclusive=False)
         check_range("inlet_resolution", self.inlet_resolution, 0.0, 10.0, low_inclusive=False)
         check_range("mu_sem_target", self.mu_sem_target, 0.0, 1.0)
+        check_range("film_floor", self.film_floor, 0.0, 1.0, low_inclusive=False, unit="of h_b")
         if self.layout_passes is not None:
             check_range("layout_passes", self.layout_passes, self.max_passes, 1e4, unit="passes")
         if self.face_mean not in FACE_MEANS:
@@ -220,8 +226,6 @@ case B at β/64 stalls at 1.2e-9 with a correction of 5e-14 p_h (docs/determinis
 REFACTOR_ITERATIONS = 20
 """GMRES iterations with the stored preconditioner beyond which it is refactored from the current Jacobian."""
 
-FILM_FLOOR = 1e-3
-"""The conductance ε reads films below FILM_FLOOR·H_b (interfering asperities) as that floor."""
 
 
 
@@ -244,7 +248,7 @@ class MixedProblem:
 
     def __init__(self, x: np.ndarray, scales: ContactScales, state: LubricantState, h_b: float, p_yield: float,
                  compressible: bool = True, face_mean: str = "kirchhoff", band: int = 12,
-                 couette_flux: str = "minmod", mean_pressure: float | None = None):
+                 couette_flux: str = "minmod", mean_pressure: float | None = None, film_floor: float = FILM_FLOOR):
         """``mean_pressure`` None: the whole contact, loaded with W' (∫P dX = π/2); a number P̄: ``x`` is one
         period of a periodic window (period N Δ) whose mean total pressure is P̄, with the periodic deflection
         (:func:`~ehl_dataset.discretisation.deflection.periodic_kernel_spectrum`; its mean is H0's)."""
@@ -257,6 +261,7 @@ class MixedProblem:
         self.p_h = scales.p_h
         self.state = state
         self.h_b = h_b
+        self.film_floor = film_floor
         self.p_yield = p_yield
         self.compressible = compressible and state.compressible
         self.mean = FACE_MEANS[face_mean]
@@ -302,8 +307,8 @@ class MixedProblem:
         return h0 + gap + self.deflection(pf + pc)
 
     def conducting_film(self, h):
-        """(film the conductance ε reads, max(H, FILM_FLOOR·H_b); that floor)."""
-        floor = FILM_FLOOR * self.h_b
+        """(film the conductance ε reads, max(H, film_floor·H_b); that floor)."""
+        floor = self.film_floor * self.h_b
         return np.maximum(h, floor), floor
 
     def fluid(self, pf, h):
@@ -534,7 +539,8 @@ def solve_deterministic(case: ContactCase, state: LubricantState, plan: Effects,
                          f"contact (at most {options.max_nodes} nodes; a = {a:.3g} m)")
     x = np.linspace(x_start, x_end, max(n, 9))
     problem = MixedProblem(x, scales, state, h_b_m / scales.film_scale, options.yield_pressure_pa / case.p_h,
-                           plan.compressibility, options.face_mean, options.band, options.couette_flux)
+                           plan.compressibility, options.face_mean, options.band, options.couette_flux,
+                           film_floor=options.film_floor)
     smooth_plan = Effects(False, False, plan.shear_thinning, plan.compressibility, plan.mode, {})
     smooth = solve_steady(case, state, get_level("standard"), smooth_plan)
     if not smooth.converged:
@@ -648,11 +654,18 @@ _PROBLEM_STATE = ("m_ref", "preconditioner", "cost", "last_residual")
 from the inputs)."""
 
 
+_UNDIGESTED_DEFAULTS = {"film_floor": FILM_FLOOR}
+"""Options added after saved states were made (det-2026.11-13): at their default they leave the digest as it was,
+so that those states still continue."""
+
+
 def _fingerprint(case: ContactCase, state: LubricantState, options: DeterministicOptions, problem: MixedProblem,
                  z_start: np.ndarray, gap: np.ndarray) -> str:
     """A digest of everything that determines a run: the model version, the case, the lubricant state, the options
     (but the clock), the grid, the steady start ``z_start`` and a gap of the rough surfaces ``gap``."""
-    options_text = repr({f.name: getattr(options, f.name) for f in fields(options) if f.name != "clock"})
+    options_text = repr({f.name: getattr(options, f.name) for f in fields(options)
+                         if f.name != "clock" and not (f.name in _UNDIGESTED_DEFAULTS
+                                                       and getattr(options, f.name) == _UNDIGESTED_DEFAULTS[f.name])})
     digest = hashlib.sha256()
     for text in (MODEL_VERSION, repr(case), repr(state), options_text, repr((problem.n, problem.dx))):
         digest.update(text.encode())

@@ -261,6 +261,8 @@ def test_bad_options_are_refused_with_the_parameter_named():
         DeterministicOptions(dx_m=-1.0)
     with pytest.raises(InputError, match="face_mean"):
         DeterministicOptions(face_mean="geometric")
+    with pytest.raises(InputError, match="film_floor"):
+        DeterministicOptions(film_floor=0.0)
     with pytest.raises(InputError, match="level"):
         deterministic_options("coarse")
     case = ContactCase.from_engineering(0.5, 5, 5, 0.3, 90, 0.3, 0.3)
@@ -395,6 +397,8 @@ def test_a_checkpoint_of_another_run_or_a_corrupt_file_is_one_clear_error(tmp_pa
     assert FileCheckpoint(path).load()["k"] == 3
     with pytest.raises(InputError, match="checkpoint.*same run"):
         _short_rough_run(checkpoint=FileCheckpoint(path), dx_m=2.5e-6, max_passes=0.3)
+    with pytest.raises(InputError, match="checkpoint.*same run"):  # an option added since det-13, changed
+        _short_rough_run(checkpoint=FileCheckpoint(path), film_floor=1e-2, max_passes=0.3)
     path.write_bytes(b"not a pickle")
     with pytest.raises(InputError, match="checkpoint.*could not be read"):
         _short_rough_run(checkpoint=FileCheckpoint(path), max_passes=0.3)
