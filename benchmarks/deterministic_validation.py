@@ -100,7 +100,8 @@ LUBRICANT = "atf"
 
 
 SAME_NUMERICS = {"det-2026.11-9": "det-2026.11-10", "det-2026.11-11": "det-2026.11-10",
-                 "det-2026.11-12": "det-2026.11-10", "det-2026.11-13": "det-2026.11-10"}
+                 "det-2026.11-12": "det-2026.11-10", "det-2026.11-13": "det-2026.11-10",
+                 "det-2026.11-14": "det-2026.11-10"}
 """Model versions whose runs may be paired with runs of the version they map to. det-2026.11-10 changed only the
 Newton stop at the round-off floor (a step that stalls there is accepted instead of split); rerun under it, the short
 runs A β/16, B β/16, G β/8 and I β/8 reproduce det-2026.11-9's μ within 1e-12 (relative) and C β/16 within 8e-5
@@ -112,7 +113,11 @@ under det-10) while B β/16's round-off stops fall from 1,037 to 54 and its larg
 rule of runs without ``dx_m`` (every validation run gives it). det-2026.11-13 changed the logarithmic face mean only
 where neighbouring fluid factors differ by more than 1e16, where det-11 and -12 returned NaN partials: a state with
 such a face fails every Newton solve that starts from it, so a run under det-11/-12 that converged never accepted
-one, and its steps solve det-13's equations too."""
+one, and its steps solve det-13's equations too. det-2026.11-14 changed only when the preconditioner is refactored
+(before a solve that follows one of ``REFACTOR_ITERATIONS`` GMRES iterations, instead of repeating that solve): rerun
+under it, A β/16, B β/16, I β/8 and L β/8 reproduce their recorded μ within 4e-13 (relative), D β/8 within 1.3e-6 and
+H β/8 within 6.9e-6 (`python benchmarks/deterministic_rerun_check.py A:16 B:16 I:8 D:8 H:8 L:8`,
+benchmarks/results/deterministic_rerun_check_det-2026.11-14.json)."""
 
 
 def numerics(version: str) -> str:

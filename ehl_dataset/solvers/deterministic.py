@@ -55,7 +55,7 @@ from .result import ContactResult
 from .steady import ContactScales, dowson_higginson_lambda, moes_h_c, solve_steady
 from .time_average import time_mean
 
-MODEL_VERSION = "det-2026.11-13"
+MODEL_VERSION = "det-2026.11-14"
 """Version of the deterministic model's numerics (recorded with its results; bump with any change that can alter a
 solved value). :data:`ehl_dataset.solver.SOLVER_VERSION` covers the whole solver. det-2026.11-11: the logarithmic
 face mean is evaluated without cancellation (:func:`~ehl_dataset.discretisation.mixed_system.logarithmic_mean`),
@@ -63,7 +63,10 @@ which removes the 2–5e-10 floor of the global mass balance on contact-dominate
 of the grid rule depends on the level (:data:`LEVEL_OPTIONS`); a run with a given ``dx_m`` is unchanged.
 det-2026.11-13: the logarithmic face mean takes t = ln a − ln b far from a = b; det-11's log1p form read fluid factors
 more than 1e16 apart as t = −∞ (face conductance 0, NaN partials), which failed every Newton solve from such a state
-(case E at ``fast``, 25 °C, at step 1,134; case G at step 426; docs/deterministic_solver.md, "Robustness")."""
+(case E at ``fast``, 25 °C, at step 1,134; case G at step 426; docs/deterministic_solver.md, "Robustness").
+det-2026.11-14: a linear solve that took :data:`REFACTOR_ITERATIONS` GMRES iterations makes the next one refactor the
+preconditioner first (the converged states are the same to the Newton tolerance; μ moves within a run's round-off
+sensitivity, checked by benchmarks/deterministic_rerun_check.py)."""
 BOUNDARY_FILM_M = 5e-9
 """Default film-breakdown (boundary-film) thickness h_b [m]: below it the surfaces are in solid contact through
 their adsorbed/reacted boundary films, which carry load and friction μ_d·p_c. Representative value: adsorbed
@@ -224,7 +227,10 @@ conductance ε, reference flux ρ̄H of the thin central film) is ≈ 1e-10 and 
 case B at β/64 stalls at 1.2e-9 with a correction of 5e-14 p_h (docs/deterministic_solver.md, "Robustness")."""
 
 REFACTOR_ITERATIONS = 20
-"""GMRES iterations with the stored preconditioner beyond which it is refactored from the current Jacobian."""
+"""GMRES iterations of a linear solve at which the stored preconditioner counts as aged: the next solve refactors it
+from its own Jacobian first (det-2026.11-14; until det-13 the aged solve itself was repeated with a fresh LU, and its
+first iterations were lost). On three 2-pass `fast` runs that saves 6–19 % of the GMRES iterations
+(benchmarks/deterministic_linear_cost.py; docs/deterministic_solver.md, "Cost")."""
 
 
 
@@ -287,6 +293,7 @@ class MixedProblem:
         self.m_ref = 1.0
         self.preconditioner = None
         self.cost = {"newton_iterations": 0, "gmres_iterations": 0, "factorisations": 0, "round_off_stops": 0}
+        self.last_gmres_iterations = 0
 
     # -- state --------------------------------------------------------------------------------------------------
     def pack(self, pf, th, pc, h0) -> np.ndarray:
@@ -382,18 +389,20 @@ class MixedProblem:
         return out
 
     def _direction(self, jac, dfilm, scaled_residual, scale, tol):
-        if self.preconditioner is None:
+        if self.preconditioner is None or self.last_gmres_iterations >= REFACTOR_ITERATIONS:
             self.preconditioner = BandedPreconditioner(jac, dfilm, self.binv, self.weights, self.periodic)
             self.cost["factorisations"] += 1
         matvec = lambda v: self.jacobian_product(jac, dfilm, v) * scale  # noqa: E731
         apply = lambda r: self.preconditioner.apply(r / scale)  # noqa: E731
         step, its, rel = gmres(matvec, apply, -scaled_residual, tol, 40)
-        if rel > tol or its >= REFACTOR_ITERATIONS:  # the stored LU has aged: refactor with this Jacobian, solve again
+        self.last_gmres_iterations = its
+        if rel > tol:  # the stored LU could not reach the forcing term: refactor with this Jacobian, solve again
             self.preconditioner = BandedPreconditioner(jac, dfilm, self.binv, self.weights, self.periodic)
             self.cost["factorisations"] += 1
             apply = lambda r: self.preconditioner.apply(r / scale)  # noqa: E731
             step2, its2, rel = gmres(matvec, apply, -scaled_residual, tol, 80)
             step, its = step2, its + its2
+            self.last_gmres_iterations = its2
         self.cost["gmres_iterations"] += its
         return step, rel
 
@@ -649,23 +658,16 @@ def solve_deterministic(case: ContactCase, state: LubricantState, plan: Effects,
     return result
 
 
-_PROBLEM_STATE = ("m_ref", "preconditioner", "cost", "last_residual")
+_PROBLEM_STATE = ("m_ref", "preconditioner", "cost", "last_residual", "last_gmres_iterations")
 """The attributes of a :class:`MixedProblem` that change during a run (a checkpoint saves them; the rest is built
 from the inputs)."""
-
-
-_UNDIGESTED_DEFAULTS = {"film_floor": FILM_FLOOR}
-"""Options added after saved states were made (det-2026.11-13): at their default they leave the digest as it was,
-so that those states still continue."""
 
 
 def _fingerprint(case: ContactCase, state: LubricantState, options: DeterministicOptions, problem: MixedProblem,
                  z_start: np.ndarray, gap: np.ndarray) -> str:
     """A digest of everything that determines a run: the model version, the case, the lubricant state, the options
     (but the clock), the grid, the steady start ``z_start`` and a gap of the rough surfaces ``gap``."""
-    options_text = repr({f.name: getattr(options, f.name) for f in fields(options)
-                         if f.name != "clock" and not (f.name in _UNDIGESTED_DEFAULTS
-                                                       and getattr(options, f.name) == _UNDIGESTED_DEFAULTS[f.name])})
+    options_text = repr({f.name: getattr(options, f.name) for f in fields(options) if f.name != "clock"})
     digest = hashlib.sha256()
     for text in (MODEL_VERSION, repr(case), repr(state), options_text, repr((problem.n, problem.dx))):
         digest.update(text.encode())

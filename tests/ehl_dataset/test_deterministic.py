@@ -397,7 +397,7 @@ def test_a_checkpoint_of_another_run_or_a_corrupt_file_is_one_clear_error(tmp_pa
     assert FileCheckpoint(path).load()["k"] == 3
     with pytest.raises(InputError, match="checkpoint.*same run"):
         _short_rough_run(checkpoint=FileCheckpoint(path), dx_m=2.5e-6, max_passes=0.3)
-    with pytest.raises(InputError, match="checkpoint.*same run"):  # an option added since det-13, changed
+    with pytest.raises(InputError, match="checkpoint.*same run"):
         _short_rough_run(checkpoint=FileCheckpoint(path), film_floor=1e-2, max_passes=0.3)
     path.write_bytes(b"not a pickle")
     with pytest.raises(InputError, match="checkpoint.*could not be read"):
