@@ -179,7 +179,8 @@ def solve_and_record(name: str, n: int, long: bool, max_passes: float | None = N
     """Solve case ``name`` at β/``n`` (the long run's options if ``long``, else the short run's) and return the run's
     record as the validation set stores it (inputs, version, μ and its standard error, share, films, series). The
     run saves its state every 10 min (:func:`checkpoint_path`) and continues from a saved state; with ``out`` the
-    record is written there and the saved state removed. ``max_passes`` None: the case's cap
+    record is written there and the saved state removed (a Newton failure's state stays in ``<checkpoint>.failed``
+    for replay: ``FileCheckpoint.save_failure``). ``max_passes`` None: the case's cap
     (:func:`long_max_passes`)."""
     case = ContactCase.from_engineering(*CASES[name])
     state = load_lubricant(LUBRICANT).state(case.temperature)

@@ -23,7 +23,8 @@ class FileCheckpoint:
     """The saved state of one run in the file ``path``, written every ``every_s`` seconds of wall time.
 
     Protocol used by :func:`ehl_dataset.solvers.deterministic.solve_deterministic`: ``every_s``, ``load()`` (the
-    saved state, or None when there is none) and ``save(state)``.
+    saved state, or None when there is none) and ``save(state)``; optionally ``save_failure(state)`` (the state
+    before a step that failed, returning where it is kept).
     """
 
     def __init__(self, path: str | os.PathLike, every_s: float = DEFAULT_EVERY_S):
@@ -55,6 +56,17 @@ class FileCheckpoint:
             os.fsync(handle.fileno())
         os.replace(partial, self.path)
 
+    @property
+    def failure_path(self) -> Path:
+        """Where a run that failed keeps its state before the failing step (``<path>.failed``)."""
+        return self.path.with_name(self.path.name + ".failed")
+
+    def save_failure(self, state: dict) -> Path:
+        """Keep the state before a step the solver could not pass in :attr:`failure_path`, which :meth:`remove`
+        leaves in place: ``FileCheckpoint(checkpoint.failure_path)`` handed to the same run replays that step."""
+        FileCheckpoint(self.failure_path).save(state)
+        return self.failure_path
+
     def remove(self) -> None:
-        """Delete the saved state (once the run's result is recorded)."""
+        """Delete the saved state (once the run's result is recorded); a failure's state stays."""
         self.path.unlink(missing_ok=True)

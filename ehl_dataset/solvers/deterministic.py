@@ -623,6 +623,11 @@ def solve_deterministic(case: ContactCase, state: LubricantState, plan: Effects,
         if outcome is None:
             converged = False
             message = f"Newton failed at step {k + 1} even with {options.max_substeps} sub-steps"
+            save_failure = getattr(checkpoint, "save_failure", None)
+            if save_failure is not None:
+                kept = save_failure(_saved_state(fingerprint, k, t, z, h, record, state_now, clock() - start,
+                                                 problem))
+                message += f"; the state before that step is kept in {kept} (hand it to the same run to replay it)"
             break
         z, h, g, substeps = outcome
         k += 1
@@ -639,9 +644,7 @@ def solve_deterministic(case: ContactCase, state: LubricantState, plan: Effects,
             if mu_mean.within(tolerance):
                 break
         if checkpoint is not None and clock() - last_save >= checkpoint.every_s:
-            checkpoint.save({"fingerprint": fingerprint, "k": k, "t": t, "z": z, "h": h, "record": record,
-                             "state_now": state_now, "elapsed_s": clock() - start,
-                             "problem": {name: getattr(problem, name) for name in _PROBLEM_STATE}})
+            checkpoint.save(_saved_state(fingerprint, k, t, z, h, record, state_now, clock() - start, problem))
             last_save = clock()
     if converged and k < n_min:
         converged = False
@@ -656,6 +659,12 @@ def solve_deterministic(case: ContactCase, state: LubricantState, plan: Effects,
                      message, rule, dx_m, first_average, mu_mean, time_limited)
     result.extra.update(profile_record(profile))
     return result
+
+
+def _saved_state(fingerprint, k, t, z, h, record, state_now, elapsed_s, problem) -> dict:
+    """What a checkpoint keeps of a run after step ``k`` (:func:`solve_deterministic` continues from it)."""
+    return {"fingerprint": fingerprint, "k": k, "t": t, "z": z, "h": h, "record": record, "state_now": state_now,
+            "elapsed_s": elapsed_s, "problem": {name: getattr(problem, name) for name in _PROBLEM_STATE}}
 
 
 _PROBLEM_STATE = ("m_ref", "preconditioner", "cost", "last_residual", "last_gmres_iterations")

@@ -406,6 +406,26 @@ def test_a_checkpoint_of_another_run_or_a_corrupt_file_is_one_clear_error(tmp_pa
     assert not path.exists()
 
 
+def test_a_run_that_fails_keeps_the_state_before_the_failing_step_and_replays_it(tmp_path):
+    """Never hide non-convergence, and make it replayable: a run whose Newton solve cannot pass a step (here eight
+    iterations and no sub-steps allowed: it passes 40 steps and fails the 41st) reports the step, keeps its state
+    before that step next to the checkpoint (left in place when the checkpoint is removed), and that state handed back
+    to the same run fails at the same step again without redoing the steps before it."""
+    checkpoint = FileCheckpoint(tmp_path / "run.ckpt")
+    failing = dict(newton_iterations=8, max_substeps=1)
+    failed = _short_rough_run(checkpoint=checkpoint, **failing)
+    assert not failed.converged
+    step = int(failed.message.split("Newton failed at step ")[1].split()[0])
+    assert step > 1
+    assert str(checkpoint.failure_path) in failed.message
+    checkpoint.remove()
+    assert checkpoint.failure_path.exists()
+    assert FileCheckpoint(checkpoint.failure_path).load()["k"] == step - 1
+    replayed = _short_rough_run(checkpoint=FileCheckpoint(checkpoint.failure_path), **failing)
+    assert not replayed.converged
+    assert f"Newton failed at step {step} " in replayed.message
+
+
 class _FileThenKill:
     def __init__(self, inner, saves):
         self.inner, self.saves, self.count, self.every_s = inner, saves, 0, inner.every_s
