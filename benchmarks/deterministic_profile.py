@@ -1,5 +1,5 @@
 """Where the time of one deterministic run goes: cProfile of ``solve_contact(..., model="deterministic")`` on one
-contact (default: the median-time point of benchmarks/results/deterministic_speed_fast.json, 0.5 GPa, 80 mm, 20 m/s,
+contact (default: the median-time point of benchmarks/results/deterministic_speed_fast_det-2026.11-13.json, 0.5 GPa, 80 mm, 20 m/s,
 SR 0.7, 25 °C, Rq 1/1 µm: five periodic windows at `fast`), reported as the cumulative time of the functions that
 matter and their call counts. cProfile adds a per-call overhead, so the shares of many small calls are upper
 bounds; the run's own time without the profiler is in the speed benchmark.
