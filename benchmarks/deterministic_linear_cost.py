@@ -77,7 +77,7 @@ def main(argv=None) -> int:
     for name in names:
         row = run_point(name, args.band)
         key = (name, MODEL_VERSION, args.band)
-        record["rows"] = [r for r in record["rows"] if (r["point"], r["model_version"], r.get("band", 12)) != key]
+        record["rows"] = [r for r in record["rows"] if (r["point"], r["model_version"], r["band"]) != key]
         record["rows"].append(row)
         record["machine"] = {"platform": platform.platform(), "cpu_count": os.cpu_count(),
                              "python": platform.python_version(), "numpy": np.__version__}

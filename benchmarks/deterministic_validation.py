@@ -424,17 +424,23 @@ def balance_lines(rows: list[dict]) -> list[str]:
     """The conservation target over every step of every run of the set (cases whose entry predates the balance
     record are counted as not recorded)."""
     recorded = [r for r in rows if "mass_error_max" in r]
+
+    def where(r, key):
+        steps = (f", {sum(r['mass_error_steps_over_target'].values()):,} of {sum(r['steps'].values()):,} steps"
+                 if key == "mass_error_max" else "")
+        return f"{r['case']} ({max(r[key].values()):.1e}{steps})"
+
     lines = []
     for text, key in (("load", "load_error_max"), ("lubricant mass", "mass_error_max")):
         failing = [r for r in recorded if max(r[key].values()) > BALANCE_TARGET]
         worst = max((max(r[key].values()) for r in recorded), default=math.nan)
-        detail = "; not on " + ", ".join(
-            f"{r['case']} ({max(r[key].values()):.1e}"
-            + (f", {sum(r['mass_error_steps_over_target'].values()):,} of {sum(r['steps'].values()):,} steps"
-               if key == "mass_error_max" else "") + ")" for r in failing) if failing else ""
-        lines.append(f"- {text} balance ≤ 1e-10 (relative) at every step of every run: met on "
-                     f"{len(recorded) - len(failing)} of {len(recorded)} cases (largest {worst:.1e}){detail}"
-                     + (f"; {len(rows) - len(recorded)} cases not recorded" if len(recorded) < len(rows) else ""))
+        line = (f"- {text} balance ≤ 1e-10 (relative) at every step of every run: met on "
+                f"{len(recorded) - len(failing)} of {len(recorded)} cases (largest {worst:.1e})")
+        if failing:
+            line += "; not on " + ", ".join(where(r, key) for r in failing)
+        if len(recorded) < len(rows):
+            line += f"; {len(rows) - len(recorded)} cases not recorded"
+        lines.append(line)
     return lines
 
 

@@ -233,8 +233,6 @@ first iterations were lost). On three 2-pass `fast` runs that saves 6–19 % of 
 (benchmarks/deterministic_linear_cost.py; docs/deterministic_solver.md, "Cost")."""
 
 
-
-
 def grid_spacing(profile: RoughnessProfile, rq1: float, rq2: float, h_b: float, options: DeterministicOptions,
                  inlet_length: float = math.inf) -> tuple[float, dict]:
     """Grid spacing [m] that resolves the roughness (β/``points_per_beta``), the micro-EHL length
@@ -388,22 +386,23 @@ class MixedProblem:
         out[-1] = float(self.weights @ dp)
         return out
 
+    def _refactor(self, jac, dfilm):
+        self.preconditioner = BandedPreconditioner(jac, dfilm, self.binv, self.weights, self.periodic)
+        self.cost["factorisations"] += 1
+
     def _direction(self, jac, dfilm, scaled_residual, scale, tol):
         if self.preconditioner is None or self.last_gmres_iterations >= REFACTOR_ITERATIONS:
-            self.preconditioner = BandedPreconditioner(jac, dfilm, self.binv, self.weights, self.periodic)
-            self.cost["factorisations"] += 1
+            self._refactor(jac, dfilm)
         matvec = lambda v: self.jacobian_product(jac, dfilm, v) * scale  # noqa: E731
         apply = lambda r: self.preconditioner.apply(r / scale)  # noqa: E731
         step, its, rel = gmres(matvec, apply, -scaled_residual, tol, 40)
-        self.last_gmres_iterations = its
+        total = its
         if rel > tol:  # the stored LU could not reach the forcing term: refactor with this Jacobian, solve again
-            self.preconditioner = BandedPreconditioner(jac, dfilm, self.binv, self.weights, self.periodic)
-            self.cost["factorisations"] += 1
-            apply = lambda r: self.preconditioner.apply(r / scale)  # noqa: E731
-            step2, its2, rel = gmres(matvec, apply, -scaled_residual, tol, 80)
-            step, its = step2, its + its2
-            self.last_gmres_iterations = its2
-        self.cost["gmres_iterations"] += its
+            self._refactor(jac, dfilm)
+            step, its, rel = gmres(matvec, apply, -scaled_residual, tol, 80)
+            total += its
+        self.last_gmres_iterations = its
+        self.cost["gmres_iterations"] += total
         return step, rel
 
     def newton(self, z, gap, storage, tol: float, max_iterations: int, max_pressure_step: float = 2.0):

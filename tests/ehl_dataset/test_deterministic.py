@@ -424,6 +424,9 @@ def test_a_run_that_fails_keeps_the_state_before_the_failing_step_and_replays_it
     replayed = _short_rough_run(checkpoint=FileCheckpoint(checkpoint.failure_path), **failing)
     assert not replayed.converged
     assert f"Newton failed at step {step} " in replayed.message
+    # the cost record continues from the saved one: the replay adds the failing step's attempts only (at most two
+    # starting guesses of 8 iterations each), not the 40 steps before it
+    assert replayed.extra["newton_iterations"] - failed.extra["newton_iterations"] <= 2 * 8
 
 
 class _FileThenKill:
