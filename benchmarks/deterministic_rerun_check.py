@@ -3,11 +3,14 @@ records: the evidence that a new model version may be paired with the old one's 
 (``deterministic_validation.SAME_NUMERICS``).
 
     python benchmarks/deterministic_rerun_check.py A:16 B:16 C:16 G:8 I:8
+    python benchmarks/deterministic_rerun_check.py --replace H:8     # the rerun becomes the run's record
 
 Each argument is CASE:POINTS_PER_BETA of a run in benchmarks/results/deterministic/ (run with the same options as
 the validation script: the middle spacing as the long run). Writes
 benchmarks/results/deterministic_rerun_check_<installed model version>.json.
-Runs laid out for another length (records without ``layout_passes``) see other roughness and are refused.
+Runs laid out for another length (records without ``layout_passes``) see other roughness and are refused. With
+``--replace`` the rerun's record replaces the recorded one (for a version whose runs the validation pairs with the
+old ones, ``SAME_NUMERICS``: e.g. to record the new version's per-step balance); each row is written as it finishes.
 """
 
 from __future__ import annotations
@@ -18,42 +21,52 @@ import time
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from deterministic_validation import (CASES, LUBRICANT, RUNS, layout_passes, long_max_passes,  # noqa: E402
-                                      options_for, run_case_specs, run_path, spacings)
+import numpy as np  # noqa: E402
+from deterministic_validation import (BALANCE_TARGET, RUNS, checkpoint_path, layout_passes,  # noqa: E402
+                                      run_case_specs, run_path, solve_and_record, spacings)
 
-from ehl_dataset.model.contact import ContactCase  # noqa: E402
-from ehl_dataset.model.effects import Effects  # noqa: E402
-from ehl_dataset.model.lubricant import load_lubricant  # noqa: E402
-from ehl_dataset.solvers.deterministic import MODEL_VERSION, solve_deterministic  # noqa: E402
+from ehl_dataset.dataset.checkpoint import FileCheckpoint  # noqa: E402
+from ehl_dataset.solvers.deterministic import MODEL_VERSION  # noqa: E402
 
 OUT = RUNS.parent / f"deterministic_rerun_check_{MODEL_VERSION}.json"
 
 
-def rerun(name: str, n: int) -> dict:
-    record = json.loads(run_path(name, n).read_text())
+def rerun(name: str, n: int, replace: bool = False) -> dict:
+    path = run_path(name, n)
+    record = json.loads(path.read_text())
     if record.get("layout_passes") != layout_passes(name):
         raise SystemExit(f"{name} beta/{n}: recorded without layout_passes={layout_passes(name):g}: another "
                          f"roughness, not comparable")
-    case = ContactCase.from_engineering(*CASES[name])
-    state = load_lubricant(LUBRICANT).state(case.temperature)
     start = time.perf_counter()
-    result = solve_deterministic(case, state, Effects.full(), options_for(n, n == spacings(name)[1],
-                                                                                 long_max_passes(name),
-                                                                                 layout_passes(name)))
+    long = n == spacings(name)[1]
+    new = solve_and_record(name, n, long, out=path if replace else None)
+    if not replace:
+        FileCheckpoint(checkpoint_path(name, n, long)).remove()
+    extra = new["extra"]
     return {"run": f"{name} beta/{n}", "recorded_version": record["solver_version"], "version": MODEL_VERSION,
-            "mu_recorded": record["mu"], "mu": result.mu, "mu_relative_change": result.mu / record["mu"] - 1.0,
-            "share_recorded": record["asperity_load_share"], "share": result.asperity_load_share,
-            "substep_steps_recorded": record["extra"]["substep_steps"],
-            "substep_steps": result.extra["substep_steps"],
+            "mu_recorded": record["mu"], "mu": new["mu"], "mu_relative_change": new["mu"] / record["mu"] - 1.0,
+            "share_recorded": record["asperity_load_share"], "share": new["asperity_load_share"],
+            "substep_steps_recorded": record["extra"]["substep_steps"], "substep_steps": extra["substep_steps"],
             "round_off_stops_recorded": record["extra"].get("round_off_stops"),
-            "round_off_stops": result.extra["round_off_stops"],
+            "round_off_stops": extra["round_off_stops"],
             "max_mass_error_recorded": record["residuals"]["max_mass_error"],
-            "max_mass_error": result.residuals["max_mass_error"], "converged": result.converged,
-            "wall_time_s": time.perf_counter() - start}
+            "max_mass_error": new["residuals"]["max_mass_error"],
+            "mass_error_steps_over_1e-10_recorded": over_target(record),
+            "mass_error_steps_over_1e-10": over_target(new), "n_steps": extra["n_steps"],
+            "converged": new["converged"], "replaced": replace, "wall_time_s": time.perf_counter() - start}
+
+
+def over_target(record: dict) -> int:
+    """Steps of a run's record whose global mass balance exceeds :data:`BALANCE_TARGET`."""
+    return int(np.sum(np.asarray(record["extra"]["mass_error_series"]) > BALANCE_TARGET))
 
 
 def main(argv=None) -> int:
-    return run_case_specs("deterministic_rerun_check.py", argv if argv is not None else sys.argv[1:], rerun, OUT)
+    args = list(sys.argv[1:] if argv is None else argv)
+    replace = "--replace" in args
+    specs = [a for a in args if a != "--replace"]
+    return run_case_specs("deterministic_rerun_check.py", specs, lambda name, n: rerun(name, n, replace), OUT,
+                          "--replace" if replace else "")
 
 
 if __name__ == "__main__":

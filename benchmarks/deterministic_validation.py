@@ -101,7 +101,7 @@ LUBRICANT = "atf"
 
 SAME_NUMERICS = {"det-2026.11-9": "det-2026.11-10", "det-2026.11-11": "det-2026.11-10",
                  "det-2026.11-12": "det-2026.11-10", "det-2026.11-13": "det-2026.11-10",
-                 "det-2026.11-14": "det-2026.11-10"}
+                 "det-2026.11-14": "det-2026.11-10", "det-2026.11-15": "det-2026.11-10"}
 """Model versions whose runs may be paired with runs of the version they map to. det-2026.11-10 changed only the
 Newton stop at the round-off floor (a step that stalls there is accepted instead of split); rerun under it, the short
 runs A β/16, B β/16, G β/8 and I β/8 reproduce det-2026.11-9's μ within 1e-12 (relative) and C β/16 within 8e-5
@@ -117,7 +117,11 @@ one, and its steps solve det-13's equations too. det-2026.11-14 changed only whe
 (before a solve that follows one of ``REFACTOR_ITERATIONS`` GMRES iterations, instead of repeating that solve): rerun
 under it, A β/16, B β/16, I β/8 and L β/8 reproduce their recorded μ within 4e-13 (relative), D β/8 within 1.3e-6 and
 H β/8 within 6.9e-6 (`python benchmarks/deterministic_rerun_check.py A:16 B:16 I:8 D:8 H:8 L:8`,
-benchmarks/results/deterministic_rerun_check_det-2026.11-14.json)."""
+benchmarks/results/deterministic_rerun_check_det-2026.11-14.json). det-2026.11-15 changed only the round-off stop
+on a small correction (below 1e-15 p_h instead of 1e-12: a step iterates on until its global balance meets the
+tolerance); rerun under it with ``--replace`` (the reruns are the records now), the runs listed in
+benchmarks/results/deterministic_rerun_check_det-2026.11-15.json reproduce their recorded μ within the figures given
+there and in docs/deterministic_solver.md, "Mass balance"."""
 
 
 def numerics(version: str) -> str:
@@ -125,17 +129,20 @@ def numerics(version: str) -> str:
     return SAME_NUMERICS.get(version, version)
 
 
-def run_case_specs(script: str, specs: list[str], analyse, out: Path) -> int:
+def run_case_specs(script: str, specs: list[str], analyse, out: Path, flags: str = "") -> int:
     """Run ``analyse(name, points_per_beta)`` for every ``CASE:N`` of ``specs``; print each row as JSON and write
-    them, with the command (``python benchmarks/<script> <specs>``) and the machine, to ``out``."""
+    it at once, with its command (``python benchmarks/<script> [flags] <spec>``) and the machine, to ``out``, whose
+    rows of other runs are kept (a row of the same run is replaced): a session that stops keeps the finished rows."""
     import platform
-    rows = []
     for spec in specs:
         name, n = spec.split(":")
-        rows.append(analyse(name, int(n)))
-        print(json.dumps(rows[-1]), flush=True)
-    out.write_text(json.dumps({"command": f"python benchmarks/{script} " + " ".join(specs),
-                               "machine": platform.platform(), "rows": rows}, indent=1) + "\n")
+        row = analyse(name, int(n))
+        print(json.dumps(row), flush=True)
+        command = " ".join(part for part in (f"python benchmarks/{script}", flags, spec) if part)
+        kept = json.loads(out.read_text()) if out.exists() else {}
+        rows = [r for r in kept.get("rows", []) if r.get("run") != row.get("run")]
+        out.write_text(json.dumps({"machine": platform.platform(), "rows": rows + [{"command": command, **row}]},
+                                  indent=1) + "\n")
     return 0
 
 
