@@ -448,7 +448,31 @@ def balance_lines(rows: list[dict]) -> list[str]:
         if len(recorded) < len(rows):
             line += f"; {len(rows) - len(recorded)} cases not recorded"
         lines.append(line)
+    lines.append(stop_rule_line(recorded))
     return lines
+
+
+STOP_RULE_VERSION = "det-2026.11-15"
+"""The first model version whose Newton solve takes a round-off stop on a small correction only below 1e-15 p_h
+(``ROUND_OFF_STEP``; 1e-12 before, which accepted steps a further iteration would have balanced)."""
+
+
+def stop_rule_line(recorded: list[dict]) -> str:
+    """The mass balance over the runs made under :data:`STOP_RULE_VERSION` or later, apart from the older runs."""
+    new, old = [], []
+    for r in recorded:
+        for spacing, version in r["run_versions"].items():
+            item = (r["case"], spacing, r["mass_error_steps_over_target"][spacing], r["steps"][spacing],
+                    r["mass_error_max"][spacing])
+            (new if version_key(version) >= version_key(STOP_RULE_VERSION) else old).append(item)
+    over = [i for i in new if i[2]]
+    line = (f"- the runs made under {STOP_RULE_VERSION} or later (its round-off stop, docs/deterministic_solver.md "
+            f"\"Robustness\" item 8): {len(new)} of {len(new) + len(old)} runs, {sum(i[2] for i in new):,} of "
+            f"{sum(i[3] for i in new):,} steps above 1e-10")
+    if over:
+        line += " (" + ", ".join(f"{c} {s}: {k:,}, largest {e:.1e}" for c, s, k, _, e in over) + ")"
+    return line + (f"; the other {sum(i[2] for i in old):,} steps above it are in the {len(old)} older runs"
+                   if old else "")
 
 
 def summarise() -> None:
