@@ -47,9 +47,9 @@ def test_no_validation_step_was_accepted_beyond_the_solvers_round_off_bound(case
 def test_runs_under_the_strict_round_off_stop_stay_within_its_stall_margin(cases):
     """Since det-2026.11-15 a step ends above the tolerance only at the round-off floor: stalled within
     ROUND_OFF_MARGIN (10×) the tolerance, or with a correction below 1e-15 p_h (a few units in the last place).
-    Measured on the validation runs made under it (run_versions in the data): every step within the 10× margin; B at
-    β/64, at the floor of double precision, reaches 4.2e-10 on 12 of 9,051 steps (docs/deterministic_solver.md,
-    "Robustness" item 8). The runs made before it accepted up to 1000× (5.3e-8)."""
+    Measured on the validation runs made under it (run_versions in the data): every step within the 10× margin; at
+    the floor of double precision B at β/64 reaches 4.2e-10 on 12 of 9,051 steps and G's long run 8.3e-10 on 9 of
+    263,900 (docs/deterministic_solver.md, "Robustness" item 8, "Mass balance"). The runs made before it accepted up to 1000× (5.3e-8)."""
     bound = ROUND_OFF_MARGIN * DeterministicOptions().newton_tolerance
     checked = 0
     for case in cases:
