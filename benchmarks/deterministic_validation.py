@@ -41,7 +41,8 @@ from ehl_dataset.model.contact import ContactCase
 from ehl_dataset.model.effects import Effects
 from ehl_dataset.model.lubricant import load_lubricant
 from ehl_dataset.model.roughness import baseline_profile
-from ehl_dataset.solvers.deterministic import MODEL_VERSION, DeterministicOptions, solve_deterministic
+from ehl_dataset.solvers.deterministic import (MODEL_VERSION, DeterministicOptions, model_version_key,
+                                               solve_deterministic)
 from ehl_dataset.solvers.time_average import time_mean
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -388,10 +389,7 @@ OLDEST_ACCEPTED = "det-2026.11-7"
 the reference set."""
 
 
-def version_key(version: str) -> tuple[int, ...]:
-    """det-YYYY.MM-n as (YYYY, MM, n), so that det-2026.11-10 sorts after det-2026.11-9."""
-    date, number = version.removeprefix("det-").rsplit("-", 1)
-    return (*(int(v) for v in date.split(".")), int(number))
+version_key = model_version_key
 
 
 def _order_text(order: float) -> str:

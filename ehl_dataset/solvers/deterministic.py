@@ -68,8 +68,14 @@ det-2026.11-14: a linear solve that took :data:`REFACTOR_ITERATIONS` GMRES itera
 preconditioner first (the converged states are the same to the Newton tolerance; μ moves within a run's round-off
 sensitivity, checked by benchmarks/deterministic_rerun_check.py). det-2026.11-15: the round-off stop on a small
 correction needs it below 1e-15 p_h instead of 1e-12 (:data:`ROUND_OFF_STEP`): steps that stopped with a global
-mass balance above the tolerance now iterate on to meet it (rerun under it, recorded runs move by ≤ 1.2e-6 relative in μ on short windows
-and ≤ 5.7e-5 on long ones; benchmarks/results/deterministic_rerun_check_det-2026.11-15.json)."""
+mass balance above the tolerance now iterate on to meet it (rerun under it, recorded runs move by ≤ 1.2e-6 relative
+in μ on short windows and ≤ 5.7e-5 on long ones; benchmarks/results/deterministic_rerun_check_det-2026.11-15.json)."""
+
+
+def model_version_key(version: str) -> tuple[int, ...]:
+    """A model version det-YYYY.MM-n as (YYYY, MM, n), so that det-2026.11-10 sorts after det-2026.11-9."""
+    date, number = version.removeprefix("det-").rsplit("-", 1)
+    return (*(int(v) for v in date.split(".")), int(number))
 BOUNDARY_FILM_M = 5e-9
 """Default film-breakdown (boundary-film) thickness h_b [m]: below it the surfaces are in solid contact through
 their adsorbed/reacted boundary films, which carry load and friction μ_d·p_c. Representative value: adsorbed

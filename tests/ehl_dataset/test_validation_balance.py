@@ -7,7 +7,8 @@ from pathlib import Path
 
 import pytest
 
-from ehl_dataset.solvers.deterministic import DeterministicOptions, ROUND_OFF_MARGIN, ROUND_OFF_STEP_MARGIN
+from ehl_dataset.solvers.deterministic import (DeterministicOptions, ROUND_OFF_MARGIN, ROUND_OFF_STEP_MARGIN,
+                                               model_version_key)
 
 REFERENCE = Path(__file__).resolve().parents[2] / "data" / "reference" / "deterministic_validation.json"
 
@@ -34,8 +35,8 @@ def test_the_load_is_balanced_to_1e_10_at_every_step_of_every_validation_run(cas
 def test_no_validation_step_was_accepted_beyond_the_solvers_round_off_bound(cases):
     """The mass balance of a step exceeds the Newton tolerance only at a round-off stop, which accepts at most
     ROUND_OFF_STEP_MARGIN × the tolerance (the correction below ROUND_OFF_STEP p_h: 1e-12 until det-2026.11-14,
-    1e-15 since det-2026.11-15). A larger error would be a step accepted unconverged. Where it exceeds the issue's 1e-10 is reported,
-    not asserted away (docs/deterministic_validation.md counts the steps)."""
+    1e-15 since det-2026.11-15). A larger error would be a step accepted unconverged. Where it exceeds the issue's
+    1e-10 is reported, not asserted away (docs/deterministic_validation.md counts the steps)."""
     bound = ROUND_OFF_STEP_MARGIN * DeterministicOptions().newton_tolerance
     for case in cases:
         for spacing, error in case["mass_error_max"].items():
@@ -49,17 +50,13 @@ def test_runs_under_the_strict_round_off_stop_stay_within_its_stall_margin(cases
     ROUND_OFF_MARGIN (10×) the tolerance, or with a correction below 1e-15 p_h (a few units in the last place).
     Measured on the validation runs made under it (run_versions in the data): every step within the 10× margin; at
     the floor of double precision B at β/64 reaches 4.2e-10 on 12 of 9,051 steps and G's long run 8.3e-10 on 9 of
-    263,900 (docs/deterministic_solver.md, "Robustness" item 8, "Mass balance"). The runs made before it accepted up to 1000× (5.3e-8)."""
+    263,900 (docs/deterministic_solver.md, "Robustness" item 8, "Mass balance"). The runs made before it accepted up
+    to 1000× (5.3e-8)."""
     bound = ROUND_OFF_MARGIN * DeterministicOptions().newton_tolerance
     checked = 0
     for case in cases:
         for spacing, version in case["run_versions"].items():
-            if version_key(version) >= version_key("det-2026.11-15"):
+            if model_version_key(version) >= model_version_key("det-2026.11-15"):
                 assert case["mass_error_max"][spacing] <= bound, (case["case"], spacing)
                 checked += 1
     assert checked >= 8
-
-
-def version_key(version: str) -> tuple[int, ...]:
-    date, number = version.removeprefix("det-").rsplit("-", 1)
-    return (*(int(v) for v in date.split(".")), int(number))
