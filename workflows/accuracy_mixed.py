@@ -12,12 +12,15 @@ with the central film h_c (the film at x = 0: the time-mean film of the determin
 homogenised model) because the minimum of a rough film is a contact spot (h_b) in every model that has asperity
 contact. The wall time per case is measured around the call on one core. Runs are checkpointed to JSON after each
 solve (a study of the slow models can be stopped and resumed); the report is Markdown plus a PNG of error against
-time (:func:`write_mixed_report`).
+time (:func:`write_mixed_report`). When the reference is recomputed, :func:`rescore_study` measures the runs of an
+earlier report against it without solving again (the runs keep the solver version, commit and machine they were made
+with; the report names both).
 """
 
 from __future__ import annotations
 
 import dataclasses
+import hashlib
 import json
 import math
 import time
@@ -177,8 +180,52 @@ def run_mixed_study(models: Sequence[str] = CHEAP_MODELS, reference: str | Path 
                      "runs": [dataclasses.asdict(r) for r in done.values()]},
                     default=float), encoding="utf-8")
     return {"runs": runs, "cases": cases, "models": list(models),
-            "provenance": {**provenance(), "deterministic_model_version": MODEL_VERSION},
+            "provenance": {**provenance(), "deterministic_model_version": MODEL_VERSION,
+                           "reference_sha256": reference_fingerprint(reference)},
             "reference_file": str(reference)}
+
+
+def reference_fingerprint(path: str | Path) -> str:
+    """First 12 hex digits of the SHA-256 of the reference file: which reference a report was measured against."""
+    return hashlib.sha256(Path(path).read_bytes()).hexdigest()[:12]
+
+
+def rescore_study(report: str | Path, reference: str | Path = REFERENCE_FILE) -> dict:
+    """The runs of an earlier report (the ``<stem>.json`` of :func:`write_mixed_report`) measured against
+    ``reference`` without solving again: for a reference recomputed since, or for runs of a model the package no
+    longer has (the transient solver deleted at ehl-2026.11-15). The runs keep their provenance (solver version,
+    commit, machine, date, command); the study's ``rescored`` records the re-measurement's. InputError if the report
+    is missing or corrupt, holds a case the reference does not, or was solved at other inputs than the reference's
+    (checked where the report records them, ``reference_inputs``)."""
+    from .accuracy import provenance
+
+    path = Path(report)
+    try:
+        data = json.loads(path.read_text(encoding="utf-8"))
+        runs = [MixedRun(**{**r, "mu_error": math.nan, "h_central_error": math.nan, "share_difference": math.nan})
+                for r in data["runs"]]
+        models, runs_provenance, runs_command = list(data["models"]), dict(data["provenance"]), str(data["command"])
+    except FileNotFoundError:
+        raise InputError("report", str(path), "an existing <stem>.json written by gearloss accuracy --mixed") from None
+    except (ValueError, KeyError, TypeError) as err:
+        raise InputError("report", str(path), f"a report JSON of gearloss accuracy --mixed ({type(err).__name__}: "
+                                              f"{err})") from None
+    by_name = {row["case"]: row for row in load_reference(reference)}
+    solved_at = data.get("reference_inputs", {})
+    for run in runs:
+        if run.case not in by_name:
+            raise InputError("report", str(path), f"runs of the reference's cases {sorted(by_name)} (case "
+                                                  f"{run.case!r} is not in {reference})")
+        if run.case in solved_at and solved_at[run.case] != by_name[run.case]["inputs"]:
+            raise InputError("report", str(path), f"runs solved at the reference's inputs (case {run.case}: "
+                                                  f"{solved_at[run.case]} against {by_name[run.case]['inputs']})")
+    names = {run.case for run in runs}
+    cases = [row for name, row in by_name.items() if name in names]
+    runs = [_measure(run, by_name[run.case]) for run in runs]
+    rescored = {**provenance(), "report": str(path), "reference_sha256": reference_fingerprint(reference),
+                "cases_without_runs": sorted(set(by_name) - names)}
+    return {"runs": runs, "cases": cases, "models": models, "provenance": runs_provenance,
+            "runs_command": runs_command, "reference_file": str(reference), "rescored": rescored}
 
 
 def summary(study: dict) -> dict[str, dict[str, float]]:
@@ -209,10 +256,17 @@ def _pct(v: float) -> str:
 
 
 def markdown_mixed(study: dict, command: str, png_name: str) -> str:
+    """The report: ``command`` made it (for a rescored study, :func:`rescore_study`, the command that rescored it;
+    the runs' own command is ``study["runs_command"]``)."""
     prov = study["provenance"]
+    rescored = study.get("rescored")
+    runs_command = study.get("runs_command", command)
+    regenerate = [f"    {runs_command}"]
+    if rescored:
+        regenerate += ["", "then, against a recomputed reference, without solving again:", "", f"    {command}"]
     lines = ["# Mixed regime: accuracy versus time against the deterministic reference", "",
              "Generated by `gearloss accuracy --mixed` (`workflows/accuracy_mixed.py`); do not edit by hand. "
-             "Regenerate with:", "", f"    {command}", "",
+             "Regenerate with:", "", *regenerate, "",
              f"Reference: `{Path(study['reference_file']).name}` (the deterministic solver's validation set, μ "
              "Richardson-extrapolated from its three finest grid spacings; docs/deterministic_solver.md). err μ = |μ − μ_ref|/"
              "μ_ref; err h_c is that of the central film, against the reference's time mean of the film at x = 0 over its "
@@ -222,8 +276,17 @@ def markdown_mixed(study: dict, command: str, png_name: str) -> str:
              f"EHL solver {prov.get('solver_version')} (deterministic model "
              f"{prov.get('deterministic_model_version', 'not recorded')}), commit `{prov.get('git_commit')}`"
              + (" (with uncommitted solver changes)" if prov.get("solver_files_modified") else "")
-             + f", {prov.get('date_utc')}; {prov.get('platform')}, {prov.get('cpu_count')} CPUs.", "",
-             "## Summary", "",
+             + f", {prov.get('date_utc')}; {prov.get('platform')}, {prov.get('cpu_count')} CPUs"
+             + (f"; reference `{prov['reference_sha256']}` (first digits of its SHA-256)." if prov.get("reference_sha256")
+                else "."), ""]
+    if rescored:
+        lines += [f"Errors re-measured against the reference `{rescored['reference_sha256']}` on "
+                  f"{rescored.get('date_utc')} (commit `{rescored.get('git_commit')}`, EHL solver "
+                  f"{rescored.get('solver_version')}) from the runs of `{Path(rescored['report']).name}`: the μ, "
+                  "films, shares and times are those of the runs, made with the versions above"
+                  + (f"; reference cases without runs: {', '.join(rescored['cases_without_runs'])}"
+                     if rescored.get("cases_without_runs") else "") + ".", ""]
+    lines += ["## Summary", "",
              "| model | cases | converged | median err μ | 90th pct err μ | max err μ | median err h_c | "
              "median \\|Δshare\\| | mean time [s] | median time [s] |", "|---|---|---|---|---|---|---|---|---|---|"]
     for name, row in summary(study).items():
@@ -231,8 +294,9 @@ def markdown_mixed(study: dict, command: str, png_name: str) -> str:
                      f"{_pct(row['mu_error_p90'])} | {_pct(row['mu_error_max'])} | "
                      f"{_pct(row['h_central_error_median'])} | {row['share_difference_median']:.3f} | "
                      f"{row['wall_time_mean_s']:.3g} | {row['wall_time_median_s']:.3g} |")
-    lines += ["", f"![error versus time]({png_name})", "",
-              f"*Made by `{command}` (gearloss {prov.get('gearloss')}, EHL solver {prov.get('solver_version')}).*",
+    made = f"*Made by `{runs_command}` (gearloss {prov.get('gearloss')}, EHL solver {prov.get('solver_version')})" + (
+        f", errors re-measured by `{command}` ({rescored.get('date_utc')}).*" if rescored else ".*")
+    lines += ["", f"![error versus time]({png_name})", "", made,
               "", "## Per case", "",
               "| case | λ̄ | a/β | μ_ref ± | h_c,ref ± [nm] | share_ref | model | μ | err μ | h_c [nm] | err h_c | share | "
               "time [s] | converged |", "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
@@ -288,8 +352,11 @@ def plot_mixed(study: dict, path: Path, floor: float = 1e-4) -> Path:
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=7)
     prov = study["provenance"]
+    rescored = study.get("rescored")
     ax.set_title(f"mixed regime, {len(study['cases'])} reference cases (EHL solver {prov.get('solver_version')}, "
-                 f"commit {prov.get('git_commit')})", fontsize=9)
+                 f"commit {prov.get('git_commit')})"
+                 + (f"\nerrors re-measured against reference {rescored['reference_sha256']}, "
+                    f"{rescored.get('date_utc')}" if rescored else ""), fontsize=9)
     fig.savefig(path, dpi=110)
     plt.close(fig)
     return path
@@ -303,8 +370,11 @@ def write_mixed_report(study: dict, out_dir: str | Path, command: str, stem: str
     md = out / f"{stem}.md"
     md.write_text(markdown_mixed(study, command, png.name), encoding="utf-8")
     raw = out / f"{stem}.json"
-    raw.write_text(json.dumps({"provenance": study["provenance"], "command": command, "models": study["models"],
-                               "reference_file": study["reference_file"], "summary": summary(study),
-                               "runs": [dataclasses.asdict(r) for r in study["runs"]]}, indent=1, default=float),
-                   encoding="utf-8")
+    payload = {"provenance": study["provenance"], "command": study.get("runs_command", command),
+               "models": study["models"], "reference_file": study["reference_file"],
+               "reference_inputs": {row["case"]: row["inputs"] for row in study["cases"]}, "summary": summary(study),
+               "runs": [dataclasses.asdict(r) for r in study["runs"]]}
+    if study.get("rescored"):
+        payload["rescored"] = {**study["rescored"], "command": command}
+    raw.write_text(json.dumps(payload, indent=1, default=float), encoding="utf-8")
     return {"markdown": md, "plot": png, "json": raw}

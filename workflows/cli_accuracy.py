@@ -54,6 +54,10 @@ def register(subparsers) -> None:
                              "case)")
     parser.add_argument("--reference-file", default=None, metavar="FILE",
                         help="with --mixed: the reference set (default data/reference/deterministic_validation.json)")
+    parser.add_argument("--rescore", default=None, metavar="REPORT_JSON",
+                        help="with --mixed: measure the runs of an earlier report (its <stem>.json, e.g. "
+                             "docs/accuracy_mixed.json) against the reference without solving again; the runs keep "
+                             "the versions they were made with")
     parser.add_argument("--json", action="store_true", help="print one JSON object")
     parser.set_defaults(handler=run_accuracy)
 
@@ -69,16 +73,23 @@ def run_mixed(args) -> int:
     models = tuple(args.models) if args.models else accuracy_mixed.CHEAP_MODELS
     reference = args.reference_file or accuracy_mixed.REFERENCE_FILE
     Path(args.out_dir).mkdir(parents=True, exist_ok=True)
-    study = accuracy_mixed.run_mixed_study(
-        models, reference, args.lubricant, checkpoint=Path(args.out_dir) / f"{stem}.partial.json",
-        progress=lambda text: print(f"[accuracy] {text}", file=sys.stderr, flush=True))
-    command = f"gearloss accuracy --mixed --models {' '.join(models)} --lubricant {args.lubricant} --out {args.out_dir}"
+    if args.rescore:
+        study = accuracy_mixed.rescore_study(args.rescore, reference)
+        models = tuple(study["models"])
+        command = f"gearloss accuracy --mixed --rescore {args.rescore} --out {args.out_dir}"
+    else:
+        study = accuracy_mixed.run_mixed_study(
+            models, reference, args.lubricant, checkpoint=Path(args.out_dir) / f"{stem}.partial.json",
+            progress=lambda text: print(f"[accuracy] {text}", file=sys.stderr, flush=True))
+        command = (f"gearloss accuracy --mixed --models {' '.join(models)} --lubricant {args.lubricant} "
+                   f"--out {args.out_dir}")
     if args.reference_file:
         command += f" --reference-file {args.reference_file}"
     if args.stem:
         command += f" --stem {args.stem}"
     paths = accuracy_mixed.write_mixed_report(study, args.out_dir, command, stem)
-    (Path(args.out_dir) / f"{stem}.partial.json").unlink(missing_ok=True)
+    if not args.rescore:
+        (Path(args.out_dir) / f"{stem}.partial.json").unlink(missing_ok=True)
     payload = {"models": list(models), "n_cases": len(study["cases"]), "summary": accuracy_mixed.summary(study),
                "markdown_path": str(paths["markdown"]), "plot_path": str(paths["plot"]),
                "json_path": str(paths["json"])}

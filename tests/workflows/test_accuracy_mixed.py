@@ -84,3 +84,40 @@ def test_cli_runs_the_steady_smooth_model_on_a_reference_case(tmp_path, capsys):
     row = payload["summary"]["smooth-standard"]
     assert row["converged"] == 1 and math.isfinite(row["mu_error_median"])
     assert (tmp_path / "out" / "accuracy_mixed.md").exists()
+
+
+def test_runs_of_a_report_are_re_measured_against_a_recomputed_reference_without_solving(tmp_path, capsys):
+    """``--rescore``: the runs (and their versions) stay, the errors follow the new reference; a report of other
+    cases or other inputs is refused."""
+    study = accuracy_mixed.run_mixed_study(["smooth-standard"], reference_file(tmp_path),
+                                           solve=lambda *a, **k: FakeResult(0.0330))
+    made = accuracy_mixed.write_mixed_report(study, tmp_path / "made", "gearloss accuracy --mixed (made)")
+    moved = tmp_path / "moved"
+    moved.mkdir()
+    moved_reference = reference_file(moved, [{**CASE, "mu_extrapolated": 0.0275}])
+    again = accuracy_mixed.rescore_study(made["json"], moved_reference)
+    run = again["runs"][0]
+    assert run.mu == 0.0330 and run.mu_error == pytest.approx(0.2, rel=1e-12)   # |0.033 − 0.0275|/0.0275
+    assert again["provenance"]["reference_sha256"] != again["rescored"]["reference_sha256"]
+    assert again["runs_command"] == "gearloss accuracy --mixed (made)"
+
+    code = main(["accuracy", "--mixed", "--rescore", str(made["json"]), "--reference-file", str(moved_reference),
+                 "--out", str(tmp_path / "out"), "--json"])
+    assert code == 0
+    assert json.loads(capsys.readouterr().out)["summary"]["smooth-standard"]["mu_error_median"] == \
+        pytest.approx(0.2, rel=1e-12)
+    written = json.loads((tmp_path / "out" / "accuracy_mixed.json").read_text())
+    assert written["command"] == "gearloss accuracy --mixed (made)"      # rescoring again keeps the runs' command
+    assert written["rescored"]["command"].startswith("gearloss accuracy --mixed --rescore")
+    text = (tmp_path / "out" / "accuracy_mixed.md").read_text()
+    assert "gearloss accuracy --mixed (made)" in text and "re-measured" in text
+
+    with pytest.raises(InputError, match="is not in"):
+        accuracy_mixed.rescore_study(made["json"], reference_file(moved, [{**CASE, "case": "U"}]))
+    with pytest.raises(InputError, match="inputs"):
+        accuracy_mixed.rescore_study(made["json"], reference_file(moved, [{**CASE, "inputs": {
+            **CASE["inputs"], "sr": 0.5}}]))
+    corrupt = tmp_path / "corrupt.json"
+    corrupt.write_text('{"runs": [')
+    with pytest.raises(InputError, match="report"):
+        accuracy_mixed.rescore_study(corrupt, moved_reference)
