@@ -102,7 +102,8 @@ LUBRICANT = "atf"
 
 SAME_NUMERICS = {"det-2026.11-9": "det-2026.11-10", "det-2026.11-11": "det-2026.11-10",
                  "det-2026.11-12": "det-2026.11-10", "det-2026.11-13": "det-2026.11-10",
-                 "det-2026.11-14": "det-2026.11-10", "det-2026.11-15": "det-2026.11-10"}
+                 "det-2026.11-14": "det-2026.11-10", "det-2026.11-15": "det-2026.11-10",
+                 "det-2026.11-16": "det-2026.11-10"}
 """Model versions whose runs may be paired with runs of the version they map to. det-2026.11-10 changed only the
 Newton stop at the round-off floor (a step that stalls there is accepted instead of split); rerun under it, the short
 runs A β/16, B β/16, G β/8 and I β/8 reproduce det-2026.11-9's μ within 1e-12 (relative) and C β/16 within 8e-5
@@ -122,7 +123,12 @@ benchmarks/results/deterministic_rerun_check_det-2026.11-14.json). det-2026.11-1
 on a small correction (below 1e-15 p_h instead of 1e-12: a step iterates on until its global balance meets the
 tolerance); rerun under it with ``--replace`` (the reruns are the records now), the runs listed in
 benchmarks/results/deterministic_rerun_check_det-2026.11-15.json reproduce their recorded μ within the figures given
-there and in docs/deterministic_solver.md, "Mass balance"."""
+there and in docs/deterministic_solver.md, "Mass balance". det-2026.11-16 computes the deflection of grids of at most
+320 nodes by a dense product instead of the FFT pair (the same operator) and the periodic preconditioner's
+convolution by ``np.convolve``: rerun under it, B β/16, E β/8, G β/8 and I β/8 reproduce their recorded μ within
+7e-13 (relative) and D β/8 within 1.1e-6, every step balanced to 1e-10 (`python
+benchmarks/deterministic_rerun_check.py B:16 D:8 E:8 G:8 I:8`,
+benchmarks/results/deterministic_rerun_check_det-2026.11-16.json)."""
 
 
 def numerics(version: str) -> str:

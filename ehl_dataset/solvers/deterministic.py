@@ -34,6 +34,7 @@ from typing import Callable
 
 import numpy as np
 import scipy.fft
+import scipy.linalg
 
 from ..discretisation.deflection import inverse_kernel_band, periodic_kernel_spectrum, uniform_kernel
 from ..discretisation.mixed_system import FACE_MEANS, assemble, local_matvec
@@ -55,7 +56,7 @@ from .result import ContactResult
 from .steady import ContactScales, dowson_higginson_lambda, moes_h_c, solve_steady
 from .time_average import time_mean
 
-MODEL_VERSION = "det-2026.11-15"
+MODEL_VERSION = "det-2026.11-16"
 """Version of the deterministic model's numerics (recorded with its results; bump with any change that can alter a
 solved value). :data:`ehl_dataset.solver.SOLVER_VERSION` covers the whole solver. det-2026.11-11: the logarithmic
 face mean is evaluated without cancellation (:func:`~ehl_dataset.discretisation.mixed_system.logarithmic_mean`),
@@ -69,7 +70,16 @@ preconditioner first (the converged states are the same to the Newton tolerance;
 sensitivity, checked by benchmarks/deterministic_rerun_check.py). det-2026.11-15: the round-off stop on a small
 correction needs it below 1e-15 p_h instead of 1e-12 (:data:`ROUND_OFF_STEP`): steps that stopped with a global
 mass balance above the tolerance now iterate on to meet it (rerun under it, recorded runs move by ≤ 1.2e-6 relative
-in μ on short windows and ≤ 5.7e-5 on long ones; benchmarks/results/deterministic_rerun_check_det-2026.11-15.json)."""
+in μ on short windows and ≤ 5.7e-5 on long ones; benchmarks/results/deterministic_rerun_check_det-2026.11-15.json).
+det-2026.11-16: on grids of at most :data:`DENSE_KERNEL_NODES` nodes the deflection is a dense matrix–vector product
+instead of the FFT pair (the same operator; other round-off), and the periodic preconditioner's wrap-around
+convolution is a padded ``np.convolve``: the per-call overhead of the FFT dispatch and of ``scipy.ndimage`` dominated
+small grids (docs/deterministic_solver.md, "Cost")."""
+
+DENSE_KERNEL_NODES = 320
+"""Largest grid [nodes] whose deflection K p is a dense product: below about 350 nodes one N × N product costs less
+than the zero-padded rfft/irfft pair (1.7 µs against 10 µs at 110 nodes, 8 µs against 24 µs at 300, 18 µs against
+13 µs at 400 on the 2-core machine), and the matrix (≤ 0.8 MB) is built once per problem."""
 
 
 def model_version_key(version: str) -> tuple[int, ...]:
@@ -301,6 +311,12 @@ class MixedProblem:
             self.weights[0] = self.weights[-1] = 0.5 * self.dx
             self.kappa = 1.0 / float(kernel[n - 1])
             self.load_target = 0.5 * math.pi
+        self.dense_kernel = None
+        if n <= DENSE_KERNEL_NODES:
+            if self.periodic:
+                self.dense_kernel = scipy.linalg.circulant(scipy.fft.irfft(self.kernel_spectrum, n))
+            else:
+                self.dense_kernel = scipy.linalg.toeplitz(kernel[n - 1:], kernel[n - 1::-1])
         self.binv = inverse_kernel_band(band, self.dx)
         self.m_ref = 1.0
         self.preconditioner = None
@@ -318,7 +334,9 @@ class MixedProblem:
         return z[0:-1:3], z[1:-1:3], z[2:-1:3], float(z[-1])
 
     def deflection(self, p: np.ndarray) -> np.ndarray:
-        """K p by zero-padded FFT (DC-FFT)."""
+        """K p: a dense product on small grids (:data:`DENSE_KERNEL_NODES`), else by zero-padded FFT (DC-FFT)."""
+        if self.dense_kernel is not None:
+            return self.dense_kernel @ p
         return scipy.fft.irfft(scipy.fft.rfft(p, self.fft_size) * self.kernel_spectrum, self.fft_size)[: self.n]
 
     def film(self, z, gap) -> np.ndarray:
