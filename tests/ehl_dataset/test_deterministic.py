@@ -480,3 +480,25 @@ def test_solve_contact_hands_the_checkpoint_to_a_resolved_deterministic_run_and_
 def test_yield_cap_is_the_hardness_of_case_hardened_steel():
     """The plastic cap of the asperity contacts, P_Y = 6.8 GPa: 60 HRC ≈ 697 HV (ASTM E140) × 9.807 MPa per HV unit = 6.84 GPa."""
     assert YIELD_PRESSURE_PA == pytest.approx(697 * 9.807e6, rel=0.01)
+
+
+@pytest.mark.parametrize("periodic", [False, True])
+def test_small_grids_deflect_by_a_dense_product_equal_to_the_fft_one(periodic):
+    """det-2026.11-16: at most DENSE_KERNEL_NODES nodes the deflection is a dense Toeplitz (whole contact) or
+    circulant (periodic window) product; it is the operator of the zero-padded (periodic) FFT product of the
+    discretised log kernel of Eq. 4 (:func:`uniform_kernel`) to round-off, and a grid one node larger takes the FFT
+    route."""
+    from ehl_dataset.solvers.deterministic import DENSE_KERNEL_NODES
+
+    case = ContactCase.from_engineering(1.0, 10, 5, 0.3, 90)
+    state = ATF.state(case.temperature)
+    scales = ContactScales.of(case, state)
+    p = np.random.default_rng(3).random(DENSE_KERNEL_NODES)
+    extra = {"mean_pressure": 0.6} if periodic else {}
+    small = MixedProblem(np.linspace(-1.5, 1.5, p.size), scales, state, 5e-9 / scales.film_scale, 3.0, **extra)
+    large = MixedProblem(np.linspace(-1.5, 1.5, p.size + 1), scales, state, 5e-9 / scales.film_scale, 3.0, **extra)
+    assert small.dense_kernel is not None and large.dense_kernel is None
+    dense = small.deflection(p)
+    small.dense_kernel = None  # the same problem on the FFT route
+    fft = small.deflection(p)
+    assert np.max(np.abs(dense - fft)) <= 1e-13 * np.max(np.abs(fft))
