@@ -197,8 +197,6 @@ def rescore_study(report: str | Path, reference: str | Path = REFERENCE_FILE) ->
     commit, machine, date, command); the study's ``rescored`` records the re-measurement's. InputError if the report
     is missing or corrupt, holds a case the reference does not, or was solved at other inputs than the reference's
     (checked where the report records them, ``reference_inputs``)."""
-    from .accuracy import provenance
-
     path = Path(report)
     try:
         data = json.loads(path.read_text(encoding="utf-8"))

@@ -86,6 +86,8 @@ def model_version_key(version: str) -> tuple[int, ...]:
     """A model version det-YYYY.MM-n as (YYYY, MM, n), so that det-2026.11-10 sorts after det-2026.11-9."""
     date, number = version.removeprefix("det-").rsplit("-", 1)
     return (*(int(v) for v in date.split(".")), int(number))
+
+
 BOUNDARY_FILM_M = 5e-9
 """Default film-breakdown (boundary-film) thickness h_b [m]: below it the surfaces are in solid contact through
 their adsorbed/reacted boundary films, which carry load and friction μ_d·p_c. Representative value: adsorbed

@@ -49,6 +49,7 @@ class BandedPreconditioner:
             self.total_weight = float(np.sum(weights))
             self.mean_shift = self._solve(np.sum(jac[:, :, 2], axis=1))
             self.denominator = float(np.sum(self.border[0::3])) / self.n
+            self.wrap = wrap_index(self.n, width)
             return
         # load row in z': Σ_j w_j (BΔV)_j = Σ_l (Bᵀw)_l ΔV_l (ΔP_f cancels)
         self.load_row = np.zeros(3 * self.n)
@@ -67,7 +68,7 @@ class BandedPreconditioner:
             shift = r[-1] / self.total_weight
             y = y - self.mean_shift * shift
             dh0 = float(np.sum(y[0::3])) / self.n / self.denominator
-            smoothed = wrapped_convolution(y[0::3] - self.border[0::3] * dh0, self.binv)
+            smoothed = wrapped_convolution(y[0::3] - self.border[0::3] * dh0, self.binv, self.wrap)
         else:
             dh0 = (r[-1] - self.load_row @ y) / self.denominator
         y = y - self.border * dh0
@@ -83,12 +84,18 @@ class BandedPreconditioner:
         return out
 
 
-def wrapped_convolution(values: np.ndarray, weights: np.ndarray) -> np.ndarray:
+def wrap_index(n: int, half: int) -> np.ndarray:
+    """Indices of a length-``n`` periodic array padded by ``half`` wrapped entries on each side."""
+    return np.arange(-half, n + half) % n
+
+
+def wrapped_convolution(values: np.ndarray, weights: np.ndarray, index: np.ndarray | None = None) -> np.ndarray:
     """Periodic convolution of ``values`` with the odd-length stencil ``weights`` centred on its middle entry (what
     ``scipy.ndimage.convolve1d(values, weights, mode="wrap")`` returns, at a fraction of its per-call cost on short
-    arrays)."""
-    half = (weights.size - 1) // 2
-    return np.convolve(values[np.arange(-half, values.size + half) % values.size], weights, mode="valid")
+    arrays); ``index`` is :func:`wrap_index` of the sizes, computed once by a caller that convolves many times."""
+    if index is None:
+        index = wrap_index(values.size, (weights.size - 1) // 2)
+    return np.convolve(values[index], weights, mode="valid")
 
 
 def gmres(matvec, precondition, b: np.ndarray, tol: float, max_iterations: int = 60):
