@@ -40,9 +40,9 @@ from ehl_dataset.dataset.checkpoint import FileCheckpoint
 from ehl_dataset.model.contact import ContactCase
 from ehl_dataset.model.effects import Effects
 from ehl_dataset.model.lubricant import load_lubricant
-from ehl_dataset.model.roughness import baseline_profile
-from ehl_dataset.solvers.deterministic import (MODEL_VERSION, DeterministicOptions, model_version_key,
-                                               solve_deterministic)
+from ehl_dataset.model.roughness import BASELINE_POINTS, baseline_profile, long_baseline_profile
+from ehl_dataset.solvers.deterministic import (MODEL_VERSION, STRICT_ROUND_OFF_SINCE, DeterministicOptions,
+                                               model_version_key, solve_deterministic)
 from ehl_dataset.solvers.time_average import time_mean
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -86,14 +86,21 @@ LAYOUT_PASSES = 100.0
 the same roughness at the same times at every spacing (DeterministicOptions.layout_passes). Case G's short runs
 were once laid out for their default cap of 40 passes against 100 for the long run, and their paired differences
 were −17 %/−18 % where a shared layout gives +0.1 % (docs/deterministic_solver.md)."""
-LONG_RUNS = {"A": 200.0, "C": 120.0, "G": 175.0}
+LONG_RUNS = {"A": 200.0, "C": 120.0, "G": 300.0}
 """Cases whose long run needs more than :data:`MAX_PASSES` passes for the standard-error target: the cap of the
 long run [passes] and the layout of all their runs (a layout of at least the cap, so that no surface reads its own
-roughness twice; checked by ``SurfacePair.independent``, G's 175 passes take 95 % of the shipped profile). Narrow
+roughness twice; checked by ``SurfacePair.independent``; G's 300 passes take 81 % of its long profile,
+:data:`PROFILE_POINTS`). Narrow
 contacts (a/β 2.9–5.9) hold few asperities at a time and their μ fluctuates slowly: at the default caps A reached
 3.1 % after 38.5 averaging passes, C 2.4 % after 38.5, G 1.9 % after 98.5 (det-2026.11-10 to -13), so the target
 of 1.5 % takes about (sem/1.5 %)² times as long. B (9.5 % after 38.5 passes) would need about 1,500 passes, four
 times what the profile holds, and is left at the default."""
+PROFILE_POINTS = {"G": 2**18}
+"""Cases whose runs read a longer realisation of the baseline's random process (``long_baseline_profile``: same
+generator, seed, β and Rq, 2^18 samples = 262 mm) instead of the shipped 131 mm baseline. G's long run reached 1.7 %
+at the cap of a 175-pass layout, which took 95 % of the baseline (session 26): the target needs about 215–270 passes
+(1.9 % after 98.5 passes, 1.7 % after 175). The baseline is itself synthetic, so a longer realisation of the same
+process is the same roughness statistically; the case's reference changes by its sampling error."""
 SHORT_AVERAGE_PASSES = 1.5
 LONG_TARGET = 0.015
 SAFETY = 1.25
@@ -162,6 +169,18 @@ def layout_passes(name: str) -> float:
     return LONG_RUNS.get(name, LAYOUT_PASSES)
 
 
+def profile_points(name: str) -> int:
+    """Samples of the roughness profile case ``name``'s runs read (:data:`PROFILE_POINTS`, else the baseline's)."""
+    return PROFILE_POINTS.get(name, BASELINE_POINTS)
+
+
+def profile_for(name: str):
+    """The roughness profile case ``name``'s runs read: the shipped baseline, or its process over
+    :func:`profile_points` samples."""
+    n = profile_points(name)
+    return baseline_profile() if n == BASELINE_POINTS else long_baseline_profile(n)
+
+
 def long_max_passes(name: str) -> float:
     """Cap [passes] of case ``name``'s long run (:data:`MAX_PASSES`, :data:`LONG_RUNS`)."""
     return LONG_RUNS.get(name, MAX_PASSES)
@@ -201,10 +220,10 @@ def solve_and_record(name: str, n: int, long: bool, max_passes: float | None = N
     checkpoint = FileCheckpoint(checkpoint_path(name, n, long))
     cap = long_max_passes(name) if max_passes is None else max_passes
     result = solve_deterministic(case, state, Effects.full(), options_for(n, long, cap, layout_passes(name)),
-                                 checkpoint=checkpoint)
+                                 roughness=profile_for(name), checkpoint=checkpoint)
     extra = {k: (v.tolist() if isinstance(v, np.ndarray) else v) for k, v in result.extra.items()}
     record = {"case": name, "inputs": CASES[name], "points_per_beta": n, "solver_version": MODEL_VERSION,
-              "layout_passes": layout_passes(name),
+              "layout_passes": layout_passes(name), "profile_points": profile_points(name),
               "mu": result.mu, "mu_sem": result.mu_sem, "asperity_load_share": result.asperity_load_share,
               "h_min_m": result.h_min, "h_central_m": result.h_central, "converged": result.converged,
               "message": result.message, "wall_time_s": result.wall_time, "lambda_bar": result.lambda_bar,
@@ -227,7 +246,8 @@ def run_case(name: str, only: int | None = None, max_passes: float | None = None
         path = run_path(name, n)
         if path.exists():
             done = json.loads(path.read_text())
-            same_layout = done.get("layout_passes", LAYOUT_PASSES) == layout_passes(name)  # before the key: 100
+            same_layout = (done.get("layout_passes", LAYOUT_PASSES) == layout_passes(name)  # before the key: 100
+                           and done.get("profile_points", BASELINE_POINTS) == profile_points(name))
             if numerics(done.get("solver_version", "")) == numerics(MODEL_VERSION) and same_layout:
                 continue
         start = time.time()
@@ -336,10 +356,11 @@ def summarise_case(name: str) -> dict | None:
         return None
     if len({numerics(r["solver_version"]) for r in runs.values()}) != 1:
         return None  # the three spacings must share one model version (a rerun in progress mixes them)
-    layouts = {r["layout_passes"] for r in runs.values() if "layout_passes" in r}
+    layouts = {(r.get("layout_passes", LAYOUT_PASSES), r.get("profile_points", BASELINE_POINTS))
+               for r in runs.values()}
     if len(layouts) > 1:
-        print(f"{name}: runs laid out for different lengths {sorted(layouts)} passes are not paired; rerun the "
-              f"short runs", file=sys.stderr)
+        print(f"{name}: runs laid out differently {sorted(layouts)} (passes, profile samples) are not paired; rerun "
+              f"the short runs", file=sys.stderr)
         return None
     base = runs[middle]
     levels = chain[-3:]  # the spacings of the extrapolation
@@ -456,7 +477,7 @@ def balance_lines(rows: list[dict]) -> list[str]:
     return lines
 
 
-STOP_RULE_VERSION = "det-2026.11-15"
+STOP_RULE_VERSION = STRICT_ROUND_OFF_SINCE
 """The first model version whose Newton solve takes a round-off stop on a small correction only below 1e-15 p_h
 (``ROUND_OFF_STEP``; 1e-12 before, which accepted steps a further iteration would have balanced)."""
 

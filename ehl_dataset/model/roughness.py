@@ -228,6 +228,25 @@ def baseline_profile() -> RoughnessProfile:
     return RoughnessProfile(z - z.mean(), spacing, f"shipped baseline {BASELINE_FILE}")
 
 
+@functools.lru_cache(maxsize=2)
+def long_baseline_profile(n_points: int) -> RoughnessProfile:
+    """The baseline's random process over ``n_points`` samples (> :data:`BASELINE_POINTS`, a power of two): the same
+    generator, seed, spacing, β and Rq as the shipped baseline, rounded to the file's 1 pm and made zero-mean as the
+    shipped file is read. It is another realisation of the process, not the baseline continued (every Fourier
+    coefficient changes with the length). For runs that read more roughness than the 131 mm baseline holds: the
+    long runs of narrow contacts whose standard error of μ needs more independent asperities
+    (benchmarks/deterministic_validation.py, ``PROFILE_POINTS``). Generated, not shipped: 2^18 samples take 0.1 s.
+    """
+    if not isinstance(n_points, (int, np.integer)) or n_points <= BASELINE_POINTS or n_points & (n_points - 1):
+        raise InputError("n_points", n_points, f"a power of two above the baseline's {BASELINE_POINTS}")
+    z = generate_profile(int(n_points), BASELINE_SPACING_M, BASELINE_CORRELATION_LENGTH_M, BASELINE_RQ_M,
+                         BASELINE_SEED).z
+    z = np.round(z * 1e12) * 1e-12
+    return RoughnessProfile(z - z.mean(), BASELINE_SPACING_M,
+                            f"baseline process over {n_points} samples (gaussian ACF, beta="
+                            f"{BASELINE_CORRELATION_LENGTH_M:g} m, seed={BASELINE_SEED})")
+
+
 # ---------------------------------------------------------------------------------------------------------------
 # User profiles
 # ---------------------------------------------------------------------------------------------------------------
@@ -362,9 +381,10 @@ class SurfacePair:
         return r1, r2
 
     def disjoint_until(self, t_s: float) -> bool:
-        """True when, over 0 ≤ t ≤ ``t_s`` [s] (which may exceed ``t_end``: the profile is then read on,
-        periodically), the two surfaces read disjoint parts of the periodic profile."""
-        t = max(float(t_s), self.t_end)
+        """True when, over 0 ≤ t ≤ ``t_s`` [s] (shorter or longer than ``t_end``: beyond it the profile is read on,
+        periodically), the two surfaces read disjoint parts of the periodic profile. A run that stops before the
+        end of its layout may read disjoint stretches of a profile too short for the whole layout."""
+        t = float(t_s)
         (a1, b1), (a2, b2) = _stretch(self.x, self.u1, t, self.offset1), _stretch(self.x, self.u2, t, self.offset2)
         length = self.profile.length
         l1, l2 = b1 - a1, b2 - a2

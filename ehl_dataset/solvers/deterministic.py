@@ -251,6 +251,9 @@ deflection and the storage term, ≈ K·w/(ΔT·ρ̄H)) by more than the toleran
 balance a further iteration would have met. det-2026.11-15's 1e-15 takes that iteration: over whole short
 validation runs (B β/16, D, H, I, L β/8; C β/64) no step exceeds 1e-10 where 1 to 96 did, B β/64 12 of 9,051 steps
 where 1,851 did (largest 4.2e-10, was 1.4e-9), at no extra cost (docs/deterministic_solver.md, "Mass balance")."""
+STRICT_ROUND_OFF_SINCE = "det-2026.11-15"
+"""The first model version whose round-off stop takes ROUND_OFF_STEP = 1e-15 p_h (results record their version: runs
+made before it may hold steps that a further iteration would have balanced)."""
 
 REFACTOR_ITERATIONS = 20
 """GMRES iterations of a linear solve at which the stored preconditioner counts as aged: the next solve refactors it

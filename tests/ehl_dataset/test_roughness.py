@@ -230,6 +230,41 @@ def test_too_long_run_is_flagged_not_hidden():
     assert not rg.plan_surfaces(case, x, 5 * span / case.u_r).independent
 
 
+def test_a_run_shorter_than_its_layout_is_checked_over_its_own_length():
+    """disjoint_until checks the stretches read up to the given time, not the layout's end: a run laid out for
+    more than the profile can serve still reads disjoint roughness while it is short enough."""
+    case = _case(r_eq_mm=80, p_h_gpa=2.5)
+    x = _grid(case)
+    span = x[-1] - x[0]
+    pair = rg.plan_surfaces(case, x, 5 * span / case.u_r)
+    assert not pair.independent
+    assert not pair.disjoint_until(5 * span / case.u_r)
+    assert pair.disjoint_until(1 * span / case.u_r)
+
+
+def test_the_long_baseline_is_the_baselines_process_over_more_samples():
+    """long_baseline_profile(2^18): Rq 0.5 µm to the 1 pm rounding, zero mean, β within 3 Bartlett standard errors
+    of 15 µm (0.12 µm over 262 mm), Gaussian heights (skewness, kurtosis as in test_gaussian_heights); another
+    realisation, not the baseline repeated; lengths that are not a power of two above the baseline are refused."""
+    long = rg.long_baseline_profile(2**18)
+    base = rg.baseline_profile()
+    assert long.z.size == 2**18 and long.spacing == rg.BASELINE_SPACING_M
+    assert long.length == pytest.approx(2 * base.length, rel=1e-9)
+    assert long.rq == pytest.approx(rg.BASELINE_RQ_M, rel=1e-6)
+    assert abs(long.z.mean()) < 1e-15
+    sigma = rg.correlation_length_standard_error(rg.BASELINE_CORRELATION_LENGTH_M, long.length)
+    assert abs(long.correlation_length - rg.BASELINE_CORRELATION_LENGTH_M) < 3 * sigma
+    n_eff = long.length / (2 * rg.BASELINE_CORRELATION_LENGTH_M)
+    s = long.z.std()
+    assert abs(np.mean(long.z**3) / s**3) < 4 * math.sqrt(6 / n_eff)
+    assert abs(np.mean(long.z**4) / s**4 - 3) < 4 * math.sqrt(24 / n_eff)
+    first_half = long.z[: base.z.size]
+    assert abs(np.corrcoef(first_half, base.z)[0, 1]) < 4 / math.sqrt(base.length / (2 * rg.BASELINE_CORRELATION_LENGTH_M))
+    for bad in (rg.BASELINE_POINTS, 3 * 2**16, 2**16):
+        with pytest.raises(InputError, match="n_points"):
+            rg.long_baseline_profile(bad)
+
+
 def test_surface_pair_rejects_bad_grid():
     case = _case()
     with pytest.raises(InputError, match="x_m"):

@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 
 from ehl_dataset.solvers.deterministic import (DeterministicOptions, ROUND_OFF_MARGIN, ROUND_OFF_STEP_MARGIN,
-                                               model_version_key)
+                                               STRICT_ROUND_OFF_SINCE, model_version_key)
 
 REFERENCE = Path(__file__).resolve().parents[2] / "data" / "reference" / "deterministic_validation.json"
 
@@ -56,7 +56,7 @@ def test_runs_under_the_strict_round_off_stop_stay_within_its_stall_margin(cases
     checked = 0
     for case in cases:
         for spacing, version in case["run_versions"].items():
-            if model_version_key(version) >= model_version_key("det-2026.11-15"):
+            if model_version_key(version) >= model_version_key(STRICT_ROUND_OFF_SINCE):
                 assert case["mass_error_max"][spacing] <= bound, (case["case"], spacing)
                 checked += 1
     assert checked >= 8
