@@ -190,24 +190,33 @@ def reference_fingerprint(path: str | Path) -> str:
     return hashlib.sha256(Path(path).read_bytes()).hexdigest()[:12]
 
 
-def rescore_study(report: str | Path, reference: str | Path = REFERENCE_FILE) -> dict:
+def rescore_study(report: str | Path, reference: str | Path = REFERENCE_FILE,
+                  models: list[str] | tuple[str, ...] | None = None) -> dict:
     """The runs of an earlier report (the ``<stem>.json`` of :func:`write_mixed_report`) measured against
     ``reference`` without solving again: for a reference recomputed since, or for runs of a model the package no
     longer has (the transient solver deleted at ehl-2026.11-15). The runs keep their provenance (solver version,
     commit, machine, date, command); the study's ``rescored`` records the re-measurement's. InputError if the report
     is missing or corrupt, holds a case the reference does not, or was solved at other inputs than the reference's
-    (checked where the report records them, ``reference_inputs``)."""
+    (checked where the report records them, ``reference_inputs``). ``models``: only these of the report's models
+    (None: all of them); InputError naming the report's models for one it does not hold."""
     path = Path(report)
     try:
         data = json.loads(path.read_text(encoding="utf-8"))
         runs = [MixedRun(**{**r, "mu_error": math.nan, "h_central_error": math.nan, "share_difference": math.nan})
                 for r in data["runs"]]
-        models, runs_provenance, runs_command = list(data["models"]), dict(data["provenance"]), str(data["command"])
+        data_models, runs_provenance, runs_command = list(data["models"]), dict(data["provenance"]), str(data["command"])
     except FileNotFoundError:
         raise InputError("report", str(path), "an existing <stem>.json written by gearloss accuracy --mixed") from None
     except (ValueError, KeyError, TypeError) as err:
         raise InputError("report", str(path), f"a report JSON of gearloss accuracy --mixed ({type(err).__name__}: "
                                               f"{err})") from None
+    if models is not None:
+        missing = [m for m in models if m not in data_models]
+        if missing or not models:
+            raise InputError("models", " ".join(models) or "<none>", f"models of the report {path}: "
+                                                                      f"{' '.join(data_models)}")
+        runs = [run for run in runs if run.model in models]
+    models = list(models) if models is not None else data_models
     by_name = {row["case"]: row for row in load_reference(reference)}
     solved_at = data.get("reference_inputs", {})
     for run in runs:

@@ -57,7 +57,7 @@ def register(subparsers) -> None:
     parser.add_argument("--rescore", default=None, metavar="REPORT_JSON",
                         help="with --mixed: measure the runs of an earlier report (its <stem>.json, e.g. "
                              "docs/accuracy_mixed.json) against the reference without solving again; the runs keep "
-                             "the versions they were made with")
+                             "the versions they were made with; with --models, only those of the report's models")
     parser.add_argument("--json", action="store_true", help="print one JSON object")
     parser.set_defaults(handler=run_accuracy)
 
@@ -74,9 +74,11 @@ def run_mixed(args) -> int:
     reference = args.reference_file or accuracy_mixed.REFERENCE_FILE
     Path(args.out_dir).mkdir(parents=True, exist_ok=True)
     if args.rescore:
-        study = accuracy_mixed.rescore_study(args.rescore, reference)
+        study = accuracy_mixed.rescore_study(args.rescore, reference, args.models)
         models = tuple(study["models"])
         command = f"gearloss accuracy --mixed --rescore {args.rescore} --out {args.out_dir}"
+        if args.models:
+            command += f" --models {' '.join(models)}"
     else:
         study = accuracy_mixed.run_mixed_study(
             models, reference, args.lubricant, checkpoint=Path(args.out_dir) / f"{stem}.partial.json",

@@ -86,6 +86,23 @@ def test_cli_runs_the_steady_smooth_model_on_a_reference_case(tmp_path, capsys):
     assert (tmp_path / "out" / "accuracy_mixed.md").exists()
 
 
+def test_a_rescore_measures_only_the_models_asked_for(tmp_path, capsys):
+    """``--rescore REPORT --models M``: the runs of the other models are left out of the study and its summary."""
+    study = accuracy_mixed.run_mixed_study(["smooth-standard", "homogenised-transverse-standard"],
+                                           reference_file(tmp_path), solve=lambda *a, **k: FakeResult(0.0330))
+    made = accuracy_mixed.write_mixed_report(study, tmp_path / "made", "gearloss accuracy --mixed (made)")
+    assert {run.model for run in study["runs"]} == {"smooth-standard", "homogenised-transverse-standard"}
+    only = accuracy_mixed.rescore_study(made["json"], reference_file(tmp_path), ["smooth-standard"])
+    assert only["models"] == ["smooth-standard"] and {run.model for run in only["runs"]} == {"smooth-standard"}
+    code = main(["accuracy", "--mixed", "--rescore", str(made["json"]), "--models", "smooth-standard",
+                 "--reference-file", str(reference_file(tmp_path)), "--out", str(tmp_path / "out"), "--json"])
+    assert code == 0
+    assert list(json.loads(capsys.readouterr().out)["summary"]) == ["smooth-standard"]
+    written = json.loads((tmp_path / "out" / "accuracy_mixed.json").read_text())
+    assert written["rescored"]["command"].endswith("--models smooth-standard --reference-file "
+                                                   + str(reference_file(tmp_path)))
+
+
 def test_runs_of_a_report_are_re_measured_against_a_recomputed_reference_without_solving(tmp_path, capsys):
     """``--rescore``: the runs (and their versions) stay, the errors follow the new reference; a report of other
     cases or other inputs is refused."""
@@ -117,6 +134,8 @@ def test_runs_of_a_report_are_re_measured_against_a_recomputed_reference_without
     with pytest.raises(InputError, match="inputs"):
         accuracy_mixed.rescore_study(made["json"], reference_file(moved, [{**CASE, "inputs": {
             **CASE["inputs"], "sr": 0.5}}]))
+    with pytest.raises(InputError, match="models.*smooth-standard"):
+        accuracy_mixed.rescore_study(made["json"], moved_reference, ["deterministic-fast"])
     corrupt = tmp_path / "corrupt.json"
     corrupt.write_text('{"runs": [')
     with pytest.raises(InputError, match="report"):
