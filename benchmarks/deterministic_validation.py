@@ -110,7 +110,7 @@ LUBRICANT = "atf"
 SAME_NUMERICS = {"det-2026.11-9": "det-2026.11-10", "det-2026.11-11": "det-2026.11-10",
                  "det-2026.11-12": "det-2026.11-10", "det-2026.11-13": "det-2026.11-10",
                  "det-2026.11-14": "det-2026.11-10", "det-2026.11-15": "det-2026.11-10",
-                 "det-2026.11-16": "det-2026.11-10"}
+                 "det-2026.11-16": "det-2026.11-10", "det-2026.11-17": "det-2026.11-10"}
 """Model versions whose runs may be paired with runs of the version they map to. det-2026.11-10 changed only the
 Newton stop at the round-off floor (a step that stalls there is accepted instead of split); rerun under it, the short
 runs A β/16, B β/16, G β/8 and I β/8 reproduce det-2026.11-9's μ within 1e-12 (relative) and C β/16 within 8e-5
@@ -135,7 +135,9 @@ there and in docs/deterministic_solver.md, "Mass balance". det-2026.11-16 comput
 convolution by ``np.convolve``: rerun under it, B β/16, E β/8, G β/8 and I β/8 reproduce their recorded μ within
 7e-13 (relative) and D β/8 within 1.1e-6, every step balanced to 1e-10 (`python
 benchmarks/deterministic_rerun_check.py B:16 D:8 E:8 G:8 I:8`,
-benchmarks/results/deterministic_rerun_check_det-2026.11-16.json)."""
+benchmarks/results/deterministic_rerun_check_det-2026.11-16.json). det-2026.11-17 changes only what happens to a step
+that det-16 fails at every split (one more whole attempt, stopping at the measured round-off floor): a run det-16
+completes is step for step the same under det-17, and det-17 continues det-16's saved states (``CONTINUES``)."""
 
 
 def numerics(version: str) -> str:

@@ -56,7 +56,7 @@ from .result import ContactResult
 from .steady import ContactScales, dowson_higginson_lambda, moes_h_c, solve_steady
 from .time_average import time_mean
 
-MODEL_VERSION = "det-2026.11-16"
+MODEL_VERSION = "det-2026.11-17"
 """Version of the deterministic model's numerics (recorded with its results; bump with any change that can alter a
 solved value). :data:`ehl_dataset.solver.SOLVER_VERSION` covers the whole solver. det-2026.11-11: the logarithmic
 face mean is evaluated without cancellation (:func:`~ehl_dataset.discretisation.mixed_system.logarithmic_mean`),
@@ -74,7 +74,19 @@ in μ on short windows and ≤ 5.7e-5 on long ones; benchmarks/results/determini
 det-2026.11-16: on grids of at most :data:`DENSE_KERNEL_NODES` nodes the deflection is a dense matrix–vector product
 instead of the FFT pair (the same operator; other round-off), and the periodic preconditioner's wrap-around
 convolution is a padded ``np.convolve``: the per-call overhead of the FFT dispatch and of ``scipy.ndimage`` dominated
-small grids (docs/deterministic_solver.md, "Cost")."""
+small grids (docs/deterministic_solver.md, "Cost").
+det-2026.11-17: a time step that fails at every split up to ``max_substeps`` is tried once more whole, with Newton
+allowed to stop at the round-off floor it measures (:meth:`MixedProblem.round_off_floor`) instead of the fixed
+ROUND_OFF_MARGIN × the tolerance; every step det-16 passes is passed identically, so det-17 continues det-16's saved
+states (:data:`CONTINUES`). B at β/256 (3,020 nodes) failed at step 22,017 with its Newton stalled at a scaled
+residual of 1.0e-9, where moving the state by one unit in the last place moves the rows by 3e-9."""
+
+CONTINUES = ("det-2026.11-16",)
+"""Model versions whose saved run states this version continues (``checkpoint``): it takes every step they took
+identically and differs only where they failed."""
+
+FLOOR_ULPS = 1.0
+"""Units in the last place by which :meth:`MixedProblem.round_off_floor` perturbs the state."""
 
 DENSE_KERNEL_NODES = 320
 """Largest grid [nodes] whose deflection K p is a dense product: below about 350 nodes one N × N product costs less
@@ -325,7 +337,8 @@ class MixedProblem:
         self.binv = inverse_kernel_band(band, self.dx)
         self.m_ref = 1.0
         self.preconditioner = None
-        self.cost = {"newton_iterations": 0, "gmres_iterations": 0, "factorisations": 0, "round_off_stops": 0}
+        self.cost = {"newton_iterations": 0, "gmres_iterations": 0, "factorisations": 0, "round_off_stops": 0,
+                     "floor_stops": 0}
         self.last_gmres_iterations = 0
 
     # -- state --------------------------------------------------------------------------------------------------
@@ -442,18 +455,37 @@ class MixedProblem:
         self.cost["gmres_iterations"] += total
         return step, rel
 
-    def newton(self, z, gap, storage, tol: float, max_iterations: int, max_pressure_step: float = 2.0):
+    def round_off_floor(self, z, gap, storage, seed: int = 0) -> float:
+        """The scaled residual's round-off floor at ``z`` [same norm as :meth:`newton`'s]: the largest change of a
+        scaled row, or of the sum of the mass rows, when every unknown moves by :data:`FLOOR_ULPS` units in its last
+        place (two random sign patterns). No state that double precision can hold is closer to the solution than
+        that: fine grids of heavily loaded contacts reach it above ROUND_OFF_MARGIN × the tolerance (B at β/256:
+        rows 1.2e-8 for 4 ulps, balance 1.3e-9 at a step where Newton stalls at 1.0e-9)."""
+        scale = self.row_scale()
+        base = self.evaluate(z, gap, storage)[0] * scale
+        signs = np.random.default_rng(seed).choice((-1.0, 1.0), size=(2, z.size))
+        floor = 0.0
+        for sign in signs:
+            moved = self.evaluate(z + FLOOR_ULPS * np.spacing(np.abs(z)) * sign, gap, storage)[0] * scale - base
+            floor = max(floor, float(np.max(np.abs(moved))), abs(float(np.sum(moved[3:-1:3]))))
+        return floor
+
+    def newton(self, z, gap, storage, tol: float, max_iterations: int, max_pressure_step: float = 2.0,
+               floor_stop: bool = False):
         """Semismooth Newton from ``z`` with an Armijo line search on ½‖S F‖²; inexact linear solves with the
         Eisenstat–Walker-type forcing term min(0.1, ‖S F‖∞). Converged when every scaled row and the sum of the mass
         rows (the global lubricant balance) are ≤ ``tol``, or, at the round-off floor: when that norm is ≤
         :data:`ROUND_OFF_MARGIN`·``tol`` and the last iteration reduced it by less than half or the line search
         found no decrease, or when it is ≤ :data:`ROUND_OFF_STEP_MARGIN`·``tol`` and the correction is below
         :data:`ROUND_OFF_STEP` in every pressure (counted in ``cost["round_off_stops"]``; the balance reached is
-        recorded per step as ever).
+        recorded per step as ever). With ``floor_stop`` the stall margin is the larger of ROUND_OFF_MARGIN·``tol``
+        and the floor :meth:`round_off_floor` measures at the starting state (a stop above the fixed margin is
+        counted in ``cost["floor_stops"]``).
         Returns (z, converged, iterations, that norm)."""
         scale = self.row_scale()
         res, h, jac, dfilm = self.evaluate(z, gap, storage)
         previous = math.inf
+        stall_limit = ROUND_OFF_MARGIN * tol
         for iteration in range(max_iterations):
             scaled = res * scale
             # every row, and the sum of the mass rows (the global lubricant balance, whose terms could add up)
@@ -463,9 +495,11 @@ class MixedProblem:
                 return z, True, iteration, norm
             if not np.isfinite(norm):
                 return z, False, iteration, norm
-            at_floor = norm <= ROUND_OFF_MARGIN * tol
+            if floor_stop and iteration == 0:
+                stall_limit = max(stall_limit, self.round_off_floor(z, gap, storage))
+            at_floor = norm <= stall_limit
             if at_floor and norm > 0.5 * previous:  # stalled at the round-off floor
-                return self._round_off_stop(z, res, iteration, norm)
+                return self._round_off_stop(z, res, iteration, norm, norm > ROUND_OFF_MARGIN * tol)
             previous = norm
             forcing = min(0.1, max(norm, 1e-3 * tol / norm))
             step, _ = self._direction(jac, dfilm, scaled, scale, forcing)
@@ -493,19 +527,20 @@ class MixedProblem:
             self.cost["newton_iterations"] += 1
             if not accepted:
                 if at_floor:
-                    return self._round_off_stop(z, res, iteration + 1, norm)
+                    return self._round_off_stop(z, res, iteration + 1, norm, norm > ROUND_OFF_MARGIN * tol)
                 return z, False, iteration + 1, norm
             z, res, jac, dfilm = trial, res_t, jac_t, dfilm_t
         scaled = res * scale
         norm = max(float(np.max(np.abs(scaled))), abs(float(np.sum(scaled[3:-1:3]))))
-        if tol < norm <= ROUND_OFF_MARGIN * tol:
-            return self._round_off_stop(z, res, max_iterations, norm)
+        if tol < norm <= stall_limit:
+            return self._round_off_stop(z, res, max_iterations, norm, norm > ROUND_OFF_MARGIN * tol)
         self.last_residual = res
         return z, norm <= tol, max_iterations, norm
 
-    def _round_off_stop(self, z, res, iterations, norm):
+    def _round_off_stop(self, z, res, iterations, norm, beyond_margin: bool = False):
         self.last_residual = res
         self.cost["round_off_stops"] += 1
+        self.cost["floor_stops"] += beyond_margin
         return z, True, iterations, norm
 
     def mass_balance_error(self) -> float:
@@ -636,17 +671,20 @@ def solve_deterministic(case: ContactCase, state: LubricantState, plan: Effects,
     t = 0.0
     if checkpoint is not None:
         fingerprint = _fingerprint(case, state, options, problem, z, gap_at(0.5 * n_ramp * d_t + d_t))
+        continued = {_fingerprint(case, state, options, problem, z, gap_at(0.5 * n_ramp * d_t + d_t), version)
+                     for version in CONTINUES}
         saved = checkpoint.load()
         if saved is not None:
-            if saved.get("fingerprint") != fingerprint:
+            if saved.get("fingerprint") != fingerprint and saved.get("fingerprint") not in continued:
                 raise InputError("checkpoint", str(getattr(checkpoint, "path", checkpoint)),
                                  "a state saved by this same run (same case, lubricant, roughness, options and model "
-                                 f"version {MODEL_VERSION}); this one was saved by another run: delete it or give "
+                                 f"version {MODEL_VERSION} or one it continues, {', '.join(CONTINUES)}); this one was saved by another run: delete it or give "
                                  "another path")
             k, t, z, h, record = saved["k"], saved["t"], saved["z"], saved["h"], saved["record"]
             state_now = saved["state_now"]
             for name, value in saved["problem"].items():
                 setattr(problem, name, value)
+            problem.cost.setdefault("floor_stops", 0)  # a det-16 state has no such count
             start = clock() - saved["elapsed_s"]
         last_save = clock()
     while k < n_max:
@@ -658,7 +696,8 @@ def solve_deterministic(case: ContactCase, state: LubricantState, plan: Effects,
         outcome = _advance(problem, state_now, gap_at, t, d_t, options)
         if outcome is None:
             converged = False
-            message = f"Newton failed at step {k + 1} even with {options.max_substeps} sub-steps"
+            message = (f"Newton failed at step {k + 1} even with {options.max_substeps} sub-steps and at its "
+                       "measured round-off floor")
             save_failure = getattr(checkpoint, "save_failure", None)
             if save_failure is not None:
                 kept = save_failure(_saved_state(fingerprint, k, t, z, h, record, state_now, clock() - start,
@@ -709,12 +748,12 @@ from the inputs)."""
 
 
 def _fingerprint(case: ContactCase, state: LubricantState, options: DeterministicOptions, problem: MixedProblem,
-                 z_start: np.ndarray, gap: np.ndarray) -> str:
-    """A digest of everything that determines a run: the model version, the case, the lubricant state, the options
-    (but the clock), the grid, the steady start ``z_start`` and a gap of the rough surfaces ``gap``."""
+                 z_start: np.ndarray, gap: np.ndarray, version: str = MODEL_VERSION) -> str:
+    """A digest of everything that determines a run: the model ``version``, the case, the lubricant state, the
+    options (but the clock), the grid, the steady start ``z_start`` and a gap of the rough surfaces ``gap``."""
     options_text = repr({f.name: getattr(options, f.name) for f in fields(options) if f.name != "clock"})
     digest = hashlib.sha256()
-    for text in (MODEL_VERSION, repr(case), repr(state), options_text, repr((problem.n, problem.dx))):
+    for text in (version, repr(case), repr(state), options_text, repr((problem.n, problem.dx))):
         digest.update(text.encode())
     for array in (z_start, gap):
         digest.update(np.ascontiguousarray(array, dtype=float).tobytes())
@@ -771,10 +810,19 @@ def substep_sizes(d_t: float, parts: int, dt_prev: float | None, growth: float =
 
 def _advance(problem: MixedProblem, s: dict, gap_at, t: float, d_t: float, options: DeterministicOptions):
     """One time step from t to t + d_t in sub-steps (:func:`substep_sizes`: after a split step the steps grow back
-    by at most :data:`MAX_STEP_RATIO`), split into 2, 4, … parts while Newton fails. Updates ``s``; returns
-    (z, h, gap, number of sub-steps) or None."""
+    by at most :data:`MAX_STEP_RATIO`), split into 2, 4, … parts while Newton fails; a step that fails at every
+    split up to ``options.max_substeps`` is tried once more whole, Newton stopping at its measured round-off floor
+    (``floor_stop``, det-2026.11-17). Updates ``s``; returns (z, h, gap, number of sub-steps) or None."""
+    outcome = _advance_split(problem, s, gap_at, t, d_t, options, floor_stop=False)
+    if outcome is None:
+        outcome = _advance_split(problem, s, gap_at, t, d_t, options, floor_stop=True, largest_split=1)
+    return outcome
+
+
+def _advance_split(problem: MixedProblem, s: dict, gap_at, t: float, d_t: float, options: DeterministicOptions,
+                   floor_stop: bool, largest_split: int | None = None):
     parts = 1
-    while parts <= options.max_substeps:
+    while parts <= (options.max_substeps if largest_split is None else largest_split):
         saved = dict(s)
         ok = True
         sizes = substep_sizes(d_t, parts, s["dt_prev"])
@@ -796,7 +844,7 @@ def _advance(problem: MixedProblem, s: dict, gap_at, t: float, d_t: float, optio
                     guesses.insert(0, extrapolated)
             for guess in guesses:  # the extrapolation can predict a wrong contact set: then the last state
                 z, converged, _, _ = problem.newton(guess, gap, storage, options.newton_tolerance,
-                                                    options.newton_iterations)
+                                                    options.newton_iterations, floor_stop=floor_stop)
                 if converged:
                     break
                 problem.preconditioner = None

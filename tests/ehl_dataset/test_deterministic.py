@@ -17,7 +17,7 @@ from ehl_dataset.model.contact import ContactCase
 from ehl_dataset.model.effects import Effects
 from ehl_dataset.model.lubricant import load_lubricant
 from ehl_dataset.solver import solve_contact
-from ehl_dataset.solvers.deterministic import (MAX_STEP_RATIO, YIELD_PRESSURE_PA, DeterministicOptions, MixedProblem,
+from ehl_dataset.solvers.deterministic import (MAX_STEP_RATIO, ROUND_OFF_MARGIN, YIELD_PRESSURE_PA, DeterministicOptions, MixedProblem,
                                                deterministic_options, solve_deterministic, substep_sizes)
 from ehl_dataset.solvers.krylov import BandedPreconditioner, gmres
 from ehl_dataset.solvers.steady import ContactScales
@@ -47,6 +47,27 @@ def _mixed_state(problem, x):
     pc = np.zeros(n)
     pc[28:31] = (0.2, 0.5, 3.0)  # 3.0 = the cap: a yielded node
     return problem.pack(pf, th, pc, -0.3)
+
+
+def test_newton_stops_at_the_measured_round_off_floor_only_when_asked():
+    """A tolerance below what double precision can hold (1e-17 of the scaled residual) is never met: the strict solve
+    reports failure; with ``floor_stop`` (det-2026.11-17's last attempt at a step no split passes) it stops at the
+    floor it measures (the rows' change when every unknown moves by one unit in its last place), counted as a floor
+    stop, with a norm above the unattainable tolerance and within that floor."""
+    problem, x = _problem()
+    gap = 0.5 * x**2
+    storage = problem.storage(None, 0.0, None, None)  # steady smooth contact, from the Hertzian pressure
+    hertz = problem.pack(np.sqrt(np.clip(1 - x**2, 0, None)), np.ones(x.size), np.zeros(x.size), 0.0)
+    z, converged, _, norm = problem.newton(hertz, gap, storage, 1e-10, 50)
+    assert converged and norm <= 1e-10
+    floor = problem.round_off_floor(z, gap, storage)
+    assert 0.0 < floor < 1e-10
+    _, strict, _, _ = problem.newton(z, gap, storage, 1e-17, 8)
+    assert not strict
+    stops = problem.cost["floor_stops"]
+    _, at_floor, _, norm = problem.newton(z, gap, storage, 1e-17, 8, floor_stop=True)
+    assert at_floor and 1e-17 * ROUND_OFF_MARGIN < norm <= floor
+    assert problem.cost["floor_stops"] == stops + 1
 
 
 @pytest.mark.parametrize("couette_flux, face_mean", [("linear", "harmonic"), ("minmod", "harmonic"),
@@ -441,9 +462,10 @@ def test_a_run_that_fails_keeps_the_state_before_the_failing_step_and_replays_it
     replayed = _short_rough_run(checkpoint=FileCheckpoint(checkpoint.failure_path), **failing)
     assert not replayed.converged
     assert f"Newton failed at step {step} " in replayed.message
-    # the cost record continues from the saved one: the replay adds the failing step's attempts only (at most two
-    # starting guesses of 8 iterations each), not the 40 steps before it
-    assert replayed.extra["newton_iterations"] - failed.extra["newton_iterations"] <= 2 * 8
+    # the cost record continues from the saved one: the replay adds the failing step's attempts only (the strict one
+    # and the one stopping at the measured round-off floor, each of at most two starting guesses of 8 iterations),
+    # not the 40 steps before it
+    assert replayed.extra["newton_iterations"] - failed.extra["newton_iterations"] <= 2 * 2 * 8
 
 
 class _FileThenKill:
