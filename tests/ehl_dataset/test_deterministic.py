@@ -424,6 +424,31 @@ def test_a_run_stopped_part_way_continues_from_its_checkpoint_step_for_step():
     assert resumed.extra["newton_iterations"] == uninterrupted.extra["newton_iterations"]
 
 
+def test_a_state_saved_by_a_version_this_one_continues_is_continued_and_others_are_refused(monkeypatch):
+    """det-2026.11-17 differs from det-16 only at steps det-16 fails, so a det-16 run's saved state (B at β/256,
+    hours in) continues under det-17 to the uninterrupted result; a state of an older version (det-15, other
+    round-off stop) is refused."""
+    import ehl_dataset.solvers.deterministic as det
+
+    uninterrupted = _short_rough_run(mu_sem_target=1e-9)
+    original = det._fingerprint
+    for version, continued in ((det.CONTINUES[0], True), ("det-2026.11-15", False)):
+        # the run's own fingerprint as that version's; the fingerprints of the versions it continues left as they are
+        monkeypatch.setattr(det, "_fingerprint", lambda *args, v=version: original(*args[:6], version=(
+            v if len(args) == 6 else args[6])))
+        stopped = _MemoryCheckpoint(saves=40)
+        with pytest.raises(_Killed):
+            _short_rough_run(checkpoint=stopped, mu_sem_target=1e-9)
+        monkeypatch.setattr(det, "_fingerprint", original)
+        again = _MemoryCheckpoint(state=stopped.state, every_s=math.inf)
+        if continued:
+            resumed = _short_rough_run(checkpoint=again, mu_sem_target=1e-9)
+            np.testing.assert_array_equal(resumed.extra["mu_series"], uninterrupted.extra["mu_series"])
+        else:
+            with pytest.raises(InputError, match="checkpoint.*same run"):
+                _short_rough_run(checkpoint=again, mu_sem_target=1e-9)
+
+
 def test_a_checkpoint_of_another_run_or_a_corrupt_file_is_one_clear_error(tmp_path):
     """A saved state is used only by the run that saved it (here: another grid spacing), and an unreadable file
     names itself; the file is written atomically and survives a round trip."""
