@@ -75,15 +75,16 @@ det-2026.11-16: on grids of at most :data:`DENSE_KERNEL_NODES` nodes the deflect
 instead of the FFT pair (the same operator; other round-off), and the periodic preconditioner's wrap-around
 convolution is a padded ``np.convolve``: the per-call overhead of the FFT dispatch and of ``scipy.ndimage`` dominated
 small grids (docs/deterministic_solver.md, "Cost").
-det-2026.11-17: a time step that fails at every split up to ``max_substeps`` is tried once more whole, with Newton
-allowed to stop at the round-off floor it measures (:meth:`MixedProblem.round_off_floor`) instead of the fixed
-ROUND_OFF_MARGIN × the tolerance; every step det-16 passes is passed identically, so det-17 continues det-16's saved
-states (:data:`CONTINUES`). B at β/256 (3,020 nodes) failed at step 22,017 with its Newton stalled at a scaled
-residual of 1.0e-9, where moving the state by one unit in the last place moves the rows by 3e-9."""
+det-2026.11-17: a Newton solve stalled above ROUND_OFF_MARGIN × the tolerance also stops where its norm is within the
+round-off floor it measures (:meth:`MixedProblem.round_off_floor`): B at β/256 (3,020 nodes) failed at step 22,017
+with its Newton stalled at a scaled residual of 1.0e-9 at every split, where moving the state by one unit in the last
+place moves the rows by 3e-9 (docs/deterministic_solver.md, "Robustness" item 9). det-16 split such a step or failed
+it; steps whose solves converge within the margin are unchanged."""
 
 CONTINUES = ("det-2026.11-16",)
-"""Model versions whose saved run states this version continues (``checkpoint``): it takes every step they took
-identically and differs only where they failed."""
+"""Model versions whose saved run states this version continues (``checkpoint``): they solve the same equations and
+differ from it only at round-off stops (a continued run's record names the version and step it continued from, its
+``continued_from``)."""
 
 FLOOR_ULPS = 1.0
 """Units in the last place by which :meth:`MixedProblem.round_off_floor` perturbs the state."""
@@ -471,21 +472,32 @@ class MixedProblem:
         return floor
 
     def newton(self, z, gap, storage, tol: float, max_iterations: int, max_pressure_step: float = 2.0,
-               floor_stop: bool = False):
+               floor_stop: bool = True):
         """Semismooth Newton from ``z`` with an Armijo line search on ½‖S F‖²; inexact linear solves with the
         Eisenstat–Walker-type forcing term min(0.1, ‖S F‖∞). Converged when every scaled row and the sum of the mass
         rows (the global lubricant balance) are ≤ ``tol``, or, at the round-off floor: when that norm is ≤
         :data:`ROUND_OFF_MARGIN`·``tol`` and the last iteration reduced it by less than half or the line search
         found no decrease, or when it is ≤ :data:`ROUND_OFF_STEP_MARGIN`·``tol`` and the correction is below
         :data:`ROUND_OFF_STEP` in every pressure (counted in ``cost["round_off_stops"]``; the balance reached is
-        recorded per step as ever). With ``floor_stop`` the stall margin is the larger of ROUND_OFF_MARGIN·``tol``
-        and the floor :meth:`round_off_floor` measures at the starting state (a stop above the fixed margin is
-        counted in ``cost["floor_stops"]``).
+        recorded per step as ever). With ``floor_stop`` (det-2026.11-17) a solve stalled above that margin but
+        within ROUND_OFF_STEP_MARGIN·``tol`` also stops where its norm is within the round-off floor
+        :meth:`round_off_floor` measures (once per solve, when first needed; counted in ``cost["floor_stops"]``).
         Returns (z, converged, iterations, that norm)."""
         scale = self.row_scale()
         res, h, jac, dfilm = self.evaluate(z, gap, storage)
         previous = math.inf
-        stall_limit = ROUND_OFF_MARGIN * tol
+        floor = None
+
+        def at_floor(z_now, norm_now) -> bool:
+            nonlocal floor
+            if norm_now <= ROUND_OFF_MARGIN * tol:
+                return True
+            if not floor_stop or norm_now > ROUND_OFF_STEP_MARGIN * tol:
+                return False
+            if floor is None:
+                floor = self.round_off_floor(z_now, gap, storage)
+            return norm_now <= floor
+
         for iteration in range(max_iterations):
             scaled = res * scale
             # every row, and the sum of the mass rows (the global lubricant balance, whose terms could add up)
@@ -495,10 +507,7 @@ class MixedProblem:
                 return z, True, iteration, norm
             if not np.isfinite(norm):
                 return z, False, iteration, norm
-            if floor_stop and iteration == 0:
-                stall_limit = max(stall_limit, self.round_off_floor(z, gap, storage))
-            at_floor = norm <= stall_limit
-            if at_floor and norm > 0.5 * previous:  # stalled at the round-off floor
+            if norm > 0.5 * previous and at_floor(z, norm):  # stalled at the round-off floor
                 return self._round_off_stop(z, res, iteration, norm, norm > ROUND_OFF_MARGIN * tol)
             previous = norm
             forcing = min(0.1, max(norm, 1e-3 * tol / norm))
@@ -526,13 +535,13 @@ class MixedProblem:
                 omega *= 0.5
             self.cost["newton_iterations"] += 1
             if not accepted:
-                if at_floor:
+                if at_floor(z, norm):
                     return self._round_off_stop(z, res, iteration + 1, norm, norm > ROUND_OFF_MARGIN * tol)
                 return z, False, iteration + 1, norm
             z, res, jac, dfilm = trial, res_t, jac_t, dfilm_t
         scaled = res * scale
         norm = max(float(np.max(np.abs(scaled))), abs(float(np.sum(scaled[3:-1:3]))))
-        if tol < norm <= stall_limit:
+        if tol < norm and at_floor(z, norm):
             return self._round_off_stop(z, res, max_iterations, norm, norm > ROUND_OFF_MARGIN * tol)
         self.last_residual = res
         return z, norm <= tol, max_iterations, norm
@@ -671,20 +680,22 @@ def solve_deterministic(case: ContactCase, state: LubricantState, plan: Effects,
     t = 0.0
     if checkpoint is not None:
         fingerprint = _fingerprint(case, state, options, problem, z, gap_at(0.5 * n_ramp * d_t + d_t))
-        continued = {_fingerprint(case, state, options, problem, z, gap_at(0.5 * n_ramp * d_t + d_t), version)
-                     for version in CONTINUES}
+        continued = {_fingerprint(case, state, options, problem, z, gap_at(0.5 * n_ramp * d_t + d_t), version):
+                     version for version in CONTINUES}
         saved = checkpoint.load()
         if saved is not None:
             if saved.get("fingerprint") != fingerprint and saved.get("fingerprint") not in continued:
                 raise InputError("checkpoint", str(getattr(checkpoint, "path", checkpoint)),
                                  "a state saved by this same run (same case, lubricant, roughness, options and model "
-                                 f"version {MODEL_VERSION} or one it continues, {', '.join(CONTINUES)}); this one was saved by another run: delete it or give "
-                                 "another path")
+                                 f"version {MODEL_VERSION} or one it continues, {', '.join(CONTINUES)}); this one "
+                                 "was saved by another run: delete it or give another path")
             k, t, z, h, record = saved["k"], saved["t"], saved["z"], saved["h"], saved["record"]
             state_now = saved["state_now"]
             for name, value in saved["problem"].items():
                 setattr(problem, name, value)
             problem.cost.setdefault("floor_stops", 0)  # a det-16 state has no such count
+            if saved["fingerprint"] in continued and getattr(record, "continued_from", None) is None:
+                record.continued_from = {"model_version": continued[saved["fingerprint"]], "steps": int(k)}
             start = clock() - saved["elapsed_s"]
         last_save = clock()
     while k < n_max:
@@ -696,8 +707,7 @@ def solve_deterministic(case: ContactCase, state: LubricantState, plan: Effects,
         outcome = _advance(problem, state_now, gap_at, t, d_t, options)
         if outcome is None:
             converged = False
-            message = (f"Newton failed at step {k + 1} even with {options.max_substeps} sub-steps and at its "
-                       "measured round-off floor")
+            message = f"Newton failed at step {k + 1} even with {options.max_substeps} sub-steps"
             save_failure = getattr(checkpoint, "save_failure", None)
             if save_failure is not None:
                 kept = save_failure(_saved_state(fingerprint, k, t, z, h, record, state_now, clock() - start,
@@ -810,19 +820,10 @@ def substep_sizes(d_t: float, parts: int, dt_prev: float | None, growth: float =
 
 def _advance(problem: MixedProblem, s: dict, gap_at, t: float, d_t: float, options: DeterministicOptions):
     """One time step from t to t + d_t in sub-steps (:func:`substep_sizes`: after a split step the steps grow back
-    by at most :data:`MAX_STEP_RATIO`), split into 2, 4, … parts while Newton fails; a step that fails at every
-    split up to ``options.max_substeps`` is tried once more whole, Newton stopping at its measured round-off floor
-    (``floor_stop``, det-2026.11-17). Updates ``s``; returns (z, h, gap, number of sub-steps) or None."""
-    outcome = _advance_split(problem, s, gap_at, t, d_t, options, floor_stop=False)
-    if outcome is None:
-        outcome = _advance_split(problem, s, gap_at, t, d_t, options, floor_stop=True, largest_split=1)
-    return outcome
-
-
-def _advance_split(problem: MixedProblem, s: dict, gap_at, t: float, d_t: float, options: DeterministicOptions,
-                   floor_stop: bool, largest_split: int | None = None):
+    by at most :data:`MAX_STEP_RATIO`), split into 2, 4, … parts while Newton fails; None if every
+    split up to ``options.max_substeps`` fails. Updates ``s``; returns (z, h, gap, number of sub-steps) or None."""
     parts = 1
-    while parts <= (options.max_substeps if largest_split is None else largest_split):
+    while parts <= options.max_substeps:
         saved = dict(s)
         ok = True
         sizes = substep_sizes(d_t, parts, s["dt_prev"])
@@ -844,7 +845,7 @@ def _advance_split(problem: MixedProblem, s: dict, gap_at, t: float, d_t: float,
                     guesses.insert(0, extrapolated)
             for guess in guesses:  # the extrapolation can predict a wrong contact set: then the last state
                 z, converged, _, _ = problem.newton(guess, gap, storage, options.newton_tolerance,
-                                                    options.newton_iterations, floor_stop=floor_stop)
+                                                    options.newton_iterations)
                 if converged:
                     break
                 problem.preconditioner = None
@@ -876,6 +877,7 @@ class _Record:
         self.film_count = 0
         self.profile_sums = {}
         self.substep_steps = 0
+        self.continued_from = None
         self.smooth = {}
 
     def accumulate(self):
@@ -954,6 +956,7 @@ def _result(case, state, plan, level_name, options, problem, scales, z, h, recor
                "boundary_film_m": float(problem.h_b * scales.film_scale),
                "yield_pressure_pa": float(problem.p_yield * case.p_h), "asperity_load_share_sem": float(share_sem),
                "yielded_load_share": yielded, "substep_steps": int(record.substep_steps),
+               "continued_from": getattr(record, "continued_from", None),
                "smooth_mu": record.smooth.get("mu"), "smooth_h_min_m": record.smooth.get("h_min_m"),
                "mu_series": np.asarray(record.mu), "share_series": np.asarray(record.share),
                "t_series_s": np.asarray(record.t), "h_min_local_m": local_min,

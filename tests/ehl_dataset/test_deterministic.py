@@ -49,11 +49,14 @@ def _mixed_state(problem, x):
     return problem.pack(pf, th, pc, -0.3)
 
 
-def test_newton_stops_at_the_measured_round_off_floor_only_when_asked():
-    """A tolerance below what double precision can hold (1e-17 of the scaled residual) is never met: the strict solve
-    reports failure; with ``floor_stop`` (det-2026.11-17's last attempt at a step no split passes) it stops at the
-    floor it measures (the rows' change when every unknown moves by one unit in its last place), counted as a floor
-    stop, with a norm above the unattainable tolerance and within that floor."""
+def test_newton_stops_at_the_measured_round_off_floor_only_when_asked(monkeypatch):
+    """A tolerance below what double precision can hold (1e-17 of the scaled residual) is never met. With the stop on
+    a vanishing correction switched off (ROUND_OFF_STEP = 0; on this small grid it would end the solve first) the
+    strict solve reports failure; with ``floor_stop`` (det-2026.11-17's default) it stops at the floor it measures
+    (the rows' change when every unknown moves by one unit in its last place), counted as a floor stop, with a norm
+    above the unattainable tolerance's stall margin and within that floor."""
+    import ehl_dataset.solvers.deterministic as det
+
     problem, x = _problem()
     gap = 0.5 * x**2
     storage = problem.storage(None, 0.0, None, None)  # steady smooth contact, from the Hertzian pressure
@@ -62,7 +65,8 @@ def test_newton_stops_at_the_measured_round_off_floor_only_when_asked():
     assert converged and norm <= 1e-10
     floor = problem.round_off_floor(z, gap, storage)
     assert 0.0 < floor < 1e-10
-    _, strict, _, _ = problem.newton(z, gap, storage, 1e-17, 8)
+    monkeypatch.setattr(det, "ROUND_OFF_STEP", 0.0)
+    _, strict, _, _ = problem.newton(z, gap, storage, 1e-17, 8, floor_stop=False)
     assert not strict
     stops = problem.cost["floor_stops"]
     _, at_floor, _, norm = problem.newton(z, gap, storage, 1e-17, 8, floor_stop=True)
@@ -425,9 +429,10 @@ def test_a_run_stopped_part_way_continues_from_its_checkpoint_step_for_step():
 
 
 def test_a_state_saved_by_a_version_this_one_continues_is_continued_and_others_are_refused(monkeypatch):
-    """det-2026.11-17 differs from det-16 only at steps det-16 fails, so a det-16 run's saved state (B at β/256,
-    hours in) continues under det-17 to the uninterrupted result; a state of an older version (det-15, other
-    round-off stop) is refused."""
+    """det-2026.11-17 solves det-16's equations and differs only at round-off stops, so a det-16 run's saved state
+    (B at β/256, hours in) continues under det-17 (on this run, whose solves all converge within the fixed margin, to
+    the uninterrupted result) and the record names the version and step it continued from; a state of an older
+    version (det-15) is refused."""
     import ehl_dataset.solvers.deterministic as det
 
     uninterrupted = _short_rough_run(mu_sem_target=1e-9)
@@ -444,6 +449,8 @@ def test_a_state_saved_by_a_version_this_one_continues_is_continued_and_others_a
         if continued:
             resumed = _short_rough_run(checkpoint=again, mu_sem_target=1e-9)
             np.testing.assert_array_equal(resumed.extra["mu_series"], uninterrupted.extra["mu_series"])
+            assert resumed.extra["continued_from"] == {"model_version": det.CONTINUES[0], "steps": 40}
+            assert uninterrupted.extra["continued_from"] is None
         else:
             with pytest.raises(InputError, match="checkpoint.*same run"):
                 _short_rough_run(checkpoint=again, mu_sem_target=1e-9)
