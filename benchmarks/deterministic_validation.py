@@ -135,9 +135,12 @@ there and in docs/deterministic_solver.md, "Mass balance". det-2026.11-16 comput
 convolution by ``np.convolve``: rerun under it, B β/16, E β/8, G β/8 and I β/8 reproduce their recorded μ within
 7e-13 (relative) and D β/8 within 1.1e-6, every step balanced to 1e-10 (`python
 benchmarks/deterministic_rerun_check.py B:16 D:8 E:8 G:8 I:8`,
-benchmarks/results/deterministic_rerun_check_det-2026.11-16.json). det-2026.11-17 changes only what happens to a step
-that det-16 fails at every split (one more whole attempt, stopping at the measured round-off floor): a run det-16
-completes is step for step the same under det-17, and det-17 continues det-16's saved states (``CONTINUES``)."""
+benchmarks/results/deterministic_rerun_check_det-2026.11-16.json). det-2026.11-17 also stops a Newton solve stalled above 10× the
+tolerance where its norm is within the round-off floor it measures: rerun under it, B β/16, D β/8, H β/8 and L β/8
+reproduce their recorded μ within 5.8e-6 (relative; the same sub-step counts), every step balanced to 1e-10 (`python
+benchmarks/deterministic_rerun_check.py B:16 D:8 H:8 L:8`,
+benchmarks/results/deterministic_rerun_check_det-2026.11-17.json); det-17 continues det-16's saved states
+(``CONTINUES``, recorded in a run's ``continued_from``)."""
 
 
 def numerics(version: str) -> str:
