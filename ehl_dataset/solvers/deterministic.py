@@ -81,6 +81,10 @@ with its Newton stalled at a scaled residual of 1.0e-9 at every split, where mov
 place moves the rows by 3e-9 (docs/deterministic_solver.md, "Robustness" item 9). det-16 split such a step or failed
 it; steps whose solves converge within the margin are unchanged."""
 
+FLOOR_STOP_SINCE = "det-2026.11-17"
+"""The first model version whose Newton solve may stop at its measured round-off floor above ROUND_OFF_MARGIN × the
+tolerance (within ROUND_OFF_STEP_MARGIN ×)."""
+
 CONTINUES = ("det-2026.11-16",)
 """Model versions whose saved run states this version continues (``checkpoint``): they solve the same equations and
 differ from it only at round-off stops (a continued run's record names the version and step it continued from, its
