@@ -110,7 +110,8 @@ LUBRICANT = "atf"
 SAME_NUMERICS = {"det-2026.11-9": "det-2026.11-10", "det-2026.11-11": "det-2026.11-10",
                  "det-2026.11-12": "det-2026.11-10", "det-2026.11-13": "det-2026.11-10",
                  "det-2026.11-14": "det-2026.11-10", "det-2026.11-15": "det-2026.11-10",
-                 "det-2026.11-16": "det-2026.11-10", "det-2026.11-17": "det-2026.11-10"}
+                 "det-2026.11-16": "det-2026.11-10", "det-2026.11-17": "det-2026.11-10",
+                 "det-2026.11-18": "det-2026.11-10"}
 """Model versions whose runs may be paired with runs of the version they map to. det-2026.11-10 changed only the
 Newton stop at the round-off floor (a step that stalls there is accepted instead of split); rerun under it, the short
 runs A β/16, B β/16, G β/8 and I β/8 reproduce det-2026.11-9's μ within 1e-12 (relative) and C β/16 within 8e-5
@@ -140,7 +141,8 @@ tolerance where its norm is within the round-off floor it measures: rerun under 
 reproduce their recorded μ within 5.8e-6 (relative; the same sub-step counts), every step balanced to 1e-10 (`python
 benchmarks/deterministic_rerun_check.py B:16 D:8 H:8 L:8`,
 benchmarks/results/deterministic_rerun_check_det-2026.11-17.json); det-17 continues det-16's saved states
-(``CONTINUES``, recorded in a run's ``continued_from``)."""
+(``CONTINUES``, recorded in a run's ``continued_from``). det-2026.11-18 adds a last attempt (watchdog steps) only at a
+step that fails at every split, so a run det-17 completes is step for step the same."""
 
 
 def numerics(version: str) -> str:

@@ -56,7 +56,7 @@ from .result import ContactResult
 from .steady import ContactScales, dowson_higginson_lambda, moes_h_c, solve_steady
 from .time_average import time_mean
 
-MODEL_VERSION = "det-2026.11-17"
+MODEL_VERSION = "det-2026.11-18"
 """Version of the deterministic model's numerics (recorded with its results; bump with any change that can alter a
 solved value). :data:`ehl_dataset.solver.SOLVER_VERSION` covers the whole solver. det-2026.11-11: the logarithmic
 face mean is evaluated without cancellation (:func:`~ehl_dataset.discretisation.mixed_system.logarithmic_mean`),
@@ -79,16 +79,25 @@ det-2026.11-17: a Newton solve stalled above ROUND_OFF_MARGIN × the tolerance a
 round-off floor it measures (:meth:`MixedProblem.round_off_floor`): B at β/256 (3,020 nodes) failed at step 22,017
 with its Newton stalled at a scaled residual of 1.0e-9 at every split, where moving the state by one unit in the last
 place moves the rows by 3e-9 (docs/deterministic_solver.md, "Robustness" item 9). det-16 split such a step or failed
-it; steps whose solves converge within the margin are unchanged."""
+it; steps whose solves converge within the margin are unchanged. det-2026.11-18: a time step that fails at every
+split is tried again, split as before, with Newton allowed :data:`WATCHDOG_STEPS` damped steps that the line search
+rejected (a non-monotone "watchdog" globalisation): B at β/256 failed at step 24,653 under det-13 and det-17 where a
+sub-step's line search found no decrease along the Newton direction at the outlet's re-forming film (a kink of the
+cavitation rows); with it that step passes. A run det-17 completes is step for step the same."""
 
 FLOOR_STOP_SINCE = "det-2026.11-17"
 """The first model version whose Newton solve may stop at its measured round-off floor above ROUND_OFF_MARGIN × the
 tolerance (within ROUND_OFF_STEP_MARGIN ×)."""
 
-CONTINUES = ("det-2026.11-16",)
+CONTINUES = ("det-2026.11-16", "det-2026.11-17")
 """Model versions whose saved run states this version continues (``checkpoint``): they solve the same equations and
 differ from it only at round-off stops (a continued run's record names the version and step it continued from, its
 ``continued_from``)."""
+
+WATCHDOG_STEPS = 5
+"""Damped Newton steps a solve of the last attempt at a step may take although the Armijo line search rejected them
+(Chamberlain, Powell, Lemarechal & Pedersen, Math. Prog. Study 16 (1982) 1: the watchdog technique); the solve still
+has to meet the tolerance or the round-off stops."""
 
 FLOOR_ULPS = 1.0
 """Units in the last place by which :meth:`MixedProblem.round_off_floor` perturbs the state."""
@@ -343,7 +352,7 @@ class MixedProblem:
         self.m_ref = 1.0
         self.preconditioner = None
         self.cost = {"newton_iterations": 0, "gmres_iterations": 0, "factorisations": 0, "round_off_stops": 0,
-                     "floor_stops": 0}
+                     "floor_stops": 0, "watchdog_steps": 0}
         self.last_gmres_iterations = 0
 
     # -- state --------------------------------------------------------------------------------------------------
@@ -476,7 +485,7 @@ class MixedProblem:
         return floor
 
     def newton(self, z, gap, storage, tol: float, max_iterations: int, max_pressure_step: float = 2.0,
-               floor_stop: bool = True):
+               floor_stop: bool = True, watchdog: int = 0):
         """Semismooth Newton from ``z`` with an Armijo line search on ½‖S F‖²; inexact linear solves with the
         Eisenstat–Walker-type forcing term min(0.1, ‖S F‖∞). Converged when every scaled row and the sum of the mass
         rows (the global lubricant balance) are ≤ ``tol``, or, at the round-off floor: when that norm is ≤
@@ -486,11 +495,14 @@ class MixedProblem:
         recorded per step as ever). With ``floor_stop`` (det-2026.11-17) a solve stalled above that margin but
         within ROUND_OFF_STEP_MARGIN·``tol`` also stops where its norm is within the round-off floor
         :meth:`round_off_floor` measures (once per solve, when first needed; counted in ``cost["floor_stops"]``).
+        ``watchdog``: damped steps (det-2026.11-18's last attempt, :data:`WATCHDOG_STEPS`) taken although the line
+        search rejected them (counted in ``cost["watchdog_steps"]``).
         Returns (z, converged, iterations, that norm)."""
         scale = self.row_scale()
         res, h, jac, dfilm = self.evaluate(z, gap, storage)
         previous = math.inf
         floor = None
+        unchecked = watchdog
 
         def at_floor(z_now, norm_now) -> bool:
             nonlocal floor
@@ -538,6 +550,12 @@ class MixedProblem:
                     break
                 omega *= 0.5
             self.cost["newton_iterations"] += 1
+            if not accepted and unchecked > 0:
+                unchecked -= 1
+                trial = z + min(1.0, max_pressure_step / largest) * step
+                res_t, _, jac_t, dfilm_t = self.evaluate(trial, gap, storage)
+                accepted = bool(np.all(np.isfinite(res_t)))
+                self.cost["watchdog_steps"] = self.cost.get("watchdog_steps", 0) + accepted
             if not accepted:
                 if at_floor(z, norm):
                     return self._round_off_stop(z, res, iteration + 1, norm, norm > ROUND_OFF_MARGIN * tol)
@@ -698,6 +716,7 @@ def solve_deterministic(case: ContactCase, state: LubricantState, plan: Effects,
             for name, value in saved["problem"].items():
                 setattr(problem, name, value)
             problem.cost.setdefault("floor_stops", 0)  # a det-16 state has no such count
+            problem.cost.setdefault("watchdog_steps", 0)
             if saved["fingerprint"] in continued and getattr(record, "continued_from", None) is None:
                 record.continued_from = {"model_version": continued[saved["fingerprint"]], "steps": int(k)}
             start = clock() - saved["elapsed_s"]
@@ -825,7 +844,16 @@ def substep_sizes(d_t: float, parts: int, dt_prev: float | None, growth: float =
 def _advance(problem: MixedProblem, s: dict, gap_at, t: float, d_t: float, options: DeterministicOptions):
     """One time step from t to t + d_t in sub-steps (:func:`substep_sizes`: after a split step the steps grow back
     by at most :data:`MAX_STEP_RATIO`), split into 2, 4, … parts while Newton fails; None if every
-    split up to ``options.max_substeps`` fails. Updates ``s``; returns (z, h, gap, number of sub-steps) or None."""
+    split up to ``options.max_substeps`` fails even with the watchdog steps of the last attempt (det-2026.11-18).
+    Updates ``s``; returns (z, h, gap, number of sub-steps) or None."""
+    outcome = _advance_split(problem, s, gap_at, t, d_t, options, 0)
+    if outcome is None:
+        outcome = _advance_split(problem, s, gap_at, t, d_t, options, WATCHDOG_STEPS)
+    return outcome
+
+
+def _advance_split(problem: MixedProblem, s: dict, gap_at, t: float, d_t: float, options: DeterministicOptions,
+                   watchdog: int):
     parts = 1
     while parts <= options.max_substeps:
         saved = dict(s)
@@ -849,7 +877,7 @@ def _advance(problem: MixedProblem, s: dict, gap_at, t: float, d_t: float, optio
                     guesses.insert(0, extrapolated)
             for guess in guesses:  # the extrapolation can predict a wrong contact set: then the last state
                 z, converged, _, _ = problem.newton(guess, gap, storage, options.newton_tolerance,
-                                                    options.newton_iterations)
+                                                    options.newton_iterations, watchdog=watchdog)
                 if converged:
                     break
                 problem.preconditioner = None
