@@ -76,7 +76,7 @@ deterministic_convergence_<case>.json), so their finest pair has to be β/32–�
 spacings too, expected to be contact-dominated like B; under det-2026.11-11 its asperity share is 0.0013 at β/16 and
 0.0063 at β/32 (short runs; B: 0.13 at β/32, 0.53 at β/64), a film-dominated case like H (λ̄ 0.05, share 0.007, fine
 step +1.0 % at β/8/16/32), so it takes the default spacings."""
-EXTRA_SPACINGS = {"B": (128,), "C": (128,)}
+EXTRA_SPACINGS = {"B": (128, 256), "C": (128,)}
 """Finer short runs beyond a case's three spacings (``python benchmarks/deterministic_extra_spacing.py CASE N``),
 chained onto them by paired differences: the extrapolation then takes the three finest spacings. B and C were not
 grid-converged at β/64 (docs/deterministic_solver.md)."""
