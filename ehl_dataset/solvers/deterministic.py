@@ -555,7 +555,7 @@ class MixedProblem:
                 trial = z + min(1.0, max_pressure_step / largest) * step
                 res_t, _, jac_t, dfilm_t = self.evaluate(trial, gap, storage)
                 accepted = bool(np.all(np.isfinite(res_t)))
-                self.cost["watchdog_steps"] = self.cost.get("watchdog_steps", 0) + accepted
+                self.cost["watchdog_steps"] += accepted
             if not accepted:
                 if at_floor(z, norm):
                     return self._round_off_stop(z, res, iteration + 1, norm, norm > ROUND_OFF_MARGIN * tol)
@@ -701,9 +701,10 @@ def solve_deterministic(case: ContactCase, state: LubricantState, plan: Effects,
     k = 0
     t = 0.0
     if checkpoint is not None:
-        fingerprint = _fingerprint(case, state, options, problem, z, gap_at(0.5 * n_ramp * d_t + d_t))
-        continued = {_fingerprint(case, state, options, problem, z, gap_at(0.5 * n_ramp * d_t + d_t), version):
-                     version for version in CONTINUES}
+        sample_gap = gap_at(0.5 * n_ramp * d_t + d_t)
+        fingerprint = _fingerprint(case, state, options, problem, z, sample_gap)
+        continued = {_fingerprint(case, state, options, problem, z, sample_gap, version): version
+                     for version in CONTINUES}
         saved = checkpoint.load()
         if saved is not None:
             if saved.get("fingerprint") != fingerprint and saved.get("fingerprint") not in continued:
@@ -715,8 +716,8 @@ def solve_deterministic(case: ContactCase, state: LubricantState, plan: Effects,
             state_now = saved["state_now"]
             for name, value in saved["problem"].items():
                 setattr(problem, name, value)
-            problem.cost.setdefault("floor_stops", 0)  # a det-16 state has no such count
-            problem.cost.setdefault("watchdog_steps", 0)
+            for count in ("floor_stops", "watchdog_steps"):  # states of det-16/-17 lack the newer counts
+                problem.cost.setdefault(count, 0)
             if saved["fingerprint"] in continued and getattr(record, "continued_from", None) is None:
                 record.continued_from = {"model_version": continued[saved["fingerprint"]], "steps": int(k)}
             start = clock() - saved["elapsed_s"]
