@@ -111,7 +111,7 @@ SAME_NUMERICS = {"det-2026.11-9": "det-2026.11-10", "det-2026.11-11": "det-2026.
                  "det-2026.11-12": "det-2026.11-10", "det-2026.11-13": "det-2026.11-10",
                  "det-2026.11-14": "det-2026.11-10", "det-2026.11-15": "det-2026.11-10",
                  "det-2026.11-16": "det-2026.11-10", "det-2026.11-17": "det-2026.11-10",
-                 "det-2026.11-18": "det-2026.11-10"}
+                 "det-2026.11-18": "det-2026.11-10", "det-2026.11-19": "det-2026.11-10"}
 """Model versions whose runs may be paired with runs of the version they map to. det-2026.11-10 changed only the
 Newton stop at the round-off floor (a step that stalls there is accepted instead of split); rerun under it, the short
 runs A β/16, B β/16, G β/8 and I β/8 reproduce det-2026.11-9's μ within 1e-12 (relative) and C β/16 within 8e-5
@@ -142,7 +142,8 @@ reproduce their recorded μ within 5.8e-6 (relative; the same sub-step counts), 
 benchmarks/deterministic_rerun_check.py B:16 D:8 H:8 L:8`,
 benchmarks/results/deterministic_rerun_check_det-2026.11-17.json); det-17 continues det-16's saved states
 (``CONTINUES``, recorded in a run's ``continued_from``). det-2026.11-18 adds a last attempt (watchdog steps) only at a
-step that fails at every split, so a run det-17 completes is step for step the same."""
+step that fails at every split, so a run det-17 completes is step for step the same. det-2026.11-19 changed only the
+global balance of periodic windows (which the validation runs do not use): its whole-contact runs are det-18's."""
 
 
 def numerics(version: str) -> str:
@@ -556,7 +557,7 @@ def summarise() -> None:
             f"{r['asperity_load_share'][f'beta/{fine}']:.3f} | "
             f"{r['asperity_load_share_fine_step']:+.3f} | {r['smooth_mu']:.4f} | {times} |")
     lines += ["", "μ coarse / middle / fine: the three finest spacings (paired with the long run at the middle one, or at "
-              "the one named); fine step: μ fine / μ middle − 1 (target ≤ 5 %); order: the observed order of "
+              "the one named); fine step: (μ fine − μ middle)/μ fine (target ≤ 5 %); order: the observed order of "
               "convergence p = log2(Δ_coarse/Δ_fine), n/o where none is observable (the steps do not shrink or change "
               "sign); with n/o or p ≤ 0.5 μ extrapolated is μ fine and ± the fine step combined with the standard error, else "
               "Richardson's value with Roache's GCI (safety 1.25) combined with it; sem of μ: "

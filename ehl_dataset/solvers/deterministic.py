@@ -56,7 +56,7 @@ from .result import ContactResult
 from .steady import ContactScales, dowson_higginson_lambda, moes_h_c, solve_steady
 from .time_average import time_mean
 
-MODEL_VERSION = "det-2026.11-18"
+MODEL_VERSION = "det-2026.11-19"
 """Version of the deterministic model's numerics (recorded with its results; bump with any change that can alter a
 solved value). :data:`ehl_dataset.solver.SOLVER_VERSION` covers the whole solver. det-2026.11-11: the logarithmic
 face mean is evaluated without cancellation (:func:`~ehl_dataset.discretisation.mixed_system.logarithmic_mean`),
@@ -83,13 +83,17 @@ it; steps whose solves converge within the margin are unchanged. det-2026.11-18:
 split is tried again, split as before, with Newton allowed :data:`WATCHDOG_STEPS` damped steps that the line search
 rejected (a non-monotone "watchdog" globalisation): B at β/256 failed at step 24,653 under det-13 and det-17 where a
 sub-step's line search found no decrease along the Newton direction at the outlet's re-forming film (a kink of the
-cavitation rows); with it that step passes. A run det-17 completes is step for step the same."""
+cavitation rows); with it that step passes. A run det-17 completes is step for step the same.
+det-2026.11-19: on a periodic window the global lubricant balance (Newton's convergence norm, the round-off floor and
+the recorded ``mass_error``) sums the mass rows of every node; before, it left out node 0's, as on the whole contact
+(whose node 0 carries the inlet condition θ = 1, not a mass row), so a window's recorded balance could miss one row
+of up to the tolerance. The whole contact is unchanged: its runs are step for step those of det-18."""
 
 FLOOR_STOP_SINCE = "det-2026.11-17"
 """The first model version whose Newton solve may stop at its measured round-off floor above ROUND_OFF_MARGIN × the
 tolerance (within ROUND_OFF_STEP_MARGIN ×)."""
 
-CONTINUES = ("det-2026.11-16", "det-2026.11-17")
+CONTINUES = ("det-2026.11-16", "det-2026.11-17", "det-2026.11-18")
 """Model versions whose saved run states this version continues (``checkpoint``): they solve the same equations and
 differ from it only at round-off stops (a continued run's record names the version and step it continued from, its
 ``continued_from``)."""
@@ -437,6 +441,12 @@ class MixedProblem:
         out[-1] = float(self.weights @ (pf + pc)) - self.load_target
         return out, h, jac, dfilm
 
+    @property
+    def mass_rows(self) -> slice:
+        """The mass rows of the residual: every node's on a periodic window; from node 1 on the whole contact, whose
+        node 0 row is the inlet condition θ = 1 (their sum is the global lubricant balance)."""
+        return slice(0 if self.periodic else 3, -1, 3)
+
     def row_scale(self) -> np.ndarray:
         """Mass rows relative to the reference flux ρ̄H at the contact centre; the others in their own units."""
         scale = np.ones(3 * self.n + 1)
@@ -481,7 +491,7 @@ class MixedProblem:
         floor = 0.0
         for sign in signs:
             moved = self.evaluate(z + FLOOR_ULPS * np.spacing(np.abs(z)) * sign, gap, storage)[0] * scale - base
-            floor = max(floor, float(np.max(np.abs(moved))), abs(float(np.sum(moved[3:-1:3]))))
+            floor = max(floor, float(np.max(np.abs(moved))), abs(float(np.sum(moved[self.mass_rows]))))
         return floor
 
     def newton(self, z, gap, storage, tol: float, max_iterations: int, max_pressure_step: float = 2.0,
@@ -517,7 +527,7 @@ class MixedProblem:
         for iteration in range(max_iterations):
             scaled = res * scale
             # every row, and the sum of the mass rows (the global lubricant balance, whose terms could add up)
-            norm = max(float(np.max(np.abs(scaled))), abs(float(np.sum(scaled[3:-1:3]))))
+            norm = max(float(np.max(np.abs(scaled))), abs(float(np.sum(scaled[self.mass_rows]))))
             if norm <= tol:
                 self.last_residual = res
                 return z, True, iteration, norm
@@ -562,7 +572,7 @@ class MixedProblem:
                 return z, False, iteration + 1, norm
             z, res, jac, dfilm = trial, res_t, jac_t, dfilm_t
         scaled = res * scale
-        norm = max(float(np.max(np.abs(scaled))), abs(float(np.sum(scaled[3:-1:3]))))
+        norm = max(float(np.max(np.abs(scaled))), abs(float(np.sum(scaled[self.mass_rows]))))
         if tol < norm and at_floor(z, norm):
             return self._round_off_stop(z, res, max_iterations, norm, norm > ROUND_OFF_MARGIN * tol)
         self.last_residual = res
@@ -577,7 +587,7 @@ class MixedProblem:
     def mass_balance_error(self) -> float:
         """|Σ_cells (flux in − flux out − storage change)| / reference flux of the last Newton solution: the global
         lubricant balance of the discrete equations (the mass rows summed; interior faces cancel in pairs)."""
-        return abs(float(np.sum(self.last_residual[3:-1:3]))) / self.m_ref
+        return abs(float(np.sum(self.last_residual[self.mass_rows]))) / self.m_ref
 
 
 def local_shear_stress(problem: MixedProblem, case: ContactCase, state: LubricantState, scales: ContactScales, z,

@@ -81,6 +81,8 @@ def test_the_window_conserves_its_lubricant_and_holds_the_mean_pressure():
     assert result.converged, result.message
     content = result.series["lubricant_content"]
     assert np.max(np.abs(content / content[0] - 1.0)) <= 1e-9
+    # the last step's global balance over every node's mass row (det-2026.11-19; node 0's was left out before)
+    assert result.series["mass_error"] <= 1e-10
     assert np.max(np.abs(result.series["mean_pressure_error"])) <= 1e-9
     assert 1e-4 < result.asperity_share < 1.0
     assert 0.0 < result.mu_local < state.mu_d
