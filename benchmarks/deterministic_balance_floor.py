@@ -13,7 +13,8 @@ boundary fluxes and the time terms), which shows whether rounding in the summati
     python benchmarks/deterministic_balance_floor.py H 32 --seconds 60
 
 A diagnosis tool: the solver's ``newton`` is wrapped to observe its ends; the numerics are unchanged. Rows are
-written to benchmarks/results/deterministic_balance_floor.json (one entry per run, replaced when run again).
+written to benchmarks/results/deterministic_balance_floor.json (one entry per run and model version, replaced when
+run again).
 """
 
 from __future__ import annotations
@@ -46,8 +47,8 @@ def telescoped_balance(problem, z, gap, storage) -> float:
     """Σ of the mass rows with the interior face fluxes cancelled exactly: −q_inlet − outflow − Σ time terms
     (``math.fsum``), relative to the reference flux (the same quantity as ``mass_balance_error``, summed without
     the interior fluxes' rounding)."""
-    pf, th, pc, h0 = problem.unpack(z)
-    h = h0 + gap + problem.deflection(pf + pc)
+    pf, th, _, _ = problem.unpack(z)
+    h = problem.film(z, gap)
     eps, eps_p, eps_h, rho, _ = problem.fluid(pf, h)
     hp, floor = problem.conducting_film(h)
     cube, cube_h = hp**3, np.where(h > floor, 3.0 * hp**2, 0.0)
@@ -121,7 +122,8 @@ def main(argv=None) -> int:
                         f"--seconds {args.seconds:g}")
     print(json.dumps({k: v for k, v in entry.items() if k != "rows"}, indent=1), flush=True)
     kept = json.loads(OUT.read_text()) if OUT.exists() else {}
-    runs = [r for r in kept.get("runs", []) if r.get("run") != entry["run"]]
+    runs = [r for r in kept.get("runs", [])
+            if (r.get("run"), r.get("model_version")) != (entry["run"], entry["model_version"])]
     OUT.write_text(json.dumps({"machine": platform.platform(), "runs": runs + [entry]}, indent=1) + "\n")
     return 0
 

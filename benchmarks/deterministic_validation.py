@@ -111,7 +111,8 @@ SAME_NUMERICS = {"det-2026.11-9": "det-2026.11-10", "det-2026.11-11": "det-2026.
                  "det-2026.11-12": "det-2026.11-10", "det-2026.11-13": "det-2026.11-10",
                  "det-2026.11-14": "det-2026.11-10", "det-2026.11-15": "det-2026.11-10",
                  "det-2026.11-16": "det-2026.11-10", "det-2026.11-17": "det-2026.11-10",
-                 "det-2026.11-18": "det-2026.11-10", "det-2026.11-19": "det-2026.11-10"}
+                 "det-2026.11-18": "det-2026.11-10", "det-2026.11-19": "det-2026.11-10",
+                 "det-2026.11-20": "det-2026.11-10"}
 """Model versions whose runs may be paired with runs of the version they map to. det-2026.11-10 changed only the
 Newton stop at the round-off floor (a step that stalls there is accepted instead of split); rerun under it, the short
 runs A β/16, B β/16, G β/8 and I β/8 reproduce det-2026.11-9's μ within 1e-12 (relative) and C β/16 within 8e-5
@@ -143,7 +144,11 @@ benchmarks/deterministic_rerun_check.py B:16 D:8 H:8 L:8`,
 benchmarks/results/deterministic_rerun_check_det-2026.11-17.json); det-17 continues det-16's saved states
 (``CONTINUES``, recorded in a run's ``continued_from``). det-2026.11-18 adds a last attempt (watchdog steps) only at a
 step that fails at every split, so a run det-17 completes is step for step the same. det-2026.11-19 changed only the
-global balance of periodic windows (which the validation runs do not use): its whole-contact runs are det-18's."""
+global balance of periodic windows (which the validation runs do not use): its whole-contact runs are det-18's.
+det-2026.11-20 carries the film offset relative to the steady start's and lets the line search measure the global
+balance where only it misses the tolerance: rerun under it, B β/16, D β/8, H β/8 and L β/8 reproduce their recorded μ
+within 2.2e-6 (relative), every step balanced to 1e-10 (`python benchmarks/deterministic_rerun_check.py B:16 D:8 H:8
+L:8`, benchmarks/results/deterministic_rerun_check_det-2026.11-20.json)."""
 
 
 def numerics(version: str) -> str:
