@@ -4,9 +4,7 @@ the inlet flux minus the outflow minus the time terms, for any state (a conserva
 scheme, not a property of the solution). benchmarks/deterministic_balance_floor.py measures the balance's
 double-precision floor on that identity."""
 
-import importlib.util
 import math
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -16,16 +14,13 @@ from ehl_dataset.model.lubricant import load_lubricant
 from ehl_dataset.solvers.deterministic import MixedProblem
 from ehl_dataset.solvers.steady import ContactScales
 
-SCRIPT = Path(__file__).resolve().parents[2] / "benchmarks" / "deterministic_balance_floor.py"
 CASE = ContactCase.from_engineering(1.0, 10, 5, 0.3, 90)
+ATF = load_lubricant("atf")
 
 
 @pytest.fixture(scope="module")
-def floor_script():
-    spec = importlib.util.spec_from_file_location("deterministic_balance_floor", SCRIPT)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+def floor_script(load_benchmark):
+    return load_benchmark("deterministic_balance_floor")
 
 
 def _state(problem, x, periodic):
@@ -66,5 +61,3 @@ def test_the_mass_rows_sum_to_inlet_flux_minus_outflow_minus_time_terms(floor_sc
     assert abs(rows) > 1e3 * 1e-16 * largest_term * n  # a state off balance: the identity is not 0 = 0
     assert abs(rows - telescoped) <= 1e-16 * n * max(largest_term, 1.0) * 10
 
-
-ATF = load_lubricant("atf")

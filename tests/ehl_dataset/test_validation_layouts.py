@@ -2,8 +2,6 @@
 case reads the two surfaces from disjoint stretches of its profile, so μ's standard error counts independent
 roughness (docs/deterministic_solver.md, "Standard error of the long run")."""
 
-import importlib.util
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -12,15 +10,11 @@ from ehl_dataset.model.contact import ContactCase
 from ehl_dataset.model.roughness import BASELINE_POINTS, plan_surfaces
 from ehl_dataset.solvers.deterministic import DeterministicOptions
 
-SCRIPT = Path(__file__).resolve().parents[2] / "benchmarks" / "deterministic_validation.py"
 
 
 @pytest.fixture(scope="module")
-def validation():
-    spec = importlib.util.spec_from_file_location("deterministic_validation", SCRIPT)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+def validation(load_benchmark):
+    return load_benchmark("deterministic_validation")
 
 
 def _surfaces(validation, name):
