@@ -420,6 +420,7 @@ def summarise_case(name: str) -> dict | None:
         out[key + "_extrapolated"] = extrapolated
         out[key + "_uncertainty"] = math.hypot(grid_uncertainty, errors[high])
         out[key + "_fine_step"] = values[high] - values[mid]
+        out[key + "_fine_step_sem"] = paired_difference(runs[high], runs[mid], series)[1]
     out["mu_fine_step_relative"] = out["mu_fine_step"] / out["mu"][f"beta/{high}"]
     return out
 
@@ -541,9 +542,9 @@ def summarise() -> None:
              f"{', '.join(sorted({r['solver_version'] for r in rows})) or '-'}, per case in the data); the data: "
              f"`data/reference/deterministic_validation.json`.",
              "", "| case | p_h GPa | r_eq mm | u_r m/s | SR | T °C | Rq µm | λ̄ | a/β | spacings β/n | μ coarse | "
-             "μ middle | μ fine | fine step | order | μ extrapolated | ± | sem of μ (long run) | share fine | "
+             "μ middle | μ fine | fine step | ± (paired) | order | μ extrapolated | ± | sem of μ (long run) | share fine | "
              "share fine step | smooth μ | time per spacing, coarsest first [s] |",
-             "|---|" + "---|" * 21]
+             "|---|" + "---|" * 22]
     beta = baseline_profile().correlation_length
     for r in rows:
         i = r["inputs"]
@@ -557,12 +558,14 @@ def summarise() -> None:
             f"{i['rq1_um']}/{i['rq2_um']} | {r['lambda_bar']:.3f} | {r['half_width_m'] / beta:.1f} | "
             f"{spacing_text} | {r['mu'][f'beta/{coarse}']:.4f} | {r['mu'][f'beta/{middle}']:.4f} | "
             f"{r['mu'][f'beta/{fine}']:.4f} | {100 * r['mu_fine_step_relative']:+.1f} % | "
+            f"{100 * r['mu_fine_step_sem'] / r['mu'][f'beta/{fine}']:.1f} % | "
             f"{_order_text(r['mu_observed_order'])} | {r['mu_extrapolated']:.4f} | {r['mu_uncertainty']:.4f} | "
             f"{100 * r['mu_sem'][f'beta/{long_n}'] / r['mu'][f'beta/{long_n}']:.1f} % | "
             f"{r['asperity_load_share'][f'beta/{fine}']:.3f} | "
             f"{r['asperity_load_share_fine_step']:+.3f} | {r['smooth_mu']:.4f} | {times} |")
     lines += ["", "μ coarse / middle / fine: the three finest spacings (paired with the long run at the middle one, or at "
-              "the one named); fine step: (μ fine − μ middle)/μ fine (target ≤ 5 %); order: the observed order of "
+              "the one named); fine step: (μ fine − μ middle)/μ fine (target ≤ 5 %), ± its standard error from the two runs' "
+              "paired difference over their common window (relative to μ fine); order: the observed order of "
               "convergence p = log2(Δ_coarse/Δ_fine), n/o where none is observable (the steps do not shrink or change "
               "sign); with n/o or p ≤ 0.5 μ extrapolated is μ fine and ± the fine step combined with the standard error, else "
               "Richardson's value with Roache's GCI (safety 1.25) combined with it; sem of μ: "
