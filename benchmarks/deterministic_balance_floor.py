@@ -39,6 +39,7 @@ from ehl_dataset.solvers import deterministic  # noqa: E402
 
 OUT = Path(__file__).resolve().parent / "results" / "deterministic_balance_floor.json"
 TARGET = 1e-10
+ROW_KINDS = ("mass", "cavitation", "contact")
 GROUPS = {"fluid pressure": slice(0, -1, 3), "fill fraction": slice(1, -1, 3), "contact pressure": slice(2, -1, 3),
           "film offset H0": slice(-1, None)}
 
@@ -73,11 +74,13 @@ def observe(rows: list, seed: int = 0) -> None:
 
         def balance(state):
             scaled = self.evaluate(state, gap, storage)[0] * scale
-            return float(np.sum(scaled[self.mass_rows])), float(np.max(np.abs(scaled[:-1])))
+            return float(np.sum(scaled[self.mass_rows])), float(np.max(np.abs(scaled[:-1]))), scaled
 
-        total, largest_row = balance(z_out)
+        total, largest_row, scaled = balance(z_out)
         if converged and abs(total) > TARGET:
-            row = {"balance": total, "largest_row": largest_row,
+            where = int(np.argmax(np.abs(scaled[:-1])))
+            row = {"balance": total, "largest_row": largest_row, "largest_row_kind": ROW_KINDS[where % 3],
+                   "largest_row_x_over_a": float(self.x[where // 3]),
                    "telescoped": telescoped_balance(self, z_out, gap, storage), "n_nodes": int(self.n),
                    "film_offset": float(z_out[-1])}
             for name, part in GROUPS.items():
