@@ -112,7 +112,7 @@ SAME_NUMERICS = {"det-2026.11-9": "det-2026.11-10", "det-2026.11-11": "det-2026.
                  "det-2026.11-14": "det-2026.11-10", "det-2026.11-15": "det-2026.11-10",
                  "det-2026.11-16": "det-2026.11-10", "det-2026.11-17": "det-2026.11-10",
                  "det-2026.11-18": "det-2026.11-10", "det-2026.11-19": "det-2026.11-10",
-                 "det-2026.11-20": "det-2026.11-10"}
+                 "det-2026.11-20": "det-2026.11-10", "det-2026.11-21": "det-2026.11-10"}
 """Model versions whose runs may be paired with runs of the version they map to. det-2026.11-10 changed only the
 Newton stop at the round-off floor (a step that stalls there is accepted instead of split); rerun under it, the short
 runs A β/16, B β/16, G β/8 and I β/8 reproduce det-2026.11-9's μ within 1e-12 (relative) and C β/16 within 8e-5

@@ -56,7 +56,7 @@ from .result import ContactResult
 from .steady import ContactScales, dowson_higginson_lambda, moes_h_c, solve_steady
 from .time_average import time_mean
 
-MODEL_VERSION = "det-2026.11-20"
+MODEL_VERSION = "det-2026.11-21"
 """Version of the deterministic model's numerics (recorded with its results; bump with any change that can alter a
 solved value). :data:`ehl_dataset.solver.SOLVER_VERSION` covers the whole solver. det-2026.11-11: the logarithmic
 face mean is evaluated without cancellation (:func:`~ehl_dataset.discretisation.mixed_system.logarithmic_mean`),
@@ -92,13 +92,15 @@ det-2026.11-20: a transient run carries the film offset relative to the steady s
 rebase_film_offset`, H = (H_ref + gap + K P) + δH0): one unit in the last place of H0 ≈ −0.6 moved every node's film
 at once and with it the global lubricant balance by 8e-11 on case L at β/16 and H at β/32, 0.8 of the target
 (benchmarks/deterministic_balance_floor.py); of δH0 it moves it by about 1e-13. The same equations; other round-off.
-States saved by det-18 and -19 are continued with their absolute offset (their numerics)."""
+States saved by det-18 and -19 are continued with their absolute offset (their numerics).
+det-2026.11-21: a solve that stalls at the round-off floor where only the global balance misses the tolerance goes on
+for up to :data:`BALANCE_RETRIES` more iterations (H at β/32 under det-20: 11 of 13,584 steps ended at 1.01–1.5e-10)."""
 
 FLOOR_STOP_SINCE = "det-2026.11-17"
 """The first model version whose Newton solve may stop at its measured round-off floor above ROUND_OFF_MARGIN × the
 tolerance (within ROUND_OFF_STEP_MARGIN ×)."""
 
-CONTINUES = ("det-2026.11-16", "det-2026.11-17", "det-2026.11-18", "det-2026.11-19")
+CONTINUES = ("det-2026.11-16", "det-2026.11-17", "det-2026.11-18", "det-2026.11-19", "det-2026.11-20")
 """Model versions whose saved run states this version continues (``checkpoint``): they solve the same equations and
 differ from it only at round-off stops, and states of det-18 and -19 keep their absolute film offset (film_reference
 0), so they go on in their own round-off (a continued run's record names the version and step it continued from, its
@@ -275,6 +277,11 @@ def asperity_radius(profile: RoughnessProfile, rq1: float, rq2: float) -> float:
 ROUND_OFF_MARGIN = 10.0
 ROUND_OFF_STEP = 1e-15
 ROUND_OFF_STEP_MARGIN = 1000.0
+BALANCE_RETRIES = 3
+"""Iterations a Newton solve goes on after a stall at the round-off floor where every scaled row meets the tolerance
+and only the global lubricant balance does not (det-2026.11-21): the round-off of the pressures moves that balance
+by ±1–3e-11 from one iterate to the next (benchmarks/deterministic_balance_floor.py), so a balance just above the
+tolerance is usually met within a few more iterations."""
 """A Newton solve also ends when its scaled residual is within ROUND_OFF_MARGIN × the tolerance and it has
 stalled (the last iteration reduced it by less than half, or the line search found no decrease), or within
 ROUND_OFF_STEP_MARGIN × the tolerance when its correction is below ROUND_OFF_STEP p_h in every pressure: a few units
@@ -549,6 +556,7 @@ class MixedProblem:
                 floor = self.round_off_floor(z_now, gap, storage)
             return norm_now <= floor
 
+        balance_retries = 0
         for iteration in range(max_iterations):
             scaled = res * scale
             # every row, and the sum of the mass rows (the global lubricant balance, whose terms could add up)
@@ -560,7 +568,10 @@ class MixedProblem:
             if not np.isfinite(norm):
                 return z, False, iteration, norm
             if norm > 0.5 * previous and at_floor(z, norm):  # stalled at the round-off floor
-                return self._round_off_stop(z, res, iteration, norm, norm > ROUND_OFF_MARGIN * tol)
+                if largest_row <= tol and balance_retries < BALANCE_RETRIES:
+                    balance_retries += 1  # only the global balance misses: its round-off moves it by ±3e-11 a step
+                else:
+                    return self._round_off_stop(z, res, iteration, norm, norm > ROUND_OFF_MARGIN * tol)
             previous = norm
             forcing = min(0.1, max(norm, 1e-3 * tol / norm))
             step, _ = self._direction(jac, dfilm, scaled, scale, forcing)
