@@ -148,7 +148,9 @@ global balance of periodic windows (which the validation runs do not use): its w
 det-2026.11-20 carries the film offset relative to the steady start's and lets the line search measure the global
 balance where only it misses the tolerance: rerun under it, B β/16, D β/8, H β/8 and L β/8 reproduce their recorded μ
 within 2.2e-6 (relative), every step balanced to 1e-10 (`python benchmarks/deterministic_rerun_check.py B:16 D:8 H:8
-L:8`, benchmarks/results/deterministic_rerun_check_det-2026.11-20.json)."""
+L:8`, benchmarks/results/deterministic_rerun_check_det-2026.11-20.json). det-2026.11-21 lets a solve that stalls with only
+the global balance above the tolerance go on for up to three iterations: the same four runs give det-20's μ (same file
+name with det-2026.11-21)."""
 
 
 def numerics(version: str) -> str:
