@@ -48,12 +48,12 @@ def telescoped_balance(problem, z, gap, storage) -> float:
     """Σ of the mass rows with the interior face fluxes cancelled exactly: −q_inlet − outflow − Σ time terms
     (``math.fsum``), relative to the reference flux (the same quantity as ``mass_balance_error``, summed without
     the interior fluxes' rounding)."""
-    pf, th, _, _ = problem.unpack(z)
+    pf = problem.unpack(z)[0]
     h = problem.film(z, gap)
-    eps, eps_p, eps_h, rho, _ = problem.fluid(pf, h)
+    eps, eps_p, eps_h, _, _ = problem.fluid(pf, h)
     hp, floor = problem.conducting_film(h)
     cube, cube_h = hp**3, np.where(h > floor, 3.0 * hp**2, 0.0)
-    content = rho * th * np.maximum(h, problem.h_b)
+    content = problem.content(z, h)
     time_terms = storage[0] * content + storage[1]
     if problem.periodic:
         return -math.fsum(time_terms) / problem.m_ref

@@ -481,34 +481,21 @@ def test_a_state_saved_with_the_absolute_film_offset_goes_on_in_its_own_numerics
     np.testing.assert_allclose(current.extra["mu_series"], absolute.extra["mu_series"], rtol=1e-6)
 
 
-def test_the_film_offset_carried_relative_to_a_reference_keeps_the_equations_and_refines_the_balance():
-    """Rebasing H0 into the film reference changes the residual only by round-off, while one unit in the last place
-    of the offset unknown moves the global lubricant balance (the sum of the mass rows) far less: of H0 ≈ −0.6 it
-    shifts every node's film by 1.1e-16 at once (docs/deterministic_solver.md, "Mass balance": 8e-11 of the balance on
-    case L at β/16), of a small δH0 by its own, much finer, last place."""
+def test_the_film_offset_carried_relative_to_a_reference_keeps_the_equations():
+    """Rebasing H0 into the film reference (det-2026.11-20) changes the film and the residual only by round-off; the
+    reference holds the old offset and the unknown starts from zero. (What it gains, the balance's floor, is measured
+    by benchmarks/deterministic_balance_floor.py: one ulp of the offset moved L β/16's balance by 8e-11 before, 8e-14
+    after; docs/deterministic_solver.md, "Mass balance".)"""
     problem, x = _problem()
     z = _mixed_state(problem, x)
     gap = 0.5 * x**2 + 0.3 + 1e-3 * np.cos(40 * x)
     storage = problem.storage(0.25 * problem.dx, 1.0, np.full(x.size, 0.2), np.full(x.size, 0.2))
-    scale = problem.row_scale()
-    problem.m_ref = 1.0
-
-    def balance(state):
-        return float(np.sum((problem.evaluate(state, gap, storage)[0] * scale)[problem.mass_rows]))
-
-    def one_ulp_of_the_offset(state):
-        moved = state.copy()
-        moved[-1] += np.spacing(abs(moved[-1]))
-        return abs(balance(moved) - balance(state))
-
-    absolute = one_ulp_of_the_offset(z)
+    film = problem.film(z, gap)
     residual = problem.evaluate(z, gap, storage)[0]
     rebased = problem.rebase_film_offset(z)
     assert problem.film_reference == z[-1] and rebased[-1] == 0.0
+    np.testing.assert_allclose(problem.film(rebased, gap), film, rtol=0, atol=1e-15)
     np.testing.assert_allclose(problem.evaluate(rebased, gap, storage)[0], residual, rtol=0, atol=1e-12)
-    rebased[-1] = 1e-3  # a typical change of the offset within a run (L at β/16: ≈ 1e-3)
-    assert absolute > 0.0
-    assert one_ulp_of_the_offset(rebased) <= 0.05 * absolute
 
 
 def test_a_checkpoint_of_another_run_or_a_corrupt_file_is_one_clear_error(tmp_path):
