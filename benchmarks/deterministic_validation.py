@@ -43,7 +43,7 @@ from ehl_dataset.model.lubricant import load_lubricant
 from ehl_dataset.model.roughness import BASELINE_POINTS, baseline_profile, long_baseline_profile
 from ehl_dataset.solvers.deterministic import (MODEL_VERSION, STRICT_ROUND_OFF_SINCE, DeterministicOptions,
                                                model_version_key, solve_deterministic)
-from ehl_dataset.solvers.time_average import time_mean
+from ehl_dataset.solvers.time_average import RELIABLE_LENGTH, time_mean
 
 ROOT = Path(__file__).resolve().parents[1]
 RUNS = ROOT / "benchmarks" / "results" / "deterministic"
@@ -102,14 +102,30 @@ generator, seed, β and Rq, 2^18 samples = 262 mm) instead of the shipped 131 mm
 at the cap of a 175-pass layout, which took 95 % of the baseline (session 26): the target needs about 215–270 passes
 (1.9 % after 98.5 passes, 1.7 % after 175). The baseline is itself synthetic, so a longer realisation of the same
 process is the same roughness statistically; the case's reference changes by its sampling error."""
-WINDOWS = {"C": {32: 103.0, 64: 10.5}, "D": {16: 40.0, 32: 3.2}, "G": {16: 290.0}, "H": {16: 4.6}}
+WINDOWS = {"A": {16: 5.0, 64: 5.0},
+           "C": {16: 2.5, 32: 103.0, 64: 10.5, 128: 2.5},
+           "D": {8: 2.5, 16: 40.0, 32: 3.2},
+           "F": {8: 2.0, 16: 2.0, 32: 2.0},
+           "G": {8: 5.5, 16: 290.0, 32: 5.5},
+           "H": {16: 4.6},
+           "J": {8: 3.5, 16: 3.5, 32: 3.5},
+           "K": {8: 3.0, 16: 3.0, 32: 3.0},
+           "L": {8: 5.5, 16: 5.5, 32: 5.5}}
 """Averaging windows [passes] longer than the default (the long run until its own standard error is ≤ 1.5 %, a short
-run :data:`SHORT_AVERAGE_PASSES`), per case and spacing, where the default left the standard error of μ at the finest
-spacing (long run and paired differences combined) above 1.5 %: C 2.1 %, D 1.9 %, G 1.51 %, H 1.53 % (session 30).
-The windows are the multilevel allocation of ``python benchmarks/deterministic_sampling_plan.py`` for 1.35 %, a margin
-for variances measured on 1.5-pass windows (its results file has the inputs). A is left at its window: its long run
-would need ≈ 346 passes, more than its 200-pass layout, so all its runs would have to be redone (≈ 2.4 h); B needs a
-longer profile (≈ 12 h, docs/deterministic_solver.md "Open")."""
+run :data:`SHORT_AVERAGE_PASSES`), per case and spacing (session 30), for two reasons:
+
+- reliability: every window at least 20 correlation times of μ measured on the case's long run
+  (:func:`long_run_correlation_passes`; the reliability test of ehl_dataset.solvers.time_average), rounded up to
+  0.5 pass. A 1.5-pass paired difference cannot see correlations on that scale, and its standard error is then
+  too small: measured by ``python benchmarks/deterministic_short_windows.py`` (B: 11×; G: 1.6×). A long run shorter
+  than its short runs' window is extended with them (F, J, K, L), since a paired difference needs it.
+- the standard error of μ at the finest spacing: where the default left it above 1.5 % (C 2.1 %, D 1.9 %, G 1.51 %,
+  H 1.53 %), the multilevel allocation of ``python benchmarks/deterministic_sampling_plan.py`` for 1.35 % (a
+  margin for variances measured on short windows; its results file has the inputs).
+
+A's long run would need ≈ 346 passes for the second reason, more than its 200-pass layout, so all its runs would
+have to be redone (≈ 2.4 h); B needs a longer profile and ≈ 12 passes at every spacing up to β/256 for the first
+(≈ 15 h, docs/deterministic_solver.md "Open"). Both are left at their windows."""
 SHORT_AVERAGE_PASSES = 1.5
 LONG_TARGET = 0.015
 SAFETY = 1.25
@@ -415,17 +431,29 @@ def summarise_case(name: str) -> dict | None:
            **balance_record(runs, chain),
            **central_film(name, runs[fine], base)}
     low, mid, high = levels
+    factor, correlation_d = short_window_factor(name)
+    correlation = max(long_run_correlation_passes(base), correlation_d or 0.0)
+
+    def scaled(se: float, n: int) -> float:
+        short = averaging_passes(runs[n]) < RELIABLE_LENGTH * correlation
+        return se * (factor if factor is not None and short else 1.0)
+
     for key, series in (("mu", "mu_series"), ("asperity_load_share", "share_series")):
         long_mean = time_mean(np.asarray(base["extra"][series])[base["extra"]["average_from_step"]:])
         values, errors = {middle: long_mean.mean}, {middle: long_mean.standard_error}
+        errors_scaled = dict(errors)
         for n in (coarse, fine):
             d, se = paired_difference(runs[n], base, series)
             values[n] = long_mean.mean + d
             errors[n] = math.hypot(long_mean.standard_error, se)
+            errors_scaled[n] = math.hypot(long_mean.standard_error, scaled(se, n))
         for previous, n in zip(chain[2:], chain[3:]):
             d, se = paired_difference(runs[n], runs[previous], series)
             values[n] = values[previous] + d
             errors[n] = math.hypot(errors[previous], se)
+            errors_scaled[n] = math.hypot(errors_scaled[previous], scaled(se, n))
+        if key == "mu":
+            out["mu_sem_scaled"] = {f"beta/{n}": errors_scaled[n] for n in chain}
         e_coarse = values[low] - values[mid]
         e_fine = values[mid] - values[high]
         order = math.nan
@@ -445,11 +473,49 @@ def summarise_case(name: str) -> dict | None:
         out[key + "_uncertainty"] = math.hypot(grid_uncertainty, errors[high])
         out[key + "_fine_step"] = values[high] - values[mid]
         out[key + "_fine_step_sem"] = paired_difference(runs[high], runs[mid], series)[1]
+        if key == "mu":
+            out["mu_fine_step_sem_scaled"] = scaled(out["mu_fine_step_sem"], high)
     out["mu_fine_step_relative"] = out["mu_fine_step"] / out["mu"][f"beta/{high}"]
     out["mu_relative_sem_finest"] = {f"beta/{n}": out["mu_sem"][f"beta/{n}"] / out["mu"][f"beta/{n}"]
                                      for n in (mid, high)}
     out["window_passes"] = {f"beta/{n}": averaging_passes(runs[n]) for n in chain}
+    out["long_run_correlation_passes"] = long_run_correlation_passes(base)
+    out["difference_correlation_passes"] = correlation_d
+    out["short_window_se_factor"] = factor
+    out["mu_relative_sem_finest_scaled"] = {f"beta/{n}": out["mu_sem_scaled"][f"beta/{n}"] / out["mu"][f"beta/{n}"]
+                                            for n in (mid, high)}
+    out["reliable_window_passes"] = RELIABLE_LENGTH * correlation
+    out["window_reliable"] = {k: bool(w >= RELIABLE_LENGTH * correlation) for k, w in out["window_passes"].items()}
     return out
+
+
+SHORT_WINDOWS = ROOT / "benchmarks" / "results" / "deterministic_short_windows.json"
+
+
+def short_window_factor(name: str) -> tuple[float | None, float | None]:
+    """(factor, correlation time [passes]) of case ``name``'s paired differences, measured by
+    ``python benchmarks/deterministic_short_windows.py`` on a long run of its coarse spacing paired with the middle
+    one: how many times the spread of 1.5-pass window means exceeds the standard error such a window reports (the
+    median over the windows; never below 1), and the correlation time of the whole difference series. (None, None)
+    where not measured. The validation applies the factor to the standard errors of paired windows shorter than 20
+    correlation times, on the assumption that the case's finer differences fluctuate alike."""
+    if not SHORT_WINDOWS.exists():
+        return None, None
+    rows = [r for r in json.loads(SHORT_WINDOWS.read_text())["rows"] if r["case"] == name]
+    if not rows:
+        return None, None
+    row = max(rows, key=lambda r: version_key(r["model_version"]))["paired_difference"]
+    return max(1.0, 1.0 / row["ratio_reported_to_spread"]), row.get("whole_correlation_passes")
+
+
+def long_run_correlation_passes(run: dict) -> float:
+    """The correlation time [passes] of μ measured on a long run (its statistical inefficiency g over the averaging
+    window, in passes). A paired difference's own window underestimates it: the difference is driven by the same
+    asperity passages, and a window of a few correlation times cannot see them (benchmarks/
+    deterministic_short_windows.py: on case B the 1.5-pass windows report standard errors 11× smaller than the spread
+    of their means). A window counts as reliable when it is at least RELIABLE_LENGTH (20) of these long."""
+    series = np.asarray(run["extra"]["mu_series"])[run["extra"]["average_from_step"]:]
+    return time_mean(series).inefficiency * averaging_passes(run) / series.size
 
 
 OLDEST_ACCEPTED = "det-2026.11-7"
@@ -490,12 +556,36 @@ def acceptance_lines(rows: list[dict]) -> list[str]:
               ("standard error of μ at the two finest spacings (long run and paired differences combined) ≤ 1.5 %",
                lambda r: "mu_relative_sem_finest" in r and sem_finest(r) <= SEM_TARGET,
                lambda r: f"{100 * sem_finest(r):.1f} %" if "mu_relative_sem_finest" in r else "not recorded"))
+    def sem_scaled(r):
+        return round(100 * max(r["mu_relative_sem_finest_scaled"].values()), 1) / 100
+
+    def step_bound(r):
+        return (abs(r["mu_fine_step"]) + 2 * r["mu_fine_step_sem_scaled"]) / abs(r["mu"][f"beta/{r['points_per_beta'][2]}"])
+
+    measured = [r for r in rows if r.get("short_window_se_factor") is not None]
+    checks += (("the same with the short windows' standard errors scaled by the factor measured on the case (cases "
+                "measured: " + (", ".join(f"{r['case']} ×{r['short_window_se_factor']:.1f}" for r in measured) or "none")
+                + "; the others unscaled)",
+                lambda r: "mu_relative_sem_finest_scaled" in r and sem_scaled(r) <= SEM_TARGET,
+                lambda r: f"{100 * sem_scaled(r):.1f} %" if "mu_relative_sem_finest_scaled" in r else "not recorded"),
+               ("μ fine step ≤ 5 % at two standard errors (|step| + 2 × its scaled standard error)",
+                lambda r: "mu_fine_step_sem_scaled" in r and step_bound(r) <= GRID_TARGET,
+                lambda r: f"{100 * step_bound(r):.1f} %" if "mu_fine_step_sem_scaled" in r else "not recorded"))
     lines = ["Targets of issue 14 on this set:", ""]
+    short = [r for r in rows if "window_reliable" in r and not all(r["window_reliable"].values())]
     for text, met, value in checks:
         failing = [r for r in rows if not met(r)]
         lines.append(f"- {text}: met on {len(rows) - len(failing)} of {len(rows)} cases"
                      + ("" if not failing else "; not on " + ", ".join(f"{r['case']} ({value(r)})"
                                                                     for r in failing)))
+    lines.append(f"- windows of at least 20 correlation times (of μ on the long run, or of the measured paired "
+                 f"difference where that is longer; the standard error's reliability test, "
+                 f"ehl_dataset.solvers.time_average): every run on {len(rows) - len(short)} of {len(rows)} cases"
+                 + ("" if not short else "; not on " + ", ".join(
+                     f"{r['case']} ({', '.join(k for k, ok in r['window_reliable'].items() if not ok)}: "
+                     f"{r['reliable_window_passes']:.1f} passes needed)" for r in short))
+                 + ". A short window's own standard error is too small where it cannot see the difference's "
+                   "correlations (docs/deterministic_solver.md, \"Standard error of the short runs\")")
     return lines + balance_lines(rows)
 
 
@@ -586,7 +676,8 @@ def summarise() -> None:
         long_n = r.get("long_run_points_per_beta", middle)
         chain = sorted(int(k.split("/")[1]) for k in r["wall_time_s"])
         times = " / ".join(f"{r['wall_time_s'][f'beta/{n}']:.0f}" for n in chain)
-        windows = (" / ".join(f"{r['window_passes'][f'beta/{n}']:.1f}" for n in chain)
+        windows = (" / ".join(f"{r['window_passes'][f'beta/{n}']:.1f}"
+                              + ("" if r.get("window_reliable", {}).get(f"beta/{n}", True) else "*") for n in chain)
                    if "window_passes" in r else "-")
         spacing_text = f"{coarse}/{middle}/{fine}" + (f" (long run {long_n})" if long_n != middle else "")
         lines.append(
@@ -609,7 +700,8 @@ def summarise() -> None:
               "the long run's standard error (target ≤ 1.5 %); sem of μ fine: the standard error of μ at the finest "
               "spacing, the long run's and the paired differences' combined (target ≤ 1.5 %; the windows that reach it: "
               "`python benchmarks/deterministic_sampling_plan.py`); averaging passes: each run's window, coarsest "
-              "first; share fine step: the asperity load share's change "
+              "first, * where shorter than 20 correlation times of the long run (its standard error is then not "
+              "reliable); share fine step: the asperity load share's change "
               "between the two finest spacings (target ≤ 0.03)."]
     lines += ["", *acceptance_lines(rows)]
     REPORT.write_text("\n".join(lines) + "\n")
