@@ -116,7 +116,7 @@ run :data:`SHORT_AVERAGE_PASSES`), per case and spacing (session 30), for two re
 
 - reliability: every window at least 20 correlation times of μ measured on the case's long run
   (:func:`long_run_correlation_passes`; the reliability test of ehl_dataset.solvers.time_average), rounded up to
-  0.5 pass. A 1.5-pass paired difference cannot see correlations on that scale, and its standard error is then
+  0.5 pass (the summary also takes the measured difference's correlation time where longer: B's, 0.84 passes). A 1.5-pass paired difference cannot see correlations on that scale, and its standard error is then
   too small: measured by ``python benchmarks/deterministic_short_windows.py`` (B: 11×; G: 1.6×). A long run shorter
   than its short runs' window is extended with them (F, J, K, L), since a paired difference needs it.
 - the standard error of μ at the finest spacing: where the default left it above 1.5 % (C 2.1 %, D 1.9 %, G 1.51 %,
@@ -470,7 +470,10 @@ def summarise_case(name: str) -> dict | None:
         out[key + "_sem"] = {f"beta/{n}": errors[n] for n in chain}
         out[key + "_observed_order"] = order
         out[key + "_extrapolated"] = extrapolated
-        out[key + "_uncertainty"] = math.hypot(grid_uncertainty, errors[high])
+        # μ's uncertainty takes the short windows' standard errors scaled by the measured factor (short_window_factor)
+        out[key + "_uncertainty"] = math.hypot(grid_uncertainty, (errors_scaled if key == "mu" else errors)[high])
+        if key == "mu":
+            out["mu_uncertainty_unscaled"] = math.hypot(grid_uncertainty, errors[high])
         out[key + "_fine_step"] = values[high] - values[mid]
         out[key + "_fine_step_sem"] = paired_difference(runs[high], runs[mid], series)[1]
         if key == "mu":
