@@ -116,7 +116,9 @@ run :data:`SHORT_AVERAGE_PASSES`), per case and spacing (session 30), for two re
 
 - reliability: every window at least 20 correlation times of μ measured on the case's long run
   (:func:`long_run_correlation_passes`; the reliability test of ehl_dataset.solvers.time_average), rounded up to
-  0.5 pass (the summary also takes the measured difference's correlation time where longer: B's, 0.84 passes). A 1.5-pass paired difference cannot see correlations on that scale, and its standard error is then
+  0.5 pass (the summary also takes the measured difference's correlation time where longer: B's, 0.84 passes).
+  Necessary, not sufficient: A's contact episodes are rarer than one per 5 passes, and its 5-pass windows still
+  report standard errors ≈ 5× too small (:func:`short_window_factor`). A 1.5-pass paired difference cannot see correlations on that scale, and its standard error is then
   too small: measured by ``python benchmarks/deterministic_short_windows.py`` (B: 11×; G: 1.6×). A long run shorter
   than its short runs' window is extended with them (F, J, K, L), since a paired difference needs it.
 - the standard error of μ at the finest spacing: where the default left it above 1.5 % (C 2.1 %, D 1.9 %, G 1.51 %,
@@ -431,11 +433,11 @@ def summarise_case(name: str) -> dict | None:
            **balance_record(runs, chain),
            **central_film(name, runs[fine], base)}
     low, mid, high = levels
-    factor, correlation_d = short_window_factor(name)
+    factor, correlation_d, measured_passes = short_window_factor(name)
     correlation = max(long_run_correlation_passes(base), correlation_d or 0.0)
 
     def scaled(se: float, n: int) -> float:
-        short = averaging_passes(runs[n]) < RELIABLE_LENGTH * correlation
+        short = averaging_passes(runs[n]) < (measured_passes or 0.0)
         return se * (factor if factor is not None and short else 1.0)
 
     for key, series in (("mu", "mu_series"), ("asperity_load_share", "share_series")):
@@ -495,20 +497,26 @@ def summarise_case(name: str) -> dict | None:
 SHORT_WINDOWS = ROOT / "benchmarks" / "results" / "deterministic_short_windows.json"
 
 
-def short_window_factor(name: str) -> tuple[float | None, float | None]:
-    """(factor, correlation time [passes]) of case ``name``'s paired differences, measured by
+def short_window_factor(name: str) -> tuple[float | None, float | None, float | None]:
+    """(factor, correlation time [passes], length [passes]) of case ``name``'s paired differences, measured by
     ``python benchmarks/deterministic_short_windows.py`` on a long run of its coarse spacing paired with the middle
     one: how many times the spread of 1.5-pass window means exceeds the standard error such a window reports (the
-    median over the windows; never below 1), and the correlation time of the whole difference series. (None, None)
-    where not measured. The validation applies the factor to the standard errors of paired windows shorter than 20
-    correlation times, on the assumption that the case's finer differences fluctuate alike."""
+    median over the windows; never below 1), the correlation time of the whole difference series, and its length
+    (over which its Sokal standard error agrees with batch means). (None, None, None) where not measured.
+
+    The validation multiplies the standard error of every paired window shorter than that length by the factor, on
+    the assumption that the case's finer differences fluctuate alike. For longer windows the factor measured at 1.5
+    passes is conservative on B, C, D and G (it falls to 0.6–2.3 at 2.5–5 passes) and about right on A (4–6 from 1
+    to 5 passes: its contact episodes are rarer than one per window, so windows of 20 correlation times are not
+    enough there)."""
     if not SHORT_WINDOWS.exists():
-        return None, None
+        return None, None, None
     rows = [r for r in json.loads(SHORT_WINDOWS.read_text())["rows"] if r["case"] == name]
     if not rows:
-        return None, None
+        return None, None, None
     row = max(rows, key=lambda r: version_key(r["model_version"]))["paired_difference"]
-    return max(1.0, 1.0 / row["ratio_reported_to_spread"]), row.get("whole_correlation_passes")
+    return (max(1.0, 1.0 / row["ratio_reported_to_spread"]), row.get("whole_correlation_passes"),
+            row["whole_passes"])
 
 
 def long_run_correlation_passes(run: dict) -> float:
