@@ -15,15 +15,18 @@ Var μ̂_L ≤ ε², ε = 1.5 %·μ_L, takes
 
     N_l = √(V_l / c_l) · Σ_k √(V_k c_k) / ε²,     cost = (Σ_k √(V_k c_k))² / ε²   (+ each run's start-up).
 
-The variances of the short runs come from 1.5-pass windows, so a plan is an estimate to be checked by the runs it
-asks for. The base run's passes are checked against what the case's profile holds (``plan_surfaces``: two disjoint
+The variances of the short runs come from 1.5-pass windows, whose own standard errors are too small where contact
+episodes drive the differences (docs/deterministic_solver.md, "Standard error of the short runs"); with ``--scaled``
+they are multiplied by the case's measured factor (``short_window_factor`` of the validation script), as the
+validation's scaled figures are. A plan is an estimate to be checked by the runs it asks for. The base run's passes are checked against what the case's profile holds (``plan_surfaces``: two disjoint
 stretches of 2·(domain) + 2·u_r·t each, the gap between them).
 
-    python benchmarks/deterministic_sampling_plan.py [--target 0.0135] [--out FILE]
+    python benchmarks/deterministic_sampling_plan.py [--target 0.0135] [--scaled] [--out FILE]
                                   # every case -> benchmarks/results/deterministic_sampling_plan.json and a table
 
 The plan behind ``WINDOWS`` of benchmarks/deterministic_validation.py (session 30, from the runs before them, target
-1.35 %): benchmarks/results/deterministic_sampling_plan_session30.json.
+1.35 %): benchmarks/results/deterministic_sampling_plan_session30.json; with the measured factors (`--scaled`, target
+1.5 %): ..._session30_scaled.json (A ≈ 9 h on a longer profile, B ≈ 430 h, C 2.6 h, D 0.7 h).
 """
 
 from __future__ import annotations
@@ -80,7 +83,7 @@ def run_passes(run: dict) -> tuple[float, float]:
     return validation.averaging_passes(run), run["extra"]["n_steps"] / per_pass
 
 
-def plan_case(name: str, target: float = validation.SEM_TARGET) -> dict | None:
+def plan_case(name: str, target: float = validation.SEM_TARGET, scaled: bool = False) -> dict | None:
     """The measured variances and costs of case ``name``'s levels and the allocation that meets ``target`` (relative
     standard error of μ at the finest spacing); None while the case's runs are incomplete."""
     row = validation.summarise_case(name)
@@ -91,6 +94,7 @@ def plan_case(name: str, target: float = validation.SEM_TARGET) -> dict | None:
     runs = {n: json.loads(validation.run_path(name, n).read_text()) for n in chain}
     up = chain[chain.index(middle):]  # the long run and the spacings chained above it
     levels, variances, costs, passes_now, startup = [], [], [], [], []
+    factor, _, measured_passes = validation.short_window_factor(name)
     base = runs[middle]
     mean = time_mean(np.asarray(base["extra"]["mu_series"])[base["extra"]["average_from_step"]:])
     for k, n in enumerate(up):
@@ -100,6 +104,8 @@ def plan_case(name: str, target: float = validation.SEM_TARGET) -> dict | None:
             levels.append(f"beta/{n}")
         else:
             se = validation.paired_difference(runs[n], runs[up[k - 1]], "mu_series")[1]
+            if scaled and factor is not None and averaging < measured_passes:
+                se *= factor
             levels.append(f"beta/{n} - beta/{up[k - 1]}")
         variances.append(se**2 * averaging)
         costs.append(runs[n]["wall_time_s"] / total)
@@ -113,7 +119,7 @@ def plan_case(name: str, target: float = validation.SEM_TARGET) -> dict | None:
     sem_now = math.sqrt(sum(v / p for v, p in zip(variances, passes_now))) / mu_fine
     capacity = profile_capacity_passes(name)
     return {"case": name, "mu_fine": mu_fine, "finest": f"beta/{up[-1]}", "target_relative_sem": target,
-            "relative_sem_now": sem_now, "levels": levels,
+            "relative_sem_now": sem_now, "levels": levels, "scaled": scaled, "short_window_factor": factor,
             "per_pass_variance": variances, "cost_per_pass_s": costs, "startup_passes": startup,
             "averaging_passes_now": passes_now, "averaging_passes_planned": passes.tolist(),
             "relative_sem_planned": math.sqrt(sum(v / p for v, p in zip(variances, passes))) / mu_fine,
@@ -130,10 +136,13 @@ def main(argv=None) -> int:
     parser.add_argument("--target", type=float, default=validation.SEM_TARGET,
                         help="relative standard error of μ at the finest spacing to plan for (default 0.015)")
     parser.add_argument("--out", type=Path, default=OUT, help="results file (JSON)")
+    parser.add_argument("--scaled", action="store_true",
+                        help="scale the short windows' standard errors by the measured factors")
     args = parser.parse_args(argv)
-    rows = [r for r in (plan_case(name, args.target) for name in validation.CASES) if r is not None]
+    rows = [r for r in (plan_case(name, args.target, args.scaled) for name in validation.CASES) if r is not None]
     command = "python benchmarks/deterministic_sampling_plan.py" + (
         f" --target {args.target:g}" if args.target != validation.SEM_TARGET else "") + (
+        " --scaled" if args.scaled else "") + (
         f" --out {args.out}" if args.out != OUT else "")
     args.out.write_text(json.dumps({"command": command, "machine": platform.platform(), "rows": rows},
                                    indent=1) + "\n")
