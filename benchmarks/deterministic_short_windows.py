@@ -97,8 +97,11 @@ def window_statistics(t: np.ndarray, y: np.ndarray, pass_time: float) -> dict:
             "window_se_implied_by_whole": whole.standard_error * math.sqrt((t[-1] - t[0]) / (WINDOW * pass_time))}
 
 
-def analyse(name: str, passes: float) -> dict:
+def analyse(name: str, passes: float, spacing: int | None = None) -> dict:
+    """The row of case ``name``: its run at β/``spacing`` (default: the coarse spacing) over ``passes`` passes paired
+    with the middle spacing's long run."""
     coarse, middle, _ = validation.spacings(name)
+    coarse = coarse if spacing is None else spacing
     long_run = json.loads(validation.run_path(name, middle).read_text())
     if validation.averaging_passes(long_run) < passes:  # a long run met its target sooner: run the middle too
         long_run = paired_run(name, middle, passes)
@@ -115,7 +118,8 @@ def analyse(name: str, passes: float) -> dict:
     keep = np.isfinite(difference)
     long_mu = y_b[long_run["extra"]["average_from_step"]:]
     long_t = t_b[long_run["extra"]["average_from_step"]:]
-    return {"case": name, "coarse": f"beta/{coarse}", "long": f"beta/{middle}", "model_version": MODEL_VERSION,
+    return {"case": name, "coarse": f"beta/{coarse}", "paired_spacing": coarse, "long": f"beta/{middle}",
+            "model_version": MODEL_VERSION,
             "long_run_version": long_run["solver_version"], "coarse_wall_time_s": run["wall_time_s"],
             "middle_passes": float(validation.averaging_passes(long_run)),
             "window_passes": WINDOW,
@@ -123,9 +127,11 @@ def analyse(name: str, passes: float) -> dict:
             "long_run_mu": window_statistics(long_t, long_mu, pass_time)}
 
 
-def difference_series(name: str) -> tuple[np.ndarray, np.ndarray, np.ndarray, str]:
-    """(time [passes], μ_coarse − μ_middle, μ_middle − its mean, label) of case ``name``'s cached paired runs."""
+def difference_series(name: str, spacing: int | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray, str]:
+    """(time [passes], μ_n − μ_middle, μ_middle − its mean, label) of case ``name``'s cached paired runs (n: the
+    coarse spacing, or ``spacing``)."""
     coarse, middle, _ = validation.spacings(name)
+    coarse = coarse if spacing is None else spacing
     long_run = json.loads(validation.run_path(name, middle).read_text())
     cached_middle = SERIES / f"{name}_beta{middle}.json"
     if cached_middle.exists():
@@ -174,7 +180,10 @@ FIGURE = Path(__file__).resolve().parents[1] / "docs" / "figures" / "determinist
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("cases", nargs="+")
-    parser.add_argument("--passes", type=float, default=20.0, help="averaging passes of the coarse run")
+    parser.add_argument("--passes", type=float, default=20.0, help="averaging passes of the paired run")
+    parser.add_argument("--spacing", type=int, default=None,
+                        help="points per β of the run paired with the long run (default: the case's coarse spacing; "
+                             "its fine one checks whether the factor holds at the finer pair)")
     parser.add_argument("--figure", action="store_true",
                         help=f"only plot the cached runs of the cases to {FIGURE.relative_to(FIGURE.parents[2])}")
     args = parser.parse_args(argv)
@@ -182,11 +191,13 @@ def main(argv=None) -> int:
         plot(args.cases, FIGURE)
         return 0
     for name in args.cases:
-        row = {"command": f"python benchmarks/deterministic_short_windows.py {name} --passes {args.passes:g}",
-               **analyse(name, args.passes)}
+        flags = f" --spacing {args.spacing}" if args.spacing else ""
+        row = {"command": f"python benchmarks/deterministic_short_windows.py {name} --passes {args.passes:g}{flags}",
+               **analyse(name, args.passes, args.spacing)}
         print(json.dumps(row), flush=True)
         kept = json.loads(OUT.read_text())["rows"] if OUT.exists() else []
-        kept = [r for r in kept if (r["case"], r["model_version"]) != (name, MODEL_VERSION)]
+        key = (name, MODEL_VERSION, row["coarse"])
+        kept = [r for r in kept if (r["case"], r["model_version"], r["coarse"]) != key]
         OUT.write_text(json.dumps({"machine": platform.platform(), "rows": kept + [row]}, indent=1) + "\n")
     return 0
 

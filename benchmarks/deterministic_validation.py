@@ -499,8 +499,8 @@ SHORT_WINDOWS = ROOT / "benchmarks" / "results" / "deterministic_short_windows.j
 
 def short_window_factor(name: str) -> tuple[float | None, float | None, float | None]:
     """(factor, correlation time [passes], length [passes]) of case ``name``'s paired differences, measured by
-    ``python benchmarks/deterministic_short_windows.py`` on a long run of its coarse spacing paired with the middle
-    one: how many times the spread of 1.5-pass window means exceeds the standard error such a window reports (the
+    ``python benchmarks/deterministic_short_windows.py`` on a long run of its coarse spacing (or a finer one, preferred
+    where measured) paired with the middle one: how many times the spread of 1.5-pass window means exceeds the standard error such a window reports (the
     median over the windows; never below 1), the correlation time of the whole difference series, and its length
     (over which its Sokal standard error agrees with batch means). (None, None, None) where not measured.
 
@@ -514,6 +514,8 @@ def short_window_factor(name: str) -> tuple[float | None, float | None, float | 
     rows = [r for r in json.loads(SHORT_WINDOWS.read_text())["rows"] if r["case"] == name]
     if not rows:
         return None, None, None
+    finest = max(int(r["coarse"].split("/")[1]) for r in rows)  # the pair nearest the fine steps, where measured
+    rows = [r for r in rows if int(r["coarse"].split("/")[1]) == finest]
     row = max(rows, key=lambda r: version_key(r["model_version"]))["paired_difference"]
     return (max(1.0, 1.0 / row["ratio_reported_to_spread"]), row.get("whole_correlation_passes"),
             row["whole_passes"])
