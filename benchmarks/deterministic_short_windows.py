@@ -97,6 +97,25 @@ def window_statistics(t: np.ndarray, y: np.ndarray, pass_time: float) -> dict:
             "window_se_implied_by_whole": whole.standard_error * math.sqrt((t[-1] - t[0]) / (WINDOW * pass_time))}
 
 
+def pass_time_s(name: str) -> float:
+    """One pass [s] of case ``name``: the domain length at u_r."""
+    case = ContactCase.from_engineering(*validation.CASES[name])
+    domain = validation.DeterministicOptions().domain
+    return (domain[1] - domain[0]) * case.half_width / case.u_r
+
+
+def paired_series(run: dict, long_run: dict) -> tuple[np.ndarray, np.ndarray]:
+    """(times [s], μ_run − μ_long) over ``run``'s averaging window on the long run's time grid (finite values only)."""
+    extra = run["extra"]
+    t_r, y_r = np.asarray(extra["t_series_s"]), np.asarray(extra["mu_series"])
+    t_b, y_b = np.asarray(long_run["extra"]["t_series_s"]), np.asarray(long_run["extra"]["mu_series"])
+    start, end = t_r[extra["average_from_step"]], min(t_r[-1], t_b[-1])
+    inside = (t_b > start) & (t_b <= end)
+    difference = validation._on_grid(t_r, y_r, t_b[inside]) - y_b[inside]
+    keep = np.isfinite(difference)
+    return t_b[inside][keep], difference[keep]
+
+
 def analyse(name: str, passes: float, spacing: int | None = None) -> dict:
     """The row of case ``name``: its run at β/``spacing`` (default: the coarse spacing) over ``passes`` passes paired
     with the middle spacing's long run."""
@@ -106,25 +125,17 @@ def analyse(name: str, passes: float, spacing: int | None = None) -> dict:
     if validation.averaging_passes(long_run) < passes:  # a long run met its target sooner: run the middle too
         long_run = paired_run(name, middle, passes)
     run = paired_run(name, coarse, passes)
-    extra = run["extra"]
-    case = ContactCase.from_engineering(*validation.CASES[name])
-    domain = validation.DeterministicOptions().domain
-    pass_time = (domain[1] - domain[0]) * case.half_width / case.u_r
-    t_r, y_r = np.asarray(extra["t_series_s"]), np.asarray(extra["mu_series"])
-    t_b, y_b = np.asarray(long_run["extra"]["t_series_s"]), np.asarray(long_run["extra"]["mu_series"])
-    start, end = t_r[extra["average_from_step"]], min(t_r[-1], t_b[-1])
-    grid = t_b[(t_b > start) & (t_b <= end)]
-    difference = validation._on_grid(t_r, y_r, grid) - y_b[(t_b > start) & (t_b <= end)]
-    keep = np.isfinite(difference)
-    long_mu = y_b[long_run["extra"]["average_from_step"]:]
-    long_t = t_b[long_run["extra"]["average_from_step"]:]
+    grid, difference = paired_series(run, long_run)
+    start = long_run["extra"]["average_from_step"]
+    long_t = np.asarray(long_run["extra"]["t_series_s"])[start:]
+    long_mu = np.asarray(long_run["extra"]["mu_series"])[start:]
     return {"case": name, "coarse": f"beta/{coarse}", "paired_spacing": coarse, "long": f"beta/{middle}",
             "model_version": MODEL_VERSION,
             "long_run_version": long_run["solver_version"], "coarse_wall_time_s": run["wall_time_s"],
             "middle_passes": float(validation.averaging_passes(long_run)),
             "window_passes": WINDOW,
-            "paired_difference": window_statistics(grid[keep], difference[keep], pass_time),
-            "long_run_mu": window_statistics(long_t, long_mu, pass_time)}
+            "paired_difference": window_statistics(grid, difference, pass_time_s(name)),
+            "long_run_mu": window_statistics(long_t, long_mu, pass_time_s(name))}
 
 
 def difference_series(name: str, spacing: int | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray, str]:
@@ -137,18 +148,10 @@ def difference_series(name: str, spacing: int | None = None) -> tuple[np.ndarray
     if cached_middle.exists():
         long_run = json.loads(cached_middle.read_text())
     run = json.loads((SERIES / f"{name}_beta{coarse}.json").read_text())
-    case = ContactCase.from_engineering(*validation.CASES[name])
-    domain = validation.DeterministicOptions().domain
-    pass_time = (domain[1] - domain[0]) * case.half_width / case.u_r
-    t_r, y_r = np.asarray(run["extra"]["t_series_s"]), np.asarray(run["extra"]["mu_series"])
+    grid, difference = paired_series(run, long_run)
     t_b, y_b = np.asarray(long_run["extra"]["t_series_s"]), np.asarray(long_run["extra"]["mu_series"])
-    start, end = t_r[run["extra"]["average_from_step"]], min(t_r[-1], t_b[-1])
-    sel = (t_b > start) & (t_b <= end)
-    grid = t_b[sel]
-    difference = validation._on_grid(t_r, y_r, grid) - y_b[sel]
-    keep = np.isfinite(difference)
-    middle_mu = y_b[sel][keep]
-    return ((grid[keep] - grid[keep][0]) / pass_time, difference[keep], middle_mu - middle_mu.mean(),
+    middle_mu = y_b[np.isin(t_b, grid)]
+    return ((grid - grid[0]) / pass_time_s(name), difference, middle_mu - middle_mu.mean(),
             f"{name}: μ(β/{coarse}) − μ(β/{middle})")
 
 

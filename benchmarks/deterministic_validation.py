@@ -502,28 +502,38 @@ def summarise_case(name: str) -> dict | None:
 SHORT_WINDOWS = ROOT / "benchmarks" / "results" / "deterministic_short_windows.json"
 
 
+def _short_window_row(name: str) -> dict | None:
+    """Case ``name``'s row of :data:`SHORT_WINDOWS` (benchmarks/deterministic_short_windows.py): of the finest pair
+    measured (the one nearest the fine steps), newest model version; None where not measured."""
+    if not SHORT_WINDOWS.exists():
+        return None
+    rows = [r for r in json.loads(SHORT_WINDOWS.read_text())["rows"] if r["case"] == name]
+    if not rows:
+        return None
+    finest = max(int(r["coarse"].split("/")[1]) for r in rows)
+    rows = [r for r in rows if int(r["coarse"].split("/")[1]) == finest]
+    return max(rows, key=lambda r: version_key(r["model_version"]))
+
+
 def short_window_factor(name: str) -> tuple[float | None, float | None, float | None]:
     """(factor, correlation time [passes], length [passes]) of case ``name``'s paired differences, measured by
     ``python benchmarks/deterministic_short_windows.py`` on a long run of its coarse spacing (or a finer one, preferred
-    where measured) paired with the middle one: how many times the spread of 1.5-pass window means exceeds the standard error such a window reports (the
-    median over the windows; never below 1), the correlation time of the whole difference series, and its length
-    (over which its Sokal standard error agrees with batch means). (None, None, None) where not measured.
+    where measured) paired with the middle one: how many times the spread of 1.5-pass window means exceeds the
+    standard error such a window reports (the median over the windows; never below 1), the correlation time of the
+    whole difference series, and its length (over which its Sokal standard error agrees with batch means).
+    (None, None, None) where not measured.
 
     The validation multiplies the standard error of every paired window shorter than that length by the factor, on
-    the assumption that the case's finer differences fluctuate alike. For longer windows the factor measured at 1.5
-    passes is conservative on B, C, D and G (it falls to 0.6–2.3 at 2.5–5 passes) and about right on A (4–6 from 1
-    to 5 passes: its contact episodes are rarer than one per window, so windows of 20 correlation times are not
-    enough there)."""
-    if not SHORT_WINDOWS.exists():
+    the assumption that the case's finer differences fluctuate alike (on G the fine pair's factor is 1.62 against
+    1.56 at the coarse one). For longer windows the factor measured at 1.5 passes is conservative on B, C, D and G (it
+    falls to 0.6–2.3 at 2.5–5 passes) and about right on A (4–6 from 1 to 5 passes: its contact episodes are rarer
+    than one per window, so windows of 20 correlation times are not enough there)."""
+    row = _short_window_row(name)
+    if row is None:
         return None, None, None
-    rows = [r for r in json.loads(SHORT_WINDOWS.read_text())["rows"] if r["case"] == name]
-    if not rows:
-        return None, None, None
-    finest = max(int(r["coarse"].split("/")[1]) for r in rows)  # the pair nearest the fine steps, where measured
-    rows = [r for r in rows if int(r["coarse"].split("/")[1]) == finest]
-    row = max(rows, key=lambda r: version_key(r["model_version"]))["paired_difference"]
-    return (max(1.0, 1.0 / row["ratio_reported_to_spread"]), row.get("whole_correlation_passes"),
-            row["whole_passes"])
+    diff = row["paired_difference"]
+    return (max(1.0, 1.0 / diff["ratio_reported_to_spread"]), diff.get("whole_correlation_passes"),
+            diff["whole_passes"])
 
 
 def long_run_factor(name: str) -> float | None:
@@ -531,13 +541,8 @@ def long_run_factor(name: str) -> float | None:
     measured on case ``name``'s middle spacing over ≥ 20 passes (``long_run_mu`` of
     benchmarks/deterministic_short_windows.py; never below 1), None where not measured. Applied to a long run that
     is itself shorter than that measurement (E, I: 1.5 passes)."""
-    if not SHORT_WINDOWS.exists():
-        return None
-    rows = [r for r in json.loads(SHORT_WINDOWS.read_text())["rows"] if r["case"] == name]
-    if not rows:
-        return None
-    row = max(rows, key=lambda r: version_key(r["model_version"]))["long_run_mu"]
-    return max(1.0, 1.0 / row["ratio_reported_to_spread"])
+    row = _short_window_row(name)
+    return None if row is None else max(1.0, 1.0 / row["long_run_mu"]["ratio_reported_to_spread"])
 
 
 def long_run_correlation_passes(run: dict) -> float:
