@@ -1,6 +1,6 @@
-"""Every gearloss example in README.md and docs/ is marked and the quick ones run as documented (issue 16):
+"""Every gearloss example in README.md and docs/ is marked and the quick ones run as documented:
 ``workflows/doc_examples.py`` extracts the fenced blocks; ``python -m workflows.doc_examples --all`` runs the slow
-ones (the 35-minute main job) too."""
+ones (the main job) too."""
 
 import pytest
 

@@ -1,4 +1,4 @@
-"""Every ``gearloss`` example in README.md and docs/*.md runs: extract them, run them, and regenerate the figures.
+"""Every ``gearloss`` example in README.md and docs/ runs: extract them, run them, and regenerate the figures.
 
 A fenced code block that holds a ``gearloss`` command must be preceded (on the line before its opening fence) by a
 marker comment that says what it is:
@@ -55,7 +55,8 @@ class Example:
 
 
 def pages(root: Path = REPO) -> list[Path]:
-    return [root / "README.md", *sorted((root / "docs").glob("*.md"))]
+    """README.md and every Markdown page under ``docs/`` (sub-folders included), in a stable order."""
+    return [root / "README.md", *sorted((root / "docs").rglob("*.md"))]
 
 
 def _commands(block: list[str]) -> list[list[str]]:
