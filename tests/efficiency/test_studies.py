@@ -100,7 +100,7 @@ def test_fig3a_power_loss_falls_with_teeth(study, point):
     p = line["power_loss_w"].to_numpy()
     assert np.all(np.diff(p) < 0.0)
     assert np.all(np.diff(line["normal_module_m"]) < 0.0)
-    assert 0.3 < p[-1] / p[0] < 0.6  # N 20 → 53 (measured 0.37 with μ = 0.05, benchmarks/study_trends.py)
+    assert 0.3 < p[-1] / p[0] < 0.6  # N 20 → 53 (measured 0.37 with μ = 0.05, validation/study_trends.py)
 
 
 def test_fig3a_unmodified_teeth_follow_niemann_hv(study, point):

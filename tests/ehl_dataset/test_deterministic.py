@@ -271,7 +271,7 @@ def test_logarithmic_mean_and_its_partials_are_accurate_for_nearly_equal_values(
 
 
 def test_runs_of_different_length_read_the_same_roughness_when_they_share_the_layout():
-    """Paired comparisons (the multilevel estimator of benchmarks/deterministic_validation.py) need every run to see
+    """Paired comparisons (the multilevel estimator of validation/deterministic_validation.py) need every run to see
     the same roughness at the same times. Where a surface reads the profile depends on the run length it is laid out
     for, so two runs with different ``max_passes`` but the same ``layout_passes`` give the same series step for
     step, and without it they do not (case G's short runs were laid out for 40 passes against 100 for its long run:
@@ -333,7 +333,7 @@ def test_the_levels_inlet_spacing_keeps_the_smooth_solution_within_the_levels_to
     uniform grid of the inlet term's spacing, from which every
     rough run starts, stays within the level's tolerance (planner thresholds: 5 % and 2 %) of the steady solver's
     reference level in μ and h_c (measured: −0.28 % / +3.2 % at fast, −0.13 % / +1.5 % at standard;
-    benchmarks/results/deterministic_inlet_resolution.json)."""
+    validation/results/deterministic_inlet_resolution.json)."""
     from ehl_dataset.model.roughness import baseline_profile
     from ehl_dataset.solvers.deterministic import BOUNDARY_FILM_M, grid_spacing
     from ehl_dataset.solvers.levels import get_level
@@ -484,7 +484,7 @@ def test_a_state_saved_with_the_absolute_film_offset_goes_on_in_its_own_numerics
 def test_the_film_offset_carried_relative_to_a_reference_keeps_the_equations():
     """Rebasing H0 into the film reference (det-2026.11-20) changes the film and the residual only by round-off; the
     reference holds the old offset and the unknown starts from zero. (What it gains, the balance's floor, is measured
-    by benchmarks/deterministic_balance_floor.py: one ulp of the offset moved L β/16's balance by 8e-11 before, 8e-14
+    by validation/deterministic_balance_floor.py: one ulp of the offset moved L β/16's balance by 8e-11 before, 8e-14
     after; docs/deterministic_solver.md, "Mass balance".)"""
     problem, x = _problem()
     z = _mixed_state(problem, x)

@@ -235,7 +235,7 @@ def test_central_film_is_within_10_percent_of_the_reference_where_the_planner_ke
     +7.6 % against 392 nm over 5.3 passes; H +5.8 % against 344 ± 34 nm over 9 passes, where its 2.2-pass
     validation window gave 323 nm). The
     reference's 1.5-pass windows scatter by up to 10 % (I: 378 nm against 455 ± 19 nm over 9 passes,
-    benchmarks/results/deterministic_film_sampling.json), which is why the longest window is the reference."""
+    validation/results/deterministic_film_sampling.json), which is why the longest window is the reference."""
     reference = {c["case"]: c for c in reference_cases()}
     for name in ("A", "E", "F", "G", "H", "I", "J", "K", "L"):
         row = reference[name]
@@ -249,12 +249,12 @@ def test_follows_the_deterministic_roughness_sweep_where_the_traction_is_eyring_
     """Issue 15 limit "μ monotone in λ̄", measured against the reference where the traction is Eyring-saturated:
     at case J's conditions (1 GPa, 10 mm, 2 m/s, SR 0.4, 50 °C, X_h ≈ 960, a/β 11.8) the deterministic model's μ
     *falls* as the roughness grows, at every paired step by 3–13 standard errors (0.0351 → 0.0310 from λ̄ 2.6 to
-    0.16, det-2026.11-10 at β/8: `python benchmarks/deterministic_lambda_sweep.py --spacing 8 --passes 6
+    0.16, det-2026.11-10 at β/8: `python validation/deterministic_lambda_sweep.py --spacing 8 --passes 6
     --conditions 1.0 10 2 0.4 50 --tag J`), because the rough inlet feeds a thicker film and a saturated traction
     gains little from the pressure fluctuations (docs/deterministic_solver.md, "Roughness sweep"). Asserted: the
     film law is within 10 % of every point (issue 15's accuracy target; measured +1.1 % to +6.5 % under
     ehl-2026.11-14) and is lower at λ̄ 0.16 than at 0.64, like the reference (measured 0.0354 → 0.0328)."""
-    sweep = json.loads((ROOT / "benchmarks" / "results" / "deterministic_lambda_sweep_J.json").read_text())
+    sweep = json.loads((ROOT / "validation" / "results" / "deterministic_lambda_sweep_J.json").read_text())
     assert all(pair["delta_mu"] < -2.0 * pair["delta_mu_sem"] for pair in sweep["pairs"])
     runs = sorted(sweep["runs"].values(), key=lambda r: -r["lambda_bar"])
     film_law = []
@@ -272,11 +272,11 @@ def test_rises_at_every_step_of_the_deterministic_roughness_sweep_where_the_trac
     """Issue 15 limit "μ monotone in λ̄", at case A's conditions (0.5 GPa, 5 mm, 5 m/s, SR 0.3, 90 °C; X_h ≈ 3.6,
     a/β 2.9), where the deterministic model's μ rises at every step as the roughness grows, gently above λ̄ ≈ 1 and
     steeply below (the paper's Fig. 2; det-2026.11-9 at β/16 over 11 passes: 0.0138 → 0.0279 from λ̄ 5.0 to 0.12,
-    `python benchmarks/deterministic_lambda_sweep.py --spacing 16 --passes 11`). The planner's model (auto at
+    `python validation/deterministic_lambda_sweep.py --spacing 16 --passes 11`). The planner's model (auto at
     `standard`, isothermal) rises at every step too, and meets issue 15's accuracy targets on the sweep: median
     |error| ≤ 10 % and every point within the 90th-percentile target of 25 % (measured under ehl-2026.11-14: median
     9.8 %, from +14.6 % at λ̄ 0.99 to −22.6 % at λ̄ 0.12, gentler than the reference below λ̄ 0.33)."""
-    sweep = json.loads((ROOT / "benchmarks" / "results" / "lambda_sweep_models.json").read_text())
+    sweep = json.loads((ROOT / "validation" / "results" / "lambda_sweep_models.json").read_text())
     conditions = sweep["conditions"]
     reference = sorted(sweep["deterministic"]["runs"].values(), key=lambda r: -r["lambda_bar"])
     assert all(b["mu"] > a["mu"] for a, b in zip(reference, reference[1:]))

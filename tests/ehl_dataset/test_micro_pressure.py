@@ -22,8 +22,8 @@ from ehl_dataset.solvers.homogenised import HomogenisedOptions
 
 ROOT = Path(__file__).resolve().parents[2]
 REFERENCE = ROOT / "data" / "reference" / "deterministic_validation.json"
-CALIBRATION = ROOT / "benchmarks" / "results" / "micro_pressure_closure.json"
-WIDE_RUNS = ROOT / "benchmarks" / "results"
+CALIBRATION = ROOT / "validation" / "results" / "micro_pressure_closure.json"
+WIDE_RUNS = ROOT / "validation" / "results"
 
 
 @pytest.fixture(scope="module")
@@ -119,7 +119,7 @@ def test_the_coefficient_decays_with_the_inlet_length_as_its_form_says():
 def test_an_unsaturated_narrow_contact_gets_the_deterministic_rise(atf):
     """Reference case A (a/β 2.9, λ̄ 0.33, X_h 3.6): the film law without the closure is 32 % below the grid-converged
     deterministic μ; with it (c at the contact's L_in/β), within the closure's leave-one-out 90th percentile (15.4 %,
-    benchmarks/results/micro_pressure_closure.json) of it."""
+    validation/results/micro_pressure_closure.json) of it."""
     inputs = [0.5, 5, 5, 0.3, 90, 0.3, 0.3]
     reference = reference_mu("A")
     without = film_law(inputs, atf, 0.0)
@@ -143,7 +143,7 @@ def test_a_wide_unsaturated_contact_resolved_whole_is_met_with_the_closure(atf, 
 
 
 def test_the_calibration_on_record_uses_the_shipped_closure_and_keeps_its_fit_points():
-    """benchmarks/results/micro_pressure_closure.json (`python benchmarks/micro_pressure_closure.py`) was made with the
+    """validation/results/micro_pressure_closure.json (`python validation/micro_pressure_closure.py`) was made with the
     shipped (c0, L0), the contacts they were fitted on are still in its calibration set, and the later ones are its
     out-of-sample check, reported separately."""
     record = json.loads(CALIBRATION.read_text())

@@ -13,11 +13,19 @@ from ehl_dataset.model.film_formulas import dowson_higginson_min_film
 from ehl_dataset.model.lubricant import load_lubricant
 from ehl_dataset.solver import solve_contact as solve
 from ehl_dataset.solvers.homogenised import HomogenisedOptions
-from ehl_dataset.solvers.planner import (ROUGH_MODELS, THRESHOLDS, PlannerThresholds, dimensionless_numbers, plan_effects,
-                                         resolve_effects)
+from ehl_dataset.names import ROUGH_MODELS
+from ehl_dataset.solvers.levels import REGISTRY, PlannerThresholds
+from ehl_dataset.solvers.planner import dimensionless_numbers, plan_effects, resolve_effects, thresholds_for
 from ehl_dataset.validation import InputError
 
 ATF = load_lubricant("atf")
+
+
+def _set_standard_thresholds(monkeypatch, **changes):
+    """The ``standard`` level of the registry with its planner thresholds changed, for one test."""
+    standard = REGISTRY["standard"]
+    monkeypatch.setitem(REGISTRY, "standard",
+                        dataclasses.replace(standard, planner=dataclasses.replace(standard.planner, **changes)))
 
 
 def case(p_h_gpa=1.0, r_eq_mm=20.0, u_r=5.0, sr=0.2, temp_c=90.0, rq1_um=0.4, rq2_um=0.4):
@@ -66,7 +74,7 @@ def test_threshold_straddle(level):
     (a narrow contact, a/β < 15: the rough side is the level's rough model, the steady film-law one)."""
     base = case(1.0, 5, 10, 0.3, 50, 0, 0)
     h_dh = dimensionless_numbers(base, ATF)["h_min_dh_m"]
-    threshold = THRESHOLDS[level].lambda_smooth
+    threshold = thresholds_for(level).lambda_smooth
     for factor, rough in ((0.98, True), (1.02, False)):
         rq = h_dh / (factor * threshold) / math.sqrt(2)
         plan = plan_effects(ContactCase(base.p_h, base.r_eq, base.u_r, base.sr, base.temperature, rq, rq), ATF, level)
@@ -81,7 +89,7 @@ def test_wide_rough_contacts_take_the_homogenised_model_from_a_over_beta_15(leve
     transient off); below it the same model as a narrow contact, whose decision names the narrow-contact limits it is
     within or outside (here λ̄ 0.27, X_h 61, α 0.15: within the pressure-fluctuation closure's range). r_eq chosen for
     a/β = 0.98 and 1.02 × the threshold (a ∝ r_eq at fixed p_h)."""
-    threshold = THRESHOLDS[level].a_over_beta_homogenised
+    threshold = thresholds_for(level).a_over_beta_homogenised
     assert threshold == 15.0
     at_20 = dimensionless_numbers(case(r_eq_mm=20), ATF)["a_over_beta"]
     for factor, wide in ((0.98, False), (1.02, True)):
@@ -121,7 +129,7 @@ def test_the_reference_level_sends_rough_contacts_to_the_deterministic_solver(mo
     narrow = case(0.5, 5, 2, 0.7, 25, 1.0, 1.0)
     assert "deterministic mixed solver" in plan_effects(narrow, ATF, "reference").reasons["decisions"]["model"]
     for level in ("fast", "standard"):
-        assert THRESHOLDS[level].rough_model == "homogenised"
+        assert thresholds_for(level).rough_model == "homogenised"
         assert "outside its validated range" in plan_effects(narrow, ATF, level).reasons["decisions"]["model"]
     assert solve(narrow, ATF, "reference") == "deterministic"
     assert solve(narrow, ATF, "standard") == "homogenised"
@@ -145,14 +153,13 @@ def test_the_rough_model_of_a_level_is_one_of_the_two_and_an_unknown_one_is_refu
 
 
 def test_narrow_contacts_keep_the_film_law_where_it_was_measured(monkeypatch):
-    """Narrow contacts below λ̄ 1 against the deterministic model (benchmarks/results/micro_pressure_closure.json,
+    """Narrow contacts below λ̄ 1 against the deterministic model (validation/results/micro_pressure_closure.json,
     docs/narrow_contacts.md): the film law is within 10 % where the traction is Eyring-saturated (X_h ≥ 150; reference
     case I, X_h 6,100, −6.0 %), and with its pressure-fluctuation closure where λ̄ ≥ 0.1 and the roughness parameter
     α = S_c r_eq/a² ≤ 2.5 (reference case A, −2 %; leave-one-out median 5.3 %, 90th percentile 15 % on 33 contacts);
     outside (reference case C, α 3.6: −43 %; case B, λ̄ 0.054, asperity share 0.66: −78 %) a level whose narrow-contact
     model is the deterministic solver sends it the contact, and the decision names the limit that failed."""
-    monkeypatch.setitem(THRESHOLDS, "standard", dataclasses.replace(THRESHOLDS["standard"],
-                                                                    rough_model="deterministic"))
+    _set_standard_thresholds(monkeypatch, rough_model="deterministic")
     cases = {"A": case(0.5, 5, 5, 0.3, 90, 0.3, 0.3), "B": case(0.5, 5, 1, 0.05, 100, 0.5, 0.5),
              "C": case(0.5, 5, 2, 0.7, 25, 1.0, 1.0), "I": case(1.5, 5, 5, 0.2, 75, 0.2, 0.5),
              "above": case(0.5, 5, 1, 1.0, 25, 0.05, 0.05)}  # λ̄ 3.3, X_h 111: film law +5.6 %
@@ -172,8 +179,7 @@ def test_narrow_contacts_keep_the_film_law_where_it_was_measured(monkeypatch):
     for name in ("B", "C"):
         assert decisions[name].transient and "deterministic mixed solver" in decisions[name].reasons[
             "decisions"]["model"]
-    monkeypatch.setitem(THRESHOLDS, "standard", dataclasses.replace(THRESHOLDS["standard"],
-                                                                    rough_model="homogenised"))
+    _set_standard_thresholds(monkeypatch, rough_model="homogenised")
     outside = {name: plan_effects(cases[name], ATF, "standard").reasons["decisions"]["model"] for name in "BC"}
     assert "outside its validated range" in outside["B"] and "asperities carry load" in outside["B"]
     limits = {name: plan_effects(c, ATF, "standard").reasons["narrow_contact"] for name, c in cases.items()}
@@ -190,7 +196,7 @@ def test_narrow_contacts_keep_the_film_law_where_it_was_measured(monkeypatch):
 def test_wide_contacts_outside_the_closures_range_are_flagged():
     """Since ehl-2026.11-14 the closure's measured range (λ̄ ≥ 0.1, α ≤ 2.5 where X_h < 150) holds for wide contacts
     too: the wide factorial corner at λ̄ 0.062 (0.5 GPa, 80 mm, 1 m/s, SR 1, 100 °C, Rq 1/1 µm; +162 % with the
-    closure, −44 % without against the deterministic model: benchmarks/results/micro_pressure_closure.json) is
+    closure, −44 % without against the deterministic model: validation/results/micro_pressure_closure.json) is
     flagged below the closure's λ̄, the resolved wide contact X1 (λ̄ 0.24, film law −5.5 %) is within; both keep the
     film-law model and record no narrow-contact entry."""
     corner = ContactCase.from_engineering(0.5, 80, 1, 1, 100, 1.0, 1.0)
@@ -243,7 +249,7 @@ def test_shear_thinning_threshold_and_reason():
     nums = dimensionless_numbers(c, ATF)
     state = ATF.state(c.temperature)
     assert nums["eyring_inlet"] == pytest.approx(state.eta0 * 0.5 / (5e6 * nums["h_min_dh_m"]), rel=1e-12)
-    assert THRESHOLDS["standard"].eyring_newtonian < nums["eyring_inlet"] < THRESHOLDS["fast"].eyring_newtonian
+    assert thresholds_for("standard").eyring_newtonian < nums["eyring_inlet"] < thresholds_for("fast").eyring_newtonian
     fast = plan_effects(c, ATF, "fast")
     assert not fast.shear_thinning
     assert "Newtonian" in fast.reasons["decisions"]["shear_thinning"]
@@ -290,7 +296,7 @@ def test_shear_thinning_skip_agrees_with_full_model(level):
     docs/planner.md). SR is set for X_in = 0.5, 0.9, 1.1 and 2 × the level's threshold. Where the planner skips
     shear thinning (X_in ≤ threshold), μ and h_min of the planned solve agree with the solve that keeps it within
     the level's tolerance; the change grows with X_in (that is what the threshold is about)."""
-    limits = THRESHOLDS[level]
+    limits = thresholds_for(level)
     base = case(2.5, 5, 15, 1.0, 25, 0, 0)
     x_per_sr = dimensionless_numbers(base, ATF)["eyring_inlet"]
     changes = []
@@ -318,7 +324,7 @@ def test_roughness_skip_agrees_with_the_levels_rough_model(level, contact):
     (the narrow contacts are outside its validated range but still its rough model). Contacts: the calibration
     contact of the comparison with every effect below (its wide version), a narrow one, and the light-load, low-SR contact where the film law
     departs most from smooth (+69 % at λ̄ = 1, +1.1 % at 3.5)."""
-    limits = THRESHOLDS[level]
+    limits = thresholds_for(level)
     smooth_case = case(*contact, 0, 0)
     rq = dimensionless_numbers(smooth_case, ATF)["h_min_dh_m"] / limits.lambda_smooth / math.sqrt(2)
     rough_case = ContactCase(smooth_case.p_h, smooth_case.r_eq, smooth_case.u_r, smooth_case.sr,
@@ -338,10 +344,10 @@ def test_roughness_skip_agrees_with_full_model():
     (λ̄ ≥ 3.5), μ agrees with the deterministic transient rough solve (effects=full: the package's transient rough
     solver, at fast's grid rule) within fast's tolerance (5 %) plus three standard errors of the rough run's time
     average; below the threshold the planner keeps roughness. Measured: the smooth μ is +0.6 % above the rough one
-    at λ̄ 3.5 here, and +0.3 % at standard's threshold λ̄ 5 at the standard grid rule (2 min; ``python benchmarks/planner_roughness_skip.py``,
-    benchmarks/results/planner_roughness_skip.json). Both sides isothermal (``effects="isothermal"`` on the smooth
+    at λ̄ 3.5 here, and +0.3 % at standard's threshold λ̄ 5 at the standard grid rule (2 min; ``python validation/planner_roughness_skip.py``,
+    validation/results/planner_roughness_skip.json). Both sides isothermal (``effects="isothermal"`` on the smooth
     side): the deterministic solver has no thermal model."""
-    limits = THRESHOLDS["fast"]
+    limits = thresholds_for("fast")
     smooth_case = case(1.0, 5, 10, 0.3, 50, 0, 0)
     h_dh = dimensionless_numbers(smooth_case, ATF)["h_min_dh_m"]
     smooth = solve(smooth_case, ATF, "fast", "isothermal")
@@ -396,7 +402,7 @@ def test_thermal_skip_agrees_with_full_model(level):
     and where it skips, μ of the isothermal (planned) solve agrees with the thermally corrected one within the
     level's tolerance; the difference grows with the prediction. The calibration over random points of the paper's
     factorial is in docs/planner.md."""
-    limits = THRESHOLDS[level]
+    limits = thresholds_for(level)
     for base in (case(1.0, 20, 2, 0.1, 90, 0, 0), case(2.0, 10, 10, 0.1, 50, 0, 0)):
         changes = []
         for factor in (0.5, 0.9, 1.1, 2.0):
@@ -412,3 +418,22 @@ def test_thermal_skip_agrees_with_full_model(level):
             if factor <= 1:
                 assert change <= limits.tolerance
         assert changes == sorted(changes)
+
+
+def test_one_level_registry_keyed_by_the_level_names_and_no_fallback():
+    """The steady grid, the planner's thresholds and the deterministic grid rule of a level come from one registry
+    entry keyed by the names of ``ehl_dataset.names.LEVELS``; a level the registry lacks is refused by the planner and
+    by the deterministic options alike (no silent fallback to ``standard``)."""
+    from ehl_dataset.names import LEVELS as LEVEL_NAMES
+    from ehl_dataset.solvers.deterministic import deterministic_options
+    from ehl_dataset.solvers.levels import LEVELS, get_level
+
+    assert tuple(REGISTRY) == LEVEL_NAMES == tuple(LEVELS)
+    for name, level in REGISTRY.items():
+        assert get_level(name) is level.steady and thresholds_for(name) is level.planner
+        assert deterministic_options(name).points_per_beta == level.deterministic.get("points_per_beta", 32.0)
+    renamed = dataclasses.replace(get_level("fast"), name="custom")
+    for call in (lambda: thresholds_for(renamed), lambda: deterministic_options("custom"),
+                 lambda: plan_effects(case(), ATF, renamed)):
+        with pytest.raises(InputError, match="invalid level='custom'"):
+            call()

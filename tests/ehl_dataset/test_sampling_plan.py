@@ -1,5 +1,5 @@
-"""The averaging windows of the deterministic validation set (benchmarks/deterministic_sampling_plan.py,
-benchmarks/deterministic_validation.py ``WINDOWS``): the multilevel allocation is the least-cost one (Giles, Oper.
+"""The averaging windows of the deterministic validation set (validation/deterministic_sampling_plan.py,
+validation/deterministic_validation.py ``WINDOWS``): the multilevel allocation is the least-cost one (Giles, Oper.
 Res. 56 (2008) 607, Eq. 3.1–3.2), and every window asked for fits its run's cap and roughness layout."""
 
 import numpy as np

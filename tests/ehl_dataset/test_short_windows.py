@@ -1,4 +1,4 @@
-"""The standard error of short averaging windows (benchmarks/deterministic_short_windows.py; docs/deterministic_solver.md,
+"""The standard error of short averaging windows (validation/deterministic_short_windows.py; docs/deterministic_solver.md,
 "Standard error of the short runs"): what the estimator of ehl_dataset.solvers.time_average can and cannot see."""
 
 import json
@@ -8,7 +8,7 @@ import numpy as np
 
 from ehl_dataset.solvers.time_average import time_mean
 
-RESULTS = Path(__file__).resolve().parents[2] / "benchmarks" / "results" / "deterministic_short_windows.json"
+RESULTS = Path(__file__).resolve().parents[2] / "validation" / "results" / "deterministic_short_windows.json"
 
 
 def _episodes(rng, n, rate, length, depth):

@@ -1,5 +1,5 @@
 """Conservation over the deterministic validation set (data/reference/deterministic_validation.json, written by
-``python benchmarks/deterministic_validation.py --summarise`` from every run's per-step series; docs/deterministic_solver.md,
+``python validation/deterministic_validation.py --summarise`` from every run's per-step series; docs/deterministic_solver.md,
 "Mass balance"): what the recorded runs balanced, against the conservation laws and the solver's own stop rule."""
 
 import json

@@ -1,6 +1,7 @@
 """The wide-contact route of the deterministic model (ehl_dataset.solvers.wide_contact): the film law that feeds
 its windows, the choice of route, and its smooth limit."""
 
+import dataclasses
 import json
 import math
 from pathlib import Path
@@ -18,14 +19,14 @@ from ehl_dataset.solvers.wide_contact import (FILM_LAW_C, FILM_LAW_D, FILM_LAW_K
                                               inlet_length, solve_deterministic_contact, takes_windows)
 from ehl_dataset.validation import InputError
 
-FILM_LAW_DATA = Path(__file__).resolve().parents[2] / "benchmarks" / "results" / "deterministic_film_law.json"
+FILM_LAW_DATA = Path(__file__).resolve().parents[2] / "validation" / "results" / "deterministic_film_law.json"
 TINY = dict(points_per_beta=4.0, points_per_ell=0.01, wide_windows=3, window_length_beta=4.0)
 """A coarse window layout (3 windows of 4 β at β/4) that keeps a wide run to seconds."""
 
 
 def test_the_film_law_constants_are_the_fit_of_the_recorded_resolved_runs():
     """FILM_LAW_C, _D, _K are the least-squares fit of Δ/σ = c (L_in/β)^k/(H + d) to the resolved runs recorded by
-    ``python benchmarks/deterministic_film_law.py``; a rerun that changes the points must update the constants."""
+    ``python validation/deterministic_film_law.py``; a rerun that changes the points must update the constants."""
     data = json.loads(FILM_LAW_DATA.read_text())
     H = np.array([p["H"] for p in data["points"]])
     inlet = np.array([p["inlet_over_beta"] for p in data["points"]])
@@ -131,10 +132,11 @@ def test_the_command_line_reports_the_route(capsys, monkeypatch):
     """``gearloss contact solve ... --model deterministic --wide windows --json`` (issue 14, deliverable 2): the JSON
     names the route and carries the fields of a deterministic run. (The ``fast`` level's layout is shrunk to the
     coarse one above to keep the test to seconds.)"""
-    from ehl_dataset.solvers import deterministic
+    from ehl_dataset.solvers import levels
     from workflows.cli import main
 
-    monkeypatch.setitem(deterministic.LEVEL_OPTIONS, "fast", {**deterministic.LEVEL_OPTIONS["fast"], **TINY})
+    fast = levels.REGISTRY["fast"]
+    monkeypatch.setitem(levels.REGISTRY, "fast", dataclasses.replace(fast, deterministic={**fast.deterministic, **TINY}))
 
     code = main(["contact", "solve", "--p-h-gpa", "1.0", "--r-eq-mm", "20", "--u-r", "5", "--sr", "0.2", "--temp-c",
                  "75", "--rq1-um", "0.002", "--rq2-um", "0.002", "--model", "deterministic", "--wide", "windows",

@@ -1,0 +1,173 @@
+"""The Ohio State spur pair of Petry-Johnson et al. (J. Mech. Des. 130 (2008) 062601) at 413 N·m and
+2,000–10,000 rpm: mesh friction power loss and efficiency against speed with the project's friction routes, with and
+without the thermal correction of the EHL traction (ehl_dataset/model/thermal.py, issue 17 deliverable 5).
+
+The pair from its manufacturing data (shared/reference/gear_cases.md: z 40/40, pitch diameter 92.74 mm, α 28°,
+outside diameter 95.95 mm, root diameter 85.90 mm, circular tooth thickness 2.925 mm, fillet radius 0.83 mm, face
+width 26.7 mm, centre distance 91.5 mm, Rq 0.07 µm), unmodified flanks (no modifications are published), the
+75W90 oil of data/lubricants/gear_oil_75w90.toml at the inlet temperature at which its published η0 = 10.6 mPa·s
+holds (100 °C in that file, an assumption it flags); the bulk temperature of the teeth is taken equal to it. Routes:
+- ``xu2007``: Xu et al. 2007's formula (fitted to a thermal EHL model for this 75W90) at every contact point of the
+  elastic mesh cycle;
+- ``iso14179-2``: ISO/TR 14179-2's μ_mz with X_L of a mineral base oil (0.846; the base of this 75W90 is not
+  published) and Ra = √(2/π) Rq, P_VZP = μ_mz H_V P_in (efficiency.iso14179);
+- ``ehl-grid:fast``: the project's default EHL route (the planner decides every effect, the thermal correction
+  included; where λ̄ < 3.5 it solves the rough transient problem, which has no thermal model and runs isothermal);
+- ``ehl-grid:fast:isothermal``: the same without the thermal correction;
+- ``ehl-smooth:isothermal`` / ``ehl-smooth:thermal``: the EHL solver on smooth surfaces (steady), without and with
+  the thermal correction at every point (``fast`` level, the same 5 × 9 grid per side of the pitch point).
+The measured losses of the paper are not in the sources available to this project; see docs/gear_validation.md.
+
+Run: ``python validation/petry_johnson.py [--figure docs/figures/petry_johnson.png]``; writes
+validation/results/petry_johnson.json (``--from-json validation/results/petry_johnson.json --figure F`` redraws the
+figure only).
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import sys
+import time
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))  # _common.py, shared with the speed benchmarks
+from _common import emit_json, machine_info  # noqa: E402
+
+SPEEDS_RPM = (2000, 4000, 6000, 8000, 10000)
+ROUTES = ("xu2007", "iso14179-2", "ehl-grid:fast", "ehl-grid:fast:isothermal", "ehl-smooth:isothermal",
+          "ehl-smooth:thermal")
+TORQUE_NM = 413.0
+RQ = 0.07e-6
+OIL_TEMPERATURE_K = 373.15
+
+
+def osu_pair():
+    """The OSU test pair from its manufacturing data (module docstring)."""
+    from efficiency.geometry import GearPair
+
+    return GearPair(z1=40, z2=40, normal_module=92.74e-3 / 40, normal_pressure_angle=math.radians(28.0),
+                    helix_angle=0.0, face_width=26.7e-3, center_distance=91.5e-3,
+                    root_fillet_coefficient=0.83 / (92.74 / 40), tip_diameters=(95.95e-3, 95.95e-3),
+                    root_diameters_given=(85.90e-3, 85.90e-3), normal_thicknesses_given=(2.925e-3, 2.925e-3))
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--out", default=str(Path(__file__).parent / "results" / "petry_johnson.json"))
+    parser.add_argument("--figure", help="write the loss/efficiency plot here (PNG)")
+    parser.add_argument("--routes", default=",".join(ROUTES))
+    parser.add_argument("--from-json", help="only redraw the figure from this JSON (a previous run's --out)")
+    args = parser.parse_args(argv)
+    if args.from_json:
+        import json
+
+        report = json.loads(Path(args.from_json).read_text())
+        draw(report, [r for r in ROUTES if r in report["rows"][0]], args.figure)
+        return 0
+
+    from ehl_dataset.model.contact import ContactCase
+    from ehl_dataset.model.effects import Effects
+    from ehl_dataset.model.lubricant import load_lubricant
+    from ehl_dataset.solver import SOLVER_VERSION
+    from ehl_dataset.solvers.planner import dimensionless_numbers
+    from efficiency.friction import EhlGridFriction, friction_from_spec
+    from efficiency.iso14179 import iso_14179_2_mesh, lubricant_factor
+    from efficiency.mesh_cycle import MeshOptions, evaluate_mesh
+    from efficiency.power_loss import contact_conditions, mesh_power_loss
+    from surrogate.features import lubricant_properties
+    from surrogate.published import RA_PER_RQ
+
+    pair = osu_pair()
+    lubricant = load_lubricant("gear_oil_75w90")
+    eta, _ = lubricant_properties(lubricant, OIL_TEMPERATURE_K)
+    smooth = {"ehl-smooth:isothermal": Effects(False, False, True, True, "forced",
+                                               {"forced": "smooth surfaces, isothermal traction"}),
+              "ehl-smooth:thermal": Effects(False, False, True, True, "forced",
+                                            {"forced": "smooth surfaces, thermal correction"}, thermal=True)}
+    routes = [r.strip() for r in args.routes.split(",") if r.strip()]
+    rows = []
+    for rpm in SPEEDS_RPM:
+        omega = rpm * math.pi / 30.0
+        mesh = evaluate_mesh(pair, TORQUE_NM, omega, options=MeshOptions(outputs=frozenset()))
+        row = {"speed_rpm": rpm, "input_power_w": TORQUE_NM * omega, "loss_factor": mesh.loss_factor,
+               "pitch_line_velocity_m_s": omega * float(pair.working_pitch_radii[0]),
+               "planner_at_max_sliding": _planner_at_max_sliding(mesh, lubricant, contact_conditions, ContactCase,
+                                                                 dimensionless_numbers)}
+        for route in routes:
+            started = time.perf_counter()
+            if route == "iso14179-2":
+                out = iso_14179_2_mesh(pair, TORQUE_NM, omega, float(eta), RA_PER_RQ * RQ, RA_PER_RQ * RQ,
+                                       lubricant_factor("mineral"))
+                loss, mu = out["p_vzp_w"], out["mu_mz"]
+            else:
+                friction = (EhlGridFriction(lubricant, "fast", smooth[route]) if route in smooth
+                            else friction_from_spec(route, lubricant))
+                result = mesh_power_loss(mesh, friction, OIL_TEMPERATURE_K, RQ, RQ)
+                loss = result.power_loss
+                loaded = mesh.loads > 0
+                mu = float((result.mu[loaded] * mesh.loads[loaded]).sum() / mesh.loads[loaded].sum())
+            row[route] = {"power_loss_w": loss, "efficiency": 1.0 - loss / row["input_power_w"], "mu_mean": mu,
+                          "time_s": time.perf_counter() - started}
+        rows.append(row)
+        print(rpm, {r: round(row[r]["power_loss_w"], 1) for r in routes}, file=sys.stderr)
+    report = {"benchmark": "Petry-Johnson et al. 2008 OSU spur pair: mesh friction loss against speed",
+              "torque_nm": TORQUE_NM, "oil_temperature_k": OIL_TEMPERATURE_K, "eta_oil_pa_s": float(eta),
+              "rq_m": RQ, "solver_version": SOLVER_VERSION,
+              "thermal_correction": "ehl_dataset.model.thermal (flash temperature + film conduction, traction "
+                                    "of the isothermal film); in ehl-grid:fast where the planner switches it on "
+                                    "and the contact is solved smooth; everywhere in ehl-smooth:thermal",
+              "measured_losses": "not available in the project's sources", "machine": machine_info(), "rows": rows}
+    emit_json(report, args.out)
+    if args.figure:
+        draw(report, routes, args.figure)
+    return 0
+
+
+def _planner_at_max_sliding(mesh, lubricant, contact_conditions, ContactCase, dimensionless_numbers) -> dict:
+    """The planner's numbers at the most loaded point of the largest sliding (SR) of the cycle (λ̄, thermal
+    estimate), to show which regime the contacts are in."""
+    import numpy as np
+
+    cond = contact_conditions(mesh)
+    loaded = cond["loaded"]
+    sr = np.where(loaded, cond["sr"], -1.0)
+    index = np.unravel_index(int(np.argmax(sr)), sr.shape)
+    case = ContactCase(float(cond["p_h"][index]), float(cond["r_eq"][index]), float(cond["u_r"][index]),
+                       float(cond["sr"][index]), OIL_TEMPERATURE_K, RQ, RQ)
+    nums = dimensionless_numbers(case, lubricant)
+    keys = ("lambda_bar", "thermal_change", "flash_rise_k", "film_centre_rise_k", "nahme_number", "surface_peclet",
+            "film_peclet")
+    return {"p_h_pa": case.p_h, "r_eq_m": case.r_eq, "u_r_m_s": case.u_r, "sr": case.sr,
+            **{k: float(nums[k]) for k in keys}}
+
+
+def draw(report, routes, path):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    rows = report["rows"]
+    speeds = [r["speed_rpm"] for r in rows]
+    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(10, 4))
+    for route, marker in zip(routes, "osd^v<>"):
+        style = {"marker": marker, "label": route, "linestyle": "--" if "isothermal" in route else "-",
+                 "markersize": 7 if "isothermal" in route else 5}
+        ax1.plot(speeds, [r[route]["power_loss_w"] / 1e3 for r in rows], **style)
+        ax2.plot(speeds, [100 * r[route]["efficiency"] for r in rows], **style)
+    ax1.set_xlabel("pinion speed [rpm]")
+    ax1.set_ylabel("mesh friction power loss [kW]")
+    ax2.set_xlabel("pinion speed [rpm]")
+    ax2.set_ylabel("mechanical mesh efficiency [%]")
+    ax1.set_title("OSU spur pair, 413 N·m, 75W90 at 100 °C", fontsize=9)
+    for ax in (ax1, ax2):
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=8)
+    fig.tight_layout()
+    Path(path).parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=110)
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
