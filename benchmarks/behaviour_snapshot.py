@@ -8,9 +8,11 @@ script only (so the same script works whatever the package layout):
 * ``gearloss surrogate predict atf_quick --json``,
 * ``gearloss dataset run --factorial smoke --json``, and the HDF5 file it writes, read back with h5py (every column
   of ``/points`` and the JSON root attributes),
+* ``gearloss pipeline smoke --json`` (factorial -> surrogate fit -> Design D) and the coefficient file it writes,
 
 and writes them to one JSON file. ``compare`` reports every difference between two such files, ignoring wall
-times, timestamps, hosts and paths (and the file:line locations in warning texts); keys that exist only in the
+times, timestamps, hosts and paths (and the file:line locations in warning texts, and the scratch directory
+the commands ran in); keys that exist only in the
 newer file are listed as additions, not as differences. Numbers must be equal bit for bit unless ``--rtol`` says
 otherwise.
 
@@ -51,6 +53,8 @@ VOLATILE_KEYS = {"created", "git_revision", "sessions", "package_version", "fini
                  "wall_time", "path", "coefficients", "file", "points_per_s", "store_time_per_point_s"}
 """Keys whose values depend on when, where or how fast a command ran (also every key ending in ``time_s``)."""
 _LOCATION = re.compile(r"\(([^()]*?\.py):\d+( in [^()]*)?\)")
+_SCRATCH = re.compile(re.escape(tempfile.gettempdir()) + r"/tmp\w+")
+"""The scratch directory a record ran in (it appears in output paths and resume commands)."""
 
 
 def _gearloss() -> list[str]:
@@ -111,6 +115,10 @@ def record(out: Path, workers: int) -> dict:
         report["dataset_run"] = run_json(["dataset", "run", "--factorial", "smoke", "--out", str(h5),
                                           "--workers", str(workers), "--progress", "none"], tmp)
         report["dataset_file"] = read_h5(h5)
+        pipe = tmp / "pipeline"
+        report["pipeline_smoke"] = run_json(["pipeline", "smoke", "--out-dir", str(pipe), "--workers", str(workers),
+                                             "--progress", "none"], tmp)
+        report["pipeline_coefficients"] = {f.name: json.loads(f.read_text()) for f in sorted(pipe.glob("*.json"))}
     out.parent.mkdir(parents=True, exist_ok=True)
     out.write_text(json.dumps(report, indent=1, sort_keys=True) + "\n")
     return report
@@ -122,7 +130,7 @@ def _volatile(key: str) -> bool:
 
 def _normalise(value):
     if isinstance(value, str):
-        return _LOCATION.sub(r"(\1)", value)
+        return _SCRATCH.sub("<scratch>", _LOCATION.sub(r"(\1)", value))
     return value
 
 
