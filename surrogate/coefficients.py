@@ -1,12 +1,20 @@
 """Coefficient files: the portable result of a surrogate fit (JSON, no pickles; docs/surrogate.md).
 
-Layout (``format = "gearloss.friction_coefficients"``, ``format_version = 1``), all quantities SI:
+Layout (``format = "gearloss.friction_coefficients"``, ``format_version = 2``), all quantities SI:
 
+* ``form``: ``eq9`` (the paper's regression, below) or ``learned`` (an ensemble of small perceptrons,
+  :mod:`surrogate.mlp`: ``learned`` holds its weights, scaling and calibrated interval; ``formula`` names it and
+  there is no ``branches``). Both forms take the same inputs and record the same ``input_ranges``, ``evaluation``,
+  ``lubricant`` and ``cross_validation``, so stage 3 swaps one for the other;
 * ``formula``: ``name``, ``version``, ``reference``, ``lambda_threshold`` — must match the term registry in
   :mod:`surrogate.forms`;
 * ``branches.mixed`` / ``branches.full_film``: ``terms`` (registry names), ``expressions``, ``params``,
-  ``std_errors``, ``r2``, ``adj_r2``, ``resid_std_error``, ``n_obs``, ``df_resid``, condition numbers, ``rank``,
-  ``vif``, ``lambda_range``, ``stable``, ``messages``;
+  ``std_errors``, ``covariance`` (of the coefficients, k × k), ``resid_variance``, ``r2``, ``adj_r2``,
+  ``resid_std_error``, ``n_obs``, ``df_resid``, condition numbers, ``rank``, ``vif``, ``lambda_range``, ``stable``,
+  ``messages`` — ``covariance``, ``resid_variance`` and ``df_resid`` give the prediction interval
+  (:mod:`surrogate.intervals`);
+* ``offgrid`` (optional): the errors of μ on a seeded random sample of contacts inside the fitted ranges, solved by
+  the route of the dataset (:mod:`surrogate.offgrid`), and the coverage of the 90 % intervals there;
 * ``evaluation``: ``blend_half_width`` (δ of the λ̄ blend band), ``sr_floor`` (|SR| below it is evaluated at it);
 * ``cross_validation`` (k-fold errors of ln μ and μ), ``jump_at_threshold``, ``exclusions``, ``n_input_rows``,
   ``n_used``, ``input_ranges`` ({name: [min, max]} seen in the fitted data), ``stable``;
@@ -17,7 +25,9 @@ Layout (``format = "gearloss.friction_coefficients"``, ``format_version = 1``), 
   after writing fails this check; to change a file deliberately, refit.
 
 The statsmodels summaries are written beside the file as ``NAME.summary.txt``.
-:func:`load_coefficients` validates everything and raises :class:`InputError` naming the offending field.
+:func:`load_coefficients` validates everything and raises :class:`InputError` naming the offending field. Files of
+format version 1 (no ``form``, no ``covariance``/``resid_variance``) load as Eq. 9 without prediction intervals;
+a newer format version than this gearloss reads is refused.
 """
 
 from __future__ import annotations
@@ -40,7 +50,10 @@ from .fit import RANGE_KEYS, SurrogateFit
 from .forms import BRANCHES, FORMULAS, Formula
 
 FORMAT = "gearloss.friction_coefficients"
-FORMAT_VERSION = 1
+FORMAT_VERSION = 2
+READABLE_VERSIONS = (1, 2)
+"""Format versions this gearloss reads (1: Eq. 9 without the covariance, so without prediction intervals)."""
+FORMS = ("eq9", "learned")
 SUMMARY_SUFFIX = ".summary.txt"
 
 
@@ -87,8 +100,29 @@ def content_hash(payload: dict[str, Any]) -> str:
     return hashlib.sha256(text.encode("ascii")).hexdigest()
 
 
-def coefficients_payload(fit: SurrogateFit, *, source: dict[str, Any] | None = None) -> dict[str, Any]:
-    """The JSON document (as a dict, hash included) describing ``fit``."""
+def coefficients_payload(fit, *, source: dict[str, Any] | None = None,
+                         offgrid: dict[str, Any] | None = None) -> dict[str, Any]:
+    """The JSON document (as a dict, hash included) describing ``fit``.
+
+    Parameters
+    ----------
+    fit : SurrogateFit or LearnedFit
+        An Eq. 9 fit (:func:`surrogate.fit.fit_surrogate`) or a learned one
+        (:func:`surrogate.learned_fit.fit_learned`).
+    source : dict, optional
+        Provenance of the dataset [-].
+    offgrid : dict, optional
+        Off-grid validation (:func:`surrogate.offgrid.offgrid_report`) [-].
+
+    Returns
+    -------
+    dict
+        The document, ``content_sha256`` included.
+    """
+    from .learned_fit import LearnedFit
+
+    if isinstance(fit, LearnedFit):
+        return _finish(_learned_payload(fit, source, offgrid))
     branches = {}
     for name, branch in fit.branches.items():
         entry = branch.to_dict()
@@ -99,6 +133,7 @@ def coefficients_payload(fit: SurrogateFit, *, source: dict[str, Any] | None = N
     payload = {
         "format": FORMAT,
         "format_version": FORMAT_VERSION,
+        "form": "eq9",
         "formula": {"name": fit.formula.name, "version": fit.formula.version, "reference": fit.formula.reference,
                     "lambda_threshold": fit.formula.lambda_threshold, "response": "ln(mu)"},
         "branches": branches,
@@ -123,8 +158,49 @@ def coefficients_payload(fit: SurrogateFit, *, source: dict[str, Any] | None = N
         "package_version": package_version(),
         "created_utc": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
     }
+    if offgrid is not None:
+        payload["offgrid"] = offgrid
+    return _finish(payload)
+
+
+def _finish(payload: dict[str, Any]) -> dict[str, Any]:
     payload = _clean(payload)
     payload["content_sha256"] = content_hash(payload)
+    return payload
+
+
+def _learned_payload(fit, source, offgrid) -> dict[str, Any]:
+    from .learned_fit import LAMBDA_THRESHOLD, LEARNED_FORMULA_NAME, LEARNED_FORMULA_VERSION
+
+    payload = {
+        "format": FORMAT,
+        "format_version": FORMAT_VERSION,
+        "form": "learned",
+        "formula": {"name": LEARNED_FORMULA_NAME, "version": LEARNED_FORMULA_VERSION,
+                    "reference": "ensemble of ReLU perceptrons on the Eq. 9 features (surrogate/mlp.py)",
+                    "lambda_threshold": LAMBDA_THRESHOLD, "response": "ln(mu)"},
+        "learned": fit.ensemble.to_dict() | {"settings": fit.result.settings},
+        "evaluation": {
+            "blend_half_width": 0.0,
+            "sr_floor": fit.sr_floor,
+            "notes": "ln mu = mean of the members; |SR| below sr_floor is evaluated at sr_floor; inputs outside "
+                     "input_ranges warn (or are clipped)",
+        },
+        "cross_validation": fit.cv,
+        "exclusions": fit.exclusions,
+        "n_input_rows": fit.n_input_rows,
+        "n_used": fit.n_used,
+        "input_ranges": fit.input_ranges,
+        "stable": True,
+        "fit_time_s": fit.fit_time_s,
+        "lubricant": fit.lubricant,
+        "e_reduced_pa": fit.e_reduced,
+        "source": source or {},
+        "package_version": package_version(),
+        "created_utc": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
+    }
+    if offgrid is not None:
+        payload["offgrid"] = offgrid
     return payload
 
 
@@ -133,17 +209,38 @@ def summary_path(path: str | Path) -> Path:
     return path.with_name(path.stem + SUMMARY_SUFFIX)
 
 
-def write_coefficients(fit: SurrogateFit, path: str | Path, *, source: dict[str, Any] | None = None) -> Path:
-    """Write the coefficient file (JSON) and the statsmodels summary beside it; returns the JSON path."""
+def write_coefficients(fit, path: str | Path, *, source: dict[str, Any] | None = None,
+                       offgrid: dict[str, Any] | None = None) -> Path:
+    """Write the coefficient file (JSON) and its summary beside it; returns the JSON path.
+
+    Parameters
+    ----------
+    fit : SurrogateFit or LearnedFit
+        The fit to write.
+    path : str or Path
+        ``NAME.json`` [-].
+    source : dict, optional
+        Provenance of the dataset [-].
+    offgrid : dict, optional
+        Off-grid validation of the fit [-].
+
+    Returns
+    -------
+    Path
+        The JSON path.
+    """
+    from .learned_fit import LearnedFit, learned_summary_text
+
     path = Path(path)
     if path.suffix != ".json":
         raise InputError("out", str(path), "a file name ending in .json")
     path.parent.mkdir(parents=True, exist_ok=True)
-    payload = coefficients_payload(fit, source=source)
+    payload = coefficients_payload(fit, source=source, offgrid=offgrid)
     tmp = path.with_name(path.name + ".tmp")
     tmp.write_text(json.dumps(payload, indent=1, sort_keys=True, allow_nan=False) + "\n", encoding="utf-8")
     tmp.replace(path)
-    summary_path(path).write_text(summary_text(fit) + "\n", encoding="utf-8")
+    text = learned_summary_text(fit) if isinstance(fit, LearnedFit) else summary_text(fit)
+    summary_path(path).write_text(text + "\n", encoding="utf-8")
     return path
 
 
@@ -164,6 +261,18 @@ class CoefficientSet:
     e_reduced: float
     document: dict[str, Any] = field(repr=False, compare=False)
     path: str = ""
+    form: str = "eq9"
+    covariance: dict[str, np.ndarray] | None = None
+    """Coefficient covariance per branch (None: a format-1 file, no prediction interval)."""
+    resid_variance: dict[str, float] | None = None
+    df_resid: dict[str, float] | None = None
+    learned: Any = None
+    """The :class:`surrogate.mlp.MlpEnsemble` of a learned file."""
+
+    @property
+    def has_interval(self) -> bool:
+        """True when the file carries what a prediction interval needs."""
+        return self.learned is not None or self.covariance is not None
 
 
 def _require(doc: dict, dotted: str, kind: type | tuple[type, ...], accepted: str):
@@ -198,9 +307,19 @@ def validate_coefficients(doc: Any, origin: str = "<dict>") -> CoefficientSet:
     fmt = doc.get("format", "<missing>")
     if fmt != FORMAT:
         raise InputError("format", fmt, f"'{FORMAT}'")
-    version = _require(doc, "format_version", int, f"{FORMAT_VERSION}")
-    if version != FORMAT_VERSION:
-        raise InputError("format_version", version, f"{FORMAT_VERSION} (this gearloss version)")
+    version = _require(doc, "format_version", int, f"one of {list(READABLE_VERSIONS)}")
+    if version > FORMAT_VERSION:
+        raise InputError("format_version", version, f"one of {list(READABLE_VERSIONS)}",
+                         f"{origin} was written by a newer gearloss; update gearloss to read it")
+    if version not in READABLE_VERSIONS:
+        raise InputError("format_version", version, f"one of {list(READABLE_VERSIONS)}")
+    form = doc.get("form", "eq9") if version >= 2 else "eq9"
+    if version >= 2 and "form" not in doc:
+        raise InputError("form", "<missing>", f"one of {list(FORMS)}", "incomplete coefficient file")
+    if form not in FORMS:
+        raise InputError("form", form, f"one of {list(FORMS)}")
+    if form == "learned":
+        return _validate_learned(doc, origin)
     name = _require(doc, "formula.name", str, f"one of {sorted({k[0] for k in FORMULAS})}")
     fversion = _require(doc, "formula.version", int, "a formula version number")
     formula = FORMULAS.get((name, fversion))
@@ -210,6 +329,9 @@ def validate_coefficients(doc: Any, origin: str = "<dict>") -> CoefficientSet:
     if threshold != formula.lambda_threshold:
         raise InputError("formula.lambda_threshold", threshold, f"{formula.lambda_threshold} for {name}")
     params, errors = {}, {}
+    covariances: dict[str, np.ndarray] = {}
+    variances: dict[str, float] = {}
+    dfs: dict[str, float] = {}
     for branch in BRANCHES:
         expected = formula.term_names(branch)
         terms = _require(doc, f"branches.{branch}.terms", list, f"the term list {expected}")
@@ -226,6 +348,55 @@ def validate_coefficients(doc: Any, origin: str = "<dict>") -> CoefficientSet:
         if adj > 1.0:
             raise InputError(f"branches.{branch}.adj_r2", adj, "a number <= 1")
         _require(doc, f"branches.{branch}.resid_std_error", float, "a non-negative number")
+        if version >= 2:
+            k = len(expected)
+            cov = _require(doc, f"branches.{branch}.covariance", list, f"a {k} x {k} matrix of finite numbers")
+            if len(cov) != k:
+                raise InputError(f"branches.{branch}.covariance", f"{len(cov)} rows", f"a {k} x {k} matrix")
+            covariance = np.vstack([_row(cov[i], f"branches.{branch}.covariance[{i}]", k) for i in range(k)])
+            if not np.allclose(covariance, covariance.T, rtol=1e-9, atol=0.0) or np.any(np.diag(covariance) < 0):
+                raise InputError(f"branches.{branch}.covariance", "a non-symmetric matrix or negative variances",
+                                 "a symmetric k x k matrix with a non-negative diagonal")
+            variance = _require(doc, f"branches.{branch}.resid_variance", float, "a non-negative number")
+            df = _require(doc, f"branches.{branch}.df_resid", int, "a positive integer")
+            if variance < 0:
+                raise InputError(f"branches.{branch}.resid_variance", variance, "a non-negative number")
+            if df < 1:
+                raise InputError(f"branches.{branch}.df_resid", df, "a positive integer")
+            covariances[branch], variances[branch], dfs[branch] = covariance, float(variance), float(df)
+    blend, sr_floor, ranges, e_reduced, lubricant = _common_fields(doc, origin)
+    return CoefficientSet(formula, params, errors, float(blend), float(sr_floor), ranges, lubricant,
+                          float(e_reduced), doc, origin, form="eq9",
+                          covariance=covariances or None, resid_variance=variances or None, df_resid=dfs or None)
+
+
+def _row(values: Any, name: str, length: int) -> np.ndarray:
+    if (not isinstance(values, list) or len(values) != length
+            or not all(isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) for v in values)):
+        raise InputError(name, values if not isinstance(values, list) else f"{len(values)} values",
+                         f"a list of {length} finite numbers")
+    return np.asarray(values, dtype=float)
+
+
+def _validate_learned(doc: dict, origin: str) -> CoefficientSet:
+    from .learned_fit import LAMBDA_THRESHOLD, LEARNED_FORMULA_NAME, LEARNED_FORMULA_VERSION
+    from .mlp import ensemble_from_dict
+
+    name = _require(doc, "formula.name", str, f"'{LEARNED_FORMULA_NAME}'")
+    version = _require(doc, "formula.version", int, f"{LEARNED_FORMULA_VERSION}")
+    if (name, version) != (LEARNED_FORMULA_NAME, LEARNED_FORMULA_VERSION):
+        raise InputError("formula.name/version", f"{name} v{version}",
+                         f"{LEARNED_FORMULA_NAME} v{LEARNED_FORMULA_VERSION} for form 'learned'")
+    ensemble = ensemble_from_dict(_require(doc, "learned", dict, "the ensemble table"), "learned")
+    blend, sr_floor, ranges, e_reduced, lubricant = _common_fields(doc, origin)
+    formula = Formula(LEARNED_FORMULA_NAME, LEARNED_FORMULA_VERSION, {}, LAMBDA_THRESHOLD,
+                      doc["formula"].get("reference", ""))
+    return CoefficientSet(formula, {}, {}, float(blend), float(sr_floor), ranges, lubricant, float(e_reduced), doc,
+                          origin, form="learned", learned=ensemble)
+
+
+def _common_fields(doc: dict, origin: str):
+    """The fields both forms share: evaluation, cross-validation, input ranges, lubricant, E', source, hash."""
     blend = _require(doc, "evaluation.blend_half_width", float, "a number in [0, 0.5)")
     if not 0.0 <= blend < 0.5:
         raise InputError("evaluation.blend_half_width", blend, "[0, 0.5)")
@@ -249,6 +420,8 @@ def validate_coefficients(doc: Any, origin: str = "<dict>") -> CoefficientSet:
     except InputError as err:
         raise InputError(f"lubricant.{err.parameter}", err.value, err.accepted) from None
     _require(doc, "source", dict, "a table describing the source dataset")
+    if "offgrid" in doc:
+        _require(doc, "offgrid", dict, "the off-grid validation table")
     _require(doc, "package_version", str, "the gearloss version that wrote the file")
     stored = _require(doc, "content_sha256", str, "the SHA-256 of the file content")
     try:
@@ -259,8 +432,7 @@ def validate_coefficients(doc: Any, origin: str = "<dict>") -> CoefficientSet:
         raise InputError("content_sha256", stored, "the SHA-256 of the file's content",
                          f"content hashes to {actual[:12]}...; the file was modified after it was written — refit "
                          f"instead of editing coefficients")
-    return CoefficientSet(formula, params, errors, float(blend), float(sr_floor), ranges, lubricant,
-                          float(e_reduced), doc, origin)
+    return blend, sr_floor, ranges, e_reduced, lubricant
 
 
 def load_coefficients(name_or_path: str | Path) -> CoefficientSet:
@@ -272,4 +444,12 @@ def load_coefficients(name_or_path: str | Path) -> CoefficientSet:
         doc = json.loads(Path(path).read_text(encoding="utf-8"))
     except (UnicodeDecodeError, json.JSONDecodeError) as err:
         raise InputError("coefficient file", str(path), "a valid JSON coefficient file", str(err)) from None
-    return validate_coefficients(doc, origin=str(path))
+    try:
+        return validate_coefficients(doc, origin=str(path))
+    except InputError as err:
+        if str(path) in str(err):
+            raise
+        base = f"invalid {err.parameter}={err.value!r}: accepted {err.accepted}"
+        extra = str(err)[len(base) + 2:-1] if len(str(err)) > len(base) else ""
+        raise InputError(err.parameter, err.value, err.accepted,
+                         f"in coefficient file {path}" + (f"; {extra}" if extra else "")) from None

@@ -28,6 +28,7 @@ from ehl_dataset.validation import InputError
 
 from .coefficients import CoefficientSet, load_coefficients
 from .features import compute_features
+from .intervals import DEFAULT_ALPHA, prediction_half_width
 from .model import predict_ln_mu
 
 
@@ -149,11 +150,100 @@ class FrictionSurrogate:
             self._warn_extrapolation(arrays, feats["lam"])
         return feats
 
+    @property
+    def form(self) -> str:
+        """``eq9`` or ``learned`` (the form of the coefficient file)."""
+        return self.coefficients.form
+
+    @property
+    def has_interval(self) -> bool:
+        """True when the file gives a prediction interval (a learned file, or an Eq. 9 file of format 2)."""
+        return self.coefficients.has_interval
+
+    @property
+    def offgrid(self) -> dict | None:
+        """The off-grid validation recorded in the file (None if it records none)."""
+        return self.coefficients.document.get("offgrid")
+
+    def _ln_mu_features(self, feats: dict[str, np.ndarray]) -> tuple[np.ndarray, np.ndarray | None]:
+        """(ln μ, spread) on features; spread is the members' disagreement of a learned file, else None."""
+        with np.errstate(invalid="ignore", over="ignore", divide="ignore"):
+            if self.form == "learned":
+                from .mlp import feature_matrix
+
+                mean, spread = self.coefficients.learned.predict(feature_matrix(feats))
+                shape = np.shape(feats["lam"])
+                return mean.reshape(shape), spread.reshape(shape)
+            return predict_ln_mu(self.formula, self.coefficients.params, feats,
+                                 self.coefficients.blend_half_width), None
+
+    def ln_mu_interval(self, p_h, r_eq, u_r, sr, temperature, rq1, rq2, *, alpha: float = DEFAULT_ALPHA,
+                       warn: bool = True) -> tuple[np.ndarray, np.ndarray | None]:
+        """ln μ and the half width of its (1 − α) prediction interval at the inputs.
+
+        Parameters
+        ----------
+        p_h, r_eq, u_r, sr, temperature, rq1, rq2 : array_like
+            Hertz pressure [Pa], equivalent radius [m], rolling velocity [m/s], slide-to-roll ratio [-], inlet
+            temperature [K], RMS roughness of the surfaces [m].
+        alpha : float
+            1 − coverage of the interval [-] (a learned file: one of its calibrated coverages).
+        warn : bool
+            Warn about inputs outside the fitted ranges [-].
+
+        Returns
+        -------
+        tuple
+            (ln μ, half width of ln μ) [-]; the half width is None for a file without interval data (format 1).
+        """
+        feats = self.features(p_h, r_eq, u_r, sr, temperature, rq1, rq2, warn=warn)
+        out, spread = self._ln_mu_features(feats)
+        self._check_finite(out, feats)
+        c = self.coefficients
+        if self.form == "learned":
+            return out, c.learned.half_width(spread, 1.0 - alpha)
+        if c.covariance is None:
+            return out, None
+        with np.errstate(invalid="ignore", over="ignore", divide="ignore"):
+            half = prediction_half_width(self.formula, c.covariance, c.resid_variance, c.df_resid, feats,
+                                         c.blend_half_width, alpha)
+        return out, half
+
+    def mu_interval(self, p_h, r_eq, u_r, sr, temperature, rq1, rq2, *, alpha: float = DEFAULT_ALPHA,
+                    warn: bool = True) -> tuple[np.ndarray, np.ndarray | None, np.ndarray | None]:
+        """μ and its (1 − α) prediction interval [μ_low, μ_high] (the exponential of the interval of ln μ).
+
+        Parameters
+        ----------
+        p_h, r_eq, u_r, sr, temperature, rq1, rq2 : array_like
+            As :meth:`ln_mu_interval` [SI].
+        alpha : float
+            1 − coverage [-].
+        warn : bool
+            Warn about inputs outside the fitted ranges [-].
+
+        Returns
+        -------
+        tuple
+            (μ, μ_low, μ_high) [-]; the bounds are None for a file without interval data.
+        """
+        ln_mu, half = self.ln_mu_interval(p_h, r_eq, u_r, sr, temperature, rq1, rq2, alpha=alpha, warn=warn)
+        if half is None:
+            return np.exp(ln_mu), None, None
+        return np.exp(ln_mu), np.exp(ln_mu - half), np.exp(ln_mu + half)
+
+    def _check_finite(self, out: np.ndarray, feats: dict[str, np.ndarray]) -> None:
+        bad = ~np.isfinite(out)
+        if bad.any():
+            index = int(np.flatnonzero(bad.ravel())[0])
+            point = {k: float(np.ravel(feats[k])[index]) for k in ("W", "alpha", "r", "V", "lam", "Sc", "Seq")}
+            raise InputError("inputs", point, "contact conditions where the regression terms are defined "
+                             "(positive W, V, r, alpha)", f"non-finite ln mu at index {index}")
+
     def ln_mu(self, p_h, r_eq, u_r, sr, temperature, rq1, rq2, *, warn: bool = True) -> np.ndarray:
         """ln μ (array shaped like the broadcast inputs)."""
         feats = self.features(p_h, r_eq, u_r, sr, temperature, rq1, rq2, warn=warn)
-        with np.errstate(invalid="ignore", over="ignore", divide="ignore"):
-            out = predict_ln_mu(self.formula, self.coefficients.params, feats, self.coefficients.blend_half_width)
+        out, _ = self._ln_mu_features(feats)
         bad = ~np.isfinite(out)
         if bad.any():
             index = int(np.flatnonzero(bad.ravel())[0])

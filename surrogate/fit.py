@@ -157,6 +157,8 @@ class BranchFit:
             "r2": float(self.r2),
             "adj_r2": float(self.adj_r2),
             "resid_std_error": float(self.resid_std_error),
+            "resid_variance": float(self.resid_std_error) ** 2,
+            "covariance": [[float(v) for v in row] for row in self.covariance],
             "n_obs": int(self.n_obs),
             "df_resid": int(self.df_resid),
             "condition_number_raw": float(self.condition_number_raw),

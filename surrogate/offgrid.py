@@ -1,0 +1,119 @@
+"""Off-grid validation of a friction surrogate: its error of μ on contacts solved off the training design.
+
+A factorial is a grid; gear contacts are not. The honest error of a fit is measured on a seeded random sample of
+contacts inside the factorial's ranges (:mod:`surrogate.sampling`), solved by the route of the dataset (same solver,
+level, effect plan, contact model and lubricant). For every usable row (status ``ok``, converged, μ > 0, rough
+surfaces, SR ≠ 0 — the exclusions of the fit, :func:`surrogate.fit.prepare_table`) the relative error
+|μ_surrogate/μ_solved − 1| is summarised per branch (λ̄ ≤ 1 ``mixed``, λ̄ > 1 ``full_film``, by the λ̄ of the
+contact) and overall: median, 90th percentile, maximum; and the share of solved μ inside the surrogate's 90 %
+prediction interval (its coverage; None when the file has no interval).
+"""
+
+from __future__ import annotations
+
+import warnings
+from typing import Any
+
+import numpy as np
+import pandas as pd
+
+from .fit import INPUT_COLUMNS, branch_masks, prepare_table
+
+COVERAGE = 0.90
+"""Nominal coverage of the intervals whose share of the off-grid μ is reported."""
+
+
+def error_summary(rel_err: np.ndarray, inside: np.ndarray | None) -> dict[str, Any]:
+    """Median, 90th percentile and maximum of the relative errors, and the share inside the interval.
+
+    Parameters
+    ----------
+    rel_err : numpy.ndarray
+        |μ_surrogate/μ_solved − 1| per contact [-].
+    inside : numpy.ndarray or None
+        Whether each solved μ lies inside the interval (None: no interval) [-].
+
+    Returns
+    -------
+    dict
+        ``n``, ``median_rel_err_mu``, ``p90_rel_err_mu``, ``max_rel_err_mu``, ``coverage`` [-].
+    """
+    rel_err = np.asarray(rel_err, dtype=float)
+    if rel_err.size == 0:
+        return {"n": 0}
+    return {"n": int(rel_err.size), "median_rel_err_mu": float(np.median(rel_err)),
+            "p90_rel_err_mu": float(np.percentile(rel_err, 90)), "max_rel_err_mu": float(np.max(rel_err)),
+            "coverage": None if inside is None else float(np.mean(inside))}
+
+
+def offgrid_errors(surrogate, table: pd.DataFrame, *, coverage: float = COVERAGE) -> dict[str, Any]:
+    """Errors of ``surrogate`` on the solved rows of ``table`` (module docstring).
+
+    Parameters
+    ----------
+    surrogate : FrictionSurrogate
+        The surrogate to judge (evaluated on the raw inputs; the sample lies inside the factorial's ranges).
+    table : pandas.DataFrame
+        Solved sample (columns of the dataset store) [SI].
+    coverage : float
+        Nominal coverage of the interval [-].
+
+    Returns
+    -------
+    dict
+        ``overall``, ``mixed``, ``full_film`` (:func:`error_summary`), ``exclusions``, ``n_rows``, ``coverage_nominal``
+        and ``per_point`` (arrays: λ̄, solved and predicted μ, interval bounds) for figures.
+    """
+    prepared = prepare_table(table, surrogate.lubricant, surrogate.e_reduced)
+    used = prepared.table
+    inputs = [used[c].to_numpy(dtype=float) for c in INPUT_COLUMNS]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        mu, low, high = surrogate.mu_interval(*inputs, alpha=1.0 - coverage, warn=False)
+    solved = used["mu"].to_numpy(dtype=float)
+    rel = np.abs(mu / solved - 1.0)
+    inside = None if low is None else (solved >= low) & (solved <= high)
+    out: dict[str, Any] = {"n_rows": int(len(table)), "exclusions": prepared.exclusions,
+                           "coverage_nominal": coverage, "overall": error_summary(rel, inside)}
+    for branch, mask in branch_masks(prepared.features["lam"], 1.0).items():
+        out[branch] = error_summary(rel[mask], None if inside is None else inside[mask])
+    out["per_point"] = {"lambda_bar": prepared.features["lam"], "mu_solved": solved, "mu_predicted": mu,
+                        "mu_low": low, "mu_high": high}
+    return out
+
+
+def offgrid_report(errors: dict[str, Any], sample: dict[str, Any]) -> dict[str, Any]:
+    """The ``offgrid`` table of a coefficient file: the errors without the per-point arrays, and the sample.
+
+    Parameters
+    ----------
+    errors : dict
+        Result of :func:`offgrid_errors`.
+    sample : dict
+        Description of the sample (name, kind, seed, n_points, route, solver version, dataset sha256) [-].
+
+    Returns
+    -------
+    dict
+        JSON-ready table.
+    """
+    return {k: v for k, v in errors.items() if k != "per_point"} | {"sample": sample}
+
+
+def offgrid_lines(offgrid: dict[str, Any] | None) -> list[str]:
+    """Human-readable lines of a file's off-grid validation (``surrogate predict``, ``gear evaluate``)."""
+    if not offgrid:
+        return ["off-grid validation: none recorded in the coefficient file"]
+    sample = offgrid.get("sample", {})
+    lines = [f"off-grid validation on {sample.get('n_points', '?')} random contacts in the fitted ranges "
+             f"(seed {sample.get('seed', '?')}, level {sample.get('level', '?')}):"]
+    for key in ("overall", "mixed", "full_film"):
+        m = offgrid.get(key) or {}
+        if not m.get("n"):
+            continue
+        cov = m.get("coverage")
+        lines.append(f"  {key:9s} n = {m['n']:4d}: |rel err mu| median {m['median_rel_err_mu']:.1%}, 90th percentile "
+                     f"{m['p90_rel_err_mu']:.1%}, max {m['max_rel_err_mu']:.1%}; "
+                     + (f"{offgrid.get('coverage_nominal', COVERAGE):.0%} interval covers {cov:.0%}"
+                        if cov is not None else "no interval"))
+    return lines

@@ -1,0 +1,72 @@
+"""Solving a sample of contact conditions (not a factorial grid) into a resumable HDF5 store, by the route of a
+factorial: the same solver, level, effect plan, contact model and lubricant, the same executors (local processes
+or Dask) and the same store (:mod:`ehl_dataset.dataset.store`), so a run stopped by a signal continues where it
+stopped when called again with the same arguments.
+
+Used for the off-grid validation set of a fit (:func:`offgrid_points`) and for the batches of adaptive sampling
+(:mod:`workflows.adaptive`).
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+
+from ehl_dataset.validation import InputError
+
+OFFGRID_POINTS = 200
+"""Default size of the off-grid validation sample of a fit."""
+OFFGRID_SEED = 2009
+"""Default seed of the off-grid sample (independent uniform draws in the factorial's box)."""
+
+
+def offgrid_points(factorial, n: int = OFFGRID_POINTS, seed: int = OFFGRID_SEED):
+    """The off-grid validation sample of ``factorial``: ``n`` independent uniform points of its box
+    (:func:`surrogate.sampling.sample_points`, kind ``random``), and the description its store records."""
+    from surrogate.sampling import sample_description, sample_points
+
+    points = sample_points(factorial, n, kind="random", seed=seed)
+    desc = sample_description(factorial, points, name=f"{factorial.name}-offgrid", kind="random", seed=seed,
+                              purpose="off-grid validation of a friction surrogate fitted on this factorial's ranges")
+    return points, desc
+
+
+def run_sample(path: str | Path, points: np.ndarray, description: dict, *, lubricant, level: str, effects: str,
+               model: str, workers: int = 1, scheduler: str | None = None, progress: str = "auto",
+               time_limit_s: float | None = None, **options):
+    """Compute ``points`` into the store ``path`` (created, or continued when it records the same points, solver
+    and lubricant; anything else is refused with :class:`InputError`). Returns the runner's ``RunSummary``.
+
+    ``lubricant`` a :class:`~ehl_dataset.model.lubricant.Lubricant`; ``level``, ``effects``, ``model`` the route of
+    the factorial whose ranges the sample fills; ``options`` go to :func:`ehl_dataset.dataset.runner.execute`.
+    """
+    from ehl_dataset.dataset.factorial import canonical_json
+    from ehl_dataset.dataset.runner import DEFAULT_SOLVER, check_time_limit, execute, solver_config
+    from ehl_dataset.dataset.store import DatasetStore
+
+    time_limit_s = check_time_limit(time_limit_s, DEFAULT_SOLVER)
+    config = solver_config(DEFAULT_SOLVER, level, effects, model)
+    lubricant_dict = json.loads(canonical_json(lubricant.to_json_dict()))
+    t_lo, t_hi = lubricant.t_min, lubricant.t_max
+    bad = (points["temperature"] < t_lo) | (points["temperature"] > t_hi)
+    if bad.any():
+        raise InputError("sample temperature", float(points["temperature"][bad][0]),
+                         f"[{t_lo:g}, {t_hi:g}] K, the data range of lubricant {lubricant.name!r}")
+    path = Path(path)
+    if path.exists():
+        store = DatasetStore.open(path, "r+")
+        try:
+            store.check_compatible(factorial_sha256=description["points_sha256"], solver=config,
+                                   lubricant=lubricant_dict)
+        except BaseException:
+            store.close()
+            raise
+        kind = "continue"
+    else:
+        store = DatasetStore.create(path, points, factorial=description, solver=config, lubricant=lubricant_dict)
+        kind = "run"
+    with store:
+        return execute(store, workers=workers, scheduler=scheduler, kind=kind, progress=progress,
+                       time_limit_s=time_limit_s, **options)
