@@ -22,7 +22,16 @@ changes, V is defined up to a constant times ∫p dx, which the film constant h0
 
 from __future__ import annotations
 
+from collections import OrderedDict
+
+import numba
 import numpy as np
+
+INFLUENCE_CACHE_SIZE = 32
+"""Number of grids whose :func:`influence_matrix` is kept (per process): K depends only on the grid, and the solves
+of one contact (continuation grid, level grid, the mixed models on the same grid) and of a factorial's contacts on
+the level's grid ask for the same few."""
+_INFLUENCE_CACHE: OrderedDict = OrderedDict()
 
 
 def _f1(t):
@@ -61,16 +70,66 @@ def _hat_weights(x_eval, x_nodes):
     return weights
 
 
+@numba.njit(cache=True)
+def _hat_weights_self(x):
+    """:func:`_hat_weights` of the nodes ``x`` at the nodes themselves, (N, N), with one logarithm per node pair: the
+    antiderivatives at an element's end serve both elements that share the node."""
+    n = x.size
+    weights = np.zeros((n, n))
+    f1 = np.empty(n)
+    f2 = np.empty(n)
+    for i in range(n):
+        for j in range(n):
+            t = x[j] - x[i]
+            if t == 0.0:
+                f1[j] = 0.0
+                f2[j] = 0.0
+            else:
+                ln = np.log(abs(t))
+                f1[j] = t * ln - t
+                f2[j] = 0.5 * t * t * ln - 0.25 * t * t
+        for e in range(n - 1):
+            ta = x[e] - x[i]
+            tb = x[e + 1] - x[i]
+            int_ln = f1[e + 1] - f1[e]
+            int_tln = f2[e + 1] - f2[e]
+            length = x[e + 1] - x[e]
+            weights[i, e] += (tb * int_ln - int_tln) / length
+            weights[i, e + 1] += (int_tln - ta * int_ln) / length
+    return weights
+
+
 def influence_matrix(x, scale: float = 1.0) -> np.ndarray:
     """Dense influence matrix K with (K p)_i = −(scale/π) ∫ ln|x_i − x'| p(x') dx' for piecewise-linear p.
 
-    ``x`` strictly increasing nodes (any unit). With ``scale = 4/E'`` and x in metres, K p is the deflection
-    V [m] of paper Eq. 4 for p in Pa.
+    Parameters
+    ----------
+    x : array_like
+        Strictly increasing nodes [any length unit; a for the solvers].
+    scale : float
+        Factor of the operator [same unit as K p per unit of p]; ``4/E'`` with x in metres gives the deflection
+        V [m] of paper Eq. 4 for p in Pa.
+
+    Returns
+    -------
+    numpy.ndarray
+        K, shape (N, N), read-only: the matrix of a grid is computed once per process and shared
+        (:data:`INFLUENCE_CACHE_SIZE` grids are kept).
     """
-    x = np.asarray(x, dtype=float)
+    x = np.ascontiguousarray(x, dtype=float)
     if x.ndim != 1 or x.size < 2 or np.any(np.diff(x) <= 0.0):
         raise ValueError("x must be a strictly increasing 1-D array with at least two nodes")
-    return -(scale / np.pi) * _hat_weights(x, x)
+    key = (x.tobytes(), float(scale))
+    kmat = _INFLUENCE_CACHE.get(key)
+    if kmat is not None:
+        _INFLUENCE_CACHE.move_to_end(key)
+        return kmat
+    kmat = -(scale / np.pi) * _hat_weights_self(x)
+    kmat.flags.writeable = False
+    _INFLUENCE_CACHE[key] = kmat
+    if len(_INFLUENCE_CACHE) > INFLUENCE_CACHE_SIZE:
+        _INFLUENCE_CACHE.popitem(last=False)
+    return kmat
 
 
 def uniform_kernel(n: int, dx: float, scale: float = 1.0) -> np.ndarray:

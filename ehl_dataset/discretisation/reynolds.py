@@ -132,3 +132,52 @@ def full_jacobian(dp, dh, kmat, rows):
             if 1 <= j <= n - 2:
                 jac[r, j - 1] += dp[i, o]
     return jac
+
+
+@numba.njit(cache=True)
+def jacobian_diagonal(dp, dh, kmat, rows):
+    """Diagonal ∂R_i/∂P_i + Σ_o ∂R_i/∂H_j K[j, i] of :func:`full_jacobian` (interior rows), without forming it."""
+    n = kmat.shape[0]
+    n_in = rows.size
+    diag = np.zeros(n_in)
+    for r in range(n_in):
+        i = rows[r]
+        for o in range(BAND):
+            j = i + o - 2
+            if j < 0 or j >= n:
+                continue
+            diag[r] += dh[i, o] * kmat[j, i]
+            if j == i:
+                diag[r] += dp[i, o]
+    return diag
+
+
+@numba.njit(cache=True)
+def newton_matrix(dp, dh, kmat, rows, d_a, d_b, load_row):
+    """The semi-smooth Newton matrix of the complementarity system, in one pass over the dense block.
+
+    Rows r < N − 2: d(φ_r)/d(P_1 … P_{N−2}, H0) = d_a[r] e_r − d_b[r] J_r with J = :func:`full_jacobian` (``d_a``,
+    ``d_b`` the Fischer–Burmeister partials, b = −κR); the last row is ``load_row`` (∂ of the load error).
+    Returns the square matrix of size N − 1.
+    """
+    n = kmat.shape[0]
+    n_in = n - 2
+    system = np.zeros((n_in + 1, n_in + 1))
+    for r in range(n_in):
+        i = rows[r]
+        scale = -d_b[r]
+        for o in range(BAND):
+            j = i + o - 2
+            if j < 0 or j >= n:
+                continue
+            coef = scale * dh[i, o]
+            if coef != 0.0:
+                for c in range(n_in):
+                    system[r, c] += coef * kmat[j, c + 1]
+                system[r, n_in] += coef
+            if 1 <= j <= n - 2:
+                system[r, j - 1] += scale * dp[i, o]
+        system[r, r] += d_a[r]
+    for c in range(n_in + 1):
+        system[n_in, c] = load_row[c]
+    return system

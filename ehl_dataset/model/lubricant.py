@@ -172,6 +172,7 @@ class LubricantState:
     compressible: bool = True
     thermal: ThermalProperties = field(default_factory=ThermalProperties)
     log_viscosity_at: Callable | None = field(default=None, compare=False, repr=False)
+    log_viscosity_rows: Callable | None = field(default=None, compare=False, repr=False)
 
     def viscosity(self, p):
         """η(p) [Pa·s]."""
@@ -188,6 +189,10 @@ class LubricantState:
         if self.thermal.beta_override is not None or self.log_viscosity_at is None:
             beta = self.thermal.beta_override or 0.0
             return TemperatureTable(rises, base[None, :] - beta * rises[:, None])
+        if self.log_viscosity_rows is not None:  # one array evaluation of every rise
+            table = self.log_viscosity_rows(p_arr, self.temperature + rises)
+            table[rises == 0.0] = base
+            return TemperatureTable(rises, table)
         rows = [base if r == 0.0 else self.log_viscosity_at(p_arr, self.temperature + r) for r in rises]
         return TemperatureTable(rises, np.vstack(rows))
 
@@ -283,12 +288,47 @@ class Lubricant:
         t = self.check_temperature(temperature_k)
         eta0, alpha1, law = self._pressure_law(t)
         return LubricantState(t, eta0, float(self.density_at(t)), alpha1, law, self.tau0, self.mu_d, self.compressible,
-                              self.thermal, self.log_viscosity)
+                              self.thermal, self.log_viscosity, self.log_viscosity_rows)
 
     def log_viscosity(self, p, temperature_k: float):
         """ln η(p, T) of the lubricant's laws at ``temperature_k`` [K] for pressures ``p`` [Pa], **not** checked
         against its temperature range (the thermal correction extrapolates the laws to the contact temperature)."""
         return np.log(self._pressure_law(float(temperature_k))[2].viscosity(p))
+
+    def log_viscosity_rows(self, p, temperatures_k) -> np.ndarray:
+        """ln η(p, T) [ln Pa·s] of :meth:`log_viscosity` for every temperature of ``temperatures_k`` [K] (rows) and
+        pressure of ``p`` [Pa] (columns), in one array evaluation of the laws (not range-checked).
+
+        Parameters
+        ----------
+        p : array_like
+            Pressures [Pa], 1-D.
+        temperatures_k : array_like
+            Temperatures [K], 1-D.
+
+        Returns
+        -------
+        numpy.ndarray
+            Shape (len(temperatures_k), len(p)) [ln Pa·s].
+        """
+        t = np.asarray(temperatures_k, dtype=float)[:, None]
+        pp = np.maximum(np.atleast_1d(np.asarray(p, dtype=float)), 0.0)[None, :]
+        eta0 = np.asarray(self.dynamic_viscosity(t), dtype=float)
+        alpha1 = np.asarray(self.alpha1(t), dtype=float) * np.ones_like(t)
+        if self.pressure_law == "barus":
+            phi = alpha1 * pp
+        elif self.pressure_law == "roelands":
+            ln_scale = np.log(eta0) + 9.67
+            z = self.roelands_z if self.roelands_z is not None else alpha1 * ROELANDS_P0_PA / ln_scale
+            phi = ln_scale * ((1.0 + pp / ROELANDS_P0_PA) ** z - 1.0)
+        else:  # the Hermite cubic of paper Eq. 5 is linear in α1 when α2 = ratio·α1: one solve for every row
+            unit = hermite_transition(1.0, self.alpha2_ratio, self.p_t, self.p_a, self.p_b)
+            c0, c1, c2, c3 = (alpha1 * c for c in unit)
+            low = alpha1 * pp
+            high = alpha1 * self.p_t + self.alpha2_ratio * alpha1 * (pp - self.p_t)
+            mid = c0 + pp * (c1 + pp * (c2 + pp * c3))
+            phi = np.where(pp < self.p_a, low, np.where(pp > self.p_b, high, mid))
+        return np.log(eta0 * np.exp(phi))
 
     def _pressure_law(self, t: float) -> tuple[float, float, ViscosityPressureLaw]:
         """(η0, α1, viscosity–pressure law) at temperature ``t`` [K] (not range-checked), remembered per temperature:

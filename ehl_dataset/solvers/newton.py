@@ -22,7 +22,8 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.linalg
 
-from ..discretisation.reynolds import assemble, full_jacobian
+from ..discretisation.reynolds import assemble, full_jacobian, jacobian_diagonal, newton_matrix
+from .krylov import gmres
 
 LOG = logging.getLogger(__name__)
 """Every Newton iteration is logged at DEBUG level (norms, step, where the pressure moved most):
@@ -31,6 +32,14 @@ EXPONENT_CAP = 600.0
 """Cap on ln(η/η0) so that viscosities stay finite in double precision during wild Newton iterates."""
 EXPONENT_FLOOR = 10.0
 """Floor −10 on ln(η/η0) for the linear continuation below p = 0 (wild Newton iterates only)."""
+REUSE_MIN_UNKNOWNS = 200
+"""Newton systems of at least this many unknowns reuse an LU factorisation across iterations (:class:`LinearSolver`);
+smaller ones are factorised every iteration, which costs less than a Krylov solve there."""
+KRYLOV_TOLERANCE = 1e-10
+"""Relative residual ‖b − S δ‖/‖b‖ to which :class:`LinearSolver` solves a Newton system by GMRES: far below the
+Newton tolerances, so that the iterates are those of exact linear solves up to round-off."""
+KRYLOV_ITERATIONS = 10
+"""GMRES iterations allowed with a reused factorisation before the Newton matrix is factorised afresh."""
 
 
 @dataclass
@@ -60,6 +69,7 @@ class ReynoldsProblem:
     film_may_close: bool = False
     weights: np.ndarray = field(init=False, repr=False)
     rows: np.ndarray = field(init=False, repr=False)
+    linear: "LinearSolver" = field(init=False, repr=False, compare=False)
 
     def __post_init__(self):
         self.x = np.ascontiguousarray(self.x, dtype=float)
@@ -70,6 +80,7 @@ class ReynoldsProblem:
         w[1:] += 0.5 * dx
         self.weights = w
         self.rows = np.arange(1, self.x.size - 1)
+        self.linear = LinearSolver()
         if self.squeeze is None:
             self.squeeze = np.zeros_like(self.x)
             self.m_old = np.zeros_like(self.x)
@@ -147,6 +158,54 @@ class ReynoldsProblem:
     def jacobian(self, dp, dh):
         """Full Jacobian (see :func:`~ehl_dataset.discretisation.reynolds.full_jacobian`)."""
         return full_jacobian(dp, dh, self.kmat, self.rows)
+
+    def jacobian_diagonal(self, dp, dh):
+        """Diagonal of :meth:`jacobian` (see :func:`~ehl_dataset.discretisation.reynolds.jacobian_diagonal`)."""
+        return jacobian_diagonal(dp, dh, self.kmat, self.rows)
+
+    def newton_matrix(self, dp, dh, d_a, d_b, load_row):
+        """Semi-smooth Newton matrix (see :func:`~ehl_dataset.discretisation.reynolds.newton_matrix`)."""
+        return newton_matrix(dp, dh, self.kmat, self.rows, d_a, d_b, load_row)
+
+
+class LinearSolver:
+    """Solves the Newton systems S δ = b of one problem, reusing an LU factorisation across iterations.
+
+    A system with fewer than :data:`REUSE_MIN_UNKNOWNS` unknowns is factorised (LAPACK ``dgetrf``) and solved
+    directly. A larger one is first solved by GMRES (right-preconditioned by the factorisation kept from an earlier
+    Newton iteration of the same problem, :func:`~ehl_dataset.solvers.krylov.gmres`) to the relative residual
+    :data:`KRYLOV_TOLERANCE`; if that takes more than :data:`KRYLOV_ITERATIONS` iterations (the matrix moved too far
+    from the factorised one), S is factorised afresh and solved directly. Close to the solution the Newton matrix
+    changes little between iterations, so one O(N³) factorisation serves several O(N²) iterations, and every
+    correction is that of an exact linear solve to within the Krylov tolerance (the Newton iteration keeps its
+    quadratic convergence). Counters: ``factorisations``, ``krylov_solves``, ``krylov_iterations``.
+    """
+
+    def __init__(self):
+        self.lu = None
+        self.factorisations = 0
+        self.krylov_solves = 0
+        self.krylov_iterations = 0
+
+    def solve(self, system: np.ndarray, rhs: np.ndarray) -> np.ndarray:
+        """δ with S δ = b (``system`` S, ``rhs`` b); raises ``numpy.linalg.LinAlgError`` or ``ValueError`` when S is
+        singular or not finite."""
+        if self.lu is not None and self.lu[0].shape == system.shape:
+            lu = self.lu
+            delta, its, relative = gmres(system.dot, lambda r: scipy.linalg.lu_solve(lu, r, check_finite=False), rhs,
+                                         KRYLOV_TOLERANCE, KRYLOV_ITERATIONS)
+            self.krylov_iterations += its
+            if relative <= KRYLOV_TOLERANCE and np.all(np.isfinite(delta)):
+                self.krylov_solves += 1
+                return delta
+        with warnings.catch_warnings():  # ill-conditioning is judged by the residuals, not by rcond
+            warnings.simplefilter("ignore", scipy.linalg.LinAlgWarning)
+            lu = scipy.linalg.lu_factor(system, check_finite=True)
+        if np.any(lu[0].diagonal() == 0.0):
+            raise np.linalg.LinAlgError("singular Newton matrix")
+        self.factorisations += 1
+        self.lu = lu if system.shape[0] >= REUSE_MIN_UNKNOWNS else None
+        return scipy.linalg.lu_solve(lu, rhs, check_finite=False)
 
 
 @dataclass
@@ -247,9 +306,8 @@ def newton_solve(problem: ReynoldsProblem, p0: np.ndarray, h00: float, *, homoto
     load_row[:-1] = problem.weights[1:-1] / (0.5 * math.pi)
     for iteration in range(1, max_iterations + 1):
         load_err = problem.load(p)
-        jac = problem.jacobian(dp, dh)
         if iteration == 1 or not freeze_scaling:
-            diag = np.abs(jac[np.arange(n - 2), np.arange(n - 2)])
+            diag = np.abs(problem.jacobian_diagonal(dp, dh))
             kappa = 1.0 / np.maximum(diag, 1e-12 * max(float(diag.max()), 1e-300))
         shift = problem.cavitation_offset(h)
         p_cav = p if shift is None else p - shift[0]
@@ -270,20 +328,15 @@ def newton_solve(problem: ReynoldsProblem, p0: np.ndarray, h00: float, *, homoto
             dh = dh.copy()
             dp[:, 2] -= sq * mm[1]
             dh[:, 2] -= sq * mm[2]
-            jac = problem.jacobian(dp, dh)
-        # dφ/dx = d_a e_i − d_b J_i  (b = −κ R)
-        system = -jac * d_b[:, None]
-        system[np.arange(n - 2), np.arange(n - 2)] += d_a
+        # dφ/dx = d_a e_i − d_b J_i  (b = −κ R), and the load row
+        system = problem.newton_matrix(dp, dh, d_a, d_b, load_row)
         if shift is not None:  # a = P_i − s(H_i): dH_i = K_i· dP + dH0
             coupling = d_a * shift[1][1:-1]
-            system[:, :-1] -= coupling[:, None] * problem.kmat[1:-1, 1:-1]
-            system[:, -1] -= coupling
-        system = np.vstack([system, load_row[None, :]])
+            system[:-1, :-1] -= coupling[:, None] * problem.kmat[1:-1, 1:-1]
+            system[:-1, -1] -= coupling
         rhs = -np.concatenate([phi, [load_err]])
         try:
-            with warnings.catch_warnings():  # ill-conditioning is judged by the residuals, not by rcond
-                warnings.simplefilter("ignore", scipy.linalg.LinAlgWarning)
-                delta = scipy.linalg.solve(system, rhs, check_finite=True, assume_a="gen")
+            delta = problem.linear.solve(system, rhs)
         except (np.linalg.LinAlgError, ValueError) as err:
             message = f"linear solve failed: {err}"
             break
