@@ -49,7 +49,7 @@ ROOT = Path(__file__).resolve().parents[1]
 RUNS = ROOT / "validation" / "results" / "deterministic"
 CHECKPOINTS = RUNS / "checkpoints"
 REFERENCE = ROOT / "data" / "reference" / "deterministic_validation.json"
-REPORT = ROOT / "docs" / "deterministic_validation.md"
+REPORT = ROOT / "docs" / "validation" / "deterministic_validation.md"
 FILM_SAMPLING = ROOT / "validation" / "results" / "deterministic_film_sampling.json"
 
 CASES = {
@@ -623,7 +623,7 @@ def acceptance_lines(rows: list[dict]) -> list[str]:
                      f"{r['case']} ({', '.join(k for k, ok in r['window_reliable'].items() if not ok)}: "
                      f"{r['reliable_window_passes']:.1f} passes needed)" for r in short))
                  + ". A short window's own standard error is too small where it cannot see the difference's "
-                   "correlations (docs/deterministic_solver.md, \"Standard error of the short runs\")")
+                   "correlations (docs/validation/deterministic-reference.md, \"Standard errors of short windows\")")
     return lines + balance_lines(rows)
 
 
@@ -666,8 +666,8 @@ def stop_rule_line(recorded: list[dict]) -> str:
                     r["mass_error_max"][spacing])
             (new if version_key(version) >= version_key(STOP_RULE_VERSION) else old).append(item)
     over = [i for i in new if i[2]]
-    line = (f"- the runs made under {STOP_RULE_VERSION} or later (its round-off stop, docs/deterministic_solver.md "
-            f"\"Robustness\" item 8): {len(new)} of {len(new) + len(old)} runs, {sum(i[2] for i in new):,} of "
+    line = (f"- the runs made under {STOP_RULE_VERSION} or later (its strict round-off stop, "
+            f"docs/explanation/mixed-regime.md): {len(new)} of {len(new) + len(old)} runs, {sum(i[2] for i in new):,} of "
             f"{sum(i[3] for i in new):,} steps above 1e-10")
     if over:
         line += " (" + ", ".join(f"{c} {s}: {k:,}, largest {e:.1e}" for c, s, k, _, e in over) + ")"

@@ -48,7 +48,7 @@ ROOT = Path(__file__).resolve().parents[1]
 BENCHMARK_RESULTS = ROOT / "benchmarks" / "results"
 """The factorial runs of benchmarks/bench_ehl_mixed.py compared here."""
 RESULTS = ROOT / "validation" / "results"
-DOC = ROOT / "docs" / "narrow_contacts.md"
+DOC = ROOT / "docs" / "validation" / "narrow_contacts.md"
 FIGURE = ROOT / "docs" / "figures" / "narrow_contacts.png"
 SAMPLES = {
     "random": ("ehl_mixed_random200_fast_deterministic.json", {
@@ -67,7 +67,7 @@ COMMAND = "python validation/narrow_contact_models.py"
 def deterministic_fast_error_text() -> str:
     """The deterministic model's error at ``fast`` against the reference set, from docs/accuracy_mixed.json: its
     median over the reference cases and the largest ones, named."""
-    runs = json.loads((ROOT / "docs" / "accuracy_mixed.json").read_text())["runs"]
+    runs = json.loads((ROOT / "docs" / "validation" / "accuracy_mixed.json").read_text())["runs"]
     errors = {r["case"]: 100.0 * r["mu_error"] for r in runs if r["model"] == "deterministic-fast"}
     worst = sorted(errors.items(), key=lambda item: -item[1])[:4]
     return (f"a median {np.median(list(errors.values())):.1f} % ({len(errors)} reference cases; "
@@ -124,7 +124,7 @@ def reference_cases() -> list[dict]:
     reference = {r["case"]: r for r in json.loads((ROOT / "data" / "reference" /
                                                    "deterministic_validation.json").read_text())["cases"]}
     out = []
-    for run in json.loads((ROOT / "docs" / "accuracy_mixed.json").read_text())["runs"]:
+    for run in json.loads((ROOT / "docs" / "validation" / "accuracy_mixed.json").read_text())["runs"]:
         if run["model"] != "homogenised-film_law-standard" or run["case"] not in reference:
             continue
         ref = reference[run["case"]]

@@ -1,7 +1,7 @@
 """``gearloss accuracy``: each EHL accuracy level's error against the reference level versus wall time.
 
 Writes ``<stem>.md`` (tables), ``<stem>.png`` (error vs time, log axes) and ``<stem>.json`` (raw runs) into
-``--out`` (default ``gearloss_accuracy``, outside ``docs/``; ``--out docs`` regenerates the shipped reports), stem ``accuracy_levels_rough`` unless ``--stem`` says otherwise (docs/accuracy.md is
+``--out`` (default ``gearloss_accuracy``, outside ``docs/``; ``--out docs/validation`` regenerates the shipped reports), stem ``accuracy_levels_rough`` unless ``--stem`` says otherwise (docs/validation/index.md is
 the hand-written summary of all accuracy results). See :mod:`workflows.accuracy`. ``--mixed`` measures the contact
 models of the mixed regime against the deterministic reference set instead (:mod:`workflows.accuracy_mixed`).
 """
@@ -43,7 +43,7 @@ def register(subparsers) -> None:
                         help="a remark printed under the report's header (repeatable)")
     parser.add_argument("--out", "--out-dir", dest="out_dir", default=DEFAULT_OUT, metavar="DIR",
                         help="directory of the report (default gearloss_accuracy; the shipped reports in docs/ are "
-                             "regenerated with --out docs)")
+                             "regenerated with --out docs/validation)")
     parser.add_argument("--mixed", action="store_true",
                         help="mixed regime: contact models against the deterministic reference set "
                              "(data/reference/deterministic_validation.json); stem accuracy_mixed")
@@ -56,7 +56,7 @@ def register(subparsers) -> None:
                         help="with --mixed: the reference set (default data/reference/deterministic_validation.json)")
     parser.add_argument("--rescore", default=None, metavar="REPORT_JSON",
                         help="with --mixed: measure the runs of an earlier report (its <stem>.json, e.g. "
-                             "docs/accuracy_mixed.json) against the reference without solving again; the runs keep "
+                             "docs/validation/accuracy_mixed.json) against the reference without solving again; the runs keep "
                              "the versions they were made with; with --models, only those of the report's models")
     parser.add_argument("--json", action="store_true", help="print one JSON object")
     parser.set_defaults(handler=run_accuracy)
