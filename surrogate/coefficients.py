@@ -211,14 +211,14 @@ def summary_path(path: str | Path) -> Path:
 
 def write_coefficients(fit, path: str | Path, *, source: dict[str, Any] | None = None,
                        offgrid: dict[str, Any] | None = None) -> Path:
-    """Write the coefficient file (JSON) and its summary beside it; returns the JSON path.
+    """Write the coefficient file (JSON) and its summary beside it.
 
     Parameters
     ----------
     fit : SurrogateFit or LearnedFit
-        The fit to write.
+        The fit to write [-].
     path : str or Path
-        ``NAME.json`` [-].
+        Path of the JSON file, ``NAME.json`` [-].
     source : dict, optional
         Provenance of the dataset [-].
     offgrid : dict, optional
@@ -249,7 +249,42 @@ def write_coefficients(fit, path: str | Path, *, source: dict[str, Any] | None =
 # ---------------------------------------------------------------------------------------------------------------
 @dataclass(frozen=True)
 class CoefficientSet:
-    """A validated coefficient file (what the evaluator needs, plus the raw document in ``document``)."""
+    """A validated coefficient file: what the evaluator needs, plus the raw document.
+
+    Parameters
+    ----------
+    formula : Formula
+        The regression form (terms of both branches, λ̄ threshold) [-].
+    params : dict of str to ndarray
+        Coefficients per branch (``mixed``, ``full_film``), in the order of the formula's terms [-].
+    std_errors : dict of str to ndarray
+        Standard errors of the coefficients per branch [-].
+    blend_half_width : float
+        Half width δ of the λ̄ band over which the evaluator blends the branches (0: the paper's hard switch) [-].
+    sr_floor : float
+        Smallest |SR| of the fitted data; smaller |SR| is evaluated there [-].
+    input_ranges : dict of str to tuple
+        Fitted range (low, high) of each input, keyed ``p_h_pa``, ``r_eq_m``, ``u_r_m_s``, ``sr_abs``,
+        ``temperature_k``, ``rq1_m``, ``rq2_m`` and ``lambda_bar`` (units in the key) [-].
+    lubricant : Lubricant
+        The lubricant the coefficients were fitted for [-].
+    e_reduced : float
+        Reduced modulus E' of the fitted contacts [Pa].
+    document : dict
+        The whole parsed file [-].
+    path : str
+        Where the file was read from ("" for a document built in memory) [-].
+    form : str
+        ``eq9`` (the paper's regression) or ``learned`` [-].
+    covariance : dict of str to ndarray, optional
+        Coefficient covariance per branch; None for a format-1 file (no prediction interval) [-].
+    resid_variance : dict of str to float, optional
+        Residual variance of ln μ per branch [-].
+    df_resid : dict of str to float, optional
+        Residual degrees of freedom per branch [-].
+    learned : object, optional
+        The learned model of a ``learned`` file [-].
+    """
 
     formula: Formula
     params: dict[str, np.ndarray]
@@ -301,7 +336,25 @@ def _number_list(doc: dict, dotted: str, length: int) -> np.ndarray:
 
 
 def validate_coefficients(doc: Any, origin: str = "<dict>") -> CoefficientSet:
-    """Validate a parsed coefficient document; raise :class:`InputError` naming the first bad field."""
+    """Validate a parsed coefficient document.
+
+    Parameters
+    ----------
+    doc : dict
+        The parsed JSON document of a coefficient file [-].
+    origin : str
+        Where the document came from, used in error messages [-].
+
+    Returns
+    -------
+    CoefficientSet
+        The validated coefficients.
+
+    Raises
+    ------
+    InputError
+        Naming the first bad field.
+    """
     if not isinstance(doc, dict):
         raise InputError("coefficient file", origin, "a JSON object")
     fmt = doc.get("format", "<missing>")
@@ -436,7 +489,23 @@ def _common_fields(doc: dict, origin: str):
 
 
 def load_coefficients(name_or_path: str | Path) -> CoefficientSet:
-    """Load and validate a coefficient file by path or by shipped name (``data/coefficients/NAME.json``)."""
+    """Load and validate a coefficient file by path or by shipped name.
+
+    Parameters
+    ----------
+    name_or_path : str or Path
+        Shipped name (``data/coefficients/NAME.json``, e.g. ``atf``) or path of a coefficient file [-].
+
+    Returns
+    -------
+    CoefficientSet
+        The validated coefficients.
+
+    Raises
+    ------
+    InputError
+        For a missing file or the first bad field of the document.
+    """
     from ehl_dataset.data_files import resolve_named_file
 
     path = resolve_named_file("coefficients", name_or_path, ".json")

@@ -36,7 +36,33 @@ def _median_time(fn, repeats: int) -> float:
 def compare_models(table, lubricant, e_reduced: float, *, k_folds: int = 5, seed: int = 0,
                    blend_half_width: float = 0.1, repeats: int = 3,
                    learned_max_iter: int = 400) -> dict[str, Any]:
-    """Rows of {model, kind, metrics (see :func:`surrogate.fit.error_metrics`), eval_points_per_s, ...}."""
+    """Cross-validated errors and speed of the paper's regression (with and without the blend) and a learned model.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        Dataset rows with the columns of the HDF5 store (SI units) [-].
+    lubricant : Lubricant
+        The dataset's lubricant [-].
+    e_reduced : float
+        Reduced modulus E' [Pa].
+    k_folds : int
+        Number of cross-validation folds [-].
+    seed : int
+        Seed of the fold shuffle and of the learned model [-].
+    blend_half_width : float
+        Half width δ of the branch blend band in λ̄ [-].
+    repeats : int
+        Repeats of each timing (the median is reported) [-].
+    learned_max_iter : int
+        Boosting iterations of the learned model [-].
+
+    Returns
+    -------
+    dict
+        ``models``: rows of {model, kind, metrics (:func:`surrogate.fit.error_metrics`), fit time [s], evaluation
+        points per second, ...}; and the row counts, folds and seed of the data.
+    """
     from sklearn.model_selection import KFold
 
     from .features import compute_features
@@ -107,7 +133,18 @@ def compare_models(table, lubricant, e_reduced: float, *, k_folds: int = 5, seed
 
 
 def format_table(result: dict[str, Any]) -> str:
-    """Plain-text table of :func:`compare_models`."""
+    """Plain-text table of a :func:`compare_models` result.
+
+    Parameters
+    ----------
+    result : dict
+        What :func:`compare_models` returns [-].
+
+    Returns
+    -------
+    str
+        The table.
+    """
     head = (f"{'model':33s} {'CV RMSE ln mu':>13s} {'mean|rel err|':>13s} {'p95|rel err|':>12s} "
             f"{'bias ln mu':>10s} {'points/s':>11s}")
     lines = [f"{result['n_rows']} rows, {result['k_folds']}-fold CV (published formulas: not fitted)", head]

@@ -25,7 +25,19 @@ HDF5_SUFFIXES = (".h5", ".hdf5")
 
 @dataclass
 class Dataset:
-    """A table of contact results (SI columns of the store), its lubricant, E' [Pa] and provenance."""
+    """A table of contact results (SI columns of the store), its lubricant, E' and provenance.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        One row per contact, columns of the HDF5 store in SI units [-].
+    lubricant : Lubricant
+        The lubricant of the dataset [-].
+    e_reduced : float
+        Reduced modulus E' of the contacts [Pa].
+    source : dict
+        Provenance: file path, its hash, solver version and level [-].
+    """
 
     table: pd.DataFrame
     lubricant: Lubricant
@@ -34,7 +46,20 @@ class Dataset:
 
 
 def load_dataset(path: str | Path, lubricant: str | Path | Lubricant | None = None) -> Dataset:
-    """Load every row (all statuses: the fit counts what it excludes) of an HDF5 dataset or a CSV table."""
+    """Load every row of an HDF5 dataset or a CSV table (all statuses: the fit counts what it excludes).
+
+    Parameters
+    ----------
+    path : str or Path
+        HDF5 dataset file written by the stage-1 runner, or a CSV table with the same columns [-].
+    lubricant : str or Path or Lubricant, optional
+        The dataset's lubricant (shipped name, TOML path or object); default the one recorded in the file [-].
+
+    Returns
+    -------
+    Dataset
+        The table (SI columns), its lubricant, E' and provenance.
+    """
     path = Path(path)
     if not path.is_file():
         raise InputError("dataset", str(path), "an existing HDF5 (.h5) dataset file or a CSV table")

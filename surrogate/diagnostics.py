@@ -31,8 +31,20 @@ def _level_label(column: str, value: float) -> str:
 
 
 def residuals_by_factor(fit: SurrogateFit) -> dict[str, Any]:
-    """{factor: {level: {branch: {n, mean, rms}}}} of out-of-fold ln μ residuals (factor levels in engineering units
-    for readability; the roughness factor is the pair 'Rq1/Rq2 µm')."""
+    """Out-of-fold ln μ residuals by factor level and branch.
+
+    Factor levels are in engineering units for readability; the roughness factor is the pair 'Rq1/Rq2 µm'.
+
+    Parameters
+    ----------
+    fit : SurrogateFit
+        A fit with its cross-validation predictions [-].
+
+    Returns
+    -------
+    dict
+        {factor: {level: {branch: {n, mean, rms}}}} of the residuals.
+    """
     prepared = fit.prepared
     resid = fit.cv_predictions - prepared.ln_mu
     masks = branch_masks(prepared.features["lam"], fit.formula.lambda_threshold)
@@ -70,7 +82,18 @@ def format_residuals(residuals: dict[str, Any]) -> str:
 
 
 def summary_text(fit: SurrogateFit) -> str:
-    """Both statsmodels summaries plus the diagnostics of a fit, as written beside its coefficient file."""
+    """Both statsmodels summaries plus the diagnostics of a fit, as written beside its coefficient file.
+
+    Parameters
+    ----------
+    fit : SurrogateFit
+        The fit [-].
+
+    Returns
+    -------
+    str
+        The text.
+    """
     parts = [f"formula {fit.formula.name} v{fit.formula.version}; rows: {fit.n_input_rows} in, "
              f"{fit.n_used} used; excluded: {fit.exclusions}"]
     for b, f in fit.branches.items():
@@ -90,7 +113,24 @@ def summary_text(fit: SurrogateFit) -> str:
 
 
 def plot_figures(fit: SurrogateFit, out_dir: str | Path, *, prefix: str = "surrogate_", title: str = "") -> list[Path]:
-    """Write the two figures (see module docstring) into ``out_dir``; returns their paths."""
+    """Write the two diagnostic figures of a fit (module docstring) into ``out_dir``.
+
+    Parameters
+    ----------
+    fit : SurrogateFit
+        The fit [-].
+    out_dir : str or Path
+        Output directory [-].
+    prefix : str
+        File name prefix [-].
+    title : str
+        Title line of the figures [-].
+
+    Returns
+    -------
+    list of Path
+        The figure paths.
+    """
     import matplotlib
 
     matplotlib.use("Agg")

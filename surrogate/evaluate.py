@@ -47,7 +47,18 @@ def _first_bad(name: str, values: np.ndarray, bad: np.ndarray, accepted: str):
 
 
 class FrictionSurrogate:
-    """μ from a validated :class:`CoefficientSet` (use :meth:`load` for a file or shipped name)."""
+    """Friction coefficient μ of the paper's Eq. 9a/9b (or a learned model) from a validated coefficient file.
+
+    Inputs are checked as the module docstring says; :meth:`load` reads a file or a shipped name.
+
+    Parameters
+    ----------
+    coefficients : CoefficientSet
+        The validated coefficient file (:func:`surrogate.coefficients.load_coefficients`) [-].
+    clip_to_fitted_ranges : bool
+        Clip every input to the range seen in the fitted data before evaluating (Eq. 9's power terms are then never
+        extrapolated) [-].
+    """
 
     def __init__(self, coefficients: CoefficientSet, clip_to_fitted_ranges: bool = False):
         self.coefficients = coefficients
@@ -64,11 +75,38 @@ class FrictionSurrogate:
 
     @classmethod
     def load(cls, name_or_path: str | Path, clip_to_fitted_ranges: bool = False) -> "FrictionSurrogate":
+        """The surrogate of a coefficient file given by path or shipped name (``atf``).
+
+        Parameters
+        ----------
+        name_or_path : str or Path
+            Shipped name (``data/coefficients/NAME.json``) or path of a coefficient file [-].
+        clip_to_fitted_ranges : bool
+            Clip the inputs to the fitted ranges before evaluating [-].
+
+        Returns
+        -------
+        FrictionSurrogate
+            The evaluator of that file.
+        """
         return cls(load_coefficients(name_or_path), clip_to_fitted_ranges)
 
     def clip(self, arrays: dict[str, np.ndarray]) -> tuple[dict[str, np.ndarray], dict[str, int]]:
-        """Inputs clipped to the fitted ranges (|SR| for SR; its lower end is the SR floor applied anyway), and per
-        input the number of points that were moved."""
+        """Inputs clipped to the fitted ranges, and per input the number of points moved.
+
+        |SR| is clipped for SR; its lower end is the SR floor, applied anyway.
+
+        Parameters
+        ----------
+        arrays : dict of str to ndarray
+            Validated inputs keyed ``p_h`` [Pa], ``r_eq`` [m], ``u_r`` [m/s], ``sr`` [-], ``temperature`` [K], ``rq1``,
+            ``rq2`` [m] (as :meth:`validate` returns them) [-].
+
+        Returns
+        -------
+        tuple of (dict, dict)
+            The clipped inputs (same keys and units) and {input: number of points moved}.
+        """
         ranges = self.coefficients.input_ranges
         out = dict(arrays)
         moved = {}
@@ -80,13 +118,47 @@ class FrictionSurrogate:
         return out, moved
 
     def last_stats(self) -> dict:
-        """What the last evaluation did: ``surrogate_points`` evaluated and, with ``clip_to_fitted_ranges``,
-        ``clipped_inputs`` {input: number of points moved to the fitted range} (p_h, r_eq, u_r, sr, temperature,
-        rq1, rq2). Empty before the first evaluation."""
+        """What the last evaluation did.
+
+        Returns
+        -------
+        dict
+            ``surrogate_points`` evaluated and, with ``clip_to_fitted_ranges``, ``clipped_inputs`` {input: number of
+            points moved to the fitted range} (p_h, r_eq, u_r, sr, temperature, rq1, rq2). Empty before the first
+            evaluation.
+        """
         return {k: (dict(v) if isinstance(v, dict) else v) for k, v in self._stats.items()}
 
     def validate(self, p_h, r_eq, u_r, sr, temperature, rq1, rq2) -> dict[str, np.ndarray]:
-        """Broadcast, check (see module docstring) and return the inputs as float arrays."""
+        """Broadcast and check the inputs (module docstring) and return them as float arrays.
+
+        Parameters
+        ----------
+        p_h : array_like
+            Hertz pressure, > 0 [Pa].
+        r_eq : array_like
+            Equivalent (reduced) radius of curvature, > 0 [m].
+        u_r : array_like
+            Rolling (entrainment) velocity (u1 + u2)/2, > 0 [m/s].
+        sr : array_like
+            Slide-to-roll ratio (u1 − u2)/u_r, |SR| ≤ 2 (sign ignored) [-].
+        temperature : array_like
+            Inlet temperature, within the lubricant's range [K].
+        rq1 : array_like
+            RMS roughness of surface 1, > 0 [m].
+        rq2 : array_like
+            RMS roughness of surface 2, > 0 [m].
+
+        Returns
+        -------
+        dict of str to ndarray
+            The broadcast inputs keyed by parameter name, in the units above.
+
+        Raises
+        ------
+        InputError
+            Naming the first bad input, its value, its index and the accepted range.
+        """
         names = ("p_h", "r_eq", "u_r", "sr", "temperature", "rq1", "rq2")
         arrays = {}
         for name, value in zip(names, (p_h, r_eq, u_r, sr, temperature, rq1, rq2)):
@@ -137,7 +209,33 @@ class FrictionSurrogate:
                           SurrogateExtrapolationWarning, stacklevel=3)
 
     def features(self, p_h, r_eq, u_r, sr, temperature, rq1, rq2, *, warn: bool = True) -> dict[str, np.ndarray]:
-        """Validated features (SR floored at ``sr_floor``) of the inputs."""
+        """Validated features of the inputs (SR floored at ``sr_floor``), as the regression uses them.
+
+        Parameters
+        ----------
+        p_h : array_like
+            Hertz pressure [Pa].
+        r_eq : array_like
+            Equivalent radius of curvature [m].
+        u_r : array_like
+            Rolling velocity [m/s].
+        sr : array_like
+            Slide-to-roll ratio [-].
+        temperature : array_like
+            Inlet temperature [K].
+        rq1 : array_like
+            RMS roughness of surface 1 [m].
+        rq2 : array_like
+            RMS roughness of surface 2 [m].
+        warn : bool
+            Emit :class:`SurrogateExtrapolationWarning` for inputs outside the fitted ranges [-].
+
+        Returns
+        -------
+        dict of str to ndarray
+            The features of :func:`surrogate.features.compute_features` (W, alpha, r, V, lam, SR, Sc, Seq [-], plus
+            ``h_min_dh`` [m] and ``w_prime`` [N/m]).
+        """
         arrays = self.validate(p_h, r_eq, u_r, sr, temperature, rq1, rq2)
         self._stats = {"surrogate_points": int(arrays["p_h"].size)}
         used = arrays
@@ -183,11 +281,22 @@ class FrictionSurrogate:
 
         Parameters
         ----------
-        p_h, r_eq, u_r, sr, temperature, rq1, rq2 : array_like
-            Hertz pressure [Pa], equivalent radius [m], rolling velocity [m/s], slide-to-roll ratio [-], inlet
-            temperature [K], RMS roughness of the surfaces [m].
+        p_h : array_like
+            Hertz pressure [Pa].
+        r_eq : array_like
+            Equivalent radius of curvature [m].
+        u_r : array_like
+            Rolling velocity [m/s].
+        sr : array_like
+            Slide-to-roll ratio [-].
+        temperature : array_like
+            Inlet temperature [K].
+        rq1 : array_like
+            RMS roughness of surface 1 [m].
+        rq2 : array_like
+            RMS roughness of surface 2 [m].
         alpha : float
-            1 − coverage of the interval [-] (a learned file: one of its calibrated coverages).
+            1 − coverage of the interval; for a learned file one of its calibrated coverages [-].
         warn : bool
             Warn about inputs outside the fitted ranges [-].
 
@@ -211,14 +320,26 @@ class FrictionSurrogate:
 
     def mu_interval(self, p_h, r_eq, u_r, sr, temperature, rq1, rq2, *, alpha: float = DEFAULT_ALPHA,
                     warn: bool = True) -> tuple[np.ndarray, np.ndarray | None, np.ndarray | None]:
-        """μ and its (1 − α) prediction interval [μ_low, μ_high] (the exponential of the interval of ln μ).
+        """μ and its (1 − α) prediction interval μ_low … μ_high (the exponential of the interval of ln μ).
 
         Parameters
         ----------
-        p_h, r_eq, u_r, sr, temperature, rq1, rq2 : array_like
-            As :meth:`ln_mu_interval` [SI].
+        p_h : array_like
+            Hertz pressure [Pa].
+        r_eq : array_like
+            Equivalent radius of curvature [m].
+        u_r : array_like
+            Rolling velocity [m/s].
+        sr : array_like
+            Slide-to-roll ratio [-].
+        temperature : array_like
+            Inlet temperature [K].
+        rq1 : array_like
+            RMS roughness of surface 1 [m].
+        rq2 : array_like
+            RMS roughness of surface 2 [m].
         alpha : float
-            1 − coverage [-].
+            1 − coverage of the interval [-].
         warn : bool
             Warn about inputs outside the fitted ranges [-].
 
@@ -241,7 +362,37 @@ class FrictionSurrogate:
                              "(positive W, V, r, alpha)", f"non-finite ln mu at index {index}")
 
     def ln_mu(self, p_h, r_eq, u_r, sr, temperature, rq1, rq2, *, warn: bool = True) -> np.ndarray:
-        """ln μ (array shaped like the broadcast inputs)."""
+        """ln μ at the inputs (paper Eq. 9a for λ̄ ≤ 1, Eq. 9b above, blended over the file's band).
+
+        Parameters
+        ----------
+        p_h : array_like
+            Hertz pressure [Pa].
+        r_eq : array_like
+            Equivalent radius of curvature [m].
+        u_r : array_like
+            Rolling velocity [m/s].
+        sr : array_like
+            Slide-to-roll ratio [-].
+        temperature : array_like
+            Inlet temperature [K].
+        rq1 : array_like
+            RMS roughness of surface 1 [m].
+        rq2 : array_like
+            RMS roughness of surface 2 [m].
+        warn : bool
+            Warn about inputs outside the fitted ranges [-].
+
+        Returns
+        -------
+        ndarray
+            ln μ, shaped like the broadcast inputs [-].
+
+        Raises
+        ------
+        InputError
+            For bad inputs, or where the regression terms are not finite.
+        """
         feats = self.features(p_h, r_eq, u_r, sr, temperature, rq1, rq2, warn=warn)
         out, _ = self._ln_mu_features(feats)
         bad = ~np.isfinite(out)
@@ -253,7 +404,32 @@ class FrictionSurrogate:
         return out
 
     def mu(self, p_h, r_eq, u_r, sr, temperature, rq1, rq2, *, warn: bool = True) -> np.ndarray:
-        """Friction coefficient μ [-] for SI inputs p_h [Pa], r_eq [m], u_r [m/s], SR [-], T [K], Rq1, Rq2 [m]."""
+        """Friction coefficient μ at the inputs: exp of :meth:`ln_mu`.
+
+        Parameters
+        ----------
+        p_h : array_like
+            Hertz pressure [Pa].
+        r_eq : array_like
+            Equivalent radius of curvature [m].
+        u_r : array_like
+            Rolling velocity [m/s].
+        sr : array_like
+            Slide-to-roll ratio [-].
+        temperature : array_like
+            Inlet temperature [K].
+        rq1 : array_like
+            RMS roughness of surface 1 [m].
+        rq2 : array_like
+            RMS roughness of surface 2 [m].
+        warn : bool
+            Warn about inputs outside the fitted ranges [-].
+
+        Returns
+        -------
+        ndarray
+            μ, shaped like the broadcast inputs [-].
+        """
         return np.exp(self.ln_mu(p_h, r_eq, u_r, sr, temperature, rq1, rq2, warn=warn))
 
     def __call__(self, *args, **kwargs) -> np.ndarray:

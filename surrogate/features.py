@@ -36,17 +36,58 @@ LOG10_2PI = math.log10(2.0 * math.pi)
 
 
 def load_per_length(p_h, r_eq, e_reduced):
-    """Hertz line-contact load per unit length W' = 2π r_eq p_h²/E' [N/m]."""
+    """Hertz line-contact load per unit length W' = 2π r_eq p_h²/E'.
+
+    Parameters
+    ----------
+    p_h : array_like
+        Hertz pressure [Pa].
+    r_eq : array_like
+        Equivalent radius of curvature [m].
+    e_reduced : float
+        Reduced modulus E' [Pa].
+
+    Returns
+    -------
+    ndarray
+        W' [N/m].
+    """
     return 2.0 * np.pi * np.asarray(r_eq, dtype=float) * np.asarray(p_h, dtype=float) ** 2 / e_reduced
 
 
 def composite_roughness(rq1, rq2):
-    """S_c = √(Rq1² + Rq2²) [m]."""
+    """Composite RMS roughness S_c = √(Rq1² + Rq2²).
+
+    Parameters
+    ----------
+    rq1 : array_like
+        RMS roughness of surface 1 [m].
+    rq2 : array_like
+        RMS roughness of surface 2 [m].
+
+    Returns
+    -------
+    ndarray
+        S_c [m].
+    """
     return np.hypot(np.asarray(rq1, dtype=float), np.asarray(rq2, dtype=float))
 
 
 def equivalent_roughness(rq1, rq2):
-    """S_eq = Rq1 Rq2/(Rq1 + Rq2) [m] (0 where both are 0)."""
+    """Equivalent roughness S_eq = Rq1 Rq2/(Rq1 + Rq2) (0 where both are 0).
+
+    Parameters
+    ----------
+    rq1 : array_like
+        RMS roughness of surface 1 [m].
+    rq2 : array_like
+        RMS roughness of surface 2 [m].
+
+    Returns
+    -------
+    ndarray
+        S_eq [m].
+    """
     rq1 = np.asarray(rq1, dtype=float)
     rq2 = np.asarray(rq2, dtype=float)
     total = rq1 + rq2
@@ -55,12 +96,36 @@ def equivalent_roughness(rq1, rq2):
 
 
 def compute_features(p_h, r_eq, u_r, sr, temperature, rq1, rq2, lubricant, e_reduced: float) -> dict[str, np.ndarray]:
-    """The eight features of the paper's regression (see module docstring) as a dict of float arrays.
+    """The eight features of the paper's regression (Li & Kahraman 2009, Sect. 2.1; table in the module docstring).
 
-    Parameters (SI, broadcastable arrays): ``p_h`` [Pa], ``r_eq`` [m], ``u_r`` [m/s], ``sr`` [-] (sign ignored),
-    ``temperature`` inlet temperature [K], ``rq1``, ``rq2`` [m]; ``lubricant`` an
-    :class:`ehl_dataset.model.lubricant.Lubricant`; ``e_reduced`` E' [Pa]. No validation here (pure arithmetic):
-    callers validate (see :mod:`surrogate.evaluate`). Also returned: ``h_min_dh`` [m] and ``w_prime`` [N/m].
+    No validation here (pure arithmetic): callers validate (:mod:`surrogate.evaluate`).
+
+    Parameters
+    ----------
+    p_h : array_like
+        Hertz pressure [Pa].
+    r_eq : array_like
+        Equivalent radius of curvature [m].
+    u_r : array_like
+        Rolling velocity [m/s].
+    sr : array_like
+        Slide-to-roll ratio, sign ignored [-].
+    temperature : array_like
+        Inlet temperature [K].
+    rq1 : array_like
+        RMS roughness of surface 1 [m].
+    rq2 : array_like
+        RMS roughness of surface 2 [m].
+    lubricant : Lubricant
+        Supplies η0(T) and α1(T) at the inlet temperature [-].
+    e_reduced : float
+        Reduced modulus E' [Pa].
+
+    Returns
+    -------
+    dict of str to ndarray
+        ``W``, ``alpha``, ``r``, ``V``, ``lam``, ``SR``, ``Sc``, ``Seq`` [-] broadcast together, plus the
+        Dowson–Higginson minimum film ``h_min_dh`` [m] and the load per length ``w_prime`` [N/m].
     """
     p_h, r_eq, u_r, sr, temperature, rq1, rq2 = np.broadcast_arrays(
         *(np.asarray(v, dtype=float) for v in (p_h, r_eq, u_r, sr, temperature, rq1, rq2)))
@@ -87,10 +152,22 @@ def compute_features(p_h, r_eq, u_r, sr, temperature, rq1, rq2, lubricant, e_red
 
 
 def lubricant_properties(lubricant, temperature):
-    """(η0 [Pa·s], α1 [1/Pa]) at the temperatures [K], computed once per distinct temperature.
+    """Inlet viscosity η0 and pressure–viscosity coefficient α1 at the temperatures, computed once per distinct value.
 
     Factorial tables and gear meshes have few distinct temperatures; evaluating the Walther law only on those makes
     feature computation several times faster for large arrays.
+
+    Parameters
+    ----------
+    lubricant : Lubricant
+        The lubricant [-].
+    temperature : array_like
+        Temperatures [K].
+
+    Returns
+    -------
+    tuple of ndarray
+        (η0 [Pa·s], α1 [1/Pa]), shaped like ``temperature``.
     """
     temperature = np.asarray(temperature, dtype=float)
     flat = temperature.ravel()
@@ -110,6 +187,16 @@ def at_lambda_one(features: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
     Scaling Rq1 and Rq2 by k scales S_c, S_eq (hence S̄_c, S̄_eq) by k and λ̄ by 1/k; everything else is unchanged.
     With k = λ̄ this gives the point on the branch boundary closest to the contact: used to measure the jump
     between Eq. 9a and Eq. 9b.
+
+    Parameters
+    ----------
+    features : dict of str to ndarray
+        Features of :func:`compute_features` [-].
+
+    Returns
+    -------
+    dict of str to ndarray
+        The same keys with ``lam`` = 1 and ``Sc``, ``Seq`` scaled.
     """
     out = dict(features)
     lam = np.asarray(features["lam"], dtype=float)

@@ -62,7 +62,23 @@ class UnstableFitWarning(UserWarning):
 # ---------------------------------------------------------------------------------------------------------------
 @dataclass
 class PreparedTable:
-    """Rows usable for the fit, their features, ln μ and the exclusion counts."""
+    """Rows usable for the fit, their features, ln μ and the exclusion counts.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        The usable rows [-].
+    features : dict of str to ndarray
+        Features of those rows (:func:`surrogate.features.compute_features`) [-].
+    ln_mu : ndarray
+        ln μ of those rows [-].
+    exclusions : dict of str to int
+        Rows dropped, per reason [-].
+    n_input_rows : int
+        Rows of the input table [-].
+    lambda_column_max_rel_diff : float, optional
+        Largest relative difference between the recomputed and the stored λ̄ column [-].
+    """
 
     table: pd.DataFrame
     features: dict[str, np.ndarray]
@@ -73,7 +89,24 @@ class PreparedTable:
 
 
 def prepare_table(table: pd.DataFrame, lubricant, e_reduced: float) -> PreparedTable:
-    """Compute features and drop (and count) rows that cannot enter the ln μ regression. See module docstring."""
+    """Compute the features and drop, counting each reason, the rows that cannot enter the ln μ regression.
+
+    Reasons in the module docstring.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        Dataset rows with the columns of the HDF5 store (SI units) [-].
+    lubricant : Lubricant
+        The dataset's lubricant [-].
+    e_reduced : float
+        Reduced modulus E' [Pa].
+
+    Returns
+    -------
+    PreparedTable
+        The usable rows, their features and ln μ, and the exclusion counts.
+    """
     missing = [c for c in (*INPUT_COLUMNS, "mu") if c not in table.columns]
     if missing:
         raise InputError("dataset columns", missing, f"a table with columns {list(INPUT_COLUMNS) + ['mu']}")
@@ -125,7 +158,51 @@ def prepare_table(table: pd.DataFrame, lubricant, e_reduced: float) -> PreparedT
 # ---------------------------------------------------------------------------------------------------------------
 @dataclass
 class BranchFit:
-    """OLS fit of one branch. Arrays are in the order of ``terms``; ``vif`` excludes the intercept."""
+    """OLS fit of one branch. Arrays are in the order of ``terms``; ``vif`` excludes the intercept.
+
+    Parameters
+    ----------
+    branch : str
+        ``mixed`` (λ̄ ≤ threshold, Eq. 9a) or ``full_film`` (Eq. 9b) [-].
+    terms : list of str
+        Names of the regression terms [-].
+    params : ndarray
+        Coefficients [-].
+    std_errors : ndarray
+        Standard errors of the coefficients [-].
+    covariance : ndarray
+        Covariance matrix of the coefficients [-].
+    r2 : float
+        Coefficient of determination of ln μ [-].
+    adj_r2 : float
+        Adjusted R² [-].
+    resid_std_error : float
+        Residual standard error of ln μ [-].
+    n_obs : int
+        Number of rows [-].
+    df_resid : int
+        Residual degrees of freedom [-].
+    condition_number_raw : float
+        Condition number of the raw design matrix [-].
+    condition_number_standardized : float
+        Condition number of the standardised design matrix [-].
+    rank : int
+        Numerical rank of the standardised design [-].
+    vif : dict of str to float
+        Variance inflation factor of each non-constant term [-].
+    raw_vs_standardized_max_dev_se : float
+        Largest difference between the raw-design and the standardised solutions, in standard errors [-].
+    lambda_range : tuple of float
+        Range of λ̄ in the branch's rows [-].
+    summary_text : str
+        The statsmodels summary [-].
+    messages : list of str
+        Stability warnings [-].
+    stable : bool
+        Whether the branch is numerically stable [-].
+    fixed_zero : list of str
+        Terms fixed at 0 because ᾱ does not vary in the data [-].
+    """
 
     branch: str
     terms: list[str]
@@ -149,6 +226,13 @@ class BranchFit:
     fixed_zero: list[str] = field(default_factory=list)
 
     def to_dict(self) -> dict[str, Any]:
+        """JSON-serialisable form of the fit as stored in coefficient files.
+
+        Returns
+        -------
+        dict
+            Terms, coefficients, standard errors, statistics and stability flags (floats and lists).
+        """
         return {
             "terms": list(self.terms),
             "fixed_zero": list(self.fixed_zero),
@@ -348,7 +432,21 @@ def _fit_branch(x, y, names, branch, lam, max_condition) -> BranchFit:
 # Metrics, cross-validation and the jump at λ̄ = 1
 # ---------------------------------------------------------------------------------------------------------------
 def error_metrics(ln_mu_true: np.ndarray, ln_mu_pred: np.ndarray) -> dict[str, float]:
-    """Errors of ln μ (RMSE, MAE, bias) and of μ (RMSE, mean/median/95th-percentile relative error, R² of ln μ)."""
+    """Errors of predicted ln μ and μ against the true values.
+
+    Parameters
+    ----------
+    ln_mu_true : ndarray
+        True ln μ [-].
+    ln_mu_pred : ndarray
+        Predicted ln μ [-].
+
+    Returns
+    -------
+    dict of str to float
+        ``n``; RMSE, MAE and bias of ln μ; R² of ln μ; RMSE of μ; mean, median and 95th-percentile relative error
+        of μ.
+    """
     ln_mu_true = np.asarray(ln_mu_true, dtype=float)
     ln_mu_pred = np.asarray(ln_mu_pred, dtype=float)
     resid = ln_mu_pred - ln_mu_true
@@ -393,7 +491,29 @@ def _fit_params(formula, features, ln_mu):
 
 def cross_validate(formula: Formula, features: dict[str, np.ndarray], ln_mu: np.ndarray, *, k_folds: int = 5,
                    seed: int = 0, blend_half_width: float = 0.0) -> dict[str, Any]:
-    """k-fold CV (shuffled, ``seed``): out-of-fold ln μ predictions → :func:`error_metrics`, overall and per branch."""
+    """k-fold cross-validation of the two-branch model: out-of-fold ln μ predictions and their errors.
+
+    Parameters
+    ----------
+    formula : Formula
+        Regression form [-].
+    features : dict of str to ndarray
+        Features of the rows [-].
+    ln_mu : ndarray
+        ln μ of the rows [-].
+    k_folds : int
+        Number of folds (rows shuffled with ``seed``) [-].
+    seed : int
+        Seed of the shuffle [-].
+    blend_half_width : float
+        Half width δ of the branch blend band in λ̄, as the evaluator uses it [-].
+
+    Returns
+    -------
+    dict
+        :func:`error_metrics` overall and per branch (``mixed``, ``full_film``), and the out-of-fold predictions
+        under ``_predictions``.
+    """
     from sklearn.model_selection import KFold
 
     n = ln_mu.size
@@ -416,7 +536,23 @@ def branch_jump(formula: Formula, params: dict[str, np.ndarray], features: dict[
 
     Each row with λ̄ in ``lambda_window`` (so its roughness needs scaling by at most ×2 to reach λ̄ = 1, staying near
     the data) is moved to λ̄ = 1 (:func:`surrogate.features.at_lambda_one`) and both branches are evaluated there.
-    Reports |Δ| statistics and the corresponding ratio μ_9b/μ_9a.
+
+    Parameters
+    ----------
+    formula : Formula
+        Regression form [-].
+    params : dict of str to ndarray
+        Coefficients per branch [-].
+    features : dict of str to ndarray
+        Features of the fitted rows [-].
+    lambda_window : tuple of float
+        λ̄ range of the rows moved to λ̄ = 1 [-].
+
+    Returns
+    -------
+    dict of str to float
+        ``n`` rows used and statistics of |Δ| (median, 95th percentile, maximum, mean Δ) with the corresponding
+        ratio μ_9b/μ_9a.
     """
     lam = features["lam"]
     sel = (lam >= lambda_window[0]) & (lam <= lambda_window[1])
@@ -443,7 +579,45 @@ def branch_jump(formula: Formula, params: dict[str, np.ndarray], features: dict[
 # ---------------------------------------------------------------------------------------------------------------
 @dataclass
 class SurrogateFit:
-    """Result of :func:`fit_surrogate`: both branch fits plus everything a coefficient file records."""
+    """Result of :func:`fit_surrogate`: both branch fits plus everything a coefficient file records.
+
+    Parameters
+    ----------
+    formula : Formula
+        The fitted regression form [-].
+    branches : dict of str to BranchFit
+        Fit of each branch (``mixed``, ``full_film``) [-].
+    exclusions : dict of str to int
+        Rows excluded from the fit, per reason [-].
+    n_input_rows : int
+        Rows of the input table [-].
+    n_used : int
+        Rows used by the fit [-].
+    input_ranges : dict of str to list
+        Fitted (low, high) of each input, keyed with the unit in the name (``p_h_pa``, ...) [-].
+    sr_floor : float
+        Smallest |SR| of the fitted rows [-].
+    blend_half_width : float
+        Half width δ of the branch blend band in λ̄ [-].
+    cv : dict
+        Cross-validation errors (:func:`cross_validate`) [-].
+    jump : dict of str to float
+        Jump between the branches at λ̄ = 1 (:func:`branch_jump`) [-].
+    fit_time_s : float
+        Wall time of the fit [s].
+    e_reduced : float
+        Reduced modulus E' of the dataset [Pa].
+    lubricant : dict
+        The lubricant's definition (provenance) [-].
+    stable : bool
+        Whether both branches are numerically stable [-].
+    lambda_column_max_rel_diff : float, optional
+        Largest relative difference between the recomputed and the stored λ̄ column [-].
+    prepared : PreparedTable, optional
+        The prepared table the fit used [-].
+    cv_predictions : ndarray, optional
+        Out-of-fold ln μ predictions of the used rows [-].
+    """
 
     formula: Formula
     branches: dict[str, BranchFit]
@@ -473,12 +647,42 @@ class SurrogateFit:
 def fit_surrogate(table: pd.DataFrame, lubricant, e_reduced: float, *, formula: Formula = LI_KAHRAMAN_2009,
                   k_folds: int = 5, seed: int = 0, blend_half_width: float = 0.1,
                   allow_unstable: bool = False, max_condition: float = MAX_STANDARDISED_CONDITION) -> SurrogateFit:
-    """Fit both branches of ``formula`` on a dataset table (columns of the HDF5 store, SI units).
+    """Fit both branches of ``formula`` (paper Eq. 9a/9b) on a dataset table by OLS, with cross-validation.
 
-    ``blend_half_width`` δ of the λ̄ band where the evaluator blends the branches (0 = paper's hard switch).
-    Raises :class:`SolverError` for rank-deficient branches and — unless ``allow_unstable`` — for unstable ones
-    (condition number of a standardised design above ``max_condition``, default
-    :data:`MAX_STANDARDISED_CONDITION`); always emits :class:`UnstableFitWarning` with the reasons.
+    Steps in the module docstring. Always emits :class:`UnstableFitWarning` with the reasons when a branch is
+    ill-conditioned or severely multicollinear.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        Dataset rows with the columns of the HDF5 store (SI units: ``p_h`` [Pa], ``r_eq`` [m], ``u_r`` [m/s], ``sr``,
+        ``temperature`` [K], ``rq1``, ``rq2`` [m], ``mu``, ``status``, ``converged``) [-].
+    lubricant : Lubricant
+        The lubricant of the dataset (η0 and α1 of the features) [-].
+    e_reduced : float
+        Reduced modulus E' of the dataset's contacts [Pa].
+    formula : Formula
+        Regression form; default the paper's Eq. 9a/9b [-].
+    k_folds : int
+        Number of cross-validation folds [-].
+    seed : int
+        Seed of the fold shuffle [-].
+    blend_half_width : float
+        Half width δ of the λ̄ band in which the evaluator blends the branches (0: the paper's hard switch) [-].
+    allow_unstable : bool
+        Return an unstable fit (flagged) instead of raising [-].
+    max_condition : float
+        Largest accepted condition number of a standardised design [-].
+
+    Returns
+    -------
+    SurrogateFit
+        Both branch fits, cross-validation errors, the branch jump and everything a coefficient file records.
+
+    Raises
+    ------
+    SolverError
+        For a rank-deficient branch, or an unstable one unless ``allow_unstable``.
     """
     if not 0.0 <= blend_half_width < 0.5:
         raise InputError("blend_half_width", blend_half_width, "[0, 0.5)")

@@ -33,7 +33,17 @@ Features = dict[str, np.ndarray]
 
 @dataclass(frozen=True)
 class Term:
-    """One regressor: registry ``name``, printable ``expression`` and the function that computes its column."""
+    """One regressor: registry ``name``, printable ``expression`` and the function that computes its column.
+
+    Parameters
+    ----------
+    name : str
+        Registry name of the term [-].
+    expression : str
+        Printable expression, e.g. ``ᾱ ln SR`` [-].
+    column : callable
+        Function of the feature dict that returns the term's column [-].
+    """
 
     name: str
     expression: str
@@ -82,7 +92,21 @@ BRANCHES: tuple[str, ...] = ("mixed", "full_film")
 
 @dataclass(frozen=True)
 class Formula:
-    """A named, versioned pair of branch term lists split at ``lambda_threshold``."""
+    """A named, versioned pair of branch term lists (paper Eq. 9a and 9b) split at ``lambda_threshold``.
+
+    Parameters
+    ----------
+    name : str
+        Registry name of the form [-].
+    version : int
+        Version of the form, recorded in coefficient files [-].
+    terms : dict of str to tuple of Term
+        Regression terms of each branch (``mixed``, ``full_film``) [-].
+    lambda_threshold : float
+        λ̄ at which the branches meet (1 in the paper) [-].
+    reference : str
+        Where the form is published [-].
+    """
 
     name: str
     version: int
@@ -91,6 +115,18 @@ class Formula:
     reference: str = ""
 
     def term_names(self, branch: str) -> list[str]:
+        """Names of the terms of one branch, in coefficient order.
+
+        Parameters
+        ----------
+        branch : str
+            ``mixed`` or ``full_film`` [-].
+
+        Returns
+        -------
+        list of str
+            The term names.
+        """
         return [t.name for t in self.terms[branch]]
 
 
@@ -108,6 +144,19 @@ FORMULAS: dict[tuple[str, int], Formula] = {(LI_KAHRAMAN_2009.name, LI_KAHRAMAN_
 
 
 def design_matrix(terms: tuple[Term, ...], features: Features) -> np.ndarray:
-    """The (n, k) design matrix of ``terms`` evaluated on ``features`` (float64, C order)."""
+    """The (n, k) design matrix of ``terms`` evaluated on ``features`` (float64, C order).
+
+    Parameters
+    ----------
+    terms : tuple of Term
+        Regression terms (columns) [-].
+    features : dict of str to ndarray
+        Features of n rows (:func:`surrogate.features.compute_features`) [-].
+
+    Returns
+    -------
+    ndarray
+        The design matrix, shape (n, k) [-].
+    """
     columns = [np.asarray(t.column(features), dtype=float).ravel() for t in terms]
     return np.column_stack(columns) if columns else np.empty((0, 0))

@@ -18,7 +18,22 @@ Features = dict[str, np.ndarray]
 
 
 def branch_ln_mu(terms: tuple[Term, ...], params: np.ndarray, features: Features) -> np.ndarray:
-    """ln μ of one branch: Σ_k params[k] · term_k(features) (no design matrix is built)."""
+    """ln μ of one branch: Σ_k params[k] · term_k(features) (no design matrix is built).
+
+    Parameters
+    ----------
+    terms : tuple of Term
+        The branch's regression terms [-].
+    params : ndarray
+        The branch's coefficients, in the order of ``terms`` [-].
+    features : dict of str to ndarray
+        Features [-].
+
+    Returns
+    -------
+    ndarray
+        ln μ of the branch, shaped like ``features["lam"]`` [-].
+    """
     total = None
     for term, coefficient in zip(terms, params):
         contribution = coefficient * np.asarray(term.column(features), dtype=float)
@@ -27,7 +42,22 @@ def branch_ln_mu(terms: tuple[Term, ...], params: np.ndarray, features: Features
 
 
 def blend_weight(lam, threshold: float, half_width: float) -> np.ndarray:
-    """Weight w of the full-film branch: 0 for λ̄ ≤ thr − δ, 1 for λ̄ ≥ thr + δ, smoothstep between."""
+    """Weight w of the full-film branch: 0 for λ̄ ≤ thr − δ, 1 for λ̄ ≥ thr + δ, smoothstep between.
+
+    Parameters
+    ----------
+    lam : array_like
+        Film parameter λ̄ [-].
+    threshold : float
+        λ̄ where the branches meet [-].
+    half_width : float
+        Half width δ of the blend band [-].
+
+    Returns
+    -------
+    ndarray
+        w, between 0 and 1 [-].
+    """
     lam = np.asarray(lam, dtype=float)
     if half_width <= 0.0:
         return (lam > threshold).astype(float)
@@ -41,7 +71,27 @@ def _subset(features: Features, index: np.ndarray) -> Features:
 
 def predict_ln_mu(formula: Formula, params: dict[str, np.ndarray], features: Features,
                   blend_half_width: float = 0.0) -> np.ndarray:
-    """ln μ of the two-branch model on flat feature arrays; each branch is evaluated only where it is needed."""
+    """ln μ of the two-branch model (paper Eq. 9a for λ̄ ≤ threshold, Eq. 9b above) on feature arrays.
+
+    Each branch is evaluated only where it is needed; within ``blend_half_width`` of the threshold the branches are
+    blended by :func:`blend_weight`.
+
+    Parameters
+    ----------
+    formula : Formula
+        Regression form [-].
+    params : dict of str to ndarray
+        Coefficients per branch [-].
+    features : dict of str to ndarray
+        Features (:func:`surrogate.features.compute_features`) [-].
+    blend_half_width : float
+        Half width δ of the blend band in λ̄ (0: hard switch) [-].
+
+    Returns
+    -------
+    ndarray
+        ln μ, shaped like ``features["lam"]`` [-].
+    """
     lam = np.asarray(features["lam"], dtype=float).ravel()
     flat = {key: np.asarray(value, dtype=float).ravel() for key, value in features.items()}
     threshold = formula.lambda_threshold

@@ -52,6 +52,30 @@ def xu_2007_mu(p_h, r_eq, u_r, sr, eta0, rq1, rq2, coefficients=XU_2007_COEFFICI
     Mapping: P_h = p_h, R = r_eq, V_e = u_r = (u1 + u2)/2 (the entraining velocity as used in public
     implementations; reading V_e as u1 + u2 would lower μ by 2^−0.1, i.e. 6.7 %), S = (Rq1 + Rq2)/2.
     At SR = 0 the formula gives μ = 0 (|SR|^1.04).
+
+    Parameters
+    ----------
+    p_h : array_like
+        Hertz pressure [Pa].
+    r_eq : array_like
+        Equivalent radius of curvature [m].
+    u_r : array_like
+        Rolling (entraining) velocity [m/s].
+    sr : array_like
+        Slide-to-roll ratio [-].
+    eta0 : array_like
+        Dynamic viscosity at the inlet temperature and ambient pressure [Pa s].
+    rq1 : array_like
+        RMS roughness of surface 1 [m].
+    rq2 : array_like
+        RMS roughness of surface 2 [m].
+    coefficients : sequence of float
+        b1 … b9 of the published regression [-].
+
+    Returns
+    -------
+    ndarray
+        μ [-].
     """
     a = _arrays(p_h=p_h, r_eq=r_eq, u_r=u_r, sr=sr, eta0=eta0, rq1=rq1, rq2=rq2)
     b1, b2, b3, b4, b5, b6, b7, b8, b9 = coefficients
@@ -75,6 +99,28 @@ def benedict_kelley_mu(w_prime, u_r, sr, eta0, rq1, rq2, mu_cap: float = 0.1):
 
     The log diverges as V_s → 0 at the pitch point; the result is clipped to [0, ``mu_cap``] (default 0.1, a
     boundary friction level), so μ is finite at SR = 0.
+
+    Parameters
+    ----------
+    w_prime : array_like
+        Normal load per unit contact length W' [N/m].
+    u_r : array_like
+        Rolling velocity [m/s].
+    sr : array_like
+        Slide-to-roll ratio [-].
+    eta0 : array_like
+        Dynamic viscosity at the inlet temperature [Pa s].
+    rq1 : array_like
+        RMS roughness of surface 1 [m].
+    rq2 : array_like
+        RMS roughness of surface 2 [m].
+    mu_cap : float
+        Upper clip of μ near the pitch point [-].
+
+    Returns
+    -------
+    ndarray
+        μ, between 0 and ``mu_cap`` [-].
     """
     a = _arrays(w_prime=w_prime, u_r=u_r, sr=sr, eta0=eta0, rq1=rq1, rq2=rq2)
     s_uin = 0.5 * (a["rq1"] + a["rq2"]) * RA_PER_RQ * 1e6 / 0.0254
@@ -104,6 +150,28 @@ def iso_14179_2_mu(w_prime, r_eq, u_r, eta0, rq1, rq2, x_l: float = 1.0):
     Provenance of the form and units: checked against an independent public implementation of Schlenk's formula
     (Fernandes' GEARpie, ``CLASSES/CONTACT.py``), which also uses the normal load per unit contact length [N/mm],
     the sum velocity [m/s], the equivalent radius at the pitch point [mm], η [mPa·s] and Ra [µm].
+
+    Parameters
+    ----------
+    w_prime : array_like
+        Normal load per unit contact length W' [N/m].
+    r_eq : array_like
+        Equivalent radius of curvature [m].
+    u_r : array_like
+        Rolling velocity [m/s].
+    eta0 : array_like
+        Dynamic viscosity at the oil temperature [Pa s].
+    rq1 : array_like
+        RMS roughness of surface 1 [m].
+    rq2 : array_like
+        RMS roughness of surface 2 [m].
+    x_l : float
+        Lubricant factor X_L (1.0 mineral oil) [-].
+
+    Returns
+    -------
+    ndarray
+        μ_mz [-].
     """
     a = _arrays(w_prime=w_prime, r_eq=r_eq, u_r=u_r, eta0=eta0, rq1=rq1, rq2=rq2)
     if not x_l > 0:
@@ -122,8 +190,43 @@ ALIASES = {"xu2007": "xu_2007", "benedict_kelley": "benedict_kelley_1961", "iso1
 
 def published_mu(name: str, p_h, r_eq, u_r, sr, temperature, rq1, rq2, lubricant, e_reduced: float,
                  x_l: float = 1.0):
-    """μ of a published formula for the surrogate's inputs (SI); η0 from ``lubricant`` at ``temperature`` [K];
-    ``x_l`` the lubricant factor of ISO/TR 14179-2 (1.0: the formula as printed; ignored by the others)."""
+    """μ of a published friction formula for the surrogate's inputs (SI), with η0 from ``lubricant`` at ``temperature``.
+
+    Parameters
+    ----------
+    name : str
+        ``xu_2007``, ``benedict_kelley_1961`` or ``iso_14179_2`` (or one of their short aliases) [-].
+    p_h : array_like
+        Hertz pressure [Pa].
+    r_eq : array_like
+        Equivalent radius of curvature [m].
+    u_r : array_like
+        Rolling velocity [m/s].
+    sr : array_like
+        Slide-to-roll ratio [-].
+    temperature : array_like
+        Oil inlet temperature [K].
+    rq1 : array_like
+        RMS roughness of surface 1 [m].
+    rq2 : array_like
+        RMS roughness of surface 2 [m].
+    lubricant : Lubricant
+        Supplies η0 at ``temperature`` and the boundary friction μ_d that caps Benedict & Kelley [-].
+    e_reduced : float
+        Reduced modulus E' (for the load per length W') [Pa].
+    x_l : float
+        Lubricant factor X_L of ISO/TR 14179-2 (1.0: the formula as printed; ignored by the others) [-].
+
+    Returns
+    -------
+    ndarray
+        μ [-].
+
+    Raises
+    ------
+    InputError
+        For an unknown ``name``.
+    """
     from .features import load_per_length, lubricant_properties
 
     name = ALIASES.get(name, name)

@@ -29,8 +29,32 @@ INPUT_NAMES = ("p_h", "r_eq", "u_r", "sr", "temperature", "rq1", "rq2")
 
 
 def clipped_mask(surrogate, p_h, r_eq, u_r, sr, temperature, rq1, rq2) -> np.ndarray:
-    """Boolean array (shape of the broadcast inputs): True where at least one input lies outside the surrogate's
-    fitted ranges (where :meth:`~surrogate.evaluate.FrictionSurrogate.clip` moves it)."""
+    """Where at least one input lies outside the fitted ranges (where :meth:`FrictionSurrogate.clip` moves it).
+
+    Parameters
+    ----------
+    surrogate : FrictionSurrogate
+        The evaluator whose fitted ranges apply [-].
+    p_h : array_like
+        Hertz pressure [Pa].
+    r_eq : array_like
+        Equivalent radius of curvature [m].
+    u_r : array_like
+        Rolling velocity [m/s].
+    sr : array_like
+        Slide-to-roll ratio [-].
+    temperature : array_like
+        Inlet temperature [K].
+    rq1 : array_like
+        RMS roughness of surface 1 [m].
+    rq2 : array_like
+        RMS roughness of surface 2 [m].
+
+    Returns
+    -------
+    ndarray of bool
+        True at clipped points, shaped like the broadcast inputs.
+    """
     arrays = surrogate.validate(p_h, r_eq, u_r, sr, temperature, rq1, rq2)
     clipped, _ = surrogate.clip(arrays)
     mask = np.zeros(np.shape(arrays["p_h"]), dtype=bool)
@@ -41,16 +65,48 @@ def clipped_mask(surrogate, p_h, r_eq, u_r, sr, temperature, rq1, rq2) -> np.nda
 
 
 def clipping_note(clipped_inputs: dict[str, int], points: int, *, clipped: bool = True) -> str:
-    """``surrogate inputs clipped to the fitted ranges: p_h 76, sr 105 of 598 points`` (the same words in every
-    command)."""
+    """The sentence that reports clipped inputs, the same in every command.
+
+    For example ``surrogate inputs clipped to the fitted ranges: p_h 76, sr 105 of 598 points``.
+
+    Parameters
+    ----------
+    clipped_inputs : dict of str to int
+        Points moved to the fitted range, per input [-].
+    points : int
+        Points evaluated [-].
+    clipped : bool
+        Say "clipped" (True) or "outside" (extrapolated) [-].
+
+    Returns
+    -------
+    str
+        The note.
+    """
     moved = ", ".join(f"{k} {v}" for k, v in clipped_inputs.items() if v)
     verb = "clipped to" if clipped else "outside (extrapolated)"
     return f"surrogate inputs {verb} the fitted ranges: {moved or 'none'} of {points} point{'s' * (points != 1)}"
 
 
 def judge(share: float, clipped_inputs: dict[str, int], points: int, *, clip: bool = True) -> dict:
-    """The validity entry of a surrogate result: ``{"check": "friction_surrogate_range", "valid", "value"
-    (the share of the result at clipped inputs), "limit", "reason"}``."""
+    """The validity entry of a surrogate result.
+
+    Parameters
+    ----------
+    share : float
+        Share of the result (e.g. of the friction power) computed at clipped inputs [-].
+    clipped_inputs : dict of str to int
+        Points moved to the fitted range, per input [-].
+    points : int
+        Points evaluated [-].
+    clip : bool
+        Whether the inputs were clipped (False: Eq. 9 extrapolated, ``--no-clip``) [-].
+
+    Returns
+    -------
+    dict
+        ``{"check": "friction_surrogate_range", "valid", "value"`` (the share), ``"limit", "unit", "reason"}``.
+    """
     note = clipping_note(clipped_inputs, points, clipped=clip)
     outside = sum(clipped_inputs.values()) > 0
     limit = CLIPPED_SHARE_LIMIT if clip else 0.0
