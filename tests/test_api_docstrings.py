@@ -65,18 +65,6 @@ PENDING: set[str] = {
     "ehl_dataset.solvers.planner",
     "ehl_dataset.solvers.result",
     "ehl_dataset.validation",
-    "surrogate.coefficients",
-    "surrogate.compare",
-    "surrogate.dataset_io",
-    "surrogate.diagnostics",
-    "surrogate.evaluate",
-    "surrogate.features",
-    "surrogate.fit",
-    "surrogate.forms",
-    "surrogate.learned",
-    "surrogate.model",
-    "surrogate.published",
-    "surrogate.validity",
     "workflows.accuracy",
     "workflows.pipeline",
     "workflows.report",
@@ -150,6 +138,8 @@ def problems(obj: griffe.Object) -> list[str]:
     if obj.docstring is None or not obj.docstring.value.strip():
         return ["no docstring"]
     found = []
+    if re.search(r"\]\s?\[", obj.docstring.value):
+        found.append("'] [' reads as a Markdown reference link (mkdocs --strict fails): reword")
     summary = obj.docstring.value.strip().splitlines()[0]
     if not summary.strip():
         found.append("no one-line summary")
@@ -298,6 +288,16 @@ def undocumented(p_h, temperature):
     """
 
 
+def link_like(x):
+    """Thing in [0, 1] [-].
+
+    Parameters
+    ----------
+    x : float
+        Value [-].
+    """
+
+
 def no_returns(x):
     """Thing.
 
@@ -326,6 +326,7 @@ def test_the_checker_fails_on_planted_bad_docstrings(tmp_path):
     assert problems(module["undocumented"]) == ["parameters not documented: temperature",
                                                 "documented parameters not in the signature: speed"]
     assert problems(module["no_returns"]) == ["no Returns section"]
+    assert problems(module["link_like"]) == ["'] [' reads as a Markdown reference link (mkdocs --strict fails): reword"]
     assert problems(module["Plain"]) == ["parameters not documented: load"]
 
 
