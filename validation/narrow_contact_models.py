@@ -1,6 +1,6 @@
 """Which cheap model for rough contacts: the transient mixed solver, the film-law homogenised model and the smooth
 solver against the deterministic model, on the same factorial points, split into narrow (a/β < 15) and wide contacts
-and at λ̄ = 1. Writes docs/narrow_contacts.md and its figure from the JSON of benchmarks/bench_ehl_mixed.py:
+and at λ̄ = 1. Writes docs/validation/narrow_contacts.md and its figure from the JSON of benchmarks/bench_ehl_mixed.py:
 
     python validation/narrow_contact_models.py
 
@@ -23,7 +23,7 @@ deterministic run is resumed as time allows, the transient run has the first 54 
 Every model here is isothermal (the deterministic and transient solvers have no thermal model; the film law runs
 with ``--effects isothermal``, the smooth solve of ``--model smooth`` is isothermal). Points with SR = 0 (μ ≈ 0) and
 points either side did not converge are left out. The deterministic model at ``fast`` is not the grid-converged
-reference (docs/accuracy_mixed.md: within 5.0 % in median of it on eleven cases under det-2026.11-13, +27 % on case G): the
+reference (docs/validation/accuracy_mixed.md: within 5.0 % in median of it on eleven cases under det-2026.11-13, +27 % on case G): the
 differences are between models.
 """
 
@@ -65,7 +65,7 @@ COMMAND = "python validation/narrow_contact_models.py"
 
 
 def deterministic_fast_error_text() -> str:
-    """The deterministic model's error at ``fast`` against the reference set, from docs/accuracy_mixed.json: its
+    """The deterministic model's error at ``fast`` against the reference set, from docs/validation/accuracy_mixed.json: its
     median over the reference cases and the largest ones, named."""
     runs = json.loads((ROOT / "docs" / "validation" / "accuracy_mixed.json").read_text())["runs"]
     errors = {r["case"]: 100.0 * r["mu_error"] for r in runs if r["model"] == "deterministic-fast"}
@@ -117,7 +117,7 @@ def _group_stats(errors: list[float], times: list[float]) -> str:
 
 
 def reference_cases() -> list[dict]:
-    """The film law's signed error on the grid-converged reference cases (docs/accuracy_mixed.json against
+    """The film law's signed error on the grid-converged reference cases (docs/validation/accuracy_mixed.json against
     data/reference/deterministic_validation.json's extrapolated μ), with their λ̄, a/β and X_h."""
     atf = load_lubricant("atf")
     beta = baseline_profile().correlation_length
@@ -274,9 +274,9 @@ def markdown(records: list[dict]) -> str:
              f"factorial points (seed 1; {n_random} with a deterministic result, the transient solver on the first "
              "54 of them) and the 64 corners of the paper's factorial, ATF, all isothermal, "
              "points with SR > 0 that both converged. error = μ_model/μ_deterministic − 1. Narrow: a/β < "
-             f"{WIDE_A_OVER_BETA:g} (the homogenisation limit of the planner, docs/planner.md). The deterministic "
+             f"{WIDE_A_OVER_BETA:g} (the homogenisation limit of the planner, docs/explanation/planner.md). The deterministic "
              f"model at `fast` is itself {deterministic_fast_error_text()} off its grid-converged reference "
-             "(docs/accuracy_mixed.md), so these are differences between models, not errors against the exact "
+             "(docs/validation/accuracy_mixed.md), so these are differences between models, not errors against the exact "
              "answer. Time: the model's median wall time per point [s] (the deterministic model's: "
              f"{np.median([r['reference_time_s'] for r in records if r['model'] == 'film law']):.0f} s).", "",
              "| contact | λ̄ | model | points | median error | median abs | 90th pct abs | max abs | median time [s] |",
@@ -290,17 +290,14 @@ def markdown(records: list[dict]) -> str:
                     continue
                 lines.append(f"| {'narrow' if narrow else 'wide'} | {'≤ 1' if low else '> 1'} | {model} | "
                              + _group_stats([r["error"] for r in sel], [r["time_s"] for r in sel]) + " |")
-    lines += ["", "![error of each model against the deterministic model](figures/narrow_contacts.png)", "",
+    lines += ["", "![error of each model against the deterministic model](../figures/narrow_contacts.png)", "",
               f"*Made by `{COMMAND}` (EHL solver {SOLVER_VERSION}).*", "",
               "## What the planner does with it", "",
-              "- The transient mixed solver was a median 80–106 % high below λ̄ = 1, narrow and wide: it puts about a "
-              "third of the load on asperities where the deterministic model, with its physical film-breakdown "
-              "thickness, has almost none (docs/transient_vs_deterministic_random.md). It was no longer a production "
-              "model from ehl-2026.11-11 (`model=\"auto\"` ran it only when the effects were forced, "
-              "`effects=\"full\"`) and was deleted at ehl-2026.11-15: forced effects on a rough contact now run the "
-              "deterministic model at the level's grid rule (docs/transient_solver_record.md).",
+              "- The transient rows are a rough model the package no longer has, from its recorded runs: a median "
+              "80–106 % high below λ̄ = 1, narrow and wide, with about a third of the load on asperities where the "
+              "deterministic model has almost none.",
               "- Wide contacts: the film law is within a few per cent in median (its validated range, "
-              "docs/homogenised_model.md).",
+              "docs/explanation/mixed-regime.md).",
               "- Narrow contacts above λ̄ = 1: the film law is within 6 %.",
               "- **Narrow contacts below λ̄ = 1: micro-EHL pressure fluctuations.** What decides is the Eyring "
               "number at the Hertz pressure, X_h = η(p_h)|u_s|/(τ0 h_min,DH) (its τ_m/τ0 = asinh X_h). Deep in the "
@@ -333,7 +330,7 @@ def markdown(records: list[dict]) -> str:
               "inside (1.8) and 3.6. Since ehl-2026.11-14 the same range applies to wide contacts.", "",
               "  The film law with its closure, on the factorial points (deterministic model at `fast`):",
               "", *_film_law_split(records), "",
-              "  and on the grid-converged reference cases (docs/accuracy_mixed.md, `standard`; share: the "
+              "  and on the grid-converged reference cases (docs/validation/accuracy_mixed.md, `standard`; share: the "
               "reference's asperity load share):", "",
               "| case | λ̄ | a/β | X_h | α | film law error | asperity share |", "|---|---|---|---|---|---|---|",
               *[f"| {r['case']} | {r['lambda_bar']:.2f} | {r['a_over_beta']:.1f} | {r['eyring_number']:.3g} | "
