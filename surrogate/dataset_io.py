@@ -63,7 +63,7 @@ def load_dataset(path: str | Path, lubricant: str | Path | Lubricant | None = No
     path = Path(path)
     if not path.is_file():
         raise InputError("dataset", str(path), "an existing HDF5 (.h5) dataset file or a CSV table")
-    source: dict[str, Any] = {"path": str(path), "sha256": file_sha256(path)}
+    source: dict[str, Any] = {"path": path.name, "sha256": file_sha256(path)}  # the name: no machine path
     if path.suffix.lower() in HDF5_SUFFIXES:
         from ehl_dataset.dataset.store import read_metadata, read_table
 

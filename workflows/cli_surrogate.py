@@ -74,7 +74,7 @@ def _fit(args) -> int:
     if args.figures:
         from surrogate.diagnostics import plot_figures
 
-        figures = [str(p) for p in plot_figures(fit, args.figures, title=f"{data.source['path']}")]
+        figures = [str(p) for p in plot_figures(fit, args.figures, title=data.source["path"])]  # the dataset's file name
     notes = [str(w.message) for w in caught]
     for note in notes:
         print(f"gearloss: warning: {note}", file=sys.stderr)
