@@ -49,7 +49,6 @@ from pathlib import Path
 from typing import Any, Callable, TextIO
 
 import numpy as np
-from threadpoolctl import threadpool_limits
 
 from ..model.contact import ContactCase
 from ..model.lubricant import CELSIUS_ZERO_K, Lubricant, load_lubricant, lubricant_from_dict
@@ -57,6 +56,7 @@ from ..solvers.deterministic import MODEL_VERSION as DETERMINISTIC_MODEL_VERSION
 from ..solvers.wide_contact import WIDE_MODEL_VERSION
 from ..solvers.levels import get_level
 from ..solvers.planner import plan_effects
+from ..solvers.threads import one_blas_thread
 from ..validation import InputError, check_time_limit as check_positive_seconds
 from .executors import make_executor
 from .factorial import EFFECTS_MODES, Factorial, canonical_json, load_factorial
@@ -156,7 +156,7 @@ def _one_blas_thread():
     every worker's LAPACK would start one thread per core (oversubscription), and a point's last bits would depend
     on where it ran (threaded reductions), so a resumed or distributed run could differ from an uninterrupted local
     one."""
-    return threadpool_limits(limits=1)
+    return one_blas_thread()
 
 
 def summarize_warnings(counts: Counter) -> str:

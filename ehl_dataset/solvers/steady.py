@@ -9,8 +9,10 @@ transient run would settle to, so :func:`ehl_dataset.solver.solve_contact` sends
 from __future__ import annotations
 
 import math
+import threading
 import time
-from dataclasses import dataclass
+from collections import OrderedDict
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -38,6 +40,13 @@ LAMBDA_FACTOR = 4.0
 FINE_PSEUDO_DT = 0.0
 COARSENING = 3.0
 """Spacing ratio of the continuation grid to the level's grid in :func:`solve_steady`."""
+
+STEADY_CACHE_SIZE = 64
+"""Number of steady solutions kept per process (:func:`solve_steady`). The steady smooth solve does not depend on the
+roughness, and a factorial solves each load, speed and temperature once per roughness pair (the film-law model starts
+from the smooth solution): the pairs after the first reuse it."""
+_STEADY_CACHE: OrderedDict = OrderedDict()
+_STEADY_CACHE_LOCK = threading.Lock()
 
 __all__ = ["ContactScales", "dowson_higginson_lambda", "moes_h_c", "steady_grid", "solve_steady",
            "solve_steady_problem"]
@@ -194,6 +203,17 @@ def solve_steady(case: ContactCase, state: LubricantState, lvl: AccuracyLevel, p
     """
     start = time.perf_counter()
     scales = ContactScales.of(case, state, plan.shear_thinning)
+    key = _cache_key(case, state, lvl, plan)
+    with _STEADY_CACHE_LOCK:
+        cached = _STEADY_CACHE.get(key)
+        if cached is not None:
+            _STEADY_CACHE.move_to_end(key)
+    if cached is not None:
+        x, outcome, iterations, record = cached
+        result = _result_from_steady(case, state, lvl, plan, scales, x, outcome, iterations)
+        result.extra["continuation"] = {**record, "reused": True}
+        result.wall_time = time.perf_counter() - start
+        return result
     h_c = moes_h_c(case, state, scales)
     x = steady_grid(lvl, h_c=h_c)
     problem = _problem_on(x, case, state, plan, scales)
@@ -219,10 +239,24 @@ def solve_steady(case: ContactCase, state: LubricantState, lvl: AccuracyLevel, p
         outcome, its, stages = solve_steady_problem(problem, p0, h00, lvl)
         iterations += its
         record["fine_from_scratch"] = {"nodes": int(x.size), "stages": stages}
+    if outcome.converged:
+        for array in (x, outcome.p, outcome.h):
+            array.flags.writeable = False
+        with _STEADY_CACHE_LOCK:
+            _STEADY_CACHE[key] = (x, outcome, iterations, record)
+            while len(_STEADY_CACHE) > STEADY_CACHE_SIZE:
+                _STEADY_CACHE.popitem(last=False)
     result = _result_from_steady(case, state, lvl, plan, scales, x, outcome, iterations)
     result.extra["continuation"] = record
     result.wall_time = time.perf_counter() - start
     return result
+
+
+def _cache_key(case: ContactCase, state: LubricantState, lvl: AccuracyLevel, plan: Effects) -> tuple:
+    """What the steady pressure and film depend on: the contact without its roughness, the lubricant state, the level
+    and the two effects the Newton problem uses (the thermal correction is recomputed from the solution)."""
+    return (replace(case, rq1=0.0, rq2=0.0), state, lvl, bool(plan.shear_thinning),
+            bool(plan.compressibility and state.compressible))
 
 
 def _result_from_steady(case, state, lvl, plan, scales: ContactScales, x, outcome: NewtonOutcome,
