@@ -1,4 +1,4 @@
-"""Feasibility of a helical gear pair design (DESIGN §6; limits of Li & Kahraman 2009, §3).
+"""Feasibility of a helical gear pair design (limits of Li & Kahraman 2009, §3).
 
 Definitions (all evaluated per gear where they differ; see docs/gear_geometry.md):
 

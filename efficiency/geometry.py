@@ -5,7 +5,7 @@ Equations follow ISO 21771:2007 (formerly DIN 3960) for cylindrical involute gea
 form diameter from the point where the generating rack's straight flank ends (the fillet begins), tip thickness
 from the involute tooth-thickness relation, backlash from the tooth thicknesses on the operating pitch circle.
 
-The paper's parametrisation (Li & Kahraman 2009, §3; DESIGN §6): identical gears, ratio 1:1, centre distance
+The paper's parametrisation (Li & Kahraman 2009, §3; ISO 53 basic rack): identical gears, ratio 1:1, centre distance
 a = 91.5 mm, ``m_n = a cos Ψ / N``, addendum ``(Λ_wd − 0.25)/2 · m_n``, dedendum ``addendum + 0.25 m_n``.
 
 Every field may also be a NumPy array (all arrays broadcast together): every property is then evaluated
@@ -28,7 +28,7 @@ from ehl_dataset.validation import InputError, check_range
 
 PAPER_CENTER_DISTANCE = 0.0915  # [m] Li & Kahraman 2009, §3
 PAPER_FACE_WIDTH = 0.025  # [m] Li & Kahraman 2009, §3
-PAPER_CLEARANCE_COEFFICIENT = 0.25  # dedendum − addendum in units of m_n (DESIGN §6)
+PAPER_CLEARANCE_COEFFICIENT = 0.25  # dedendum − addendum in units of m_n (the ISO 53 basic rack's c_P = 0.25 m_n)
 
 
 def involute(alpha):
@@ -183,7 +183,7 @@ class GearPair:
                    root_fillet_coefficient: float = 0.25, thickness_allowance: float = 0.0) -> "GearPair":
         """The paper's identical-gear 1:1 design at the standard centre distance (Li & Kahraman 2009 §3).
 
-        m_n = a cos Ψ / N; addendum (Λ_wd − 0.25)/2 · m_n; dedendum = addendum + 0.25 m_n (DESIGN §6).
+        m_n = a cos Ψ / N; addendum (Λ_wd − 0.25)/2 · m_n; dedendum = addendum + 0.25 m_n.
         ``thickness_allowance`` [m] thins each gear's teeth (normal) to give backlash; the paper does not state
         how its backlash arises, see docs/gear_geometry.md. ``root_fillet_coefficient`` (not given in the paper)
         is the generating rack tip radius in m_n.

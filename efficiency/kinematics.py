@@ -16,7 +16,7 @@ positions φ_m = (m + ½) p_bt / (M r_b1), m = 0 … M − 1 (midpoints: the ref
 line enters the path exactly at the face end, is a discontinuity of the load sharing; sampling on it biased the
 cycle mean, e.g. +1.5 % in the loss factor of spur FZG C at M = 24).
 
-At a contact point (DESIGN §6):
+At a contact point (ISO 21771 involute geometry; u_r, u_s as in Li & Kahraman 2009, §2):
 - transverse radii of curvature ρ1 = s, ρ2 = T1T2 − s (involute radius = roll distance from the tangent point),
 - normal radii (perpendicular to the contact line, in the normal section) ρ_i / cos ψ_b,
 - rolling (entrainment) velocity u_r = (ω1 ρ1 + ω2 ρ2)/2 and sliding velocity u_s = ω1 ρ1 − ω2 ρ2 with

@@ -3,7 +3,7 @@
 Orchestrates :mod:`efficiency.kinematics` (contact points), :mod:`efficiency.compliance` (tooth, foundation, face
 coupling and Hertz compliance), :mod:`efficiency.modifications` (unloaded separations) and
 :mod:`efficiency.load_distribution` (the complementarity solve) for a :class:`efficiency.geometry.GearPair` at a
-given input torque. Only the outputs asked for are computed (DESIGN §1: ``outputs`` ⊆ {"te", "stresses"}; the loads,
+given input torque. Only the outputs asked for are computed (``outputs`` ⊆ {"te", "stresses"}; the loads,
 radii and velocities that the power-loss stage needs are always returned).
 
 Definitions (all SI):
@@ -13,7 +13,7 @@ Definitions (all SI):
 - mesh stiffness k(φ) = dF_bt / dTE = cos² ψ_b · dW/dδ on the current active set [N/m]; per unit face width
   c_γ = mean k / b [N/m²] (comparable with ISO 6336-1 c_γα);
 - Hertz contact pressure at a point p = √(w E' / (2π R_n)), w = F cos ψ_b / Δz the load per unit length of contact
-  line, R_n the normal equivalent radius (DESIGN §3, W' = 2π r_eq p_h² / E');
+  line, R_n the normal equivalent radius (Hertz line contact, Johnson 1985 §4.3: W' = 2π r_eq p_h² / E');
 - root bending stress of gear i at a point, consistent with ISO 6336-3 (σ_F0 = F_t/(b m_n) Y_F Y_S Y_β):
   σ = (f_t / m_n) · Y_F Y_S Y_β · h(ρ_i)/h(ρ_Di), with f_t = F cos ψ_b cos α_t / Δz the slice's tangential load per
   unit face width at the reference circle, h the bending lever arm of the load about the root section

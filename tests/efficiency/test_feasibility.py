@@ -130,7 +130,7 @@ def test_count_is_monotone_in_the_tip_thickness_limit(study):
 
 
 def test_root_clearance_of_the_paper_parametrisation_is_always_025_module():
-    """DESIGN §6: dedendum = addendum + 0.25 m_n at the standard centre distance → c = 0.25 m_n for every design,
+    """ISO 53 rack: dedendum = addendum + 0.25 m_n at the standard centre distance → c = 0.25 m_n for every design,
     so the paper's 0.2 m_n clearance limit never binds in this parametrisation."""
     pairs = paper_design_space().pairs()
     assert np.allclose(pairs.root_clearances[0], 0.25 * pairs.normal_module, rtol=1e-9)

@@ -37,7 +37,7 @@ def test_inverse_involute_round_trip():
 @pytest.mark.parametrize("name", ["A", "B", "C", "D"])
 def test_paper_table1_module_tip_and_root_diameters(name):
     """Li & Kahraman 2009 Table 1: m (4 decimals), d_o and root diameter (2 decimals) of designs A–D from the
-    parametrisation of DESIGN §6 (m_n = a cos Ψ/N, addendum (Λ_wd − 0.25)/2 m_n, dedendum addendum + 0.25 m_n)."""
+    parametrisation (m_n = a cos Ψ/N, addendum (Λ_wd − 0.25)/2 m_n, dedendum addendum + 0.25 m_n)."""
     study = load_study("paper2009")
     published = study.designs[name]
     pair = study.design(name)

@@ -187,7 +187,7 @@ def test_face_coupling_reproduces_a_uniform_load_and_is_positive_definite():
 
 
 def test_very_low_torque_with_large_crowns_gives_point_like_contact():
-    """Hard case (DESIGN §1): 1 N·m with 30 µm profile and lead crowns: a few loaded points near the middle of
+    """Hard case: 1 N·m with 30 µm profile and lead crowns: a few loaded points near the middle of
     the face and of the path, converged, finite, equilibrium holds."""
     pair = design_d()
     result = evaluate_mesh(pair, 1.0, modifications=Modifications(profile_crown=30e-6, lead_crown=30e-6))

@@ -50,7 +50,7 @@ def test_root_stress_reduces_to_iso_sigma_f0_for_a_uniform_load_at_the_iso_point
 
 def test_spur_contact_pressure_in_single_tooth_contact_matches_iso_hertz_at_the_pitch_point():
     """In single-tooth contact an unmodified spur pair carries W = F_bn uniformly over the face, so
-    p² R_n = W E'/(2π b) at every point (Hertz, DESIGN §3). ISO 6336-2's σ_H0/Z_ε = Z_H Z_E √(F_t(u+1)/(d1 b u)) is
+    p² R_n = W E'/(2π b) at every point (Hertz, Johnson §4.3). ISO 6336-2's σ_H0/Z_ε = Z_H Z_E √(F_t(u+1)/(d1 b u)) is
     the same Hertz pressure at the pitch point, so p² R_n = (σ_H0/Z_ε)² R_C with R_C the pitch-point radius."""
     pair = spur_c()
     torque = 150.0
@@ -70,7 +70,7 @@ def test_spur_contact_pressure_in_single_tooth_contact_matches_iso_hertz_at_the_
 
 
 def test_only_requested_outputs_are_computed():
-    """DESIGN §1: outputs that were not asked for (TE, stresses) are not computed."""
+    """Outputs that were not asked for (TE, stresses) are not computed."""
     pair = design_d()
     none = evaluate_mesh(pair, 250.0, options=MeshOptions(positions=6, slices=10, outputs=frozenset()))
     assert none.transmission_error is None and none.contact_pressure is None and none.root_stress is None
