@@ -79,10 +79,26 @@ def _load_point(pair, gear: int, rho):
 
 
 def tooth_compliance(pair, gear: int, rho, material: Material = STEEL, hub_ratio: float = DEFAULT_HUB_RATIO):
-    """Compliance components of one tooth slice of ``gear`` (1 or 2) loaded at roll distance ``rho`` [m] from its
-    own base-circle tangent point, per unit face width along the transverse line of action [m²/N].
+    """Compliance components of one tooth slice of ``gear`` loaded at roll distance ``rho`` from its own base-circle
+    tangent point, per unit face width along the transverse line of action (models in the module docstring).
 
-    Returns a dict with arrays ``bending``, ``shear``, ``axial``, ``foundation`` and ``total`` (shape of ``rho``).
+    Parameters
+    ----------
+    pair : GearPair
+        A scalar pair [-].
+    gear : int
+        1 or 2 [-].
+    rho : array_like
+        Roll distance of the load from the gear's base-circle tangent point [m].
+    material : Material
+        The gear's material [-].
+    hub_ratio : float
+        h_f = r_f / r_int, root radius over bore radius, of the foundation term [-].
+
+    Returns
+    -------
+    dict of str to ndarray
+        ``bending``, ``shear``, ``axial``, ``foundation`` and ``total`` compliance, shaped like ``rho`` [m²/N].
     """
     check_range("hub_ratio", hub_ratio, 1.0, 10.0, low_inclusive=False)
     e = material.youngs_modulus
@@ -141,11 +157,30 @@ def centreline_depth(pair, gear: int, rho):
 
 def weber_contact_compliance(load_per_length, r_eq, depth1, depth2, material1: Material = STEEL,
                              material2: Material = STEEL):
-    """Secant Hertzian contact compliance δ/w [m²/N] of a line contact (Weber 1949; Johnson 1985 §5.6).
+    """Secant Hertzian contact compliance δ/w of a line contact (Weber 1949; Johnson 1985 §5.6).
 
-    δ = Σ_i (w (1 − ν_i²)/(π E_i)) [2 ln(2 d_i/a) − ν_i/(1 − ν_i)], a = √(8 w R/(π E')); ``load_per_length`` w
-    [N/m] > 0, ``r_eq`` R [m], depths d_i [m]. The logarithm's argument is limited below by e (a ≤ 2d/e), where
-    the half-plane assumption fails anyway.
+    δ = Σ_i (w (1 − ν_i²)/(π E_i)) (2 ln(2 d_i/a) − ν_i/(1 − ν_i)), a = √(8 w R/(π E')). The logarithm's argument
+    is limited below by e (a ≤ 2d/e), where the half-plane assumption fails anyway.
+
+    Parameters
+    ----------
+    load_per_length : array_like
+        Load per unit contact length w, > 0 [N/m].
+    r_eq : array_like
+        Equivalent radius of curvature R [m].
+    depth1 : array_like
+        Depth d_1 of the reference point in gear 1 [m].
+    depth2 : array_like
+        Depth d_2 of the reference point in gear 2 [m].
+    material1 : Material
+        Material of gear 1 [-].
+    material2 : Material
+        Material of gear 2 [-].
+
+    Returns
+    -------
+    ndarray
+        δ/w [m²/N].
     """
     e_red = reduced_modulus(material1, material2)
     a = np.sqrt(8.0 * np.asarray(load_per_length, float) * r_eq / (math.pi * e_red))
@@ -185,8 +220,20 @@ def weber_secant(w, l1, l2, k1, k2, q1, q2):
 
 
 def contact_compliance(material1: Material = STEEL, material2: Material = STEEL) -> float:
-    """Load-independent Hertzian line-contact compliance per unit contact length, 4/(π E') [m²/N] (Yang & Lin
-    1987)."""
+    """Load-independent Hertzian line-contact compliance per unit contact length, 4/(π E') (Yang & Lin 1987).
+
+    Parameters
+    ----------
+    material1 : Material
+        Material of gear 1 [-].
+    material2 : Material
+        Material of gear 2 [-].
+
+    Returns
+    -------
+    float
+        Compliance [m²/N].
+    """
     return 4.0 / (math.pi * reduced_modulus(material1, material2))
 
 
@@ -194,8 +241,23 @@ def face_coupling(z, face_width: float, length: float) -> np.ndarray:
     """Slice-to-slice influence matrix G (S × S, dimensionless, symmetric positive definite).
 
     G_ij = ∫_{cell j} κ_N(z_i, z') dz' with κ the exponential kernel exp(−|d|/ℓ)/(2ℓ) and its images reflected at
-    z = 0 and z = b (n image generations with exp(−2nb/ℓ) < 1e−17, i.e. the exact Neumann Green's function). A slice load F_j [N] spread over its cell gives
-    the deflection w_i = c Σ_j G_ij F_j / Δz for a slice compliance c per unit face width; Σ_j G_ij = 1.
+    z = 0 and z = b (n image generations with exp(−2nb/ℓ) < 1e−17, i.e. the exact Neumann Green's function). A slice
+    load F_j spread over its cell gives the deflection w_i = c Σ_j G_ij F_j / Δz for a slice compliance c per unit
+    face width; Σ_j G_ij = 1.
+
+    Parameters
+    ----------
+    z : array_like
+        (S,) slice centres, uniformly spaced between 0 and b [m].
+    face_width : float
+        Face width b [m].
+    length : float
+        Coupling length ℓ [m].
+
+    Returns
+    -------
+    ndarray
+        G, shape (S, S) [-].
     """
     z = np.asarray(z, dtype=float)
     check_range("coupling_length", length, 0.0, 10.0, low_inclusive=False, unit="m")
@@ -220,5 +282,18 @@ def face_coupling(z, face_width: float, length: float) -> np.ndarray:
 
 
 def whole_depth(pair, gear: int = 1) -> float:
-    """Tooth depth r_a − r_f of ``gear`` [m] (the default face-coupling length)."""
+    """Tooth depth r_a − r_f of ``gear`` (the default face-coupling length).
+
+    Parameters
+    ----------
+    pair : GearPair
+        A scalar pair [-].
+    gear : int
+        1 or 2 [-].
+
+    Returns
+    -------
+    float
+        r_a − r_f [m].
+    """
     return float(pair.tip_radii[gear - 1] - pair.root_radii[gear - 1])

@@ -104,9 +104,40 @@ def paper_design(teeth: int, normal_pressure_angle_deg: float, helix_angle_deg: 
                  center_distance_mm: float = PAPER_CENTER_DISTANCE * 1e3, face_width_mm: float = PAPER_FACE_WIDTH * 1e3,
                  root_fillet_coefficient: float = 0.25, thickness_allowance_mm: float | None = None,
                  backlash_policy: str = "iso10064", backlash_policy_value: float = 0.0) -> GearPair:
-    """The paper's design from engineering units. Without ``thickness_allowance_mm`` the teeth are thinned by
-    ``backlash_policy`` (see :func:`efficiency.feasibility.thickness_allowance`; values in mm for the
-    ``constant`` and ``backlash`` policies)."""
+    """The paper's design (Li & Kahraman 2009 §3) from engineering units.
+
+    Without ``thickness_allowance_mm`` the teeth are thinned by ``backlash_policy``
+    (:func:`efficiency.feasibility.thickness_allowance`).
+
+    Parameters
+    ----------
+    teeth : int
+        Number of teeth N of each gear [-].
+    normal_pressure_angle_deg : float
+        Normal pressure angle Φ [deg].
+    helix_angle_deg : float
+        Helix angle Ψ [deg].
+    working_depth : float
+        Working depth Λ_wd in units of m_n [-].
+    center_distance_mm : float
+        Centre distance [mm].
+    face_width_mm : float
+        Face width [mm].
+    root_fillet_coefficient : float
+        Generating rack tip radius in units of m_n [-].
+    thickness_allowance_mm : float, optional
+        Normal thickness allowance of each gear; None: from ``backlash_policy`` [mm].
+    backlash_policy : str
+        Policy of :func:`efficiency.feasibility.thickness_allowance`: ``iso10064``, ``constant``, ``module`` or
+        ``backlash`` [-].
+    backlash_policy_value : float
+        The policy's value (thickness allowance or backlash for ``constant`` and ``backlash``) [mm].
+
+    Returns
+    -------
+    GearPair
+        The design in SI.
+    """
     a = center_distance_mm * 1e-3
     phi = math.radians(normal_pressure_angle_deg)
     psi = math.radians(helix_angle_deg)
@@ -121,7 +152,25 @@ def paper_design(teeth: int, normal_pressure_angle_deg: float, helix_angle_deg: 
 
 
 def design_from_mapping(table: Mapping[str, Any], where: str = "design") -> GearPair:
-    """Build a :class:`GearPair` from a ``[design]`` table (engineering units, see the module docstring)."""
+    """Build a :class:`GearPair` from a ``[design]`` table (engineering units, see the module docstring).
+
+    Parameters
+    ----------
+    table : Mapping
+        The parsed table, lengths in mm and angles in degrees as the module docstring lists [-].
+    where : str
+        Name of the table in error messages [-].
+
+    Returns
+    -------
+    GearPair
+        The design in SI.
+
+    Raises
+    ------
+    InputError
+        Naming the first bad or unknown key.
+    """
     if not isinstance(table, Mapping):
         raise InputError(where, table, "a TOML table")
     kind = table.get("kind", "paper" if "working_depth" in table else "general")
@@ -179,7 +228,18 @@ def design_from_mapping(table: Mapping[str, Any], where: str = "design") -> Gear
 
 
 def load_design(path: str | os.PathLike) -> GearPair:
-    """Read the ``[design]`` table of a design TOML file."""
+    """Read the ``[design]`` table of a design TOML file (engineering units, module docstring).
+
+    Parameters
+    ----------
+    path : str or PathLike
+        The TOML file [-].
+
+    Returns
+    -------
+    GearPair
+        The design.
+    """
     data = read_toml(path)
     if "design" not in data:
         raise InputError("design file", str(path), "a TOML file with a [design] table")
@@ -187,7 +247,20 @@ def load_design(path: str | os.PathLike) -> GearPair:
 
 
 def design_to_toml(pair: GearPair, name: str = "") -> str:
-    """A ``kind = "general"`` design table that reproduces ``pair`` exactly (SI → mm/deg, full precision)."""
+    """A ``kind = "general"`` design table that reproduces ``pair`` exactly (SI → mm/deg, full precision).
+
+    Parameters
+    ----------
+    pair : GearPair
+        A scalar pair [-].
+    name : str
+        Name written into the table [-].
+
+    Returns
+    -------
+    str
+        The TOML text.
+    """
     def num(v) -> str:
         return repr(float(v))
 
@@ -229,7 +302,27 @@ def _values(spec, where: str) -> tuple[float, ...]:
 
 @dataclass(frozen=True)
 class OperatingPoint:
-    """The study's operating point in SI: torque [N·m], speed [rad/s], temperature [K], lengths [m]."""
+    """The study's operating point in SI.
+
+    Parameters
+    ----------
+    input_torque : float
+        Input (gear 1) torque [N·m].
+    input_speed : float
+        Input angular speed [rad/s].
+    lubricant : str
+        Lubricant name [-].
+    oil_temperature : float
+        Oil inlet temperature [K].
+    rq1 : float
+        RMS roughness of gear 1's flanks [m].
+    rq2 : float
+        RMS roughness of gear 2's flanks [m].
+    profile_crown : float
+        Profile crown M_P of each gear [m].
+    lead_crown : float
+        Lead crown M_L of each gear [m].
+    """
 
     input_torque: float
     input_speed: float
@@ -243,7 +336,27 @@ class OperatingPoint:
 
 @dataclass(frozen=True)
 class PublishedDesign:
-    """A Table 1 design: parameters and the published d_o, root diameter and module (SI)."""
+    """A Table 1 design: parameters and the published d_o, root diameter and module (SI).
+
+    Parameters
+    ----------
+    name : str
+        Design name (A–D) [-].
+    teeth : int
+        Number of teeth N of each gear [-].
+    normal_pressure_angle_deg : float
+        Normal pressure angle Φ [deg].
+    helix_angle_deg : float
+        Helix angle Ψ [deg].
+    working_depth : float
+        Working depth Λ_wd in units of m_n [-].
+    tip_diameter : float
+        Published outside diameter d_o [m].
+    root_diameter : float
+        Published root diameter [m].
+    normal_module : float
+        Published normal module [m].
+    """
 
     name: str
     teeth: int
@@ -257,7 +370,29 @@ class PublishedDesign:
 
 @dataclass(frozen=True)
 class PaperStudy:
-    """The paper's design study (``data/studies/paper2009.toml``)."""
+    """The paper's design study (``data/studies/paper2009.toml``).
+
+    Parameters
+    ----------
+    name : str
+        Study name [-].
+    source : str
+        The publication the study reproduces [-].
+    space : DesignSpace
+        The design space swept [-].
+    operating_point : OperatingPoint
+        The study's operating point [-].
+    limits : FeasibilityLimits
+        Feasibility limits of the screen [-].
+    search_limits : Mapping of str to float
+        Limits of the design-D search (P, TE, σ_c, σ_b; SI, units in the keys) [-].
+    modification_study : Mapping
+        Crowns and torques of the modification study [-].
+    designs : Mapping of str to PublishedDesign
+        The published designs of Table 1 by name (A–D) [-].
+    paper_feasible_count : int, optional
+        Number of feasible designs the paper reports [-].
+    """
 
     name: str
     source: str
@@ -270,7 +405,18 @@ class PaperStudy:
     paper_feasible_count: int | None = None
 
     def design(self, name: str) -> GearPair:
-        """The published design ``name`` (A–D) as a :class:`GearPair` with the study's assumptions."""
+        """The published design ``name`` (A–D) as a :class:`GearPair` with the study's assumptions.
+
+        Parameters
+        ----------
+        name : str
+            Design name, a key of ``designs`` [-].
+
+        Returns
+        -------
+        GearPair
+            The design.
+        """
         if name not in self.designs:
             raise InputError("design", name, f"one of {sorted(self.designs)}")
         d = self.designs[name]
@@ -284,7 +430,18 @@ class PaperStudy:
 
 
 def load_study(name_or_path: str | os.PathLike = "paper2009") -> PaperStudy:
-    """Read a study definition (a shipped name such as ``paper2009`` or a TOML path)."""
+    """Read a study definition (a shipped name such as ``paper2009`` or a TOML path).
+
+    Parameters
+    ----------
+    name_or_path : str or PathLike
+        Shipped study name (``data/studies/NAME.toml``) or path of a study TOML file [-].
+
+    Returns
+    -------
+    PaperStudy
+        The study.
+    """
     path = resolve_named_file("studies", name_or_path, ".toml")
     data = read_toml(path)
     try:

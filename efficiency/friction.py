@@ -54,7 +54,13 @@ class FrictionModel(Protocol):
 
 @dataclass(frozen=True)
 class ConstantFriction:
-    """A constant friction coefficient μ [-] at every contact point."""
+    """A constant friction coefficient μ at every contact point.
+
+    Parameters
+    ----------
+    mu : float
+        The friction coefficient [-].
+    """
 
     mu: float
 
@@ -69,8 +75,18 @@ class ConstantFriction:
 class PublishedFriction:
     """A published friction formula (``xu2007``, ``benedict_kelley``, ``iso14179``) from :mod:`surrogate.published`.
 
-    ISO/TR 14179-2 takes the lubricant factor X_L of ``oil_type`` (:data:`efficiency.iso14179.LUBRICANT_FACTOR`);
-    None: the ``oil_type`` the lubricant file declares, else ``mineral``."""
+    Parameters
+    ----------
+    name : str
+        The formula [-].
+    lubricant : str or Lubricant
+        Lubricant for the inlet viscosity [-].
+    e_reduced : float
+        Reduced modulus E' for the load per length [Pa].
+    oil_type : str, optional
+        Oil type of ISO/TR 14179-2's lubricant factor X_L (:data:`efficiency.iso14179.LUBRICANT_FACTOR`); None: the
+        ``oil_type`` the lubricant file declares, else ``mineral`` [-].
+    """
 
     name: str
     lubricant: Any
@@ -114,6 +130,15 @@ class EhlFriction:
     the face, equal up to round-off) are solved once, at the first of them. Points whose solve does not converge
     raise :class:`ehl_dataset.validation.SolverError` (no silent numbers).
     After a call, ``last_stats()`` gives the number of solves and their time.
+
+    Parameters
+    ----------
+    lubricant : str or Lubricant
+        The lubricant [-].
+    level : str
+        Accuracy level of the solves [-].
+    effects : str
+        Effect plan: ``auto`` or ``full`` [-].
     """
 
     lubricant: Any
@@ -152,8 +177,13 @@ class EhlFriction:
         return mu_unique[inverse.reshape(-1)].reshape(shape)
 
     def last_stats(self) -> dict:
-        """``ehl_solves`` (distinct points solved), ``ehl_points``, ``ehl_iterations``, ``ehl_time_s`` of the last
-        call."""
+        """What the last call did.
+
+        Returns
+        -------
+        dict
+            ``ehl_solves`` (distinct points solved), ``ehl_points``, ``ehl_iterations`` and ``ehl_time_s`` [s].
+        """
         return dict(self._stats)
 
 
@@ -218,6 +248,19 @@ class EhlGridFriction:
 
     It needs the mesh (it works in roll distance): :func:`efficiency.power_loss.mesh_power_loss` binds it through
     :meth:`for_mesh`. Oil temperature and roughness must be the same at every point (they are in a gear mesh).
+
+    Parameters
+    ----------
+    lubricant : str or Lubricant
+        The lubricant [-].
+    level : str
+        Accuracy level of the solves [-].
+    effects : str or Effects
+        Effect plan of the solves [-].
+    roll_nodes : int
+        Chebyshev–Lobatto nodes in ln SR per side of the pitch point [-].
+    load_nodes : int
+        Nodes in p_h [-].
     """
 
     lubricant: Any
@@ -232,6 +275,13 @@ class EhlGridFriction:
         _check_effects(self.effects)
 
     def describe(self) -> str:
+        """One line naming the model for reports.
+
+        Returns
+        -------
+        str
+            Level, effects and grid size.
+        """
         return (f"EHL solver level={self.level} effects={_effects_name(self.effects)} on a grid of "
                 f"{self.roll_nodes} (ln SR) x {self.load_nodes} (p_h) nodes per side of the pitch point")
 
@@ -241,6 +291,24 @@ class EhlGridFriction:
 
     def for_mesh(self, mesh, loaded: np.ndarray, material1: Material = STEEL,
                  material2: Material = STEEL) -> "_BoundGrid":
+        """The model bound to one mesh: solves its grid and interpolates at the mesh's loaded points.
+
+        Parameters
+        ----------
+        mesh : MeshCycleResult
+            The loaded mesh [-].
+        loaded : ndarray of bool
+            Loaded points of the mesh [-].
+        material1 : Material
+            Material of gear 1 [-].
+        material2 : Material
+            Material of gear 2 [-].
+
+        Returns
+        -------
+        callable
+            μ(p_h, r_eq, u_r, sr, temperature, rq1, rq2) at the mesh's loaded points.
+        """
         return _BoundGrid(self, mesh, np.asarray(loaded, dtype=bool))
 
 
@@ -332,10 +400,28 @@ class _BoundGrid:
 
 @dataclass(frozen=True)
 class PathOfContact:
-    """Kinematics along the path of contact as functions of the roll distance s [m] (from the mesh's own
-    in-contact points; ρ1n, ρ2n, u_r and u_s are linear in s, so linear interpolation and fits are exact).
+    """Kinematics along the path of contact as functions of the roll distance s (from the mesh's own in-contact points).
 
-    u_s = k (s − s_p), u_r = u_p + m (s − s_p); ``pitch`` s_p where u_s = 0."""
+    ρ1n, ρ2n, u_r and u_s are linear in s, so linear interpolation and fits are exact: u_s = k (s − s_p),
+    u_r = u_p + m (s − s_p), with the pitch point s_p where u_s = 0.
+
+    Parameters
+    ----------
+    s : ndarray
+        Roll distances of the in-contact points, ascending [m].
+    rho1 : ndarray
+        Normal radius of curvature of gear 1 at ``s`` [m].
+    rho2 : ndarray
+        Normal radius of curvature of gear 2 at ``s`` [m].
+    pitch : float
+        Pitch point s_p [m].
+    k : float
+        Slope of u_s in s [1/s].
+    u_p : float
+        Rolling velocity at the pitch point [m/s].
+    m : float
+        Slope of u_r in s [1/s].
+    """
 
     s: np.ndarray
     rho1: np.ndarray
@@ -347,6 +433,18 @@ class PathOfContact:
 
     @classmethod
     def of(cls, kin) -> "PathOfContact":
+        """The path of contact of a mesh's kinematics.
+
+        Parameters
+        ----------
+        kin : MeshKinematics
+            The kinematics [-].
+
+        Returns
+        -------
+        PathOfContact
+            The linear fits and interpolation nodes.
+        """
         ic = kin.in_contact
         order = np.argsort(kin.roll[ic])
         s = kin.roll[ic][order]
@@ -357,18 +455,68 @@ class PathOfContact:
                    float(m * pitch + c), float(m))
 
     def r_eq(self, s):
+        """Equivalent normal radius ρ1n ρ2n/(ρ1n + ρ2n) at roll distance ``s``.
+
+        Parameters
+        ----------
+        s : array_like
+            Roll distance [m].
+
+        Returns
+        -------
+        ndarray
+            r_eq [m].
+        """
         r1, r2 = np.interp(s, self.s, self.rho1), np.interp(s, self.s, self.rho2)
         return r1 * r2 / (r1 + r2)
 
     def u_r(self, s):
+        """Rolling velocity at roll distance ``s``.
+
+        Parameters
+        ----------
+        s : array_like
+            Roll distance [m].
+
+        Returns
+        -------
+        ndarray
+            u_r [m/s].
+        """
         return self.u_p + self.m * (np.asarray(s) - self.pitch)
 
     def sr(self, s):
+        """Slide-to-roll ratio |u_s|/u_r at roll distance ``s``.
+
+        Parameters
+        ----------
+        s : array_like
+            Roll distance [m].
+
+        Returns
+        -------
+        ndarray
+            SR [-].
+        """
         return np.abs(self.k * (np.asarray(s) - self.pitch)) / self.u_r(s)
 
     def roll_at(self, sr, side: float) -> np.ndarray:
-        """s at slide-to-roll ratio ``sr`` on the recess (side = +1, s > s_p) or approach (−1) side: from
-        SR (u_p + m t) = ±k t, t = s − s_p."""
+        """Roll distance at slide-to-roll ratio ``sr`` on one side of the pitch point.
+
+        From SR (u_p + m t) = ±k t, t = s − s_p.
+
+        Parameters
+        ----------
+        sr : array_like
+            Slide-to-roll ratio [-].
+        side : float
+            +1 for the recess side (s > s_p), −1 for the approach side [-].
+
+        Returns
+        -------
+        ndarray
+            s [m].
+        """
         sr = np.asarray(sr, dtype=float)
         t = sr * self.u_p / (side * abs(self.k) - sr * self.m)
         return self.pitch + t
@@ -377,7 +525,7 @@ class PathOfContact:
 # ---------------------------------------------------------------------- one constructor from a spec string
 def friction_from_spec(spec: str, lubricant="atf", *, clip_to_fitted_ranges: bool = True,
                        oil_type: str | None = None) -> Callable:
-    """A friction model from its short specification (the ``--friction`` option):
+    """A friction model from its short specification (the ``--friction`` option).
 
     * ``constant:0.05`` → :class:`ConstantFriction`;
     * ``xu2007``, ``benedict_kelley``, ``iso14179[:OIL_TYPE]`` → :class:`PublishedFriction` with ``lubricant``
@@ -389,6 +537,22 @@ def friction_from_spec(spec: str, lubricant="atf", *, clip_to_fitted_ranges: boo
       :class:`surrogate.evaluate.FrictionSurrogate` (with its own lubricant), its inputs clipped to the fitted
       ranges unless ``clip_to_fitted_ranges`` is False (gear contacts leave the factorial's ranges; Eq. 9 must not
       extrapolate).
+
+    Parameters
+    ----------
+    spec : str
+        The specification, one of the forms above [-].
+    lubricant : str or Path or Lubricant
+        Lubricant of the published formulas and the EHL models (shipped name, TOML path or object) [-].
+    clip_to_fitted_ranges : bool
+        Clip a surrogate's inputs to its fitted ranges [-].
+    oil_type : str, optional
+        Oil type of ISO/TR 14179-2's lubricant factor X_L [-].
+
+    Returns
+    -------
+    callable
+        μ(p_h, r_eq, u_r, sr, temperature, rq1, rq2) in SI, vectorised.
     """
     if not isinstance(spec, str) or not spec.strip():
         raise InputError("friction", spec, SPEC_FORMS)
@@ -447,10 +611,24 @@ def _ehl_from_spec(spec: str, kind: str, rest: str, lubricant) -> Callable:
 
 
 def describe_friction(friction, short: bool = False) -> str:
-    """One line naming a friction model for reports: the model's own ``describe()`` if it has one; a published
-    formula with its lubricant, a coefficient-file surrogate with its path. ``short``: the form a power-loss result
-    records (:attr:`~efficiency.power_loss.PowerLossResult.friction_model`): without the lubricant and the path
-    (a surrogate by its class name)."""
+    """One line naming a friction model for reports.
+
+    The model's own ``describe()`` if it has one; a published formula with its lubricant, a coefficient-file surrogate
+    with its path.
+
+    Parameters
+    ----------
+    friction : callable
+        The friction model [-].
+    short : bool
+        The form a power-loss result records (:attr:`~efficiency.power_loss.PowerLossResult.friction_model`): without
+        the lubricant and the path, a surrogate by its class name [-].
+
+    Returns
+    -------
+    str
+        The description.
+    """
     if hasattr(friction, "describe"):
         return str(friction.describe())
     if isinstance(friction, ConstantFriction):

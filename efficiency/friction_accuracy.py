@@ -28,10 +28,29 @@ from .power_loss import mesh_power_loss
 # ---------------------------------------------------------------------- comparison on one mesh
 @dataclass(frozen=True)
 class FrictionModelRow:
-    """One friction model on one loaded mesh: mean power loss P [W], η [-], load-weighted mean μ over the cycle,
-    ``rel_error`` (P − P_ref)/P_ref against the reference model (NaN for the reference itself or when it failed),
-    ``wall_time_s`` of the loss evaluation (friction model included), EHL solves if any, and ``error`` (empty
-    unless the model raised)."""
+    """One friction model on one loaded mesh.
+
+    Parameters
+    ----------
+    name : str
+        Name of the model [-].
+    description : str
+        One-line description (:func:`efficiency.friction.describe_friction`) [-].
+    power_loss_w : float
+        Mean power loss P [W].
+    efficiency : float
+        Mechanical efficiency η [-].
+    mu_mean : float
+        Load-weighted mean μ over the cycle [-].
+    rel_error : float
+        (P − P_ref)/P_ref against the reference model; NaN for the reference itself or when it failed [-].
+    wall_time_s : float
+        Time of the loss evaluation, friction model included [s].
+    ehl_solves : int
+        EHL solves the model made, if any [-].
+    error : str
+        Empty unless the model raised [-].
+    """
 
     name: str
     description: str
@@ -44,11 +63,31 @@ class FrictionModelRow:
     error: str = ""
 
     def to_dict(self) -> dict:
+        """The row as a JSON-serialisable dict (unit-suffixed keys as the fields).
+
+        Returns
+        -------
+        dict
+            Field names to values.
+        """
         return dict(self.__dict__)
 
 
 def load_weighted_mu(result, mesh) -> float:
-    """Σ μ W / Σ W over the loaded points of the cycle."""
+    """Load-weighted mean friction coefficient Σ μ W / Σ W over the loaded points of the cycle.
+
+    Parameters
+    ----------
+    result : PowerLossResult
+        The power loss with its μ per point [-].
+    mesh : MeshCycleResult
+        The loaded mesh [-].
+
+    Returns
+    -------
+    float
+        The mean μ [-].
+    """
     loaded = mesh.loads > 0.0
     return float(np.sum(result.mu[loaded] * mesh.loads[loaded]) / np.sum(mesh.loads[loaded]))
 
@@ -56,10 +95,35 @@ def load_weighted_mu(result, mesh) -> float:
 def compare_friction_models(mesh, models: Mapping[str, Callable], temperature: float, rq1: float, rq2: float,
                             reference: str, material1: Material = STEEL, material2: Material = STEEL
                             ) -> list[FrictionModelRow]:
-    """P with each model on the same loaded mesh, its error against ``models[reference]`` and its wall time.
+    """Power loss with each friction model on the same loaded mesh, its error against ``models[reference]`` and its
+    wall time.
 
-    ``temperature`` [K], ``rq1``, ``rq2`` [m]. A model that raises :class:`SolverError` or :class:`InputError`
-    gets a row with NaN numbers and the message (never a silent number).
+    A model that raises :class:`SolverError` or :class:`InputError` gets a row with NaN numbers and the message (never
+    a silent number).
+
+    Parameters
+    ----------
+    mesh : MeshCycleResult
+        The loaded mesh [-].
+    models : Mapping of str to callable
+        Friction models by name [-].
+    temperature : float
+        Oil inlet temperature [K].
+    rq1 : float
+        RMS roughness of gear 1's flanks [m].
+    rq2 : float
+        RMS roughness of gear 2's flanks [m].
+    reference : str
+        Name of the reference model in ``models`` [-].
+    material1 : Material
+        Material of gear 1 [-].
+    material2 : Material
+        Material of gear 2 [-].
+
+    Returns
+    -------
+    list of FrictionModelRow
+        One row per model, in the order of ``models``.
     """
     if reference not in models:
         raise InputError("reference", reference, f"one of {list(models)}")
@@ -88,11 +152,34 @@ def compare_friction_models(mesh, models: Mapping[str, Callable], temperature: f
 # ---------------------------------------------------------------------- the pitch point
 def pitch_point_behaviour(friction: Callable, p_h: float, r_eq: float, u_r: float, temperature: float, rq1: float,
                           rq2: float, sr_values=(0.0, 1e-4, 1e-3, 1e-2, 0.05)) -> dict:
-    """μ of a pointwise friction model as SR → 0 at fixed p_h [Pa], r_eq [m], u_r [m/s], temperature [K],
-    roughness [m], and the friction power per unit normal load μ |u_s| = μ SR u_r [W/N] that it implies.
+    """μ of a pointwise friction model as SR → 0 at a fixed contact, and the friction power per unit normal load
+    μ |u_s| = μ SR u_r that it implies.
 
-    Returns ``sr``, ``mu``, ``power_per_load_w_per_n`` (arrays over ``sr_values``) and ``finite`` (μ finite and
-    ≥ 0 everywhere)."""
+    Parameters
+    ----------
+    friction : callable
+        μ(p_h, r_eq, u_r, sr, temperature, rq1, rq2) in SI [-].
+    p_h : float
+        Hertz pressure [Pa].
+    r_eq : float
+        Equivalent radius of curvature [m].
+    u_r : float
+        Rolling velocity [m/s].
+    temperature : float
+        Oil inlet temperature [K].
+    rq1 : float
+        RMS roughness of surface 1 [m].
+    rq2 : float
+        RMS roughness of surface 2 [m].
+    sr_values : sequence of float
+        Slide-to-roll ratios evaluated [-].
+
+    Returns
+    -------
+    dict
+        ``sr`` [-], ``mu`` [-], ``power_per_load_w_per_n`` [W/N] (arrays over ``sr_values``) and ``finite`` (μ finite
+        and ≥ 0 everywhere).
+    """
     sr = np.asarray(sr_values, dtype=float)
     n = sr.size
     mu = np.asarray(friction(np.full(n, p_h), np.full(n, r_eq), np.full(n, u_r), sr, np.full(n, temperature),
@@ -102,7 +189,22 @@ def pitch_point_behaviour(friction: Callable, p_h: float, r_eq: float, u_r: floa
 
 
 def pitch_region_share(result, mesh, sr_max: float = 0.02) -> float:
-    """Share of the cycle's friction energy dissipated at points with SR ≤ ``sr_max`` (the pitch-point region)."""
+    """Share of the cycle's friction energy dissipated at points with SR ≤ ``sr_max`` (the pitch-point region).
+
+    Parameters
+    ----------
+    result : PowerLossResult
+        The power loss with μ and SR per point [-].
+    mesh : MeshCycleResult
+        The loaded mesh [-].
+    sr_max : float
+        Largest slide-to-roll ratio of the region [-].
+
+    Returns
+    -------
+    float
+        The share, between 0 and 1 [-].
+    """
     loaded = mesh.loads > 0.0
     dissipation = np.where(loaded, np.nan_to_num(result.mu) * mesh.loads * np.abs(mesh.kinematics.u_s), 0.0)
     total = dissipation.sum()

@@ -32,14 +32,40 @@ PAPER_CLEARANCE_COEFFICIENT = 0.25  # dedendum − addendum in units of m_n (the
 
 
 def involute(alpha):
-    """Involute function inv α = tan α − α [rad]."""
+    """Involute function inv α = tan α − α.
+
+    Parameters
+    ----------
+    alpha : float or array_like
+        Angle α [rad].
+
+    Returns
+    -------
+    float or ndarray
+        inv α [rad].
+    """
     return np.tan(alpha) - alpha
 
 
 def inverse_involute(value, iterations: int = 40):
     """Angle α in [0, π/2) with inv α = ``value`` (Newton on tan α − α, converged to machine precision).
 
-    Raises :class:`InputError` for negative or non-finite values.
+    Parameters
+    ----------
+    value : float or array_like
+        inv α, ≥ 0 [rad].
+    iterations : int
+        Maximum Newton iterations [-].
+
+    Returns
+    -------
+    float or ndarray
+        α [rad].
+
+    Raises
+    ------
+    InputError
+        For negative or non-finite values.
     """
     inv = np.asarray(value, dtype=float)
     if not np.all(np.isfinite(inv)) or np.any(inv < 0):
@@ -80,31 +106,54 @@ def _pair(values):
 class GearPair:
     """An external involute helical gear pair (ISO 21771), SI units, angles in radians.
 
+    Scalar fields give one design; array fields (broadcast together) give a vectorised set of designs, as the design
+    space uses them.
+
     Parameters
     ----------
-    z1, z2 : numbers of teeth (≥ 5)
-    normal_module : m_n [m]
-    normal_pressure_angle : α_n [rad], in (0, 45°)
-    helix_angle : β [rad], in [0, 45°) (0 = spur; the hand is irrelevant for the pair geometry)
-    face_width : b [m] (common face width)
-    x1, x2 : profile shift coefficients [-]
-    addendum_coefficient : h_aP* of the basic rack (tip of the gear above the reference line, in m_n)
-    dedendum_coefficient : h_fP* (root below the reference line, in m_n)
-    root_fillet_coefficient : ρ_fP* (generating rack tip radius = gear root fillet radius, in m_n)
-    center_distance : operating centre distance a [m]; ``None`` gives the zero-backlash centre distance of the
-        nominal (un-thinned) teeth, inv α_wt = inv α_t + 2 tan α_n (x1 + x2)/(z1 + z2). After construction the
-        field always holds the operating value.
-    thickness_allowance1, thickness_allowance2 : normal tooth-thickness allowances A_sn [m] ≥ 0 by which the
-        teeth are made thinner than the nominal s_n = m_n(π/2 + 2 x tan α_n) to give backlash. Taken off the flanks
-        only (finishing by shaving or grinding): the root diameter stays that of the nominal generating shift.
-    tip_reduction : apply the tip (addendum) reduction k m_n with k = x1 + x2 − (a − a0)/m_n when k > 0
-        (ISO 21771 §5.4), which keeps the standard root clearance of shifted gears.
-    tip_diameters : explicit tip diameters (d_a1, d_a2) [m] overriding the basic-rack values (real gears).
-    root_diameters_given : explicit root diameters (d_f1, d_f2) [m] overriding the basic-rack values (manufacturing
-        data: the root of the real gear; used by the root clearance and the tooth compliance).
-    normal_thicknesses_given : explicit normal tooth thicknesses on the reference circle (s_n1, s_n2) [m]
-        (manufacturing data); they set the thickness allowances A_sn = m_n(π/2 + 2 x tan α_n) − s_n (negative for
-        teeth thicker than nominal) and replace ``thickness_allowance1/2``.
+    z1 : int or array_like
+        Number of teeth of gear 1 (the driver), ≥ 5 [-].
+    z2 : int or array_like
+        Number of teeth of gear 2, ≥ 5 [-].
+    normal_module : float or array_like
+        Normal module m_n [m].
+    normal_pressure_angle : float or array_like
+        Normal pressure angle α_n, in (0, 45°) [rad].
+    helix_angle : float or array_like
+        Helix angle β, in [0, 45°); 0 is a spur pair, the hand is irrelevant for the pair geometry [rad].
+    face_width : float or array_like
+        Common face width b [m].
+    x1 : float or array_like
+        Profile shift coefficient of gear 1 [-].
+    x2 : float or array_like
+        Profile shift coefficient of gear 2 [-].
+    addendum_coefficient : float
+        h_aP* of the basic rack: tip of the gear above the reference line, in units of m_n [-].
+    dedendum_coefficient : float
+        h_fP*: root below the reference line, in units of m_n [-].
+    root_fillet_coefficient : float
+        ρ_fP*: generating rack tip radius = gear root fillet radius, in units of m_n [-].
+    center_distance : float, optional
+        Operating centre distance a; None gives the zero-backlash centre distance of the nominal (un-thinned) teeth,
+        inv α_wt = inv α_t + 2 tan α_n (x1 + x2)/(z1 + z2). After construction the field holds the operating value [m].
+    thickness_allowance1 : float
+        Normal tooth-thickness allowance A_sn ≥ 0 of gear 1 by which the teeth are made thinner than the nominal
+        s_n = m_n(π/2 + 2 x tan α_n) to give backlash; taken off the flanks only (finishing by shaving or grinding),
+        so the root diameter stays that of the nominal generating shift [m].
+    thickness_allowance2 : float
+        The same for gear 2 [m].
+    tip_reduction : bool
+        Apply the tip (addendum) reduction k m_n with k = x1 + x2 − (a − a0)/m_n when k > 0 (ISO 21771 §5.4), which
+        keeps the standard root clearance of shifted gears [-].
+    tip_diameters : tuple of float, optional
+        Explicit tip diameters (d_a1, d_a2) overriding the basic-rack values (real gears) [m].
+    root_diameters_given : tuple of float, optional
+        Explicit root diameters (d_f1, d_f2) overriding the basic-rack values (manufacturing data: the root of the
+        real gear; used by the root clearance and the tooth compliance) [m].
+    normal_thicknesses_given : tuple of float, optional
+        Explicit normal tooth thicknesses (s_n1, s_n2) on the reference circle (manufacturing data); they set the
+        thickness allowances A_sn = m_n(π/2 + 2 x tan α_n) − s_n (negative for teeth thicker than nominal) and replace
+        ``thickness_allowance1/2`` [m].
     """
 
     z1: int
@@ -183,10 +232,32 @@ class GearPair:
                    root_fillet_coefficient: float = 0.25, thickness_allowance: float = 0.0) -> "GearPair":
         """The paper's identical-gear 1:1 design at the standard centre distance (Li & Kahraman 2009 §3).
 
-        m_n = a cos Ψ / N; addendum (Λ_wd − 0.25)/2 · m_n; dedendum = addendum + 0.25 m_n.
-        ``thickness_allowance`` [m] thins each gear's teeth (normal) to give backlash; the paper does not state
-        how its backlash arises, see docs/gear_geometry.md. ``root_fillet_coefficient`` (not given in the paper)
-        is the generating rack tip radius in m_n.
+        m_n = a cos Ψ / N; addendum (Λ_wd − 0.25)/2 · m_n; dedendum = addendum + 0.25 m_n. The paper does not state how
+        its backlash arises (docs/gear_geometry.md).
+
+        Parameters
+        ----------
+        teeth : int or array_like
+            Number of teeth N of each gear [-].
+        normal_pressure_angle : float or array_like
+            Normal pressure angle Φ [rad].
+        helix_angle : float or array_like
+            Helix angle Ψ [rad].
+        working_depth : float or array_like
+            Working depth Λ_wd in units of m_n [-].
+        center_distance : float
+            Centre distance a [m].
+        face_width : float
+            Face width b [m].
+        root_fillet_coefficient : float
+            Generating rack tip radius in units of m_n (not given in the paper) [-].
+        thickness_allowance : float
+            Normal thickness allowance by which each gear's teeth are thinned to give backlash [m].
+
+        Returns
+        -------
+        GearPair
+            The design (vectorised when the inputs are arrays).
         """
         _validate("teeth", teeth, 5, 10000)
         _validate("working_depth", working_depth, 0.25, 10.0, low_inclusive=False)
@@ -475,9 +546,21 @@ class GearPair:
         return _pair(s / c for s in self.normal_thicknesses)
 
     def transverse_thickness_at(self, radius, gear: int):
-        """Transverse tooth thickness (arc) at ``radius`` on the involute of gear 1 or 2 [m].
+        """Transverse tooth thickness (arc) at ``radius`` on the involute of gear 1 or 2.
 
-        s_y = d_y (s_t/d + inv α_t − inv α_y), cos α_y = r_b / r_y (ISO 21771 Eq. for tooth thickness).
+        s_y = d_y (s_t/d + inv α_t − inv α_y), cos α_y = r_b / r_y (ISO 21771).
+
+        Parameters
+        ----------
+        radius : float or array_like
+            Radius on the involute, ≥ the base radius [m].
+        gear : int
+            1 or 2 [-].
+
+        Returns
+        -------
+        float or ndarray
+            s_y [m].
         """
         i = _gear_index(gear)
         r = self.reference_radii[i]
@@ -523,7 +606,13 @@ class GearPair:
         return _pair((a - ra1 - rf2, a - ra2 - rf1))
 
     def summary(self) -> dict:
-        """Main results as a flat dict of SI floats with unit-suffixed keys (scalar pairs only)."""
+        """Main results of a scalar pair as a flat dict.
+
+        Returns
+        -------
+        dict
+            SI floats with unit-suffixed keys (``center_distance_m``, ``tip_diameter_m``, ...).
+        """
         def f(v):
             return float(v)
 

@@ -39,7 +39,18 @@ WALTHER_C = 0.7
 
 
 def lubricant_factor(oil_type: str) -> float:
-    """X_L of an oil type (a key of :data:`LUBRICANT_FACTOR`)."""
+    """Lubricant factor X_L of ISO/TR 14179-2 for an oil type.
+
+    Parameters
+    ----------
+    oil_type : str
+        A key of :data:`LUBRICANT_FACTOR` [-].
+
+    Returns
+    -------
+    float
+        X_L [-].
+    """
     key = str(oil_type).lower()
     if key not in LUBRICANT_FACTOR:
         raise InputError("oil_type", oil_type, " | ".join(LUBRICANT_FACTOR))
@@ -48,8 +59,23 @@ def lubricant_factor(oil_type: str) -> float:
 
 @dataclass(frozen=True)
 class SimpleOil:
-    """An oil defined by ν40, ν100 [m²/s], the density at 15 °C [kg/m³], its thermal expansion coefficient
-    [1/K] (ρ = ρ15 (1 + α_T (T − 15 °C)), GEARpie's law; default −6e-4 1/K) and its base-oil type."""
+    """An oil defined by its viscosities at 40 and 100 °C, its density at 15 °C and its thermal expansion.
+
+    ρ = ρ15 (1 + α_T (T − 15 °C)) (GEARpie's law).
+
+    Parameters
+    ----------
+    nu40 : float
+        Kinematic viscosity at 40 °C [m²/s].
+    nu100 : float
+        Kinematic viscosity at 100 °C [m²/s].
+    density15 : float
+        Density at 15 °C [kg/m³].
+    oil_type : str
+        Base-oil type, a key of :data:`LUBRICANT_FACTOR` [-].
+    expansion : float
+        Thermal expansion coefficient α_T [1/K].
+    """
 
     nu40: float
     nu100: float
@@ -68,12 +94,38 @@ class SimpleOil:
 
     @classmethod
     def from_walther(cls, a: float, b: float, **kwargs) -> "SimpleOil":
-        """From Walther constants log10 log10(ν[cSt] + 0.7) = a − b log10(T[K])."""
+        """An oil from Walther constants, log10 log10(ν + 0.7) = a − b log10 T with ν in cSt and T in K.
+
+        Parameters
+        ----------
+        a : float
+            Walther constant a [-].
+        b : float
+            Walther constant b [-].
+        **kwargs
+            Other fields of :class:`SimpleOil` [-].
+
+        Returns
+        -------
+        SimpleOil
+            The oil.
+        """
         nus = [(10 ** (10 ** (a - b * math.log10(t))) - WALTHER_C) * 1e-6 for t in (313.15, 373.15)]
         return cls(nu40=nus[0], nu100=nus[1], **kwargs)
 
     def kinematic_viscosity(self, temperature: float) -> float:
-        """ν [m²/s] at ``temperature`` [K] on the Walther line through ν40 and ν100."""
+        """Kinematic viscosity on the Walther line through ν40 and ν100.
+
+        Parameters
+        ----------
+        temperature : float
+            Temperature [K].
+
+        Returns
+        -------
+        float
+            ν [m²/s].
+        """
         check_range("temperature", temperature, 200.0, 600.0, unit="K")
         t40, t100 = math.log10(313.15), math.log10(373.15)
         y40 = math.log10(math.log10(self.nu40 * 1e6 + WALTHER_C))
@@ -83,11 +135,33 @@ class SimpleOil:
         return (10 ** (10**y) - WALTHER_C) * 1e-6
 
     def density(self, temperature: float) -> float:
-        """ρ [kg/m³] at ``temperature`` [K]."""
+        """Density at a temperature.
+
+        Parameters
+        ----------
+        temperature : float
+            Temperature [K].
+
+        Returns
+        -------
+        float
+            ρ [kg/m³].
+        """
         return self.density15 * (1.0 + self.expansion * (temperature - 288.15))
 
     def dynamic_viscosity(self, temperature: float) -> float:
-        """η = ν ρ [Pa·s] at ``temperature`` [K]."""
+        """Dynamic viscosity η = ν ρ.
+
+        Parameters
+        ----------
+        temperature : float
+            Temperature [K].
+
+        Returns
+        -------
+        float
+            η [Pa·s].
+        """
         return self.kinematic_viscosity(temperature) * self.density(temperature)
 
     @property
@@ -97,10 +171,29 @@ class SimpleOil:
 
 def iso_14179_2_mesh(pair, torque: float, speed_rad_s: float, eta_oil: float, ra1: float, ra2: float,
                      x_l: float) -> dict:
-    """μ_mz, H_V and P_VZP of ISO/TR 14179-2 for ``pair`` at input torque [N·m] and speed ω1 [rad/s] of gear 1,
-    oil dynamic viscosity η [Pa·s] at the oil temperature, arithmetic roughness Ra1, Ra2 [m] and X_L.
+    """Mean tooth friction coefficient μ_mz, loss factor H_V and mesh power loss P_VZP of ISO/TR 14179-2 for ``pair``.
 
-    Returns a dict in SI with the formula's inputs in its own units (keys with unit suffixes).
+    Parameters
+    ----------
+    pair : GearPair
+        A scalar pair [-].
+    torque : float
+        Input torque on gear 1 [N·m].
+    speed_rad_s : float
+        Angular speed ω1 of gear 1 [rad/s].
+    eta_oil : float
+        Oil dynamic viscosity at the oil temperature [Pa s].
+    ra1 : float
+        Arithmetic mean roughness Ra of gear 1 [m].
+    ra2 : float
+        Arithmetic mean roughness Ra of gear 2 [m].
+    x_l : float
+        Lubricant factor X_L [-].
+
+    Returns
+    -------
+    dict
+        μ_mz, H_V and P_VZP in SI, with the formula's inputs in its own units (keys with unit suffixes).
     """
     from .loss_factor import ohlendorf_loss_factor
 

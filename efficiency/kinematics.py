@@ -39,26 +39,50 @@ from ehl_dataset.validation import InputError, check_range
 
 @dataclass(frozen=True)
 class MeshKinematics:
-    """Contact points of a helical pair over one mesh cycle (shapes (M, K, S) unless stated).
+    """Contact points of a helical pair over one mesh cycle (point arrays of shape (M, K, S) unless stated).
 
-    Attributes
+    Parameters
     ----------
-    mesh_angle : (M,) rotation φ_m of gear 1 from the reference position [rad]
-    roll_offset : (M,) roll distance r_b1 φ_m [m]
-    z : (S,) slice centres across the face [m]
-    slice_width : Δz = b / S [m]
-    roll : s, roll distance of the contact point from T1 along the transverse line of action [m]
-    in_contact : True where the point lies on the active path of contact
-    rho1, rho2 : transverse radii of curvature of gears 1 and 2 [m]
-    rho1_normal, rho2_normal : normal radii of curvature ρ_i / cos ψ_b [m]
-    r_eq_normal : equivalent normal radius ρ1n ρ2n / (ρ1n + ρ2n) [m]
-    u_r : rolling velocity (ω1 ρ1 + ω2 ρ2)/2 [m/s]
-    u_s : sliding velocity ω1 ρ1 − ω2 ρ2 [m/s] (positive where gear 1's surface is faster: approach side negative)
-    omega1, omega2 : angular speeds of gears 1 and 2 [rad/s]
-    base_helix_angle : ψ_b [rad]
-    line_of_action_length : T1T2 [m]
-    contact_start, contact_end : active path of contact on the line of action, roll from T1 [m]
-    transverse_base_pitch : p_bt [m]
+    mesh_angle : ndarray
+        (M,) rotation φ_m of gear 1 from the reference position [rad].
+    roll_offset : ndarray
+        (M,) roll distance r_b1 φ_m [m].
+    z : ndarray
+        (S,) slice centres across the face [m].
+    slice_width : float
+        Δz = b / S [m].
+    roll : ndarray
+        Roll distance s of the contact point from T1 along the transverse line of action [m].
+    in_contact : ndarray of bool
+        True where the point lies on the active path of contact [-].
+    rho1 : ndarray
+        Transverse radius of curvature of gear 1 [m].
+    rho2 : ndarray
+        Transverse radius of curvature of gear 2 [m].
+    rho1_normal : ndarray
+        Normal radius of curvature of gear 1, ρ1 / cos ψ_b [m].
+    rho2_normal : ndarray
+        Normal radius of curvature of gear 2, ρ2 / cos ψ_b [m].
+    r_eq_normal : ndarray
+        Equivalent normal radius ρ1n ρ2n / (ρ1n + ρ2n) [m].
+    u_r : ndarray
+        Rolling velocity (ω1 ρ1 + ω2 ρ2)/2 [m/s].
+    u_s : ndarray
+        Sliding velocity ω1 ρ1 − ω2 ρ2, positive where gear 1's surface is faster (the approach side is negative) [m/s].
+    omega1 : float
+        Angular speed of gear 1 [rad/s].
+    omega2 : float
+        Angular speed of gear 2 [rad/s].
+    base_helix_angle : float
+        ψ_b [rad].
+    line_of_action_length : float
+        T1T2 [m].
+    contact_start : float
+        Start of the active path of contact, roll from T1 [m].
+    contact_end : float
+        End of the active path of contact, roll from T1 [m].
+    transverse_base_pitch : float
+        p_bt [m].
     """
 
     mesh_angle: np.ndarray
@@ -88,30 +112,65 @@ class MeshKinematics:
         return self.roll.shape
 
     def contact_count_per_slice(self) -> np.ndarray:
-        """(M, S) number of tooth pairs in contact in each slice; its mean over a cycle → ε_α."""
+        """Number of tooth pairs in contact in each slice; its mean over a cycle → ε_α.
+
+        Returns
+        -------
+        ndarray
+            Shape (M, S) [-].
+        """
         return self.in_contact.sum(axis=1)
 
     def pairs_in_contact(self) -> np.ndarray:
-        """(M,) number of tooth pairs touching anywhere on the face; its mean over a cycle → ε_α + ε_β."""
+        """Number of tooth pairs touching anywhere on the face; its mean over a cycle → ε_α + ε_β.
+
+        Returns
+        -------
+        ndarray
+            Shape (M,) [-].
+        """
         return self.in_contact.any(axis=2).sum(axis=1)
 
 
 def contact_line_count(pair) -> int:
-    """K: number of contact lines that can touch during one mesh cycle, ⌈ε_α + ε_β⌉ + 1."""
+    """K: number of contact lines that can touch during one mesh cycle, ⌈ε_α + ε_β⌉ + 1.
+
+    Parameters
+    ----------
+    pair : GearPair
+        A scalar pair [-].
+
+    Returns
+    -------
+    int
+        K [-].
+    """
     return int(math.ceil(float(pair.total_contact_ratio))) + 1
 
 
 def mesh_kinematics(pair, positions: int = 24, slices: int = 30, speed_rad_s: float = 1.0,
                     phase: float = 0.5) -> MeshKinematics:
-    """Contact points, radii and velocities of ``pair`` (an :class:`efficiency.geometry.GearPair`) over a mesh cycle.
+    """Contact points, radii of curvature and surface velocities of ``pair`` over one mesh cycle.
+
+    Gear 1 drives; contact runs from gear 1's root to its tip, the roll distance s increasing.
 
     Parameters
     ----------
-    pair : scalar GearPair (gear 1 drives; contact runs from gear 1's root to its tip, s increasing)
-    positions : M mesh positions per cycle (≥ 1)
-    slices : S slices across the face width (≥ 1)
-    speed_rad_s : angular speed ω1 of gear 1 [rad/s] (> 0)
-    phase : sample offset in units of the position step, φ_m = (m + phase) p_bt/(M r_b1), in [0, 1) (default ½)
+    pair : GearPair
+        A scalar pair [-].
+    positions : int
+        Number M of mesh positions per cycle, ≥ 1 [-].
+    slices : int
+        Number S of slices across the face width, ≥ 1 [-].
+    speed_rad_s : float
+        Angular speed ω1 of gear 1, > 0 [rad/s].
+    phase : float
+        Sample offset in units of the position step, φ_m = (m + phase) p_bt/(M r_b1), in [0, 1) [-].
+
+    Returns
+    -------
+    MeshKinematics
+        Point arrays of shape (M, K, S) with K from :func:`contact_line_count`.
     """
     if np.ndim(pair.normal_module) or np.ndim(pair.z1) or np.ndim(pair.helix_angle):
         raise InputError("pair", "vectorised GearPair", "a single design")
@@ -161,7 +220,7 @@ def mesh_kinematics(pair, positions: int = 24, slices: int = 30, speed_rad_s: fl
 
 
 def sampling_error_estimate(pair, positions: int, slices: int) -> float:
-    """Relative bias estimate of the midpoint rule over a mesh cycle from the load-sharing breakpoints [-].
+    """Relative bias estimate of the midpoint rule over a mesh cycle from the load-sharing breakpoints.
 
     A slice centre z_j enters the path of contact at the cycle fraction f_e,j = frac((b − z_j) tan ψ_b / p_bt) and
     leaves it at f_x,j = frac(ε_α + (b − z_j) tan ψ_b / p_bt); at each such breakpoint the load sharing (and the
@@ -169,6 +228,20 @@ def sampling_error_estimate(pair, positions: int, slices: int) -> float:
     half a cell otherwise. Breakpoints shared by n slices (all S of them for spur gears) jump together, so the
     estimate is Σ_i (n_i/S)² d(f_i M) / M with d the distance to the nearest integer; scattered single-slice
     breakpoints (helical gears) weigh 1/S² each because their errors largely cancel.
+
+    Parameters
+    ----------
+    pair : GearPair
+        A scalar pair [-].
+    positions : int
+        Number M of mesh positions [-].
+    slices : int
+        Number S of slices [-].
+
+    Returns
+    -------
+    float
+        The estimated relative error [-].
     """
     if np.ndim(pair.normal_module) or np.ndim(pair.z1) or np.ndim(pair.helix_angle):
         raise InputError("pair", "vectorised GearPair", "a single design")
@@ -184,12 +257,30 @@ def sampling_error_estimate(pair, positions: int, slices: int) -> float:
 
 
 def choose_positions(pair, slices: int, minimum: int = 24, maximum: int = 48, tolerance: float = 1e-3) -> int:
-    """Number of mesh positions M: the smallest M in [minimum, maximum] whose :func:`sampling_error_estimate` is
-    ≤ ``tolerance`` (default 0.1 %), else the M with the smallest estimate.
+    """Number of mesh positions M: the smallest M in [minimum, maximum] whose :func:`sampling_error_estimate` is within
+    ``tolerance``, else the M with the smallest estimate.
 
     Measured effect (docs/gear_validation.md): spur FZG C gets M = 32, where its rigid-uniform loss factor is
     within 0.02 % of Ohlendorf's exact H_V (24 positions: +1.6 %); helical FZG pairs keep M = 24 (within 0.1 % of
     400 positions).
+
+    Parameters
+    ----------
+    pair : GearPair
+        A scalar pair [-].
+    slices : int
+        Number S of slices across the face width [-].
+    minimum : int
+        Smallest M tried [-].
+    maximum : int
+        Largest M tried [-].
+    tolerance : float
+        Accepted relative sampling error [-].
+
+    Returns
+    -------
+    int
+        M [-].
     """
     best, best_error = minimum, math.inf
     for m in range(minimum, maximum + 1):

@@ -30,18 +30,28 @@ from .compliance import weber_secant
 
 @dataclass(frozen=True)
 class ContactSolution:
-    """Solution of one contact problem.
+    """Solution of one contact problem (:func:`solve_contact`).
 
-    Attributes
+    Parameters
     ----------
-    loads : (Q,) normal loads F_q ≥ 0 [N]
-    approach : rigid-body normal approach δ [m] (normal displacement of gear 1 relative to gear 2)
-    gaps : (Q,) loaded separations g = C F + ε − δ [m] (0 where loaded)
-    stiffness : tangent normal mesh stiffness dW/dδ = 1ᵀ C_AA⁻¹ 1 on the active set [N/m]
-    iterations : active-set iterations used
-    converged : all conditions hold within the tolerances
-    equilibrium_residual : |Σ F − W| / W
-    max_penetration : max(−g, 0) [m]; min_load : min F [N]
+    loads : ndarray
+        (Q,) normal loads F_q ≥ 0 [N].
+    approach : float
+        Rigid-body normal approach δ (normal displacement of gear 1 relative to gear 2) [m].
+    gaps : ndarray
+        (Q,) loaded separations g = C F + ε − δ, 0 where loaded [m].
+    stiffness : float
+        Tangent normal mesh stiffness dW/dδ = 1ᵀ C_AA⁻¹ 1 on the active set [N/m].
+    iterations : int
+        Active-set iterations used [-].
+    converged : bool
+        All conditions hold within the tolerances [-].
+    equilibrium_residual : float
+        |Σ F − W| / W [-].
+    max_penetration : float
+        max(−g, 0) [m].
+    min_load : float
+        min F [N].
     """
 
     loads: np.ndarray
@@ -58,16 +68,34 @@ class ContactSolution:
 def solve_contact(compliance: np.ndarray, separation: np.ndarray, total_load: float,
                   initial_loads: np.ndarray | None = None, gap_tolerance: float = 1e-12,
                   max_iterations: int | None = None, bulk_iterations: int = 8) -> ContactSolution:
-    """Solve the complementarity problem above for the loads (primal active set, warm-startable).
+    """Solve the complementarity problem of the module docstring for the loads (primal active set, warm-startable).
 
     Parameters
     ----------
-    compliance : (Q, Q) symmetric positive definite compliance matrix [m/N]
-    separation : (Q,) unloaded normal separations ε [m]
-    total_load : W > 0 [N]
-    initial_loads : optional (Q,) warm start (≥ 0; rescaled to sum W); default: all load on the closest point
-    gap_tolerance : accepted penetration [m] (default 1e-12 m, far below any modification or deflection)
-    bulk_iterations : number of initial iterations that add all penetrating points at once
+    compliance : ndarray
+        (Q, Q) symmetric positive definite compliance matrix [m/N].
+    separation : ndarray
+        (Q,) unloaded normal separations ε [m].
+    total_load : float
+        Total normal load W, > 0 [N].
+    initial_loads : ndarray, optional
+        (Q,) warm start, ≥ 0 (rescaled to sum W); default all load on the closest point [N].
+    gap_tolerance : float
+        Accepted penetration, far below any modification or deflection [m].
+    max_iterations : int, optional
+        Largest number of active-set iterations; default from the problem size [-].
+    bulk_iterations : int
+        Number of initial iterations that add all penetrating points at once [-].
+
+    Returns
+    -------
+    ContactSolution
+        Loads, approach, gaps, stiffness and convergence record.
+
+    Raises
+    ------
+    SolverError
+        When no point can carry the load or the compliance is not positive definite on the active set.
     """
     total_load = check_range("total_load", total_load, 0.0, 1e12, low_inclusive=False, unit="N")
     c = np.asarray(compliance, dtype=float)
@@ -105,13 +133,38 @@ def solve_contact_weber(tooth: np.ndarray, separation: np.ndarray, total_load: f
                         tolerance: float = 1e-4, max_rounds: int = 50, gap_tolerance: float = 1e-12):
     """The complementarity problem with Weber's load-dependent contact compliance, by secant iteration.
 
-    The compliance is ``tooth + diag(scale · c_H(w))`` with c_H [m²/N] from
-    :func:`efficiency.compliance.weber_secant` (``contact_terms`` from :func:`efficiency.compliance.weber_log_terms`)
-    and the load per unit contact-line length w = scale · F; ``scale`` = cos ψ_b / Δz [1/m] converts both.
-    ``load_per_length`` holds the starting w of every point [N/m] (e.g. the previous position's). Each round
-    solves the linear problem (warm-started) and updates c_H at the new loads (unloaded points keep theirs) until
-    the largest relative change of c_H at a loaded point is ≤ ``tolerance``; c_H varies like ln w, so this
-    contracts fast (4–6 rounds). Returns (ContactSolution, load_per_length, change).
+    The compliance is ``tooth + diag(scale · c_H(w))`` with c_H from :func:`efficiency.compliance.weber_secant` and
+    the load per unit contact-line length w = scale · F. Each round solves the linear problem (warm-started) and
+    updates c_H at the new loads (unloaded points keep theirs) until the largest relative change of c_H at a loaded
+    point is within ``tolerance``; c_H varies like ln w, so this contracts fast (4–6 rounds).
+
+    Parameters
+    ----------
+    tooth : ndarray
+        (Q, Q) tooth (bending, shear, foundation) compliance matrix [m/N].
+    separation : ndarray
+        (Q,) unloaded normal separations ε [m].
+    total_load : float
+        Total normal load W [N].
+    contact_terms : tuple
+        Load-independent parts of Weber's compliance (:func:`efficiency.compliance.weber_log_terms`) [-].
+    scale : float
+        cos ψ_b / Δz, converting a point load to a load per contact-line length [1/m].
+    load_per_length : ndarray
+        Starting w of every point, e.g. the previous position's [N/m].
+    initial_loads : ndarray, optional
+        (Q,) warm start of the loads [N].
+    tolerance : float
+        Accepted relative change of c_H between rounds [-].
+    max_rounds : int
+        Largest number of secant rounds [-].
+    gap_tolerance : float
+        Accepted penetration [m].
+
+    Returns
+    -------
+    tuple
+        (ContactSolution, final load per length w [N/m], last relative change of c_H [-]).
     """
     total_load = check_range("total_load", total_load, 0.0, 1e12, low_inclusive=False, unit="N")
     eps = np.ascontiguousarray(separation, dtype=float)

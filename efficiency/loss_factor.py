@@ -21,7 +21,18 @@ import numpy as np
 
 
 def ohlendorf_loss_factor(pair) -> float:
-    """Ohlendorf's H_V [-] (module docstring) of a scalar :class:`efficiency.geometry.GearPair`."""
+    """Ohlendorf's gear loss factor H_V of a pair (formula in the module docstring).
+
+    Parameters
+    ----------
+    pair : GearPair
+        A scalar pair [-].
+
+    Returns
+    -------
+    float
+        H_V [-].
+    """
     z1, z2 = float(pair.z1), float(pair.z2)
     u = z2 / z1
     p_bt = float(pair.transverse_base_pitch)
@@ -32,11 +43,22 @@ def ohlendorf_loss_factor(pair) -> float:
 
 
 def wimmer_loss_factor(pair, positions: int = 4000) -> float:
-    """Wimmer's H_VL [-] for rigid teeth and uniform load per unit contact-line length (module docstring).
+    """Wimmer's H_VL for rigid teeth and uniform load per unit contact-line length (module docstring).
 
     P_in = T ω1 = F_bn cos β_b r_b1 ω1 and v_g = (ω1 + ω2)|s − s_C| with ω2 = ω1 r_b1/r_b2, so
-    H_VL = (1 + r_b1/r_b2)/(r_b1 cos β_b) · mean_φ [Σ_lines ∫|s − s_C| dz / Σ_lines Δz]. ``positions`` midpoint
-    samples of the cycle (4000: converged to ≈1e-6).
+    H_VL = (1 + r_b1/r_b2)/(r_b1 cos β_b) · mean_φ (Σ_lines ∫|s − s_C| dz / Σ_lines Δz).
+
+    Parameters
+    ----------
+    pair : GearPair
+        A scalar pair [-].
+    positions : int
+        Midpoint samples of the cycle (4000: converged to ≈1e-6) [-].
+
+    Returns
+    -------
+    float
+        H_VL [-].
     """
     start, end = float(pair.contact_start), float(pair.contact_end)
     s_c = float(pair.pitch_point)

@@ -54,22 +54,38 @@ stiff."""
 class MeshOptions:
     """Resolution and model options of a mesh-cycle evaluation.
 
-    positions : M mesh positions per cycle; None (default) = :func:`efficiency.kinematics.choose_positions` (24–48,
-        chosen so that the load-sharing breakpoints fall on sampling-cell boundaries); slices : S slices
-    outputs : subset of {"te", "stresses"} to compute (loads, radii, velocities are always returned)
-    coupling_length_factor : face-coupling length ℓ of the tooth part (bending, shear, compression) in units of the
-        whole tooth depth (default 0.6, :data:`DEFAULT_COUPLING_LENGTH_FACTOR`)
-    foundation_coupling_length_factor : the same for the gear-body (foundation) part; None = as the tooth part
-    load_sharing : "elastic" (the complementarity problem with the compliance model, default), "rigid-uniform"
-        (rigid teeth: uniform load per unit length over every contact line in contact, the assumption of Wimmer's
-        H_VL and, for spur gears, of Ohlendorf's H_V; unmodified flanks only) or "independent-slices" (elastic with
-        no face coupling: every slice carries load in proportion to its own stiffness, the thin-slice model of
-        ISO 6336-1 and of Marques et al., Mech. Mach. Theory 161 (2021) 104320)
-    hub_ratio : r_f / r_int for the foundation compliance (default 2)
-    material1, material2 : gear materials (default steel, E = 206 GPa, ν = 0.3)
-    root_stress_factors : (Y_F Y_S Y_β of gear 1, of gear 2); None → from :mod:`efficiency.iso6336`
-    contact_model : "weber" (load-dependent Hertz approach, iterated) or "linear" (Yang & Lin constant)
-    contact_tolerance : relative change of the secant contact compliance at which the "weber" iteration stops
+    Parameters
+    ----------
+    positions : int, optional
+        Number M of mesh positions per cycle; None: :func:`efficiency.kinematics.choose_positions` (24–48, chosen so
+        that the load-sharing breakpoints fall on sampling-cell boundaries) [-].
+    slices : int
+        Number S of slices across the face width [-].
+    outputs : frozenset of str
+        Subset of {"te", "stresses"} to compute; loads, radii and velocities are always returned [-].
+    coupling_length_factor : float
+        Face-coupling length ℓ of the tooth part (bending, shear, compression) in units of the whole tooth depth
+        (:data:`DEFAULT_COUPLING_LENGTH_FACTOR`) [-].
+    foundation_coupling_length_factor : float, optional
+        The same for the gear-body (foundation) part; None: as the tooth part [-].
+    load_sharing : str
+        ``elastic`` (the complementarity problem with the compliance model), ``rigid-uniform`` (rigid teeth: uniform
+        load per unit length over every contact line in contact, the assumption of Wimmer's H_VL and, for spur gears,
+        of Ohlendorf's H_V; unmodified flanks only) or ``independent-slices`` (elastic with no face coupling: every
+        slice carries load in proportion to its own stiffness, the thin-slice model of ISO 6336-1 and of Marques et
+        al., Mech. Mach. Theory 161 (2021) 104320) [-].
+    hub_ratio : float
+        r_f / r_int of the foundation compliance [-].
+    material1 : Material
+        Material of gear 1 [-].
+    material2 : Material
+        Material of gear 2 [-].
+    root_stress_factors : tuple of float, optional
+        (Y_F Y_S Y_β of gear 1, of gear 2); None: from :mod:`efficiency.iso6336` [-].
+    contact_model : str
+        ``weber`` (load-dependent Hertz approach, iterated) or ``linear`` (Yang & Lin constant) [-].
+    contact_tolerance : float
+        Relative change of the secant contact compliance at which the ``weber`` iteration stops [-].
     """
 
     positions: int | None = None
@@ -112,25 +128,54 @@ class MeshOptions:
 class MeshCycleResult:
     """Loaded mesh over one cycle. Point arrays have shape (M positions, K contact lines, S slices).
 
-    Attributes
+    Parameters
     ----------
-    kinematics : contact points, radii [m], rolling and sliding velocities [m/s] (see MeshKinematics)
-    torque : input torque T_in on gear 1 [N·m]; normal_load : W = T_in/(r_b1 cos ψ_b) [N]
-    loads : normal load per contact point [N] (0 where not loaded or not in contact)
-    load_per_length : normal load per unit length of contact line w = F cos ψ_b / Δz [N/m]
-    approach : (M,) rigid-body normal approach δ [m]
-    transmission_error : (M,) loaded TE at the base circle δ/cos ψ_b [m] (None unless "te" asked)
-    te_peak_to_peak : max − min of the TE over the cycle [m] (None unless "te")
-    mesh_stiffness : (M,) tangent mesh stiffness dF_bt/dTE [N/m]
-    mesh_stiffness_per_width : mean mesh stiffness / b [N/m²] (1 N/(mm·µm) = 1e9 N/m²)
-    contact_pressure : Hertz pressure per point [Pa] (None unless "stresses")
-    sigma_c_max : max Hertz pressure [Pa]; sigma_c_position : its mesh position index m
-    root_stress : (2, M, K, S) root bending stress of gears 1 and 2 [Pa] (None unless "stresses")
-    sigma_b_max : max root stress [Pa]; sigma_b_position : (gear 1 or 2, m)
-    converged : every position's complementarity problem converged
-    iterations : (M,) active-set iterations; equilibrium_residual : max |ΣF − W|/W
-    max_penetration : max penetration over all positions [m]; min_load : min load [N]
-    wall_time_s : evaluation time [s]
+    kinematics : MeshKinematics
+        Contact points, radii of curvature and surface velocities [-].
+    torque : float
+        Input torque T_in on gear 1 [N·m].
+    normal_load : float
+        Total normal load W = T_in/(r_b1 cos ψ_b) [N].
+    loads : ndarray
+        Normal load per contact point, 0 where not loaded or not in contact [N].
+    load_per_length : ndarray
+        Normal load per unit length of contact line w = F cos ψ_b / Δz [N/m].
+    approach : ndarray
+        (M,) rigid-body normal approach δ [m].
+    mesh_stiffness : ndarray
+        (M,) tangent mesh stiffness dF_bt/dTE [N/m].
+    mesh_stiffness_per_width : float
+        Mean mesh stiffness per face width; 1 N/(mm·µm) = 1e9 N/m² [N/m²].
+    converged : bool
+        Every position's complementarity problem converged [-].
+    iterations : ndarray
+        (M,) active-set iterations [-].
+    equilibrium_residual : float
+        max |ΣF − W|/W over the positions [-].
+    max_penetration : float
+        Largest penetration over all positions [m].
+    min_load : float
+        Smallest load of a loaded point [N].
+    wall_time_s : float
+        Evaluation time [s].
+    transmission_error : ndarray, optional
+        (M,) loaded transmission error at the base circle δ/cos ψ_b; None unless "te" was asked [m].
+    te_peak_to_peak : float, optional
+        max − min of the transmission error over the cycle; None unless "te" [m].
+    contact_pressure : ndarray, optional
+        Hertz pressure per point; None unless "stresses" [Pa].
+    sigma_c_max : float, optional
+        Largest Hertz pressure σ_c [Pa].
+    sigma_c_position : int, optional
+        Mesh position index m of ``sigma_c_max`` [-].
+    root_stress : ndarray, optional
+        (2, M, K, S) root bending stress of gears 1 and 2; None unless "stresses" [Pa].
+    sigma_b_max : float, optional
+        Largest root stress σ_b [Pa].
+    sigma_b_position : tuple of int, optional
+        (gear 1 or 2, mesh position m) of ``sigma_b_max`` [-].
+    extra : dict
+        Further records of the evaluation (contact-model iterations, options used) [-].
     """
 
     kinematics: MeshKinematics
@@ -164,18 +209,47 @@ class MeshCycleResult:
         return float(self.friction_power(1.0).mean() / (self.torque * self.kinematics.omega1))
 
     def friction_power(self, mu) -> np.ndarray:
-        """(M,) instantaneous friction power loss P(φ_m) = Σ_q μ_q W_q |u_s,q| [W] (paper Eq. 11a) for a friction
-        coefficient ``mu`` (scalar or array broadcastable to the point arrays)."""
+        """Instantaneous friction power loss P(φ_m) = Σ_q μ_q W_q |u_s,q| (paper Eq. 11a).
+
+        Parameters
+        ----------
+        mu : float or array_like
+            Friction coefficient, scalar or broadcastable to the point arrays [-].
+
+        Returns
+        -------
+        ndarray
+            (M,) P(φ_m) [W].
+        """
         return np.sum(np.asarray(mu) * self.loads * np.abs(self.kinematics.u_s), axis=(1, 2))
 
 
 def evaluate_mesh(pair, torque: float, speed_rad_s: float = 1.0, modifications: Modifications | None = None,
                   options: MeshOptions | None = None) -> MeshCycleResult:
-    """Load distribution, TE and stresses of ``pair`` at input torque ``torque`` [N·m] over one mesh cycle.
+    """Load distribution, transmission error and stresses of ``pair`` over one mesh cycle (quasi-static).
 
-    ``speed_rad_s`` (ω1 [rad/s]) only scales the velocities in the kinematics (the model is quasi-static).
-    ``modifications`` None = unmodified flanks; ``options`` None = :class:`MeshOptions` defaults.
-    Raises :class:`InputError` for bad input; non-convergence is reported in ``converged`` and the residuals.
+    Parameters
+    ----------
+    pair : GearPair
+        A scalar pair [-].
+    torque : float
+        Input torque T_in on gear 1 [N·m].
+    speed_rad_s : float
+        Input angular speed ω1; it only scales the velocities of the kinematics [rad/s].
+    modifications : Modifications, optional
+        Flank modifications and errors; None: unmodified flanks [-].
+    options : MeshOptions, optional
+        Resolution and models; None: the :class:`MeshOptions` defaults [-].
+
+    Returns
+    -------
+    MeshCycleResult
+        The loaded mesh; non-convergence is reported in ``converged`` and the residuals.
+
+    Raises
+    ------
+    InputError
+        For bad input.
     """
     started = time.perf_counter()
     modifications = Modifications() if modifications is None else modifications
@@ -366,9 +440,21 @@ def _tooth_matrix(t1, t2, f1, f2, j_idx, k_idx, g_t, g_f):
 
 
 def single_pair_outer_points(pair) -> tuple[float, float]:
-    """Roll distances (from each gear's own tangent point) of the outer point of single pair contact of gears 1
-    and 2 in the transverse section [m]: ρ_D1 = T1A + p_bt, ρ_D2 = T1T2 − (T1E − p_bt), limited to the active
-    profile (for ε_α < 1 the tip)."""
+    """Roll distances of the outer point of single pair contact of gears 1 and 2 in the transverse section.
+
+    ρ_D1 = T1A + p_bt, ρ_D2 = T1T2 − (T1E − p_bt), each from the gear's own tangent point, limited to the active
+    profile (for ε_α < 1 the tip).
+
+    Parameters
+    ----------
+    pair : GearPair
+        A scalar pair [-].
+
+    Returns
+    -------
+    tuple of float
+        (ρ_D1, ρ_D2) [m].
+    """
     start, end = float(pair.contact_start), float(pair.contact_end)
     p_bt = float(pair.transverse_base_pitch)
     length = float(pair.line_of_action_length)
@@ -378,7 +464,24 @@ def single_pair_outer_points(pair) -> tuple[float, float]:
 
 
 def root_stress(pair, kin: MeshKinematics, loads: np.ndarray, factors: tuple[float, float] | None = None):
-    """(2, M, K, S) root bending stress of gears 1 and 2 [Pa] (definition in the module docstring)."""
+    """Root bending stress of gears 1 and 2 at every contact point (definition in the module docstring).
+
+    Parameters
+    ----------
+    pair : GearPair
+        A scalar pair [-].
+    kin : MeshKinematics
+        The mesh kinematics [-].
+    loads : ndarray
+        Normal load per contact point [N].
+    factors : tuple of float, optional
+        (Y_F Y_S Y_β of gear 1, of gear 2); None: :func:`iso_root_stress_factors` [-].
+
+    Returns
+    -------
+    ndarray
+        Shape (2, M, K, S) [Pa].
+    """
     if factors is None:
         factors = iso_root_stress_factors(pair)
     cos_b = math.cos(kin.base_helix_angle)
@@ -399,7 +502,18 @@ def root_stress(pair, kin: MeshKinematics, loads: np.ndarray, factors: tuple[flo
 
 
 def iso_root_stress_factors(pair) -> tuple[float, float]:
-    """Y_F Y_S Y_β of gears 1 and 2, ISO 6336-3:2006 method B (:mod:`efficiency.iso6336`)."""
+    """Y_F Y_S Y_β of gears 1 and 2, ISO 6336-3:2006 method B (:mod:`efficiency.iso6336`).
+
+    Parameters
+    ----------
+    pair : GearPair
+        A scalar pair [-].
+
+    Returns
+    -------
+    tuple of float
+        (Y_F Y_S Y_β of gear 1, of gear 2) [-].
+    """
     from . import iso6336
 
     y_beta = float(iso6336.helix_angle_factor_bending(pair.overlap_ratio, pair.helix_angle))

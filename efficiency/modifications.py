@@ -32,16 +32,26 @@ _MAX_MODIFICATION = 1e-3  # [m] 1 mm: beyond any flank modification
 
 @dataclass(frozen=True)
 class Modifications:
-    """Flank modifications and errors of the pair [m] (per gear; see the module docstring for the shapes).
+    """Flank modifications and errors of the pair (per gear; the module docstring gives their shapes).
 
-    Attributes
+    Parameters
     ----------
-    profile_crown : M_P of each gear [m] (the paper's design study: 15 µm)
-    lead_crown : M_L of each gear [m] (the paper's design study: 12 µm)
-    lead_slope : f_Hβ of the pair across the face width [m] (misalignment); may be negative
-    tip_relief : (C_a1, C_a2) [m]; tip_relief_length : (L_a1, L_a2) roll lengths [m]
-    root_relief : (C_f1, C_f2) [m]; root_relief_length : (L_f1, L_f2) roll lengths [m]
-    spacing_errors : normal offsets per contact line k = 0, 1, … of the analysed window [m]
+    profile_crown : float
+        Profile crown M_P of each gear (the paper's design study: 15 µm) [m].
+    lead_crown : float
+        Lead crown M_L of each gear (the paper's design study: 12 µm) [m].
+    lead_slope : float
+        Lead slope f_Hβ of the pair across the face width (misalignment); may be negative [m].
+    tip_relief : tuple of float
+        Tip relief amounts (C_a1, C_a2) [m].
+    tip_relief_length : tuple of float
+        Tip relief roll lengths (L_a1, L_a2) [m].
+    root_relief : tuple of float
+        Root relief amounts (C_f1, C_f2) [m].
+    root_relief_length : tuple of float
+        Root relief roll lengths (L_f1, L_f2) [m].
+    spacing_errors : tuple of float
+        Normal offsets per contact line k = 0, 1, … of the analysed window [m].
     """
 
     profile_crown: float = 0.0
@@ -68,17 +78,44 @@ class Modifications:
 
     @classmethod
     def paper(cls) -> "Modifications":
-        """The paper's design-study modifications: M_P = 15 µm, M_L = 12 µm (Li & Kahraman 2009 §3)."""
+        """The paper's design-study modifications: M_P = 15 µm, M_L = 12 µm (Li & Kahraman 2009 §3).
+
+        Returns
+        -------
+        Modifications
+            Those modifications.
+        """
         return cls(profile_crown=15e-6, lead_crown=12e-6)
 
 
 def normal_separation(mods: Modifications, roll, z, line_index, contact_start: float, contact_end: float,
                       face_width: float):
-    """Unloaded normal separation ε [m] at contact points (broadcasting arrays).
+    """Unloaded normal separation ε at contact points (broadcasting arrays).
 
-    ``roll`` s from T1 [m]; ``z`` across the face [m]; ``line_index`` the contact line k of each point.
     Gear 1's tip is at s = contact_end and its SAP at contact_start; gear 2's tip at contact_start and its SAP at
     contact_end.
+
+    Parameters
+    ----------
+    mods : Modifications
+        The modifications [-].
+    roll : array_like
+        Roll distance s from T1 [m].
+    z : array_like
+        Position across the face [m].
+    line_index : array_like
+        Contact line k of each point [-].
+    contact_start : float
+        Roll distance of the start of active contact [m].
+    contact_end : float
+        Roll distance of the end of active contact [m].
+    face_width : float
+        Face width b [m].
+
+    Returns
+    -------
+    ndarray
+        ε [m].
     """
     roll = np.asarray(roll, dtype=float)
     z = np.asarray(z, dtype=float)
@@ -126,8 +163,18 @@ def modifications_from_mapping(mapping: dict) -> Modifications:
     """Build :class:`Modifications` from a ``[modifications]`` TOML table in engineering units.
 
     Keys: profile_crown_um, lead_crown_um, lead_slope_um (numbers); tip_relief_um, tip_relief_length_mm,
-    root_relief_um, root_relief_length_mm (a number for both gears or a pair [gear 1, gear 2]);
-    spacing_errors_um (a list, one per contact line). Unknown keys are an error.
+    root_relief_um, root_relief_length_mm (a number for both gears or a pair gear 1, gear 2); spacing_errors_um (a
+    list, one per contact line). Unknown keys are an error.
+
+    Parameters
+    ----------
+    mapping : dict
+        The parsed table (µm and mm as the key names say) [-].
+
+    Returns
+    -------
+    Modifications
+        The modifications in SI.
     """
     kwargs = {}
     for key, value in mapping.items():

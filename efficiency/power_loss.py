@@ -33,12 +33,30 @@ from .friction import FrictionModel, describe_friction
 class PowerLossResult:
     """Friction power loss over a mesh cycle.
 
-    power_loss : mean mechanical power loss P [W]; power_loss_instant : (M,) P(φ_m) [W]
-    efficiency : mechanical efficiency η = 1 − P/(T_in ω_in) [-]; efficiency_instant : (M,) η(φ_m)
-    input_power : T_in ω_in [W]
-    mu : friction coefficient per contact point (shape of the mesh point arrays; NaN where not loaded)
-    p_h : Hertz pressure per point [Pa] (0 where not loaded); sr : |u_s|/u_r per point [-]
-    friction_model : a description of the model used; wall_time_s : evaluation time [s]
+    Parameters
+    ----------
+    power_loss : float
+        Mean mechanical power loss P [W].
+    power_loss_instant : ndarray
+        (M,) P(φ_m) [W].
+    efficiency : float
+        Mechanical efficiency η = 1 − P/(T_in ω_in) [-].
+    efficiency_instant : ndarray
+        (M,) η(φ_m) [-].
+    input_power : float
+        T_in ω_in [W].
+    mu : ndarray
+        Friction coefficient per contact point, NaN where not loaded [-].
+    p_h : ndarray
+        Hertz pressure per point, 0 where not loaded [Pa].
+    sr : ndarray
+        |u_s|/u_r per point [-].
+    friction_model : str
+        Description of the friction model used [-].
+    wall_time_s : float
+        Evaluation time [s].
+    extra : dict
+        Records of the friction model (solves, clipped inputs, ...) [-].
     """
 
     power_loss: float
@@ -55,9 +73,24 @@ class PowerLossResult:
 
 
 def contact_conditions(mesh, material1: Material = STEEL, material2: Material = STEEL) -> dict[str, np.ndarray]:
-    """Hertz pressure p_h [Pa], r_eq [m], u_r [m/s] and SR = |u_s|/u_r [-] at every point of a mesh cycle.
+    """Hertz pressure, equivalent radius, rolling velocity and slide-to-roll ratio at every point of a mesh cycle.
 
     Points that carry no load get p_h = 0 (they dissipate nothing).
+
+    Parameters
+    ----------
+    mesh : MeshCycleResult
+        The loaded mesh [-].
+    material1 : Material
+        Material of gear 1 [-].
+    material2 : Material
+        Material of gear 2 [-].
+
+    Returns
+    -------
+    dict of str to ndarray
+        ``p_h`` [Pa], ``r_eq`` [m], ``u_r`` [m/s], ``sr`` = |u_s|/u_r [-] and the boolean ``loaded``, shaped like the
+        point arrays.
     """
     kin = mesh.kinematics
     e_red = reduced_modulus(material1, material2)
@@ -73,8 +106,29 @@ def mesh_power_loss(mesh, friction: FrictionModel | Callable, temperature: float
                     material1: Material = STEEL, material2: Material = STEEL) -> PowerLossResult:
     """Mechanical power loss (paper Eq. 10–11) of a loaded mesh cycle with a friction model.
 
-    ``temperature`` [K] oil inlet temperature; ``rq1``, ``rq2`` [m] RMS roughness of the two flanks. The friction
-    model is called once, vectorised over all loaded points of all mesh positions.
+    The friction model is called once, vectorised over all loaded points of all mesh positions.
+
+    Parameters
+    ----------
+    mesh : MeshCycleResult
+        The loaded mesh (:func:`efficiency.mesh_cycle.evaluate_mesh`) [-].
+    friction : FrictionModel or callable
+        μ(p_h, r_eq, u_r, sr, temperature, rq1, rq2) in SI (:func:`efficiency.friction.friction_from_spec`) [-].
+    temperature : float
+        Oil inlet temperature [K].
+    rq1 : float
+        RMS roughness of gear 1's flanks [m].
+    rq2 : float
+        RMS roughness of gear 2's flanks [m].
+    material1 : Material
+        Material of gear 1 [-].
+    material2 : Material
+        Material of gear 2 [-].
+
+    Returns
+    -------
+    PowerLossResult
+        Mean and instantaneous loss and efficiency, μ, p_h and SR per point.
     """
     started = time.perf_counter()
     check_range("temperature", temperature, 0.0, 1000.0, low_inclusive=False, unit="K")
