@@ -5,8 +5,9 @@ The rendered public API is read from the ``::: module`` blocks of docs/reference
 library mkdocstrings renders with) and must have
 
 * a one-line summary;
-* a ``Parameters`` section naming every parameter of its signature (a class: of its constructor; ``self`` and
-  ``cls`` excepted; ``*args``/``**kwargs`` documented under that name) and no parameter the signature lacks;
+* a ``Parameters`` section naming every parameter of its signature (a class: of its constructor; ``self``, ``cls``
+  and private ``_names`` excepted; ``*args``/``**kwargs`` documented under that name) and no parameter the
+  signature lacks;
 * a unit in square brackets at the end of every parameter description, from the unit vocabulary below (``[-]`` for
   dimensionless and non-physical parameters: names, flags, paths, counts, options objects);
 * a ``Returns`` (or ``Yields``) section when the function returns a value.
@@ -33,20 +34,8 @@ PACKAGES = ("ehl_dataset", "surrogate", "efficiency", "workflows")
 
 # Modules rendered in the API reference whose docstrings are still to be converted to numpydoc with units.
 PENDING: set[str] = {
-    "efficiency.compliance",
-    "efficiency.design_io",
     "efficiency.feasibility",
-    "efficiency.friction",
-    "efficiency.friction_accuracy",
-    "efficiency.geometry",
-    "efficiency.iso14179",
     "efficiency.iso6336",
-    "efficiency.kinematics",
-    "efficiency.load_distribution",
-    "efficiency.loss_factor",
-    "efficiency.mesh_cycle",
-    "efficiency.modifications",
-    "efficiency.power_loss",
     "efficiency.studies",
     "efficiency.validity",
     "ehl_dataset.dataset.factorial",
@@ -130,7 +119,7 @@ def _returns_value(func: griffe.Function) -> bool:
 
 
 def _signature_parameters(obj: griffe.Object) -> list[griffe.Parameter]:
-    return [p for p in obj.parameters if p.name not in ("self", "cls")]
+    return [p for p in obj.parameters if p.name not in ("self", "cls") and not p.name.startswith("_")]
 
 
 def problems(obj: griffe.Object) -> list[str]:
@@ -138,7 +127,7 @@ def problems(obj: griffe.Object) -> list[str]:
     if obj.docstring is None or not obj.docstring.value.strip():
         return ["no docstring"]
     found = []
-    if re.search(r"\]\s?\[", obj.docstring.value):
+    if re.search(r"\]\s?\[", re.sub(r"(`+).*?\1", "", obj.docstring.value)):
         found.append("'] [' reads as a Markdown reference link (mkdocs --strict fails): reword")
     summary = obj.docstring.value.strip().splitlines()[0]
     if not summary.strip():
