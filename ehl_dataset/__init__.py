@@ -21,6 +21,9 @@ from .lazy import lazy_exports
 
 _LAZY = {
     "solve_contact": "ehl_dataset.solver",
+    "solve_problem": "ehl_dataset.solver",
+    "resolve_contact": "ehl_dataset.solvers.problem",
+    "ContactProblem": "ehl_dataset.solvers.problem",
     "SOLVER_VERSION": "ehl_dataset.solver",
     "ContactCase": "ehl_dataset.model.contact",
     "Material": "ehl_dataset.model.materials",

@@ -6,7 +6,8 @@
 * ``lubricant`` — :class:`~ehl_dataset.model.lubricant.Lubricant` (or a shipped name / TOML path).
 * ``level`` — accuracy level name (:mod:`ehl_dataset.solvers.levels`).
 * ``effects`` — ``"auto"`` (ask :func:`ehl_dataset.solvers.planner.plan_effects`), ``"isothermal"`` (the same
-  plan without the thermal correction), ``"full"`` or an :class:`~ehl_dataset.model.effects.Effects` used as given.
+  plan without the thermal correction), ``"full"``, ``"smooth"`` (steady smooth surfaces) or an
+  :class:`~ehl_dataset.model.effects.Effects` used as given.
 
 Smooth cases (no roughness effect, or S_c = 0) go to the steady solver (:mod:`ehl_dataset.solvers.steady`: a smooth
 contact under constant load and speed has a steady solution, which is what a transient run would settle to, so the
@@ -18,6 +19,11 @@ on (``effects="full"``): it is the package's one transient rough solver. ``model
 ``model="deterministic"`` ask for those models whatever the plan; the result's effects then record what that model
 simulates, with the planner's choice kept in the reasons (:func:`~ehl_dataset.solvers.planner.with_model`).
 
+The inputs are checked and resolved once, at this boundary: :func:`~ehl_dataset.solvers.problem.resolve_contact`
+builds a :class:`~ehl_dataset.solvers.problem.ContactProblem` (lubricant state, level of the registry, effect plan,
+route and options) and :func:`solve_problem` runs it without checking again; a caller that solves many variants of
+one problem may resolve once and call :func:`solve_problem` itself.
+
 Every dataset file records ``ehl_dataset.solver:solve_contact`` and imports it on resume, and the store compares
 :data:`SOLVER_VERSION` with the recorded one: both stay here whatever moves behind them.
 
@@ -27,20 +33,19 @@ non-converged result carries its residuals and a message.
 
 from __future__ import annotations
 
-from threadpoolctl import threadpool_limits
 
+from . import names
 from .model.contact import ContactCase
 from .model.effects import Effects
-from .model.lubricant import Lubricant, load_lubricant
-from .model.roughness import RoughnessProfile
-from .solvers.deterministic import DeterministicOptions, deterministic_options
-from .solvers.wide_contact import solve_deterministic_contact
+from .model.lubricant import Lubricant
+from .solvers.deterministic import DeterministicOptions
 from .solvers.homogenised import HomogenisedOptions, solve_homogenised
-from .solvers.levels import AccuracyLevel, get_level
-from .solvers.planner import resolve_effects, with_model, without_thermal
+from .solvers.levels import AccuracyLevel
+from .solvers.problem import ContactProblem, resolve_contact
 from .solvers.result import ContactResult
+from .solvers.threads import one_blas_thread
 from .solvers.steady import solve_steady
-from .validation import InputError, check_time_limit
+from .solvers.wide_contact import solve_deterministic_contact
 
 SOLVER_VERSION = "ehl-2026.11-15"
 """Version of the numerics behind :func:`solve_contact`. The dataset store records it and refuses to resume a file
@@ -49,7 +54,7 @@ numerics carry their own version (:data:`ehl_dataset.solvers.deterministic.MODEL
 use it: ``model="deterministic"`` or the ``reference`` level), so a change of that model alone bumps only it
 (det-2026.11-9: Courant 0.25; det-2026.11-11: the cancellation-free logarithmic face mean)."""
 
-MODELS = ("auto", "smooth", "homogenised", "deterministic")
+MODELS = names.MODELS
 """Contact models :func:`solve_contact` can be asked for: ``auto`` (the effect plan decides: steady smooth; for rough
 surfaces the steady homogenised model with the film-law closure where the contact is at least the planner's
 ``a_over_beta_homogenised`` correlation lengths wide, else the level's ``rough_model``: the same film-law model at
@@ -77,19 +82,7 @@ it), and extends the closure's measured range to wide contacts; ehl-2026.11-15 d
 (its grid-dependent μ, recorded in docs/transient_solver_record.md) and sends forced effects with ``transient`` on
 (``effects="full"``) on rough contacts to the deterministic solver at the level's grid rule."""
 
-__all__ = ["solve_contact", "checked_inputs", "SOLVER_VERSION", "MODELS"]
-
-
-def checked_inputs(case, lubricant) -> Lubricant:
-    """The lubricant of a solve (a shipped name or TOML path is loaded) after checking that ``case`` is a
-    :class:`ContactCase`; InputError otherwise."""
-    if not isinstance(case, ContactCase):
-        raise InputError("case", type(case).__name__, "a ContactCase")
-    if isinstance(lubricant, str):
-        lubricant = load_lubricant(lubricant)
-    if not isinstance(lubricant, Lubricant):
-        raise InputError("lubricant", type(lubricant).__name__, "a Lubricant, a shipped name or a TOML path")
-    return lubricant
+__all__ = ["solve_contact", "solve_problem", "resolve_contact", "SOLVER_VERSION", "MODELS"]
 
 
 def solve_contact(case: ContactCase, lubricant: Lubricant | str, level: str | AccuracyLevel = "standard",
@@ -97,70 +90,67 @@ def solve_contact(case: ContactCase, lubricant: Lubricant | str, level: str | Ac
                   model: str = "auto",
                   deterministic: DeterministicOptions | None = None,
                   homogenised: HomogenisedOptions | None = None, checkpoint=None) -> ContactResult:
-    """Solve one line contact; see the module docstring. Bad input raises :class:`InputError`.
+    """Solve one line contact: resolve the inputs once (:func:`~ehl_dataset.solvers.problem.resolve_contact`), then
+    run the solver the resolution chose (:func:`solve_problem`); see the module docstring.
 
-    ``time_limit_s``: wall-time budget [s] of a deterministic (rough, transient) solve; when it runs out the result is returned
-    ``converged=False`` with a message naming the step reached (a sweep is not held up by one pathological point;
-    the resumable pipeline can retry it). None: no limit. Steady smooth solves ignore it (they take < 1 s).
+    Parameters
+    ----------
+    case : ContactCase
+        Operating conditions [SI].
+    lubricant : Lubricant or str
+        The lubricant, or a shipped name or TOML path [-].
+    level : str or AccuracyLevel
+        Accuracy level (:data:`ehl_dataset.names.LEVELS`) [-].
+    effects : str or Effects
+        ``"auto"``, ``"isothermal"``, ``"full"``, ``"smooth"`` or an :class:`Effects` used as given [-].
+    roughness : RoughnessProfile or None
+        A profile (e.g. a measured trace from :func:`~ehl_dataset.model.roughness.load_profile`) whose shape both
+        surfaces take in rough runs, scaled to the case's Rq1 and Rq2; None uses the shipped synthetic baseline [m].
+    time_limit_s : float or None
+        Wall-time budget of a deterministic (rough, transient) solve; when it runs out the result is returned
+        ``converged=False`` with a message naming the step reached. None: no limit. Steady solves ignore it [s].
+    model : str
+        One of :data:`MODELS` [-].
+    deterministic : DeterministicOptions or None
+        Options of the deterministic model (None: those of the level,
+        :func:`~ehl_dataset.solvers.deterministic.deterministic_options`) [-].
+    homogenised : HomogenisedOptions or None
+        Closure options of the homogenised model (None: the defaults). Smooth surfaces (S_c = 0) asked for either
+        mixed model get the steady smooth solve, with the reason recorded [-].
+    checkpoint : object or None
+        For a resolved deterministic run only, where it saves its state and continues from it (e.g.
+        :class:`ehl_dataset.dataset.checkpoint.FileCheckpoint`; runs of hours at ``reference``); any other route
+        refuses it [-].
 
-    ``roughness``: a :class:`~ehl_dataset.model.roughness.RoughnessProfile` (e.g. a measured trace from
-    :func:`~ehl_dataset.model.roughness.load_profile`) whose shape both surfaces take in rough runs, scaled to the
-    case's Rq1 and Rq2; None uses the shipped synthetic baseline profile.
-
-    ``model``: one of :data:`MODELS`. ``deterministic``: the options of the deterministic model (None: those of the
-    level, :func:`~ehl_dataset.solvers.deterministic.deterministic_options`). ``homogenised``: the closure options of
-    the homogenised model (None: :class:`~ehl_dataset.solvers.homogenised.HomogenisedOptions` defaults). Smooth
-    surfaces (S_c = 0) asked for either mixed model get the steady smooth solve, with the reason recorded.
-
-    ``checkpoint``: for a resolved deterministic run only, where it saves its state and continues from it (e.g.
-    :class:`ehl_dataset.dataset.checkpoint.FileCheckpoint`; runs of hours at ``reference``); any other route
-    refuses it.
+    Returns
+    -------
+    ContactResult
+        The result; it says whether the solve converged. Bad input raises
+        :class:`~ehl_dataset.validation.InputError`.
     """
-    lubricant = checked_inputs(case, lubricant)
-    if roughness is not None and not isinstance(roughness, RoughnessProfile):
-        raise InputError("roughness", type(roughness).__name__, "a RoughnessProfile or None")
-    if model not in MODELS:
-        raise InputError("model", model, f"one of {list(MODELS)}")
-    if deterministic is not None and not isinstance(deterministic, DeterministicOptions):
-        raise InputError("deterministic", type(deterministic).__name__, "a DeterministicOptions or None")
-    if homogenised is not None and not isinstance(homogenised, HomogenisedOptions):
-        raise InputError("homogenised", type(homogenised).__name__, "a HomogenisedOptions or None")
-    time_limit_s = check_time_limit(time_limit_s)
-    state = lubricant.state(case.temperature)
-    lvl = get_level(level)
-    if model == "smooth":
-        effects = Effects.smooth_steady(forced="model=smooth")
-    plan = resolve_effects(effects, case, lubricant, lvl.name,
-                           roughness.correlation_length if roughness is not None else None)
-    if model in ("homogenised", "deterministic"):
-        plan = with_model(plan, model, case.s_c > 0.0)
+    return solve_problem(resolve_contact(case, lubricant, level, effects, roughness, time_limit_s, model,
+                                         deterministic, homogenised, checkpoint))
+
+
+def solve_problem(problem: ContactProblem) -> ContactResult:
+    """Run the solver a resolved problem's route names; nothing is checked again.
+
+    Parameters
+    ----------
+    problem : ContactProblem
+        Inputs resolved by :func:`~ehl_dataset.solvers.problem.resolve_contact` [-].
+
+    Returns
+    -------
+    ContactResult
+        The result of the steady smooth solver, the homogenised model or the deterministic model.
+    """
+    p = problem
     # one BLAS thread per solve: the dense solves are small, and workers run one case per core
-    with threadpool_limits(limits=1):
-        # a rough plan with the transient on (the reference level's rough model, or forced effects) runs the
-        # package's one transient rough solver: the deterministic model
-        deterministic_route = model == "deterministic" or (plan.roughness and plan.transient and case.s_c > 0.0
-                                                           and model == "auto")
-        if checkpoint is not None and not deterministic_route:
-            raise InputError("checkpoint", str(getattr(checkpoint, "path", checkpoint)),
-                             "None unless the deterministic model solves the contact (model='deterministic', the "
-                             "reference level's plan for a rough contact, or effects='full' on a rough contact)")
-        if model == "homogenised":
-            options = homogenised or HomogenisedOptions()
-            # the film-law closure has the smooth solver's thermal correction; the flow-factor closures have none
-            return solve_homogenised(case, state, lvl, plan if options.closure == "film_law"
-                                     else _isothermal(plan, "homogenised"), roughness, options)
-        if deterministic_route:
-            return solve_deterministic_contact(case, state, _isothermal(plan, "deterministic"),
-                                               deterministic or deterministic_options(lvl.name), roughness,
-                                               time_limit_s, lvl.name, checkpoint)
-        if plan.roughness and case.s_c > 0.0:  # the planner's homogenised choice
-            return solve_homogenised(case, state, lvl, plan, roughness, HomogenisedOptions(closure="film_law"))
-        return solve_steady(case, state, lvl, plan)
-
-
-def _isothermal(plan: Effects, solver: str) -> Effects:
-    """The plan a solver without a thermal model runs: ``thermal`` off, with the reason, if it was asked for."""
-    if not plan.thermal:
-        return plan
-    return without_thermal(plan, f"thermal correction requested but the {solver} solver has no thermal model: "
-                                 f"isothermal traction")
+    with one_blas_thread():
+        if p.route in ("homogenised", "film_law"):
+            return solve_homogenised(p.case, p.state, p.steady_level, p.plan, p.roughness, p.homogenised)
+        if p.route == "deterministic":
+            return solve_deterministic_contact(p.case, p.state, p.plan, p.deterministic, p.roughness, p.time_limit_s,
+                                               p.level.name, p.checkpoint)
+        return solve_steady(p.case, p.state, p.steady_level, p.plan)

@@ -1,7 +1,7 @@
 """The import structure of the package: no cycles, and every import goes down the stages and layers.
 
 Stages: ``ehl_dataset`` < ``surrogate`` < ``efficiency`` < ``workflows`` (a stage imports only from itself and the
-stages before it). Within ``ehl_dataset``: ``validation``, ``data_files`` and ``lazy`` (shared by every stage) <
+stages before it). Within ``ehl_dataset``: ``validation``, ``data_files``, ``lazy`` and ``names`` (shared by every stage) <
 ``model`` and ``discretisation`` < ``solvers`` and the entry ``solver`` < ``dataset`` < the package's own
 ``__init__`` (the lazy public API). docs/architecture.md explains the layout.
 
@@ -21,7 +21,7 @@ REPO = Path(__file__).resolve().parents[1]
 PACKAGES = ("ehl_dataset", "surrogate", "efficiency", "workflows")
 STAGE = {name: rank for rank, name in enumerate(PACKAGES)}
 EHL_LAYERS = {
-    "ehl_dataset.validation": 0, "ehl_dataset.data_files": 0, "ehl_dataset.lazy": 0,
+    "ehl_dataset.validation": 0, "ehl_dataset.data_files": 0, "ehl_dataset.lazy": 0, "ehl_dataset.names": 0,
     "ehl_dataset.model": 1, "ehl_dataset.discretisation": 1,
     "ehl_dataset.solvers": 2, "ehl_dataset.solver": 2,
     "ehl_dataset.dataset": 3,

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-import math
+from ehl_dataset.names import CLOSURES, CONTACT_EFFECT_PLANS, DEFAULT_CLOSURE, DEFAULT_LEVEL, LEVELS, MODELS
 
 
 def register(subparsers) -> None:
@@ -27,17 +27,17 @@ def register(subparsers) -> None:
     solve.add_argument("--lubricant", default="atf",
                        help="shipped lubricant name (atf, gear_oil_75w90, validation_barus, "
                             "validation_barus_incompressible, validation_roelands_huang) or a TOML file")
-    solve.add_argument("--level", default="standard", help="accuracy level: fast, standard, reference")
-    solve.add_argument("--effects", default="auto", choices=["auto", "isothermal", "full", "smooth"],
+    solve.add_argument("--level", default=DEFAULT_LEVEL, choices=LEVELS, help="accuracy level")
+    solve.add_argument("--effects", default="auto", choices=CONTACT_EFFECT_PLANS,
                        help="effect plan: auto (planner), isothermal (the planner's plan without the thermal "
                             "correction of the traction), full (everything), smooth (steady smooth solve, "
                             "isothermal)")
-    solve.add_argument("--model", default="auto", choices=["auto", "smooth", "homogenised", "deterministic"],
+    solve.add_argument("--model", default="auto", choices=MODELS,
                        help="contact model: auto (the effect plan decides), smooth (steady smooth surfaces), "
                             "homogenised (steady two-scale mixed model; a prototype, see "
                             "docs/homogenised_model.md), deterministic (the deterministic mixed reference solver; "
                             "slow: minutes per case)")
-    solve.add_argument("--closure", default="transverse", choices=["transverse", "isotropic", "film_law"],
+    solve.add_argument("--closure", default=DEFAULT_CLOSURE, choices=CLOSURES,
                        help="closure of the homogenised model: the flow factors transverse (1-D roughness, no side "
                             "leakage, as the paper's model) or isotropic (side leakage), or film_law (smooth "
                             "pressure, the measured film law of resolved rough contacts and the dry-contact table's "
@@ -56,21 +56,16 @@ def register(subparsers) -> None:
 
 
 def _solve(args) -> int:
+    """Resolve the command's inputs once (the case, range-checked; the lubricant, level, effect plan and route:
+    :func:`~ehl_dataset.solvers.problem.resolve_contact`), solve, and print the result's schema
+    (:meth:`~ehl_dataset.solvers.result.ContactResult.to_dict`) with the case's Hertzian quantities."""
     from ehl_dataset.model.contact import ContactCase
-    from ehl_dataset.model.effects import Effects
-    from ehl_dataset.model.lubricant import load_lubricant
-    from ehl_dataset.solver import solve_contact
-    from ehl_dataset.solvers.levels import get_level
-    from ehl_dataset.validation import check_finite
+    from ehl_dataset.solver import solve_problem
+    from ehl_dataset.solvers.homogenised import HomogenisedOptions
+    from ehl_dataset.solvers.problem import resolve_contact
 
-    for name in ("p_h_gpa", "r_eq_mm", "u_r", "sr", "temp_c", "rq1_um", "rq2_um"):
-        check_finite(name, getattr(args, name))
-    level = get_level(args.level)
-    lubricant = load_lubricant(args.lubricant)
     case = ContactCase.from_engineering(args.p_h_gpa, args.r_eq_mm, args.u_r, args.sr, args.temp_c,
                                         args.rq1_um, args.rq2_um)
-    lubricant.check_temperature(case.temperature)
-    effects = Effects.smooth_steady(forced="effects=smooth") if args.effects == "smooth" else args.effects
     roughness = None
     if args.roughness_file is not None:
         from ehl_dataset.model.roughness import load_profile
@@ -82,41 +77,13 @@ def _solve(args) -> int:
 
         overrides = {"wide": args.wide}
         if args.dx_um is not None:
-            check_finite("dx_um", args.dx_um)
             overrides["dx_m"] = args.dx_um * 1e-6
-        deterministic = deterministic_options(level.name, **overrides)
-    from ehl_dataset.solvers.homogenised import HomogenisedOptions
-
-    result = solve_contact(case, lubricant, level.name, effects, roughness, args.time_limit_s, model=args.model,
-                           deterministic=deterministic, homogenised=HomogenisedOptions(closure=args.closure))
-    payload = {
-        "mu": result.mu,
-        "mu_std": result.mu_std,
-        "mu_sem": result.mu_sem,
-        "h_min_m": result.h_min,
-        "h_central_m": result.h_central,
-        "p_max_pa": result.p_max,
-        "lambda_bar": result.lambda_bar if math.isfinite(result.lambda_bar) else None,
-        "asperity_load_share": result.asperity_load_share,
-        "converged": result.converged,
-        "iterations": result.iterations,
-        "wall_time_s": result.wall_time,
-        "level": result.level,
-        "effects": result.effects,
-        "residuals": result.residuals,
-        "message": result.message,
-        "load_per_length_n_m": case.load_per_length,
-        "half_width_m": case.half_width,
-        "lubricant": lubricant.name,
-        "roughness_profile": result.extra.get("roughness_profile"),
-        "model": result.extra.get("model", "smooth"),
-        "closure": result.extra.get("closure"),
-        "route": result.extra.get("route"),
-        "dx_m": result.extra.get("dx_m"),
-        "n_nodes": result.extra.get("n_nodes"),
-        "n_steps": result.extra.get("n_steps"),
-        "thermal": result.extra.get("thermal"),
-    }
+        deterministic = deterministic_options(args.level, **overrides)
+    problem = resolve_contact(case, args.lubricant, args.level, args.effects, roughness, args.time_limit_s,
+                              args.model, deterministic, HomogenisedOptions(closure=args.closure))
+    result = solve_problem(problem)
+    payload = {**result.to_dict(), "load_per_length_n_m": case.load_per_length, "half_width_m": case.half_width,
+               "lubricant": problem.lubricant.name}
     from workflows.cli_output import emit
 
     emit(payload, args.json, _human)

@@ -10,6 +10,8 @@ from __future__ import annotations
 import argparse
 import os
 
+from ehl_dataset.names import LEVELS, MODELS
+
 from .cli_help import EFFECTS_CHOICES, EFFECTS_HELP, model_help
 
 
@@ -23,9 +25,9 @@ def register(subparsers) -> None:
     run.add_argument("--factorial", required=True, help="shipped name (paper2009, quick, smoke) or TOML file")
     run.add_argument("--out", required=True, help="HDF5 file to write")
     run.add_argument("--lubricant", help="lubricant NAME or FILE (default: the factorial's)")
-    run.add_argument("--level", help="solver accuracy level (default: the factorial's)")
+    run.add_argument("--level", choices=LEVELS, help="solver accuracy level (default: the factorial's)")
     run.add_argument("--effects", choices=EFFECTS_CHOICES, help=EFFECTS_HELP + "; default: the factorial's")
-    run.add_argument("--model", help=model_help("default: the factorial's, auto for the shipped ones except smoke"))
+    run.add_argument("--model", choices=MODELS, help=model_help("default: the factorial's, auto for the shipped ones except smoke"))
     run.add_argument("--overwrite", action="store_true", help="replace an existing file instead of continuing it")
     _execution_options(run)
     run.set_defaults(handler=_run)
@@ -34,9 +36,9 @@ def register(subparsers) -> None:
     resume.add_argument("file", help="HDF5 file of the run")
     resume.add_argument("--factorial", help="refuse unless the file records this factorial")
     resume.add_argument("--lubricant", help="refuse unless the file records this lubricant")
-    resume.add_argument("--level", help="refuse unless the file records this level")
+    resume.add_argument("--level", choices=LEVELS, help="refuse unless the file records this level")
     resume.add_argument("--effects", choices=EFFECTS_CHOICES, help="refuse unless the file records this plan")
-    resume.add_argument("--model", help=model_help("refuse unless the file records this model; a file that records "
+    resume.add_argument("--model", choices=MODELS, help=model_help("refuse unless the file records this model; a file that records "
                                                    "none ran auto"))
     resume.add_argument("--retry-not-converged", action="store_true",
                         help="also recompute the rows stored not converged (e.g. stopped by an earlier "

@@ -69,6 +69,7 @@ SI_PARAMETERS: dict[str, SiOption] = {
     "tip_relief_length": SiOption(("tip_relief_length_mm",), 1e3, 0.0, "m", "mm"),
     "coefficient": SiOption(("friction",)),
     "time_limit_s": SiOption(("time_limit_s",)),
+    "dx_m": SiOption(("dx_um",), 1e6, 0.0, "m", "µm"),
 }
 """Internal parameter names of the models → the command-line options they come from."""
 

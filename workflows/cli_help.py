@@ -11,6 +11,8 @@ import argparse
 import re
 from typing import Callable
 
+from ehl_dataset.names import EFFECT_PLANS, MODELS
+
 
 class UsageError(Exception):
     """A command line argparse cannot parse (unknown option, a word for a number, a missing required option):
@@ -91,21 +93,14 @@ traction is unsaturated, it is within a median 5.3 % of the deterministic model,
 2.5, where it is 23-78 % low: --level reference runs the deterministic model (docs/narrow_contacts.md)"""
 """The accuracy paragraph of the epilogs of the commands that run a factorial (pipeline, lubricant fit)."""
 
-EFFECTS_CHOICES = ("auto", "isothermal", "full")
-"""The ``--effects`` values of the dataset, pipeline and lubricant-fit commands: those of
-:data:`ehl_dataset.dataset.factorial.EFFECTS_MODES` (asserted in tests; not imported, to keep the parser fast)."""
+EFFECTS_CHOICES = EFFECT_PLANS
+"""The ``--effects`` values of the dataset, pipeline and lubricant-fit commands:
+:data:`ehl_dataset.names.EFFECT_PLANS`."""
 
 EFFECTS_HELP = ("effect plan of stage 1: auto (the planner's), isothermal (the planner's without the thermal correction "
                 "of the traction: isothermal data, as the paper's Eq. 9 was fitted to), full (every effect)")
 
 
-def model_help(extra: str) -> LazyHelp:
-    """Help of a ``--model`` option: the names of :data:`ehl_dataset.solver.MODELS`, read when the help is shown
-    (importing the solver takes seconds, so it is not done to build the parser)."""
-
-    def make() -> str:
-        from ehl_dataset.solver import MODELS
-
-        return f"contact model, one of {', '.join(MODELS)} (ehl_dataset.solver.MODELS); {extra}"
-
-    return LazyHelp(make)
+def model_help(extra: str) -> str:
+    """Help of a ``--model`` option: the names of :data:`ehl_dataset.names.MODELS` and ``extra``."""
+    return f"contact model, one of {', '.join(MODELS)} (ehl_dataset.names.MODELS); {extra}"

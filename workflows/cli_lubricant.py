@@ -7,6 +7,8 @@ from __future__ import annotations
 
 import argparse
 
+from ehl_dataset.names import LEVELS, MODELS
+
 from .cli_help import ACCURACY_EPILOG, EFFECTS_CHOICES, EFFECTS_HELP, model_help
 from .cli_output import emit
 
@@ -54,8 +56,8 @@ def register(subparsers) -> None:
                      help="quick (324 points, fast level), paper2009 (42,000 points, standard level), smoke (96 "
                           "smooth-surface points: checks the route, not a friction model) or a factorial TOML "
                           "file (default: quick)")
-    fit.add_argument("--level", default=None, help="EHL accuracy level (default: the factorial's)")
-    fit.add_argument("--model", default=None, help=model_help("default: the factorial's"))
+    fit.add_argument("--level", default=None, choices=LEVELS, help="EHL accuracy level (default: the factorial's)")
+    fit.add_argument("--model", default=None, choices=MODELS, help=model_help("default: the factorial's"))
     fit.add_argument("--effects", choices=EFFECTS_CHOICES, default=None,
                      help=EFFECTS_HELP + "; default: the factorial's (isothermal for quick and paper2009)")
     fit.add_argument("--out-dir", default=None, metavar="DIR",

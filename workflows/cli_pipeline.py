@@ -14,6 +14,8 @@ from __future__ import annotations
 import argparse
 import sys
 
+from ehl_dataset.names import LEVELS, MODELS
+
 from .cli_help import ACCURACY_EPILOG, EFFECTS_CHOICES, EFFECTS_HELP, model_help
 from .cli_output import emit
 
@@ -50,10 +52,10 @@ def register(subparsers) -> None:
                             "instead of resuming them")
         p.add_argument("--workers", type=int, default=1, help="local worker processes for stage 1")
         p.add_argument("--factorial", default=default, help="factorial name or TOML file")
-        p.add_argument("--level", default=None,
+        p.add_argument("--level", default=None, choices=LEVELS,
                        help="EHL accuracy level of stage 1 (default: the factorial's: fast for quick and smoke, "
                             "standard for paper)")
-        p.add_argument("--model", default=None, help=model_help("default: the factorial's (smooth for smoke, auto "
+        p.add_argument("--model", default=None, choices=MODELS, help=model_help("default: the factorial's (smooth for smoke, auto "
                                                                 "otherwise)"))
         p.add_argument("--effects", choices=EFFECTS_CHOICES, default=None,
                        help=EFFECTS_HELP + "; default: the factorial's (isothermal for quick and paper, the "

@@ -35,6 +35,7 @@ from typing import Any
 import numpy as np
 
 from ..data_files import resolve_named_file
+from ..names import EFFECT_PLANS
 from ..validation import InputError, check_range
 
 CELSIUS_ZERO_K = 273.15
@@ -59,9 +60,10 @@ _SCALAR_AXES: dict[str, tuple[float, float, str, bool]] = {
 _ROUGHNESS_AXIS = "roughness_um"
 AXIS_KEYS: tuple[str, ...] = (*_SCALAR_AXES, _ROUGHNESS_AXIS)
 _TOP_KEYS = {"name", "description", "source", "lubricant", "level", "effects", "model", "axes"}
-EFFECTS_MODES = ("auto", "isothermal", "full")
-"""Effect plans a dataset can be computed with: ``auto`` (the planner's), ``isothermal`` (the planner's without the
-thermal correction of the traction: the isothermal data the paper's Eq. 9 was fitted to), ``full`` (every effect)."""
+EFFECTS_MODES = EFFECT_PLANS
+"""Effect plans a dataset can be computed with (:data:`ehl_dataset.names.EFFECT_PLANS`): ``auto`` (the planner's),
+``isothermal`` (the planner's without the thermal correction of the traction: the isothermal data the paper's Eq. 9
+was fitted to), ``full`` (every effect)."""
 
 
 @dataclass(frozen=True)

@@ -5,8 +5,68 @@ from __future__ import annotations
 import math
 from dataclasses import asdict, dataclass
 
-from ..validation import check_range
+from ..validation import InputError, check_range
 from .materials import STEEL, Material, reduced_modulus
+
+
+@dataclass(frozen=True)
+class Limit:
+    """The accepted range of one input of a contact, in SI units, and how it reads in engineering units.
+
+    Parameters
+    ----------
+    low, high : float
+        Ends of the accepted range [SI unit of the input].
+    low_inclusive, high_inclusive : bool
+        Whether each end is accepted [-].
+    unit : str
+        SI unit of the input, as shown in an error [-].
+    engineering : str
+        Name of the input in engineering units (the command line's and the factorial files') [-].
+    to_si, si_offset : float
+        SI value = engineering value × ``to_si`` + ``si_offset`` [-].
+    engineering_unit : str
+        Engineering unit, as shown in an error [-].
+    """
+
+    low: float
+    high: float
+    low_inclusive: bool = True
+    high_inclusive: bool = True
+    unit: str = ""
+    engineering: str = ""
+    to_si: float = 1.0
+    si_offset: float = 0.0
+    engineering_unit: str = ""
+
+    def to_si_value(self, value: float) -> float:
+        """The SI value of an engineering ``value``."""
+        return value * self.to_si + self.si_offset if self.si_offset else value * self.to_si
+
+    def check(self, name: str, value: float) -> float:
+        """``value`` [SI] as float, or :class:`InputError` naming ``name``, the value and the range."""
+        return check_range(name, value, self.low, self.high, low_inclusive=self.low_inclusive,
+                           high_inclusive=self.high_inclusive, unit=self.unit)
+
+    def engineering_range(self) -> str:
+        """The accepted range in engineering units, e.g. ``(0, 10] GPa``."""
+        low, high = (round((v - self.si_offset) / self.to_si, 10) for v in (self.low, self.high))
+        text = f"{'[' if self.low_inclusive else '('}{low:g}, {high:g}{']' if self.high_inclusive else ')'}"
+        return f"{text} {self.engineering_unit}".rstrip()
+
+
+CONTACT_LIMITS: dict[str, Limit] = {
+    "p_h": Limit(0.0, 10e9, False, True, "Pa", "p_h_gpa", 1e9, 0.0, "GPa"),
+    "r_eq": Limit(0.0, 10.0, False, True, "m", "r_eq_mm", 1e-3, 0.0, "mm"),
+    "u_r": Limit(0.0, 200.0, False, True, "m/s", "u_r", 1.0, 0.0, "m/s"),
+    "sr": Limit(-2.0, 2.0, True, True, "", "sr"),
+    "temperature": Limit(0.0, 1000.0, False, True, "K", "temp_c", 1.0, 273.15, "C"),
+    "rq1": Limit(0.0, 1e-4, True, True, "m", "rq1_um", 1e-6, 0.0, "um"),
+    "rq2": Limit(0.0, 1e-4, True, True, "m", "rq2_um", 1e-6, 0.0, "um"),
+}
+"""The one table of the accepted ranges of a contact's inputs (SI; the engineering names and units the command line
+and the factorial files use). :class:`ContactCase` checks every input against it once, when it is built; the
+temperature is checked once more against the lubricant's data where the lubricant is resolved."""
 
 
 @dataclass(frozen=True)
@@ -35,13 +95,8 @@ class ContactCase:
     material2: Material = STEEL
 
     def __post_init__(self):
-        check_range("p_h", self.p_h, 0.0, 10e9, low_inclusive=False, unit="Pa")
-        check_range("r_eq", self.r_eq, 0.0, 10.0, low_inclusive=False, unit="m")
-        check_range("u_r", self.u_r, 0.0, 200.0, low_inclusive=False, unit="m/s")
-        check_range("sr", self.sr, -2.0, 2.0)
-        check_range("temperature", self.temperature, 0.0, 1000.0, low_inclusive=False, unit="K")
-        check_range("rq1", self.rq1, 0.0, 1e-4, unit="m")
-        check_range("rq2", self.rq2, 0.0, 1e-4, unit="m")
+        for name, limit in CONTACT_LIMITS.items():
+            limit.check(name, getattr(self, name))
 
     @property
     def e_reduced(self) -> float:
@@ -91,10 +146,47 @@ class ContactCase:
     @classmethod
     def from_engineering(cls, p_h_gpa: float, r_eq_mm: float, u_r: float, sr: float, temp_c: float,
                          rq1_um: float = 0.0, rq2_um: float = 0.0, **kwargs) -> "ContactCase":
-        """Build from engineering units (GPa, mm, m/s, -, °C, µm), as used at the CLI and in factorial files."""
-        check_range("p_h_gpa", p_h_gpa, 0.0, 10.0, low_inclusive=False, unit="GPa")
-        check_range("r_eq_mm", r_eq_mm, 0.0, 1e4, low_inclusive=False, unit="mm")
-        check_range("temp_c", temp_c, -273.15, 726.0, low_inclusive=False, unit="C")
-        check_range("rq1_um", rq1_um, 0.0, 100.0, unit="um")
-        check_range("rq2_um", rq2_um, 0.0, 100.0, unit="um")
-        return cls(p_h_gpa * 1e9, r_eq_mm * 1e-3, u_r, sr, temp_c + 273.15, rq1_um * 1e-6, rq2_um * 1e-6, **kwargs)
+        """A case from engineering units, as used at the command line and in factorial files.
+
+        Parameters
+        ----------
+        p_h_gpa : float
+            Maximum Hertz pressure [GPa].
+        r_eq_mm : float
+            Equivalent radius of curvature [mm].
+        u_r : float
+            Rolling (entrainment) velocity [m/s].
+        sr : float
+            Slide-to-roll ratio [-].
+        temp_c : float
+            Oil inlet temperature [°C].
+        rq1_um, rq2_um : float
+            RMS roughness of surfaces 1 and 2 [µm].
+        **kwargs
+            ``material1``, ``material2`` (:class:`~ehl_dataset.model.materials.Material`).
+
+        Returns
+        -------
+        ContactCase
+            The case in SI units. Each value is checked once, against :data:`CONTACT_LIMITS`; a value outside raises
+            :class:`~ehl_dataset.validation.InputError` naming the engineering parameter, its value and the range in
+            engineering units.
+        """
+        typed = {"p_h": p_h_gpa, "r_eq": r_eq_mm, "u_r": u_r, "sr": sr, "temperature": temp_c, "rq1": rq1_um,
+                 "rq2": rq2_um}
+        si = {}
+        for name, value in typed.items():
+            limit = CONTACT_LIMITS[name]
+            try:
+                si[name] = limit.to_si_value(float(value))
+            except (TypeError, ValueError):
+                raise InputError(limit.engineering, value, "a finite number") from None
+        try:
+            return cls(**si, **kwargs)
+        except InputError as err:
+            limit = CONTACT_LIMITS.get(err.parameter)
+            if limit is None:
+                raise
+            value = typed[err.parameter]
+            accepted = "a finite number" if err.accepted == "a finite number" else limit.engineering_range()
+            raise InputError(limit.engineering, value, accepted) from None

@@ -51,7 +51,7 @@ from ..model.roughness import RoughnessProfile, baseline_profile, plan_surfaces,
 from ..model.traction import eyring_shear_stress
 from ..validation import InputError, check_range
 from .krylov import BandedPreconditioner, gmres
-from .levels import get_level
+from .levels import get_level, level_settings
 from .result import ContactResult
 from .steady import ContactScales, dowson_higginson_lambda, moes_h_c, solve_steady
 from .time_average import time_mean
@@ -61,7 +61,7 @@ MODEL_VERSION = "det-2026.11-21"
 solved value). :data:`ehl_dataset.solver.SOLVER_VERSION` covers the whole solver. det-2026.11-11: the logarithmic
 face mean is evaluated without cancellation (:func:`~ehl_dataset.discretisation.mixed_system.logarithmic_mean`),
 which removes the 2–5e-10 floor of the global mass balance on contact-dominated runs. det-2026.11-12: the inlet term
-of the grid rule depends on the level (:data:`LEVEL_OPTIONS`); a run with a given ``dx_m`` is unchanged.
+of the grid rule depends on the level (:data:`ehl_dataset.solvers.levels.REGISTRY`); a run with a given ``dx_m`` is unchanged.
 det-2026.11-13: the logarithmic face mean takes t = ln a − ln b far from a = b; det-11's log1p form read fluid factors
 more than 1e16 apart as t = −∞ (face conductance 0, NaN partials), which failed every Newton solve from such a state
 (case E at ``fast``, 25 °C, at step 1,134; case G at step 426; docs/deterministic_solver.md, "Robustness").
@@ -150,7 +150,7 @@ INLET_RESOLUTION = 0.1
 """Default largest spacing relative to the inlet length scale a·H_c^(2/3) of the smooth EHL solution (H_c =
 h_c r/a², Moes' central film): the heavy-load inlet and outlet zones shrink like H_c^(2/3) (the steady solver's rule,
 docs/ehl_solver.md). The ``reference`` level's; ``fast`` and ``standard`` take 0.3 and 0.2
-(:data:`LEVEL_OPTIONS`)."""
+(:data:`ehl_dataset.solvers.levels.REGISTRY`)."""
 
 WIDE_ROUTES = ("auto", "resolve", "windows")
 """How a deterministic run covers the contact (:class:`DeterministicOptions` ``wide``)."""
@@ -240,27 +240,23 @@ class DeterministicOptions:
         return float(self.max_passes if self.layout_passes is None else self.layout_passes)
 
 
-LEVEL_OPTIONS = {
-    "fast": dict(points_per_beta=8.0, points_per_ell=0.625, inlet_resolution=0.3, mu_sem_target=0.10,
-                 max_passes=6.0),
-    "standard": dict(points_per_beta=16.0, points_per_ell=1.25, inlet_resolution=0.2, mu_sem_target=0.03,
-                     max_passes=12.0),
-    "reference": dict(points_per_beta=32.0, points_per_ell=2.5, inlet_resolution=INLET_RESOLUTION,
-                      mu_sem_target=0.015, max_passes=40.0),
-}
-"""Grid rule and averaging target of the deterministic model per accuracy level (the level names an error budget;
-what each costs and gives is measured in docs/deterministic_solver.md). The inlet term (det-2026.11-12; 0.1 at every
-level before): on the smooth solution of the uniform grid against the steady solver's reference, over the
-validation cases and six slow, hot, heavily loaded factorial corners, 0.3 L_in moves μ by ≤ 0.6 % and h_c by ≤ 3.2 %,
-0.2 L_in by ≤ 0.6 % and ≤ 1.5 % (benchmarks/results/deterministic_inlet_resolution.json), within the ``fast`` and
-``standard`` budgets, where 0.1 L_in made ``fast`` on case H (1.5 GPa, 1 m/s) a β/23 grid and a 1,830 s run."""
-
-
 def deterministic_options(level: str = "reference", **overrides) -> DeterministicOptions:
-    """The :class:`DeterministicOptions` of an accuracy level, with ``overrides`` (e.g. ``dx_m``)."""
-    if level not in LEVEL_OPTIONS:
-        raise InputError("level", level, f"one of {sorted(LEVEL_OPTIONS)}")
-    return DeterministicOptions(**{**LEVEL_OPTIONS[level], **overrides})
+    """The deterministic model's options at an accuracy level.
+
+    Parameters
+    ----------
+    level : str or AccuracyLevel or Level
+        An accuracy level of the registry :data:`ehl_dataset.solvers.levels.REGISTRY`, whose grid rule and averaging
+        target (``Level.deterministic``) the options take [-].
+    **overrides
+        Fields of :class:`DeterministicOptions` to set instead (e.g. ``dx_m`` [m], ``wide``).
+
+    Returns
+    -------
+    DeterministicOptions
+        The options. An unknown level raises :class:`~ehl_dataset.validation.InputError`.
+    """
+    return DeterministicOptions(**{**level_settings(level).deterministic, **overrides})
 
 
 def asperity_radius(profile: RoughnessProfile, rq1: float, rq2: float) -> float:

@@ -27,6 +27,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .. import names
 from ..discretisation.deflection import influence_matrix
 from ..discretisation.reynolds import BAND, assemble
 from ..model.contact import ContactCase
@@ -43,8 +44,8 @@ from .newton import ReynoldsProblem, newton_solve
 from .result import ContactResult
 from .steady import ContactScales, dowson_higginson_lambda, solve_steady, solve_steady_problem
 
-CLOSURES = ("transverse", "isotropic", "film_law")
-"""Closures: the flow factors ``transverse`` (1-D roughness as in the paper's model, no side leakage) and
+CLOSURES = names.CLOSURES
+"""Closures (:data:`ehl_dataset.names.CLOSURES`): the flow factors ``transverse`` (1-D roughness as in the paper's model, no side leakage) and
 ``isotropic`` (side leakage around contacts), or ``film_law``: no averaged Reynolds equation, the smooth pressure with
 the measured film law of resolved rough contacts and the table's traction
 (:mod:`ehl_dataset.solvers.film_law_model`, for wide contacts)."""
@@ -62,7 +63,7 @@ class HomogenisedOptions:
     closure's pressure fluctuations σ_p = c·E'Δq/4 (None: the calibrated function of the inlet length,
     :func:`ehl_dataset.model.micro_pressure.micro_pressure_coefficient`; 0: off)."""
 
-    closure: str = "transverse"
+    closure: str = names.DEFAULT_CLOSURE
     boundary_film_m: float = BOUNDARY_FILM_M
     flow_floor_sigma: float | None = None
     transport: str | float = "variance"

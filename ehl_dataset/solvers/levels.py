@@ -1,9 +1,12 @@
-"""Named accuracy levels of the EHL solver (frozen dataclasses).
+"""The accuracy levels of the EHL solver: one registry, :data:`REGISTRY`, keyed by the level names of
+:data:`ehl_dataset.names.LEVELS`.
 
-A level fixes the discretisation and the stopping rules of the steady solves (smooth, and the smooth part of the
-homogenised model); the accuracy-versus-time study measures what each costs. Grid spacings are in units of the
-Hertz half width a. The deterministic rough model's grid rule and averaging target per level are its own
-(:data:`ehl_dataset.solvers.deterministic.LEVEL_OPTIONS`), chosen by the level's name.
+A level is one :class:`Level`: the discretisation and stopping rules of the steady solves (:class:`AccuracyLevel`:
+smooth, and the smooth part of the homogenised model), the effect planner's thresholds (:class:`PlannerThresholds`)
+and the deterministic rough model's grid rule and averaging target (the fields of
+:class:`ehl_dataset.solvers.deterministic.DeterministicOptions` it sets). The accuracy-versus-time study measures
+what each level costs. Grid spacings of the steady grid are in units of the Hertz half width a. An unknown level
+name is an error (:class:`~ehl_dataset.validation.InputError`); nothing falls back to another level.
 
 Steady smooth grid: nodes are clustered (spacing ``dx_fine``) in two bands around the Hertz inlet (x ≈ −a) and the
 outlet constriction/pressure spike (x ≈ +a), growing linearly over ``transition`` to ``dx_coarse`` elsewhere
@@ -13,8 +16,12 @@ M > 100; the clustered grids reach the same film accuracy with a few hundred (do
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, replace
+from types import MappingProxyType
+from typing import Mapping
 
+from ..names import LEVELS as LEVEL_NAMES, ROUGH_MODELS
 from ..validation import InputError
 
 
@@ -54,21 +61,189 @@ class AccuracyLevel:
         return replace(self, x_start=float(x_start), x_end=float(x_end))
 
 
-LEVELS: dict[str, AccuracyLevel] = {
-    "fast": AccuracyLevel("fast", dx_fine=6e-3, dx_coarse=4e-2, inlet_resolution=0.25, tol_residual=1e-5, tol_load=1e-5, tol_step=1e-5,
-                          max_iterations=50),
-    "standard": AccuracyLevel("standard"),
-    "reference": AccuracyLevel("reference", dx_fine=6e-4, dx_coarse=8e-3, transition=0.2, inlet_resolution=0.03,
-                               tol_residual=1e-7, tol_load=1e-9, tol_step=1e-7, max_iterations=80),
+WIDE_A_OVER_BETA = 15.0
+"""a/β (Hertz half width over the roughness correlation length) from which a rough contact is wide: the planner
+solves it by the steady film-law homogenised model (:attr:`PlannerThresholds.a_over_beta_homogenised` at ``fast``
+and ``standard``) and ``DeterministicOptions(wide="auto")`` covers it by periodic windows
+(:mod:`ehl_dataset.solvers.wide_contact`) instead of resolving the whole contact."""
+
+NARROW_FILM_LAW_EYRING = 150.0
+"""X_h from which the film law holds on narrow contacts below λ̄ 1 (ehl-2026.11-12). Against the deterministic
+model, narrow rough contacts below λ̄ 1: at X_h ≥ 194 the film law is within 10 % on every point (4 factorial points
+at fast; the reference cases I and J, −6.0 % and +6.6 %), at X_h ≤ 111 it is 16–80 % low on 10 of 11 points and on the
+reference cases A, C and G (docs/narrow_contacts.md); 150 is the geometric middle of the gap."""
+
+NARROW_CLOSURE_LAMBDA = 0.1
+"""λ̄ from which the film law with its pressure-fluctuation closure holds on contacts with an unsaturated traction
+(ehl-2026.11-13 on narrow contacts, ehl-2026.11-14 on all). Below it the asperities carry load in the deterministic
+model, which the film law, whose fluid carries the whole load, does not model: reference case B (λ̄ 0.054, asperity
+share 0.66 at β/128) is −78 % with the closure, the narrow factorial corner at λ̄ 0.027 (share 0.18) −43 %, and the wide corner
+at λ̄ 0.062 +162 % (−44 % without). Within the range the lowest λ̄ is 0.14 (+0.5 %); one factorial point at λ̄ 0.085 is
++4 %: benchmarks/results/micro_pressure_closure.json, docs/narrow_contacts.md."""
+
+NARROW_CLOSURE_ROUGHNESS = 2.5
+"""Greenwood–Tripp roughness parameter α = S_c·r_eq/a² up to which the closure holds (ehl-2026.11-13). The film law
+takes the smooth Hertzian pressure as the mean pressure; where the composite roughness is large against the Hertz
+approach a²/r_eq the mean pressure of a rough contact is lower and wider than Hertz's (Greenwood & Tripp 1967;
+Johnson, Contact Mechanics, 1985, §13.3). Measured with the closure (ehl-2026.11-14): −2 % at α 1.8 (the largest α
+within the range, a factorial point at λ̄ 0.44), 23–43 % low at α 3.6 on all 4 unsaturated points there (reference
+case C and three factorial corners); 2.5 is the geometric middle (benchmarks/results/micro_pressure_closure.json)."""
+
+
+@dataclass(frozen=True)
+class PlannerThresholds:
+    """Thresholds of the effect planner (:mod:`ehl_dataset.solvers.planner`) at one accuracy level.
+
+    Parameters
+    ----------
+    lambda_smooth : float
+        λ̄ at or above which roughness and the transient are skipped [-].
+    eyring_newtonian : float
+        Inlet Eyring number X_in at or below which the flow is taken as Newtonian [-].
+    tolerance : float
+        Relative change of μ and h_min a skipped effect may cause at this level: what the planned-versus-full tests
+        assert on cases straddling the thresholds [-].
+    thermal_change : float
+        Predicted relative reduction of the centre Couette traction at or below which the thermal correction is
+        skipped [-].
+    a_over_beta_homogenised : float
+        a/β at or above which a rough contact is solved by the steady film-law homogenised model, within its
+        validated range [-].
+    rough_model : str
+        Solver of the other narrow rough contacts (:data:`ehl_dataset.names.ROUGH_MODELS`): ``"homogenised"`` (the
+        same film-law model, recorded as outside its validated range) or ``"deterministic"`` (the deterministic
+        reference solver) [-].
+    narrow_film_law_lambda, narrow_film_law_eyring : float
+        A narrower rough contact is still within the film law's measured range above this λ̄ or at or above this
+        Eyring number at the Hertz pressure X_h (an Eyring-saturated traction, τ ≈ τ0 ln(2X) linear in the pressure,
+        which the micro-EHL pressure fluctuations leave unchanged in the mean), and is solved by it [-]
+        (docs/narrow_contacts.md).
+    narrow_closure_lambda, narrow_closure_roughness : float
+        The other narrow rough contacts are within the range where the film law's pressure-fluctuation closure was
+        calibrated (:mod:`ehl_dataset.model.micro_pressure`) at λ̄ at or above the first and a Greenwood–Tripp
+        roughness parameter α = S_c·r_eq/a² at or below the second [-].
+    """
+
+    lambda_smooth: float
+    eyring_newtonian: float
+    tolerance: float
+    thermal_change: float = 0.0
+    a_over_beta_homogenised: float = math.inf
+    rough_model: str = "homogenised"
+    narrow_film_law_lambda: float = math.inf
+    narrow_film_law_eyring: float = math.inf
+    narrow_closure_lambda: float = math.inf
+    narrow_closure_roughness: float = 0.0
+
+    def __post_init__(self):
+        if self.rough_model not in ROUGH_MODELS:
+            raise InputError("rough_model", self.rough_model, f"one of {list(ROUGH_MODELS)}")
+
+
+@dataclass(frozen=True)
+class Level:
+    """One accuracy level: what every solver does at it.
+
+    Parameters
+    ----------
+    steady : AccuracyLevel
+        Grid and stopping rules of the steady solves (recorded in dataset files as the level's definition) [-].
+    planner : PlannerThresholds
+        Thresholds of the effect planner [-].
+    deterministic : Mapping[str, float]
+        Grid rule and averaging target of the deterministic model: fields of
+        :class:`~ehl_dataset.solvers.deterministic.DeterministicOptions` (the others keep their defaults, which are
+        the ``reference`` level's rule) [-].
+    """
+
+    steady: AccuracyLevel
+    planner: PlannerThresholds
+    deterministic: Mapping[str, float]
+
+    @property
+    def name(self) -> str:
+        """The level's name (one of :data:`ehl_dataset.names.LEVELS`)."""
+        return self.steady.name
+
+
+REGISTRY: dict[str, Level] = {
+    "fast": Level(
+        AccuracyLevel("fast", dx_fine=6e-3, dx_coarse=4e-2, inlet_resolution=0.25, tol_residual=1e-5, tol_load=1e-5,
+                      tol_step=1e-5, max_iterations=50),
+        PlannerThresholds(lambda_smooth=3.5, eyring_newtonian=0.01, tolerance=0.05, thermal_change=0.04,
+                          a_over_beta_homogenised=WIDE_A_OVER_BETA, rough_model="homogenised",
+                          narrow_film_law_lambda=1.0, narrow_film_law_eyring=NARROW_FILM_LAW_EYRING,
+                          narrow_closure_lambda=NARROW_CLOSURE_LAMBDA, narrow_closure_roughness=NARROW_CLOSURE_ROUGHNESS),
+        MappingProxyType(dict(points_per_beta=8.0, points_per_ell=0.625, inlet_resolution=0.3, mu_sem_target=0.10,
+                              max_passes=6.0))),
+    "standard": Level(
+        AccuracyLevel("standard"),
+        PlannerThresholds(lambda_smooth=5.0, eyring_newtonian=0.003, tolerance=0.02, thermal_change=0.016,
+                          a_over_beta_homogenised=WIDE_A_OVER_BETA, rough_model="homogenised",
+                          narrow_film_law_lambda=1.0, narrow_film_law_eyring=NARROW_FILM_LAW_EYRING,
+                          narrow_closure_lambda=NARROW_CLOSURE_LAMBDA, narrow_closure_roughness=NARROW_CLOSURE_ROUGHNESS),
+        MappingProxyType(dict(points_per_beta=16.0, points_per_ell=1.25, inlet_resolution=0.2, mu_sem_target=0.03,
+                              max_passes=12.0))),
+    "reference": Level(
+        AccuracyLevel("reference", dx_fine=6e-4, dx_coarse=8e-3, transition=0.2, inlet_resolution=0.03,
+                      tol_residual=1e-7, tol_load=1e-9, tol_step=1e-7, max_iterations=80),
+        PlannerThresholds(lambda_smooth=math.inf, eyring_newtonian=0.0, tolerance=0.0, thermal_change=0.0,
+                          rough_model="deterministic"),
+        MappingProxyType(dict(max_passes=40.0))),
 }
-"""The named levels. ``standard`` is the default of :func:`ehl_dataset.solver.solve_contact`."""
+"""The accuracy levels, keyed by :data:`ehl_dataset.names.LEVELS` (in that order). ``standard`` is the default of
+:func:`ehl_dataset.solver.solve_contact`. Planner thresholds: justification and measurements in docs/planner.md.
+Deterministic grid rule (the level names an error budget; what each costs and gives is measured in
+docs/deterministic_solver.md): the inlet term (det-2026.11-12; 0.1, the reference level's, at every level before): on
+the smooth solution of the uniform grid against the steady solver's reference, over the validation cases and six
+slow, hot, heavily loaded factorial corners, 0.3 L_in moves μ by ≤ 0.6 % and h_c by ≤ 3.2 %, 0.2 L_in by ≤ 0.6 % and
+≤ 1.5 % (benchmarks/results/deterministic_inlet_resolution.json), within the ``fast`` and ``standard`` budgets, where
+0.1 L_in made ``fast`` on case H (1.5 GPa, 1 m/s) a β/23 grid and a 1,830 s run."""
+
+if tuple(REGISTRY) != LEVEL_NAMES:  # pragma: no cover - a definition error caught at import
+    raise ImportError(f"level registry {tuple(REGISTRY)} differs from ehl_dataset.names.LEVELS {LEVEL_NAMES}")
+
+LEVELS: Mapping[str, AccuracyLevel] = MappingProxyType({name: level.steady for name, level in REGISTRY.items()})
+"""The steady part of each level of :data:`REGISTRY`, by name (read-only)."""
 
 
-def get_level(name: str | AccuracyLevel) -> AccuracyLevel:
-    """Return the level called ``name`` (an :class:`AccuracyLevel` is returned as is)."""
+def level_settings(level: str | AccuracyLevel | Level) -> Level:
+    """The registry entry of a level.
+
+    Parameters
+    ----------
+    level : str or AccuracyLevel or Level
+        A level name (:data:`ehl_dataset.names.LEVELS`), a level's steady part (its name is looked up; a copy made by
+        :meth:`AccuracyLevel.with_domain` keeps it) or an entry, returned as is [-].
+
+    Returns
+    -------
+    Level
+        The entry. An unknown name raises :class:`~ehl_dataset.validation.InputError`.
+    """
+    if isinstance(level, Level):
+        return level
+    name = level.name if isinstance(level, AccuracyLevel) else level
+    try:
+        return REGISTRY[name]
+    except (KeyError, TypeError):
+        raise InputError("level", name, f"one of {sorted(REGISTRY)}") from None
+
+
+def get_level(name: str | AccuracyLevel | Level) -> AccuracyLevel:
+    """The steady part of a level.
+
+    Parameters
+    ----------
+    name : str or AccuracyLevel or Level
+        A level name (:data:`ehl_dataset.names.LEVELS`); an :class:`AccuracyLevel` is returned as is, a
+        :class:`Level` gives its steady part [-].
+
+    Returns
+    -------
+    AccuracyLevel
+        The level's grid and stopping rules. An unknown name raises :class:`~ehl_dataset.validation.InputError`.
+    """
     if isinstance(name, AccuracyLevel):
         return name
-    try:
-        return LEVELS[name]
-    except (KeyError, TypeError):
-        raise InputError("level", name, f"one of {sorted(LEVELS)}") from None
+    return level_settings(name).steady

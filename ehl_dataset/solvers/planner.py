@@ -46,108 +46,37 @@ measures the planner's approximations as part of each level's error.
 from __future__ import annotations
 
 import math
-from dataclasses import asdict, dataclass, replace
+from dataclasses import asdict, replace
 
 from ..model.effects import Effects
 from ..model.film_formulas import dimensionless_groups, dowson_higginson_min_film, moes_central_film
-from ..model.lubricant import dowson_higginson_density
+from ..model.lubricant import LubricantState, dowson_higginson_density
 from ..model.roughness import baseline_profile
 from ..model.thermal import centre_estimate
+from ..names import EFFECT_PLANS
 from ..validation import InputError
-from .levels import get_level
-from .wide_contact import WIDE_A_OVER_BETA
-
-
-ROUGH_MODELS = ("homogenised", "deterministic")
-
-
-@dataclass(frozen=True)
-class PlannerThresholds:
-    """Thresholds of the planner for one accuracy level.
-
-    ``lambda_smooth`` λ̄ at or above which roughness and the transient are skipped [-];
-    ``eyring_newtonian`` inlet Eyring number X_in at or below which the flow is taken as Newtonian [-];
-    ``tolerance`` the relative change of μ and h_min a skipped effect may cause at this level [-] — what the
-    planned-versus-full tests assert on cases straddling the thresholds;
-    ``thermal_change`` predicted relative reduction of the centre Couette traction at or below which the thermal
-    correction is skipped [-];
-    ``a_over_beta_homogenised`` a/β (Hertz half width over the roughness correlation length) at or above which a
-    rough contact is solved by the steady film-law homogenised model, within its validated range [-];
-    ``narrow_film_law_lambda``, ``narrow_film_law_eyring`` a narrower rough contact is still within the film law's
-    measured range above this λ̄ or at or above this Eyring number at the Hertz pressure X_h (an Eyring-saturated
-    traction, τ ≈ τ0 ln(2X) linear in the pressure, which the micro-EHL pressure fluctuations leave unchanged in the
-    mean), and is solved by it [-] (docs/narrow_contacts.md);
-    ``narrow_closure_lambda``, ``narrow_closure_roughness`` the other narrow rough contacts are within the range
-    where the film law's pressure-fluctuation closure was calibrated (:mod:`ehl_dataset.model.micro_pressure`) at
-    λ̄ at or above the first and a Greenwood–Tripp roughness parameter α = S_c·r_eq/a² at or below the second [-];
-    ``rough_model`` the solver of the other narrow rough contacts: ``"homogenised"`` (the same film-law model,
-    recorded as outside its validated range) or ``"deterministic"`` (the deterministic reference solver, :mod:`ehl_dataset.solvers.deterministic`, which solves
-    contacts wider than its window limit by periodic windows; about a minute per narrow contact at its ``fast`` grid).
-    """
-
-    lambda_smooth: float
-    eyring_newtonian: float
-    tolerance: float
-    thermal_change: float = 0.0
-    a_over_beta_homogenised: float = math.inf
-    rough_model: str = "homogenised"
-    narrow_film_law_lambda: float = math.inf
-    narrow_film_law_eyring: float = math.inf
-    narrow_closure_lambda: float = math.inf
-    narrow_closure_roughness: float = 0.0
-
-    def __post_init__(self):
-        if self.rough_model not in ROUGH_MODELS:
-            raise InputError("rough_model", self.rough_model, f"one of {list(ROUGH_MODELS)}")
-
-
-NARROW_FILM_LAW_EYRING = 150.0
-"""X_h from which the film law holds on narrow contacts below λ̄ 1 (ehl-2026.11-12). Against the deterministic
-model, narrow rough contacts below λ̄ 1: at X_h ≥ 194 the film law is within 10 % on every point (4 factorial points
-at fast; the reference cases I and J, −6.0 % and +6.6 %), at X_h ≤ 111 it is 16–80 % low on 10 of 11 points and on the
-reference cases A, C and G (docs/narrow_contacts.md); 150 is the geometric middle of the gap."""
-
-NARROW_CLOSURE_LAMBDA = 0.1
-"""λ̄ from which the film law with its pressure-fluctuation closure holds on contacts with an unsaturated traction
-(ehl-2026.11-13 on narrow contacts, ehl-2026.11-14 on all). Below it the asperities carry load in the deterministic
-model, which the film law, whose fluid carries the whole load, does not model: reference case B (λ̄ 0.054, asperity
-share 0.66 at β/128) is −78 % with the closure, the narrow factorial corner at λ̄ 0.027 (share 0.18) −43 %, and the wide corner
-at λ̄ 0.062 +162 % (−44 % without). Within the range the lowest λ̄ is 0.14 (+0.5 %); one factorial point at λ̄ 0.085 is
-+4 %: benchmarks/results/micro_pressure_closure.json, docs/narrow_contacts.md."""
-
-NARROW_CLOSURE_ROUGHNESS = 2.5
-"""Greenwood–Tripp roughness parameter α = S_c·r_eq/a² up to which the closure holds (ehl-2026.11-13). The film law
-takes the smooth Hertzian pressure as the mean pressure; where the composite roughness is large against the Hertz
-approach a²/r_eq the mean pressure of a rough contact is lower and wider than Hertz's (Greenwood & Tripp 1967;
-Johnson, Contact Mechanics, 1985, §13.3). Measured with the closure (ehl-2026.11-14): −2 % at α 1.8 (the largest α
-within the range, a factorial point at λ̄ 0.44), 23–43 % low at α 3.6 on all 4 unsaturated points there (reference
-case C and three factorial corners); 2.5 is the geometric middle (benchmarks/results/micro_pressure_closure.json)."""
-
-
-THRESHOLDS: dict[str, PlannerThresholds] = {
-    "fast": PlannerThresholds(lambda_smooth=3.5, eyring_newtonian=0.01, tolerance=0.05, thermal_change=0.04,
-                              a_over_beta_homogenised=WIDE_A_OVER_BETA, rough_model="homogenised",
-                              narrow_film_law_lambda=1.0, narrow_film_law_eyring=NARROW_FILM_LAW_EYRING,
-                              narrow_closure_lambda=NARROW_CLOSURE_LAMBDA,
-                              narrow_closure_roughness=NARROW_CLOSURE_ROUGHNESS),
-    "standard": PlannerThresholds(lambda_smooth=5.0, eyring_newtonian=0.003, tolerance=0.02, thermal_change=0.016,
-                                  a_over_beta_homogenised=WIDE_A_OVER_BETA, rough_model="homogenised",
-                                  narrow_film_law_lambda=1.0, narrow_film_law_eyring=NARROW_FILM_LAW_EYRING,
-                                  narrow_closure_lambda=NARROW_CLOSURE_LAMBDA,
-                                  narrow_closure_roughness=NARROW_CLOSURE_ROUGHNESS),
-    "reference": PlannerThresholds(lambda_smooth=math.inf, eyring_newtonian=0.0, tolerance=0.0, thermal_change=0.0,
-                                   rough_model="deterministic"),
-}
-"""Thresholds per level (levels not listed use ``standard``). Justification and measurements: docs/planner.md."""
+from .levels import PlannerThresholds, level_settings
 
 
 def thresholds_for(level) -> PlannerThresholds:
-    """Thresholds for a level name or :class:`~ehl_dataset.solvers.levels.AccuracyLevel` (validated by ``get_level``)."""
-    return THRESHOLDS.get(get_level(level).name, THRESHOLDS["standard"])
+    """The planner's thresholds at one accuracy level.
+
+    Parameters
+    ----------
+    level : str or AccuracyLevel or Level
+        A level name or a level of the registry :data:`ehl_dataset.solvers.levels.REGISTRY` [-].
+
+    Returns
+    -------
+    PlannerThresholds
+        The level's thresholds (docs/planner.md). An unknown level raises :class:`InputError`.
+    """
+    return level_settings(level).planner
 
 
 def dimensionless_numbers(case, lubricant, correlation_length_m: float | None = None) -> dict[str, float]:
-    """The numbers the planner decides from (SI inputs; the lubricant's temperature range is checked).
+    """The numbers the planner decides from (SI inputs; ``lubricant`` a Lubricant, whose temperature range is
+    checked, or its LubricantState at the case's temperature, already checked).
     ``correlation_length_m``: β of the roughness profile [m] (None: the shipped baseline profile's).
 
     Returns ``lambda_bar``, ``a_over_beta`` (Hertz half width over β), ``h_min_dh_m``, ``s_c_m``, ``sr``, ``eyring_inlet`` (X_in), ``eyring_number`` (X_h at
@@ -157,7 +86,7 @@ def dimensionless_numbers(case, lubricant, correlation_length_m: float | None = 
     ``beta_hertz_per_k`` (β(p_h)), ``surface_peclet`` (u_i a/(2κ) of the slower surface), ``film_peclet``
     (ρ c u_r h_c²/(k a): convection against conduction across the film; the model assumes ≲ 1).
     """
-    state = lubricant.state(case.temperature)
+    state = lubricant if isinstance(lubricant, LubricantState) else lubricant.state(case.temperature)
     e_red = case.e_reduced
     w = case.load_per_length
     h_dh = float(dowson_higginson_min_film(state.eta0, case.u_r, state.alpha1, e_red, case.r_eq, w))
@@ -350,10 +279,6 @@ def with_model(plan: Effects, model: str, rough: bool) -> Effects:
     return replace(plan, roughness=roughness, transient=transient, reasons=reasons)
 
 
-EFFECT_PLANS = ("auto", "isothermal", "full")
-"""Named plans :func:`resolve_effects` accepts besides an :class:`Effects` instance."""
-
-
 def resolve_effects(effects, case, lubricant, level="standard", correlation_length_m: float | None = None) -> Effects:
     """``"auto"`` → :func:`plan_effects`; ``"isothermal"`` → the same plan with the thermal correction off;
     ``"full"`` → :meth:`Effects.full`; an :class:`Effects` as given. ``correlation_length_m``: β of the roughness
@@ -367,7 +292,7 @@ def resolve_effects(effects, case, lubricant, level="standard", correlation_leng
                                "effects=isothermal: isothermal traction")
     if effects == "full":
         return Effects.full()
-    raise InputError("effects", effects, "'auto', 'isothermal', 'full' or an Effects instance")
+    raise InputError("effects", effects, f"one of {list(EFFECT_PLANS)} or an Effects instance")
 
 
 def _json_safe(values: dict) -> dict:

@@ -84,6 +84,46 @@ class ContactResult:
             **self.grid_record(),
         }
 
+    def to_dict(self) -> dict[str, Any]:
+        """The result as one JSON-ready mapping in SI units, keys named with their unit: the schema of a contact
+        result wherever one is printed or written (the ``contact solve`` command's JSON, studies, reports).
+
+        Returns
+        -------
+        dict
+            ``mu``, ``mu_std``, ``mu_sem`` [-]; ``h_min_m``, ``h_central_m`` [m]; ``p_max_pa`` [Pa]; ``lambda_bar``
+            [-] (None for smooth surfaces, λ̄ = ∞); ``asperity_load_share`` [-]; ``converged``, ``iterations``,
+            ``wall_time_s`` [s], ``level``, ``effects`` (the plan and its reasons), ``residuals``, ``message``;
+            from the solver's record: ``model`` (``smooth`` unless a mixed model ran), ``closure``, ``route``,
+            ``roughness_profile``, ``dx_m`` [m], ``n_nodes``, ``n_steps``, ``thermal`` (None where not recorded).
+        """
+        extra = self.extra
+        return {
+            "mu": self.mu,
+            "mu_std": self.mu_std,
+            "mu_sem": self.mu_sem,
+            "h_min_m": self.h_min,
+            "h_central_m": self.h_central,
+            "p_max_pa": self.p_max,
+            "lambda_bar": self.lambda_bar if math.isfinite(self.lambda_bar) else None,
+            "asperity_load_share": self.asperity_load_share,
+            "converged": self.converged,
+            "iterations": self.iterations,
+            "wall_time_s": self.wall_time,
+            "level": self.level,
+            "effects": self.effects,
+            "residuals": self.residuals,
+            "message": self.message,
+            "roughness_profile": extra.get("roughness_profile"),
+            "model": extra.get("model", "smooth"),
+            "closure": extra.get("closure"),
+            "route": extra.get("route"),
+            "dx_m": extra.get("dx_m"),
+            "n_nodes": extra.get("n_nodes"),
+            "n_steps": extra.get("n_steps"),
+            "thermal": extra.get("thermal"),
+        }
+
     def grid_record(self) -> dict[str, Any]:
         """The discretisation a solve used, from ``extra``: ``dx`` the uniform grid spacing [m] of the deterministic
         model (NaN for the steady solvers' graded grids), ``n_nodes`` the grid nodes (-1: not recorded), ``n_steps``

@@ -41,7 +41,7 @@ from ..model.roughness import RoughnessProfile, baseline_profile, profile_record
 from ..model.traction import eyring_shear_stress, full_film_mask
 from ..validation import InputError, check_range
 from .deterministic import MODEL_VERSION, BOUNDARY_FILM_M, DeterministicOptions, grid_spacing, solve_deterministic
-from .levels import get_level
+from .levels import WIDE_A_OVER_BETA, get_level
 from .periodic_window import WindowOptions, solve_window
 from .result import ContactResult
 from .steady import dowson_higginson_lambda, solve_steady
@@ -60,10 +60,6 @@ FILM_LAW_RANGE = {"H": (0.13, 5.4), "inlet_over_beta": (1.1, 4.3)}
 
 CENTRE_BAND = 0.2
 """Half width [a] of the central band over which the smooth film h_s is averaged (as in the law's fit)."""
-
-WIDE_A_OVER_BETA = 15.0
-"""a/β above which ``DeterministicOptions(wide="auto")`` takes this route instead of resolving the whole contact."""
-
 
 def inlet_length(case: ContactCase, smooth_film_m: float) -> float:
     """L_in = a·(h_s r_eq/a²)^(2/3) [m]: the length over which a smooth EHL inlet builds its pressure (the

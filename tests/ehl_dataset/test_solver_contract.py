@@ -69,8 +69,11 @@ def test_temperature_outside_lubricant_data():
 
 
 def test_non_convergence_is_reported_not_hidden():
-    """With an iteration cap of 1 the solve cannot converge: converged=False, residuals and a message."""
-    level = replace(get_level("fast"), name="capped", max_iterations=1)
+    """With an iteration cap of 1 the solve cannot converge: converged=False, residuals and a message. (A level's
+    steady numerics may be changed; a level the registry does not know is refused, not replaced by another.)"""
+    level = replace(get_level("fast"), max_iterations=1)
+    with pytest.raises(InputError, match="invalid level='capped'"):
+        solve_contact(CASE, load_lubricant("atf"), replace(level, name="capped"), Effects.smooth_steady())
     res = solve_contact(CASE, load_lubricant("atf"), level, Effects.smooth_steady())
     assert res.converged is False
     assert res.message.startswith("not converged")

@@ -98,7 +98,7 @@ def test_running_the_same_command_again_continues_and_a_different_one_is_refused
     (["dataset", "run", "--factorial", "smoke", "--out", "{tmp}/a.h5", "--workers", "-1", "--solver", SOLVER],
      "invalid --workers=-1"),
     (["dataset", "run", "--factorial", "smoke", "--out", "{tmp}/a.h5", "--level", "bogus", "--solver", SOLVER],
-     "invalid --level=bogus"),
+     "invalid --level='bogus'"),
     (["dataset", "run", "--factorial", "smoke", "--out", "{tmp}/a.h5", "--solver", "no_module:f"],
      "invalid --solver=no_module:f"),
     (["dataset", "run", "--factorial", "smoke", "--out", "{tmp}/a.h5", "--lubricant", "water"],
