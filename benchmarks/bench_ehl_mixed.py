@@ -202,7 +202,7 @@ def _report(args, lub, rows, suffix, out: Path | None = None, quiet: bool = Fals
 
 def rows_by_version(rows) -> dict:
     """How many rows each (solver version, model version) made, as "solver/model" keys; rows written before the
-    versions were recorded per row (session 19) count as "unrecorded"."""
+    versions were recorded per row count as "unrecorded"."""
     counts: dict[str, int] = {}
     for row in rows:
         key = (f"{row['solver_version']}/{row.get('model_version')}" if "solver_version" in row

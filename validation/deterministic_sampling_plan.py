@@ -24,9 +24,9 @@ stretches of 2·(domain) + 2·u_r·t each, the gap between them).
     python validation/deterministic_sampling_plan.py [--target 0.0135] [--scaled] [--out FILE]
                                   # every case -> validation/results/deterministic_sampling_plan.json and a table
 
-The plan behind ``WINDOWS`` of validation/deterministic_validation.py (session 30, from the runs before them, target
+The plan behind ``WINDOWS`` of validation/deterministic_validation.py (from the runs recorded before it, target
 1.35 %): validation/results/deterministic_sampling_plan.json; with the measured factors (`--scaled`, target
-1.5 %): ..._session30_scaled.json (A ≈ 9 h on a longer profile, B ≈ 430 h, C 2.6 h, D 0.7 h).
+1.5 %): ..._scaled.json (A ≈ 9 h on a longer profile, B ≈ 430 h, C 2.6 h, D 0.7 h).
 """
 
 from __future__ import annotations

@@ -94,12 +94,12 @@ roughness twice; checked by ``SurfacePair.independent``; G's 300 passes take 81 
 contacts (a/β 2.9–5.9) hold few asperities at a time and their μ fluctuates slowly: at the default caps A reached
 3.1 % after 38.5 averaging passes, C 2.4 % after 38.5, G 1.9 % after 98.5 (det-2026.11-10 to -13), so the target
 of 1.5 % takes about (sem/1.5 %)² times as long. B (9.5 % after 38.5 passes) would need about 1,500 passes, four
-times what the profile holds, and is left at the default. D's entry (session 30) only raises its cap to its layout's
+times what the profile holds, and is left at the default. D's entry only raises its cap to its layout's
 100 passes for the window of :data:`WINDOWS`: its roughness is laid out as before."""
 PROFILE_POINTS = {"G": 2**18}
 """Cases whose runs read a longer realisation of the baseline's random process (``long_baseline_profile``: same
 generator, seed, β and Rq, 2^18 samples = 262 mm) instead of the shipped 131 mm baseline. G's long run reached 1.7 %
-at the cap of a 175-pass layout, which took 95 % of the baseline (session 26): the target needs about 215–270 passes
+at the cap of a 175-pass layout, which took 95 % of the baseline: the target needs about 215–270 passes
 (1.9 % after 98.5 passes, 1.7 % after 175). The baseline is itself synthetic, so a longer realisation of the same
 process is the same roughness statistically; the case's reference changes by its sampling error."""
 WINDOWS = {"A": {16: 5.0, 64: 20.0},
@@ -112,7 +112,7 @@ WINDOWS = {"A": {16: 5.0, 64: 20.0},
            "K": {8: 3.0, 16: 3.0, 32: 3.0},
            "L": {8: 5.5, 16: 5.5, 32: 5.5}}
 """Averaging windows [passes] longer than the default (the long run until its own standard error is ≤ 1.5 %, a short
-run :data:`SHORT_AVERAGE_PASSES`), per case and spacing (session 30), for two reasons:
+run :data:`SHORT_AVERAGE_PASSES`), per case and spacing, for two reasons:
 
 - reliability: every window at least 20 correlation times of μ measured on the case's long run
   (:func:`long_run_correlation_passes`; the reliability test of ehl_dataset.solvers.time_average), rounded up to

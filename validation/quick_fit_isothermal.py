@@ -1,8 +1,8 @@
 """How much of a fit's scatter is the thermal correction? Refit a dataset with the thermally corrected rows replaced
 by their isothermal μ (docs/pipeline.md, "Measured").
 
-    gearloss pipeline quick --workers 2 --out-dir /tmp/pq       # first: the main job
-    python validation/quick_fit_isothermal.py /tmp/pq/dataset.h5
+    gearloss pipeline quick --workers 2 --out-dir pq       # first: the main job
+    python validation/quick_fit_isothermal.py pq/dataset.h5
 
 Every row whose recorded effect plan has ``thermal`` on is solved again at the dataset's level with
 ``effects="isothermal"`` (same model choice, no thermal correction); Eq. 9 is fitted to both tables and the adjusted

@@ -387,7 +387,7 @@ class Progress:
         elapsed = now - self.start
         rate = self.done / elapsed if elapsed > 0 else 0.0
         print(f"{time.strftime('%Y-%m-%dT%H:%M:%S')} {prefix}{self.name}: {self.initial + self.done}/{self.total} "
-              f"points (this session: ok {self.ok}, failed {self.failed}, not converged {self.non_converged}), "
+              f"points (this run: ok {self.ok}, failed {self.failed}, not converged {self.non_converged}), "
               f"{rate:.3g} points/s, elapsed {_hms(elapsed)}, ETA {_hms(self.eta_s())}", file=self.stream,
               flush=True)
 
@@ -624,7 +624,7 @@ def execute(store: DatasetStore, *, solver: str | Callable = DEFAULT_SOLVER, wor
     ``time_limit_s``: wall-time budget of each point's solve [s] (None: none), handed to the solver in every
     :class:`PointTask`. A point that spends it is stored ``ok``, not converged, with the solver's "wall-time limit"
     message; later resumes recompute it only with ``retry_not_converged``. The budget is an
-    execution option: it is recorded in this session's entry of the ``sessions`` attribute, not in the solver
+    execution option: it is recorded in this run's entry of the ``sessions`` attribute, not in the solver
     configuration, so runs with different budgets (or none) continue each other.
     """
     _check_options(workers, {"max_attempts": max_attempts, "window": window, "progress": progress,

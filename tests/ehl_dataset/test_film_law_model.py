@@ -202,7 +202,7 @@ def test_the_planners_model_meets_issue_15_accuracy_on_every_reference_case_it_c
     deterministic validation set (data/reference/deterministic_validation.json, μ extrapolated from three grid
     spacings). The planner counts A, E, F, G, H, I, J, K, L within the film law's measured range and B, C, D (λ̄ 0.054
     and 0.073 < 0.1 with X_h < 150; α 3.6 > 2.5) outside it (docs/planner.md); within it every case is within 10 %
-    (measured under ehl-2026.11-14 against the references of session 26: −5.5 % (I) to +5.9 % (G), median |Δμ|
+    (measured under ehl-2026.11-14 against the references recorded then: −5.5 % (I) to +5.9 % (G), median |Δμ|
     2.9 %, docs/accuracy_mixed.md; H, λ̄ 0.051 at X_h 3,470, −1.8 %, the range's claim for saturated contacts below
     λ̄ 0.1 checked at reference grids; L, 2.5 GPa and λ̄ 0.14, +2.1 %), outside it B and C are 78 % and 39 % low,
     which is why they are flagged. D (λ̄ 0.073, X_h 93,

@@ -181,7 +181,7 @@ def test_progress_log_lines_report_rate_and_eta(tmp_path, plan):
                   log_every_s=0.0)
     lines = stream.getvalue().splitlines()
     assert len(lines) == 17  # one per point, and the final line
-    assert "test: 16/16 points (this session: ok 16, failed 0" in lines[-1] and "points/s" in lines[-1] and "ETA" in lines[0]
+    assert "test: 16/16 points (this run: ok 16, failed 0" in lines[-1] and "points/s" in lines[-1] and "ETA" in lines[0]
 
 
 def test_resume_is_refused_for_another_factorial_solver_version_or_lubricant(tmp_path, plan, monkeypatch):
