@@ -299,7 +299,7 @@ def convergence_study(spec: CaseSpec, kind: str = "grid", base_level: str = "sta
     if plan.roughness and plan.transient and case.s_c > 0.0:
         raise InputError("effects", str(effects), f"a plan without the transient rough solve for {spec[0]} at "
                          f"{base_level} (the deterministic model's spacing is not the level's: its grid "
-                         "convergence is benchmarks/deterministic_validation.py)")
+                         "convergence is validation/deterministic_validation.py)")
     rows = []
     for factor in factors:
         lvl = refined_level(base_level, kind, factor)

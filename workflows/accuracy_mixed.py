@@ -1,7 +1,7 @@
 """What accuracy costs in time in the mixed regime: every contact model and level against the deterministic reference.
 
 The reference is the validation set of the deterministic mixed-EHL solver (``data/reference/
-deterministic_validation.json``, made by ``python benchmarks/deterministic_validation.py --summarise``: each case
+deterministic_validation.json``, made by ``python validation/deterministic_validation.py --summarise``: each case
 solved at three grid spacings, μ Richardson-extrapolated, with its uncertainty; docs/validation/deterministic-reference.md). Each
 model of :data:`MIXED_MODELS` solves every reference case through :func:`ehl_dataset.solver.solve_contact`, and the
 study records
@@ -92,7 +92,7 @@ def load_reference(path: str | Path = REFERENCE_FILE) -> list[dict]:
         if missing:
             raise KeyError(missing[0])
     except FileNotFoundError:
-        raise InputError("reference", str(path), "an existing file made by benchmarks/deterministic_validation.py "
+        raise InputError("reference", str(path), "an existing file made by validation/deterministic_validation.py "
                                                  "--summarise") from None
     except (ValueError, KeyError, TypeError) as err:
         raise InputError("reference", str(path), f"a deterministic validation file ({type(err).__name__}: {err})") \

@@ -5,11 +5,11 @@ In the deterministic model of a narrow rough contact (a few correlation lengths 
 fluctuates about its time mean by about one Hertz pressure (standard deviation 0.58–2.0 p_h over |x| < 0.8a on the
 validation cases A, C, G, I), with a skewed distribution: never below zero, a long tail above. Where the Eyring
 traction is not saturated, τ grows nearly exponentially with p, and its mean over that distribution is several times
-τ at the mean pressure (benchmarks/micro_ehl_fluctuations.py). This module gives the distribution a closure uses:
+τ at the mean pressure (validation/micro_ehl_fluctuations.py). This module gives the distribution a closure uses:
 
 - shape: a gamma distribution with the local mean pressure p̄ and standard deviation σ_p (it has support p ≥ 0 and
   the skew; with the deterministic runs' own σ_p(x) it reproduces their pressure-averaged Couette stress within
-  1–12 % on cases A, C, G, I: `python benchmarks/micro_ehl_fluctuations.py A:16 G:8 I:8 C:16`);
+  1–12 % on cases A, C, G, I: `python validation/micro_ehl_fluctuations.py A:16 G:8 I:8 C:16`);
 - scale: σ_p = c · E'Δq/4, where E'Δq/4 is the r.m.s. of the pressure that flattens the composite roughness
   completely, and c < 1 the fraction an EHL film lets through, a function of the inlet length in correlation
   lengths calibrated against the deterministic model (:func:`micro_pressure_coefficient`). Two elastic half-spaces in plane strain under a surface pressure p̂(k)
@@ -28,8 +28,8 @@ from .roughness import RoughnessProfile
 
 MICRO_PRESSURE_C0 = 0.305
 """c0 of c = c0/(1 + (L_in/(β·L0))²) [-] (:func:`micro_pressure_coefficient`), fitted with
-:data:`MICRO_PRESSURE_INLET_SCALE` by `python benchmarks/micro_pressure_closure.py`
-(benchmarks/results/micro_pressure_closure.json, EHL solver ehl-2026.11-14)."""
+:data:`MICRO_PRESSURE_INLET_SCALE` by `python validation/micro_pressure_closure.py`
+(validation/results/micro_pressure_closure.json, EHL solver ehl-2026.11-14)."""
 
 MICRO_PRESSURE_INLET_SCALE = 2.99
 """L0 of c = c0/(1 + (L_in/(β·L0))²) [-]: the inlet length, in correlation lengths, at which c is half of c0."""

@@ -235,7 +235,7 @@ def long_baseline_profile(n_points: int) -> RoughnessProfile:
     shipped file is read. It is another realisation of the process, not the baseline continued (every Fourier
     coefficient changes with the length). For runs that read more roughness than the 131 mm baseline holds: the
     long runs of narrow contacts whose standard error of μ needs more independent asperities
-    (benchmarks/deterministic_validation.py, ``PROFILE_POINTS``). Generated, not shipped: 2^18 samples take 0.1 s.
+    (validation/deterministic_validation.py, ``PROFILE_POINTS``). Generated, not shipped: 2^18 samples take 0.1 s.
     """
     if not isinstance(n_points, (int, np.integer)) or n_points <= BASELINE_POINTS or n_points & (n_points - 1):
         raise InputError("n_points", n_points, f"a power of two above the baseline's {BASELINE_POINTS}")

@@ -67,10 +67,10 @@ more than 1e16 apart as t = −∞ (face conductance 0, NaN partials), which fai
 (case E at ``fast``, 25 °C, at step 1,134; case G at step 426; docs/deterministic_solver.md, "Robustness").
 det-2026.11-14: a linear solve that took :data:`REFACTOR_ITERATIONS` GMRES iterations makes the next one refactor the
 preconditioner first (the converged states are the same to the Newton tolerance; μ moves within a run's round-off
-sensitivity, checked by benchmarks/deterministic_rerun_check.py). det-2026.11-15: the round-off stop on a small
+sensitivity, checked by validation/deterministic_rerun_check.py). det-2026.11-15: the round-off stop on a small
 correction needs it below 1e-15 p_h instead of 1e-12 (:data:`ROUND_OFF_STEP`): steps that stopped with a global
 mass balance above the tolerance now iterate on to meet it (rerun under it, recorded runs move by ≤ 1.2e-6 relative
-in μ on short windows and ≤ 5.7e-5 on long ones; benchmarks/results/deterministic_rerun_check_det-2026.11-15.json).
+in μ on short windows and ≤ 5.7e-5 on long ones; validation/results/deterministic_rerun_check_det-2026.11-15.json).
 det-2026.11-16: on grids of at most :data:`DENSE_KERNEL_NODES` nodes the deflection is a dense matrix–vector product
 instead of the FFT pair (the same operator; other round-off), and the periodic preconditioner's wrap-around
 convolution is a padded ``np.convolve``: the per-call overhead of the FFT dispatch and of ``scipy.ndimage`` dominated
@@ -91,7 +91,7 @@ of up to the tolerance. The whole contact is unchanged: its runs are step for st
 det-2026.11-20: a transient run carries the film offset relative to the steady start's (:meth:`MixedProblem.
 rebase_film_offset`, H = (H_ref + gap + K P) + δH0): one unit in the last place of H0 ≈ −0.6 moved every node's film
 at once and with it the global lubricant balance by 8e-11 on case L at β/16 and H at β/32, 0.8 of the target
-(benchmarks/deterministic_balance_floor.py); of δH0 it moves it by about 1e-13. The same equations; other round-off.
+(validation/deterministic_balance_floor.py); of δH0 it moves it by about 1e-13. The same equations; other round-off.
 States saved by det-18 and -19 are continued with their absolute offset (their numerics).
 det-2026.11-21: a solve that stalls at the round-off floor where only the global balance misses the tolerance goes on
 for up to :data:`BALANCE_RETRIES` more iterations (H at β/32 under det-20: 11 of 13,584 steps ended at 1.01–1.5e-10)."""
@@ -276,7 +276,7 @@ ROUND_OFF_STEP_MARGIN = 1000.0
 BALANCE_RETRIES = 3
 """Iterations a Newton solve goes on after a stall at the round-off floor where every scaled row meets the tolerance
 and only the global lubricant balance does not (det-2026.11-21): the round-off of the pressures moves that balance
-by ±1–3e-11 from one iterate to the next (benchmarks/deterministic_balance_floor.py), so a balance just above the
+by ±1–3e-11 from one iterate to the next (validation/deterministic_balance_floor.py), so a balance just above the
 tolerance is usually met within a few more iterations."""
 """A Newton solve also ends when its scaled residual is within ROUND_OFF_MARGIN × the tolerance and it has
 stalled (the last iteration reduced it by less than half, or the line search found no decrease), or within
@@ -667,7 +667,7 @@ def solve_deterministic(case: ContactCase, state: LubricantState, plan: Effects,
 
     ``observer``: None, or called after every accepted time step k = 1, 2, … as ``observer(t_s, p_fluid_pa, film_m,
     fill)`` with the fluid pressure [Pa], the film max(h, h_b) [m] and the fill fraction θ on the nodes ``result.x``
-    (for analyses of the fields, e.g. benchmarks/micro_ehl_fluctuations.py; step k is ``result.extra``'s series index
+    (for analyses of the fields, e.g. validation/micro_ehl_fluctuations.py; step k is ``result.extra``'s series index
     k − 1).
 
     ``checkpoint``: None, or an object with ``every_s``, ``load()`` and ``save(state)``

@@ -18,7 +18,7 @@ The fluid carries the whole load and no asperity friction is added: in the deter
 pressure between colliding asperities holds them apart (asperity share ≤ 0.02 down to λ̄ 0.12 on the roughness
 sweep, ≤ 0.004 in the windows of the widest factorial corners), whereas the dry-contact table at the law's film
 gives part of the load to the asperities and, with μ_d on it, μ up to 325 % above the windows (measured,
-benchmarks/film_law_model.py). The micro-EHL pressure is modelled statistically: the pressure is gamma-distributed about p̄ with the calibrated
+validation/film_law_model.py). The micro-EHL pressure is modelled statistically: the pressure is gamma-distributed about p̄ with the calibrated
 spread σ_p = c·E'Δq/4, c a function of the inlet length in correlation lengths L_in/β
 (:mod:`ehl_dataset.model.micro_pressure`; c → 0 where the inlet is many β long), and the stress is averaged over
 pressures and gaps, taken independent:
@@ -33,7 +33,7 @@ film: outside the zone as is, inside as the node-wise ratio thermal/isothermal t
 heat source is the mean film's shear, not the gap-averaged one: an approximation).
 
 Measured against the windows on the factorial's widest corners this holds within a few per cent where the
-viscosity is saturated in the Eyring sense (benchmarks/film_law_model.py, docs page above). The result says when a
+viscosity is saturated in the Eyring sense (validation/film_law_model.py, docs page above). The result says when a
 contact is narrower than the route's validated a/β (with the closure's spread) or the film law is extrapolated; the
 planner says whether a contact is within the closure's measured range.
 

@@ -79,7 +79,7 @@ NARROW_CLOSURE_LAMBDA = 0.1
 model, which the film law, whose fluid carries the whole load, does not model: reference case B (λ̄ 0.054, asperity
 share 0.66 at β/128) is −78 % with the closure, the narrow factorial corner at λ̄ 0.027 (share 0.18) −43 %, and the wide corner
 at λ̄ 0.062 +162 % (−44 % without). Within the range the lowest λ̄ is 0.14 (+0.5 %); one factorial point at λ̄ 0.085 is
-+4 %: benchmarks/results/micro_pressure_closure.json, docs/narrow_contacts.md."""
++4 %: validation/results/micro_pressure_closure.json, docs/narrow_contacts.md."""
 
 NARROW_CLOSURE_ROUGHNESS = 2.5
 """Greenwood–Tripp roughness parameter α = S_c·r_eq/a² up to which the closure holds (ehl-2026.11-13). The film law
@@ -87,7 +87,7 @@ takes the smooth Hertzian pressure as the mean pressure; where the composite rou
 approach a²/r_eq the mean pressure of a rough contact is lower and wider than Hertz's (Greenwood & Tripp 1967;
 Johnson, Contact Mechanics, 1985, §13.3). Measured with the closure (ehl-2026.11-14): −2 % at α 1.8 (the largest α
 within the range, a factorial point at λ̄ 0.44), 23–43 % low at α 3.6 on all 4 unsaturated points there (reference
-case C and three factorial corners); 2.5 is the geometric middle (benchmarks/results/micro_pressure_closure.json)."""
+case C and three factorial corners); 2.5 is the geometric middle (validation/results/micro_pressure_closure.json)."""
 
 
 @dataclass(frozen=True)
@@ -197,7 +197,7 @@ Deterministic grid rule (the level names an error budget; what each costs and gi
 docs/deterministic_solver.md): the inlet term (det-2026.11-12; 0.1, the reference level's, at every level before): on
 the smooth solution of the uniform grid against the steady solver's reference, over the validation cases and six
 slow, hot, heavily loaded factorial corners, 0.3 L_in moves μ by ≤ 0.6 % and h_c by ≤ 3.2 %, 0.2 L_in by ≤ 0.6 % and
-≤ 1.5 % (benchmarks/results/deterministic_inlet_resolution.json), within the ``fast`` and ``standard`` budgets, where
+≤ 1.5 % (validation/results/deterministic_inlet_resolution.json), within the ``fast`` and ``standard`` budgets, where
 0.1 L_in made ``fast`` on case H (1.5 GPa, 1 m/s) a β/23 grid and a 1,830 s run."""
 
 if tuple(REGISTRY) != LEVEL_NAMES:  # pragma: no cover - a definition error caught at import

@@ -14,7 +14,7 @@ Two macro quantities feed the windows:
       h̄_c = h_s + σ·c·(L_in/β)^k/(h_s/σ + d),      c, d, k = FILM_LAW_C, FILM_LAW_D, FILM_LAW_K,
 
   (h_s the smooth central film, σ = √(Rq1² + Rq2²), L_in = a·(h_s r_eq/a²)^(2/3) the length of the smooth inlet
-  build-up zone, β the correlation length; ``python benchmarks/deterministic_film_law.py``, fitted on resolved runs
+  build-up zone, β the correlation length; ``python validation/deterministic_film_law.py``, fitted on resolved runs
   of the shipped profile: the more correlation lengths the inlet spans, the more lubricant the valleys carry in);
   across the zone the mean flux of a Couette-dominated film is constant, so h̄(x) = h̄_c ρ(p̄_c)/ρ(p̄(x)) (within
   3 % on the resolved case V1).
@@ -53,8 +53,8 @@ FILM_LAW_C = 0.378
 FILM_LAW_D = 0.364
 FILM_LAW_K = 0.444
 """Film law Δ/σ = c·(L_in/β)^k/(H + d), H = h_s/σ: least-squares fit over resolved deterministic runs
-(``python benchmarks/deterministic_film_law.py``; points, residuals and leave-one-group-out errors in
-benchmarks/results/deterministic_film_law.json)."""
+(``python validation/deterministic_film_law.py``; points, residuals and leave-one-group-out errors in
+validation/results/deterministic_film_law.json)."""
 FILM_LAW_RANGE = {"H": (0.13, 5.4), "inlet_over_beta": (1.1, 4.3)}
 """The range of H and L_in/β the law was fitted over; outside it the result says the law was extrapolated."""
 
