@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import math
 import statistics
 import sys
@@ -160,7 +161,7 @@ def main(argv=None) -> int:
     text = report(level_doc, ref_doc, args.note, labels)
     if args.png:
         plot(level_doc, ref_doc, args.png, labels)
-        rel = Path(args.png).relative_to(Path(args.out).parent) if Path(args.png).is_relative_to(Path(args.out).parent) else Path(args.png)
+        rel = Path(os.path.relpath(Path(args.png).resolve(), Path(args.out).resolve().parent)).as_posix()
         names = labels or (level_doc["level"], ref_doc["level"])
         command = (f"python validation/compare_levels.py {args.level_json} {args.reference_json} --out {args.out} "
                    f"--png {args.png}" + (f" --labels {' '.join(args.labels)}" if args.labels else ""))
