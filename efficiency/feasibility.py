@@ -38,8 +38,18 @@ CRITERIA = ("backlash", "pointed_tooth", "tip_thickness", "root_clearance", "und
 class FeasibilityLimits:
     """Limits of the feasibility check (paper §3: backlash 0.04 mm, tip thickness and root clearance 0.2 m_n).
 
-    min_backlash : [m]; min_tip_thickness, min_root_clearance : in units of the normal module;
-    min_contact_ratio : total contact ratio ε_γ; backlash_kind : ``"normal"`` (j_bn) or ``"circumferential"`` (j_wt).
+    Parameters
+    ----------
+    min_backlash : float
+        Smallest backlash [m].
+    min_tip_thickness : float
+        Smallest normal tip thickness in units of the normal module [-].
+    min_root_clearance : float
+        Smallest root clearance in units of the normal module [-].
+    min_contact_ratio : float
+        Smallest total contact ratio ε_γ [-].
+    backlash_kind : str
+        ``normal`` (j_bn) or ``circumferential`` (j_wt) [-].
     """
 
     min_backlash: float = 0.04e-3
@@ -50,10 +60,18 @@ class FeasibilityLimits:
 
     @classmethod
     def physical(cls) -> "FeasibilityLimits":
-        """Limits of a pair that can be made and run at all, for any pair outside the paper's study: backlash ≥ 0
-        (within 1 µm, the effect of rounding published profile shifts to 4 decimals: no jamming), tip thickness ≥ 0 (not pointed), root clearance ≥ 0 (no tip–root interference),
-        ε_γ ≥ 1. The paper's 0.04 mm backlash and 0.2 m_n tip thickness and root clearance (Li & Kahraman 2009 §3)
-        are design-study choices and apply only inside that study."""
+        """Limits of a pair that can be made and run at all, for any pair outside the paper's study.
+
+        Backlash ≥ 0 (within 1 µm, the effect of rounding published profile shifts to 4 decimals: no
+        jamming), tip thickness ≥ 0 (not pointed), root clearance ≥ 0 (no tip–root interference), ε_γ ≥ 1.
+        The paper's 0.04 mm backlash and 0.2 m_n tip thickness and root clearance (Li & Kahraman 2009 §3)
+        are design-study choices and apply only inside that study.
+
+        Returns
+        -------
+        FeasibilityLimits
+            Those limits.
+        """
         return cls(min_backlash=-1e-6, min_tip_thickness=0.0, min_root_clearance=0.0, min_contact_ratio=1.0)
 
     def __post_init__(self):
@@ -67,8 +85,25 @@ class FeasibilityLimits:
 
 @dataclass(frozen=True)
 class Violation:
-    """One violated limit: ``name`` (one of CRITERIA), ``gear`` (1, 2 or None for the pair), the value, the limit
-    and the unit of both (SI; ``"-"`` for ratios)."""
+    """One violated limit.
+
+    Parameters
+    ----------
+    name : str
+        The criterion, one of :data:`CRITERIA` [-].
+    gear : int or None
+        1, 2, or None for the pair [-].
+    value : float
+        The design's value, in ``unit`` [-].
+    limit : float
+        The limit, in ``unit`` [-].
+    unit : str
+        Unit of value and limit (SI; ``-`` for ratios) [-].
+    relation : str
+        The relation the value must satisfy, e.g. ``>=`` [-].
+    quantity : str
+        What the value is, in words [-].
+    """
 
     name: str
     gear: int | None
@@ -87,6 +122,13 @@ class Violation:
         return f"{self.name}{who}: {self.value:.4g}, required {self.relation} {self.limit:.4g}{what}"
 
     def as_dict(self) -> dict:
+        """The violation as a JSON-serialisable dict (``value_m``/``limit_m`` for lengths).
+
+        Returns
+        -------
+        dict
+            name, gear, quantity, value, limit and relation.
+        """
         suffix = "_m" if self.unit == "m" else ""
         return {"name": self.name, "gear": self.gear, "quantity": self.quantity, f"value{suffix}": float(self.value),
                 f"limit{suffix}": float(self.limit), "relation": self.relation}
@@ -94,7 +136,15 @@ class Violation:
 
 @dataclass(frozen=True)
 class FeasibilityReport:
-    """Result of :func:`check_design`: the violated limits (empty when feasible)."""
+    """Result of :func:`check_design`: the violated limits (empty when feasible).
+
+    Parameters
+    ----------
+    violations : tuple of Violation
+        The violated limits [-].
+    limits : FeasibilityLimits
+        The limits checked [-].
+    """
 
     violations: tuple[Violation, ...] = field(default_factory=tuple)
     limits: FeasibilityLimits = field(default_factory=FeasibilityLimits)
@@ -118,10 +168,22 @@ def _backlash(pair: GearPair, limits: FeasibilityLimits):
 
 
 def feasibility_masks(pair: GearPair, limits: FeasibilityLimits = FeasibilityLimits()) -> dict[str, np.ndarray]:
-    """Boolean arrays ``True`` where each criterion is satisfied (both gears), plus ``"feasible"`` (all of them).
+    """Boolean arrays, True where each criterion is satisfied (both gears), plus ``feasible`` (all of them).
 
-    Works for scalar and vectorised pairs. A pointed tooth fails both ``pointed_tooth`` and ``tip_thickness``
-    here (:func:`check_design` reports it once, as ``pointed_tooth``).
+    Works for scalar and vectorised pairs. A pointed tooth fails both ``pointed_tooth`` and ``tip_thickness`` here
+    (:func:`check_design` reports it once, as ``pointed_tooth``).
+
+    Parameters
+    ----------
+    pair : GearPair
+        A scalar or vectorised pair [-].
+    limits : FeasibilityLimits
+        The limits [-].
+
+    Returns
+    -------
+    dict of str to ndarray
+        One boolean array per criterion of :data:`CRITERIA` and ``feasible``.
     """
     m = np.asarray(pair.normal_module, dtype=float)
     tips = pair.tip_normal_thicknesses
@@ -146,7 +208,20 @@ def feasibility_masks(pair: GearPair, limits: FeasibilityLimits = FeasibilityLim
 
 
 def check_design(pair: GearPair, limits: FeasibilityLimits = FeasibilityLimits()) -> FeasibilityReport:
-    """Check one (scalar) design against every limit; each violated limit is reported with value and limit."""
+    """Check one (scalar) design against every limit; each violated limit is reported with its value and limit.
+
+    Parameters
+    ----------
+    pair : GearPair
+        A scalar pair [-].
+    limits : FeasibilityLimits
+        The limits [-].
+
+    Returns
+    -------
+    FeasibilityReport
+        The violated limits (empty when feasible).
+    """
     if np.ndim(pair.normal_module) or np.ndim(pair.z1):
         raise InputError("pair", "vectorised GearPair", "a single design (use feasibility_masks for arrays)")
     m = float(pair.normal_module)
@@ -185,20 +260,52 @@ def check_design(pair: GearPair, limits: FeasibilityLimits = FeasibilityLimits()
 
 # ---------------------------------------------------------------------- the paper's design space
 def iso_min_backlash(center_distance, normal_module):
-    """Recommended minimum normal backlash j_bn,min = 2/3 (0.06 + 0.0005 a + 0.03 m_n) mm, a and m_n in mm
-    (ISO/TR 10064-2:1996, industrial drives, ferrous gears in a ferrous housing) — returned in metres."""
+    """Recommended minimum normal backlash j_bn,min = 2/3 (0.06 + 0.0005 a + 0.03 m_n) mm, with a and m_n in mm.
+
+    ISO/TR 10064-2:1996, industrial drives, ferrous gears in a ferrous housing.
+
+    Parameters
+    ----------
+    center_distance : float or array_like
+        Centre distance a [m].
+    normal_module : float or array_like
+        Normal module m_n [m].
+
+    Returns
+    -------
+    float or ndarray
+        j_bn,min [m].
+    """
     a_mm = np.asarray(center_distance) * 1e3
     m_mm = np.asarray(normal_module) * 1e3
     return (2.0 / 3.0) * (0.06 + 0.0005 * a_mm + 0.03 * m_mm) * 1e-3
 
 
 def thickness_allowance(policy: str, value: float, center_distance, normal_module, normal_pressure_angle):
-    """Normal tooth-thickness allowance A_sn per gear [m] of identical gears by a backlash policy.
+    """Normal tooth-thickness allowance A_sn per gear of identical gears by a backlash policy.
 
-    ``"iso10064"``: both gears thinned equally to give the ISO/TR 10064-2 recommended minimum backlash,
-    A_sn = j_bn,min / (2 cos α_n) (``value`` ignored); ``"constant"``: A_sn = ``value`` [m];
-    ``"module"``: A_sn = ``value`` · m_n; ``"backlash"``: A_sn = ``value`` / (2 cos α_n), i.e. a fixed normal
-    backlash ``value`` [m] at the standard centre distance.
+    ``iso10064``: both gears thinned equally to give the ISO/TR 10064-2 recommended minimum backlash,
+    A_sn = j_bn,min / (2 cos α_n) (``value`` ignored); ``constant``: A_sn = ``value``; ``module``:
+    A_sn = ``value`` · m_n; ``backlash``: A_sn = ``value`` / (2 cos α_n), i.e. a fixed normal backlash ``value`` at
+    the standard centre distance.
+
+    Parameters
+    ----------
+    policy : str
+        ``iso10064``, ``constant``, ``module`` or ``backlash`` [-].
+    value : float
+        The policy's value: a length [m] for ``constant`` and ``backlash``, a fraction of m_n for ``module`` [-].
+    center_distance : float or array_like
+        Centre distance a [m].
+    normal_module : float or array_like
+        Normal module m_n [m].
+    normal_pressure_angle : float or array_like
+        Normal pressure angle α_n [rad].
+
+    Returns
+    -------
+    float or ndarray
+        A_sn [m].
     """
     cos_an = np.cos(normal_pressure_angle)
     if policy == "iso10064":
@@ -214,7 +321,29 @@ def thickness_allowance(policy: str, value: float, center_distance, normal_modul
 
 @dataclass(frozen=True)
 class DesignSpace:
-    """A full-factorial design space of the paper's parametrisation (angles in degrees as in the paper)."""
+    """A full-factorial design space of the paper's parametrisation (angles in degrees as in the paper).
+
+    Parameters
+    ----------
+    pressure_angles_deg : tuple of float
+        Normal pressure angles Φ [deg].
+    helix_angles_deg : tuple of float
+        Helix angles Ψ [deg].
+    teeth : tuple of int
+        Numbers of teeth N [-].
+    working_depths : tuple of float
+        Working depths Λ_wd in units of m_n [-].
+    center_distance : float
+        Centre distance a [m].
+    face_width : float
+        Face width b [m].
+    root_fillet_coefficient : float
+        Generating rack tip radius in units of m_n [-].
+    backlash_policy : str
+        Policy of :func:`thickness_allowance` [-].
+    backlash_policy_value : float
+        The policy's value (SI; a length for ``constant`` and ``backlash``) [-].
+    """
 
     pressure_angles_deg: tuple[float, ...]
     helix_angles_deg: tuple[float, ...]
@@ -232,12 +361,24 @@ class DesignSpace:
                 * len(self.working_depths))
 
     def grid(self):
-        """Arrays (Φ [rad], Ψ [rad], N, Λ_wd), each of shape (nΦ, nΨ, nN, nΛ)."""
+        """The design parameters on the full-factorial grid.
+
+        Returns
+        -------
+        list of ndarray
+            (Φ [rad], Ψ [rad], N [-], Λ_wd [-]), each of shape (nΦ, nΨ, nN, nΛ).
+        """
         return np.meshgrid(np.radians(self.pressure_angles_deg), np.radians(self.helix_angles_deg),
                            np.asarray(self.teeth), np.asarray(self.working_depths, dtype=float), indexing="ij")
 
     def pairs(self) -> GearPair:
-        """The whole space as one vectorised :class:`GearPair`."""
+        """The whole space as one vectorised :class:`GearPair`.
+
+        Returns
+        -------
+        GearPair
+            Fields of shape (nΦ, nΨ, nN, nΛ).
+        """
         phi, psi, n, wd = self.grid()
         module = self.center_distance * np.cos(psi) / n
         allowance = thickness_allowance(self.backlash_policy, self.backlash_policy_value, self.center_distance,
@@ -250,8 +391,20 @@ class DesignSpace:
 
 
 def paper_design_space(**overrides) -> DesignSpace:
-    """The paper's 7 × 16 × 34 × 8 = 30,464 designs (Li & Kahraman 2009 §3): Φ 15–30° step 2.5, Ψ 15–30° step 1,
-    N 20–53, Λ_wd = 1.85 + 0.218 k, k = 0..7 (1.85 … 3.376)."""
+    """The paper's 7 × 16 × 34 × 8 = 30,464 designs (Li & Kahraman 2009 §3).
+
+    Φ 15–30° step 2.5, Ψ 15–30° step 1, N 20–53, Λ_wd = 1.85 + 0.218 k, k = 0..7 (1.85 … 3.376).
+
+    Parameters
+    ----------
+    **overrides
+        Fields of :class:`DesignSpace` that replace the paper's [-].
+
+    Returns
+    -------
+    DesignSpace
+        The space.
+    """
     space = dict(pressure_angles_deg=tuple(15.0 + 2.5 * i for i in range(7)),
                  helix_angles_deg=tuple(float(v) for v in range(15, 31)), teeth=tuple(range(20, 54)),
                  working_depths=tuple(round(1.85 + 0.218 * k, 3) for k in range(8)))
@@ -260,7 +413,20 @@ def paper_design_space(**overrides) -> DesignSpace:
 
 
 def count_feasible(space: DesignSpace, limits: FeasibilityLimits = FeasibilityLimits()) -> dict[str, int]:
-    """Number of designs of ``space`` that satisfy each criterion, and ``"feasible"`` (all), plus ``"total"``."""
+    """Number of designs of ``space`` that satisfy each criterion.
+
+    Parameters
+    ----------
+    space : DesignSpace
+        The design space [-].
+    limits : FeasibilityLimits
+        The limits [-].
+
+    Returns
+    -------
+    dict of str to int
+        Count per criterion, ``feasible`` (all criteria) and ``total``.
+    """
     masks = feasibility_masks(space.pairs(), limits)
     counts = {name: int(np.count_nonzero(mask)) for name, mask in masks.items()}
     counts["total"] = space.size

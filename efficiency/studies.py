@@ -70,9 +70,23 @@ PAPER_SEARCH_LIMITS = {"max_power_loss_w": 300.0, "max_root_stress_pa": 235e6, "
 
 @dataclass(frozen=True)
 class StudyPoint:
-    """Operating point of a study (SI): input torque [N·m], input speed [rad/s], oil temperature [K], RMS roughness
-    of both flanks [m] and the flank modifications. :meth:`from_operating_point` converts a
-    :class:`efficiency.design_io.OperatingPoint` (the study file's ``[operating_point]``)."""
+    """Operating point of a study (SI).
+
+    Parameters
+    ----------
+    input_torque : float
+        Input torque on gear 1 [N·m].
+    input_speed : float
+        Input angular speed [rad/s].
+    oil_temperature : float
+        Oil inlet temperature [K].
+    rq1 : float
+        RMS roughness of gear 1's flanks [m].
+    rq2 : float
+        RMS roughness of gear 2's flanks [m].
+    modifications : Modifications
+        Flank modifications [-].
+    """
 
     input_torque: float
     input_speed: float
@@ -90,6 +104,18 @@ class StudyPoint:
 
     @classmethod
     def from_operating_point(cls, op) -> "StudyPoint":
+        """The study point of a study file's ``[operating_point]``.
+
+        Parameters
+        ----------
+        op : OperatingPoint
+            The operating point (:class:`efficiency.design_io.OperatingPoint`) [-].
+
+        Returns
+        -------
+        StudyPoint
+            The point, its crowns as :class:`Modifications`.
+        """
         return cls(op.input_torque, op.input_speed, op.oil_temperature, op.rq1, op.rq2,
                    Modifications(profile_crown=op.profile_crown, lead_crown=op.lead_crown))
 
@@ -100,10 +126,26 @@ def feasible_designs(space: DesignSpace, limits: FeasibilityLimits = Feasibility
                      ) -> pd.DataFrame:
     """The designs of ``space`` that pass the feasibility screen, with their geometry (one row per design).
 
-    ``where`` fixes design columns (e.g. ``{"normal_pressure_angle_deg": 22.5, "helix_angle_deg": 20,
-    "working_depth": 2.286}``, the line of paper Fig. 3a); ``stride`` keeps every stride-th feasible design and
-    ``limit`` the first ``limit`` after that (quick subsets of the full sweep). Order: Φ, Ψ, N, Λ_wd (C order of
-    :meth:`DesignSpace.grid`).
+    Order: Φ, Ψ, N, Λ_wd (C order of :meth:`DesignSpace.grid`).
+
+    Parameters
+    ----------
+    space : DesignSpace
+        The design space [-].
+    limits : FeasibilityLimits
+        Feasibility limits [-].
+    where : Mapping of str to float, optional
+        Fixed design columns, e.g. ``{"normal_pressure_angle_deg": 22.5, "helix_angle_deg": 20, "working_depth":
+        2.286}`` (the line of paper Fig. 3a) [-].
+    stride : int
+        Keep every stride-th feasible design [-].
+    limit : int, optional
+        Keep the first ``limit`` designs after the stride [-].
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per design.
     """
     check_range("stride", stride, 1, 10**9)
     if limit is not None:
@@ -135,7 +177,20 @@ def feasible_designs(space: DesignSpace, limits: FeasibilityLimits = Feasibility
 
 
 def design_pair(row: Mapping, space: DesignSpace) -> GearPair:
-    """The scalar :class:`GearPair` of one row of :func:`feasible_designs` (the paper's parametrisation)."""
+    """The scalar :class:`GearPair` of one row of :func:`feasible_designs` (the paper's parametrisation).
+
+    Parameters
+    ----------
+    row : Mapping
+        A row of :func:`feasible_designs` [-].
+    space : DesignSpace
+        The space it came from [-].
+
+    Returns
+    -------
+    GearPair
+        The design.
+    """
     return GearPair.from_paper(int(row["teeth"]), math.radians(float(row["normal_pressure_angle_deg"])),
                                math.radians(float(row["helix_angle_deg"])), float(row["working_depth"]),
                                center_distance=space.center_distance, face_width=space.face_width,
@@ -146,12 +201,28 @@ def design_pair(row: Mapping, space: DesignSpace) -> GearPair:
 # ---------------------------------------------------------------------- one design
 def evaluate_design(pair: GearPair, friction: Callable, point: StudyPoint,
                     options: MeshOptions = MeshOptions()) -> dict:
-    """P, η, TE p-p, σ_c, σ_b (SI) of one design at one operating point; the row of a study table.
+    """P, η, TE p-p, σ_c, σ_b (SI) of one design at one operating point: the row of a study table.
 
     ``options.outputs`` is forced to {"te", "stresses"} (the studies need both). Errors are raised, not caught
-    (:func:`design_sweep` records them per design). ``valid``: the result lies inside the validity of the load
-    distribution and of a surrogate's fitted ranges (:mod:`efficiency.validity`); ``not_valid_because``: the
-    reasons when it does not.
+    (:func:`design_sweep` records them per design).
+
+    Parameters
+    ----------
+    pair : GearPair
+        A scalar pair [-].
+    friction : callable
+        Friction model μ(p_h, r_eq, u_r, sr, temperature, rq1, rq2) [-].
+    point : StudyPoint
+        The operating point [-].
+    options : MeshOptions
+        Mesh resolution and models [-].
+
+    Returns
+    -------
+    dict
+        ``power_loss_w``, ``efficiency``, ``te_pp_m``, ``sigma_c_pa``, ``sigma_b_pa``, ``mu_mean``, ``converged``,
+        ``valid`` (inside the validity of the load distribution and of a surrogate's fitted ranges,
+        :mod:`efficiency.validity`), ``not_valid_because``, ``error``, ``warning``, ``wall_time_s``.
     """
     started = time.perf_counter()
     if options.outputs != frozenset({"te", "stresses"}):
@@ -204,11 +275,36 @@ def design_sweep(space: DesignSpace, friction: Callable, point: StudyPoint,
                  limits: FeasibilityLimits = FeasibilityLimits(), options: MeshOptions = MeshOptions(), *,
                  where: Mapping[str, float] | None = None, stride: int = 1, limit: int | None = None,
                  progress: Callable[[int, int], None] | None = None) -> pd.DataFrame:
-    """Evaluate every feasible design of ``space`` (or the subset chosen by ``where``/``stride``/``limit``, see
-    :func:`feasible_designs`) at ``point`` with ``friction``: the table behind the paper's Fig. 3–5.
+    """Evaluate every feasible design of ``space`` at ``point`` with ``friction``: the table behind the paper's Fig. 3–5.
 
-    ``progress(done, total)`` is called after each design. One design's error does not stop the sweep: it is
-    recorded in the row's ``error`` column, and its warnings in ``warning`` (see the module docstring).
+    One design's error does not stop the sweep: it is recorded in the row's ``error`` column, and its warnings in
+    ``warning`` (module docstring).
+
+    Parameters
+    ----------
+    space : DesignSpace
+        The design space [-].
+    friction : callable
+        Friction model [-].
+    point : StudyPoint
+        The operating point [-].
+    limits : FeasibilityLimits
+        Feasibility limits [-].
+    options : MeshOptions
+        Mesh resolution and models [-].
+    where : Mapping of str to float, optional
+        Fixed design columns (:func:`feasible_designs`) [-].
+    stride : int
+        Keep every stride-th feasible design [-].
+    limit : int, optional
+        Keep the first ``limit`` designs after the stride [-].
+    progress : callable, optional
+        ``progress(done, total)``, called after each design [-].
+
+    Returns
+    -------
+    pandas.DataFrame
+        The design columns and the columns of :func:`evaluate_design`.
     """
     designs = feasible_designs(space, limits, where=where, stride=stride, limit=limit)
     rows = []
@@ -224,7 +320,18 @@ def design_sweep(space: DesignSpace, friction: Callable, point: StudyPoint,
 
 
 def no_error(table: pd.DataFrame) -> pd.Series:
-    """True for rows whose ``error`` is empty (also when read back from CSV, where empty cells become NaN)."""
+    """True for rows whose ``error`` is empty (also when read back from CSV, where empty cells become NaN).
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        A study table [-].
+
+    Returns
+    -------
+    pandas.Series
+        Boolean per row.
+    """
     errors = table["error"]
     return errors.isna() | (errors.astype(str) == "")
 
@@ -236,20 +343,44 @@ def _check_table(table: pd.DataFrame, columns: Iterable[str]) -> None:
 
 
 def find_design_like_d(table: pd.DataFrame, limits: Mapping[str, float] = PAPER_SEARCH_LIMITS) -> pd.DataFrame:
-    """The designs of a sweep table that meet every limit of the paper's design-D search (§3: P < 0.3 kW,
-    σ_b < 235 MPa, σ_c < 1.175 GPa, TE p-p < 0.25 µm; keys of :data:`SEARCH_CRITERIA`, SI), sorted by P.
+    """The designs of a sweep table that meet every limit of the paper's design-D search, sorted by P.
 
-    Only converged rows without error count. The returned rows carry ``worst_ratio``: the largest value/limit over
-    the criteria (< 1 for every match). :func:`rank_by_limits` gives the same ratio for every row, which shows how
-    near the closest designs come when nothing matches.
+    Paper §3: P < 0.3 kW, σ_b < 235 MPa, σ_c < 1.175 GPa, TE p-p < 0.25 µm. Only converged rows without error count.
+    :func:`rank_by_limits` gives the same ratio for every row, which shows how near the closest designs come when
+    nothing matches.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        A :func:`design_sweep` table [-].
+    limits : Mapping of str to float
+        Limits keyed as :data:`SEARCH_CRITERIA`, SI (units in the keys) [-].
+
+    Returns
+    -------
+    pandas.DataFrame
+        The matching rows with ``worst_ratio``, the largest value/limit over the criteria (< 1 for every match).
     """
     ranked = rank_by_limits(table, limits)
     return ranked[ranked["worst_ratio"] < 1.0].sort_values("power_loss_w").reset_index(drop=True)
 
 
 def rank_by_limits(table: pd.DataFrame, limits: Mapping[str, float] = PAPER_SEARCH_LIMITS) -> pd.DataFrame:
-    """Every valid (converged, no error) row with ``ratio_<column>`` = value / limit for each criterion and
-    ``worst_ratio`` = their maximum, sorted by ``worst_ratio`` (the designs nearest to meeting all limits first)."""
+    """Every valid (converged, no error) row ranked by how near it comes to meeting all limits.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        A :func:`design_sweep` table [-].
+    limits : Mapping of str to float
+        Limits keyed as :data:`SEARCH_CRITERIA`, SI [-].
+
+    Returns
+    -------
+    pandas.DataFrame
+        The rows with ``ratio_<column>`` = value / limit per criterion and ``worst_ratio`` = their maximum, sorted
+        by ``worst_ratio``.
+    """
     unknown = set(limits) - set(SEARCH_CRITERIA)
     if unknown:
         key = sorted(unknown)[0]
@@ -269,8 +400,22 @@ def rank_by_limits(table: pd.DataFrame, limits: Mapping[str, float] = PAPER_SEAR
 
 
 def trend_line(table: pd.DataFrame, vary: str, fixed: Mapping[str, float]) -> pd.DataFrame:
-    """The rows of ``table`` with the ``fixed`` design values (e.g. Φ = 22.5°, Ψ = 20°, Λ_wd = 2.286 for paper
-    Fig. 3a), sorted by ``vary``: the paper's "larger symbols" lines."""
+    """The rows of ``table`` with the ``fixed`` design values, sorted by ``vary``: the paper's "larger symbols" lines.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        A :func:`design_sweep` table [-].
+    vary : str
+        The design column that varies along the line [-].
+    fixed : Mapping of str to float
+        Fixed design values, e.g. Φ = 22.5°, Ψ = 20°, Λ_wd = 2.286 for paper Fig. 3a (column units: degrees) [-].
+
+    Returns
+    -------
+    pandas.DataFrame
+        The line's rows.
+    """
     _check_table(table, list(fixed) + [vary])
     mask = np.ones(len(table), dtype=bool)
     for key, value in fixed.items():
@@ -283,11 +428,34 @@ def modification_study(pair: GearPair, friction: Callable, profile_crowns: Itera
                        lead_crowns: Iterable[float], torques: Iterable[float], point: StudyPoint,
                        options: MeshOptions = MeshOptions(), *,
                        progress: Callable[[int, int], None] | None = None) -> pd.DataFrame:
-    """P, η, TE, σ_c, σ_b of ``pair`` for every profile crown M_P [m] × lead crown M_L [m] × input torque [N·m]
-    (paper Fig. 6: M_P, M_L = 0–30 µm at T_in = 50, 250, 500 N·m on Design D). The other operating conditions
-    (speed, temperature, roughness) come from ``point``; its modifications are replaced.
+    """P, η, TE, σ_c, σ_b of ``pair`` for every profile crown × lead crown × input torque.
 
-    Columns: ``torque_nm``, ``profile_crown_m``, ``lead_crown_m`` and the output columns of :func:`design_sweep`.
+    Paper Fig. 6: M_P, M_L = 0–30 µm at T_in = 50, 250, 500 N·m on Design D. The other operating conditions (speed,
+    temperature, roughness) come from ``point``; its modifications are replaced.
+
+    Parameters
+    ----------
+    pair : GearPair
+        A scalar pair [-].
+    friction : callable
+        Friction model [-].
+    profile_crowns : iterable of float
+        Profile crowns M_P [m].
+    lead_crowns : iterable of float
+        Lead crowns M_L [m].
+    torques : iterable of float
+        Input torques [N·m].
+    point : StudyPoint
+        The other operating conditions [-].
+    options : MeshOptions
+        Mesh resolution and models [-].
+    progress : callable, optional
+        ``progress(done, total)`` [-].
+
+    Returns
+    -------
+    pandas.DataFrame
+        ``torque_nm``, ``profile_crown_m``, ``lead_crown_m`` and the output columns of :func:`design_sweep`.
     """
     grid = [(float(t), float(mp), float(ml)) for t in torques for mp in profile_crowns for ml in lead_crowns]
     if not grid:

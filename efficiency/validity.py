@@ -34,8 +34,19 @@ HARDNESS_CASE_CARBURISED_PA = 700 * 9.80665e6
 
 @dataclass(frozen=True)
 class ValidityLimits:
-    """The limits of a loaded mesh result (see the module docstring): flank hardness [Pa] and the multiple of it
-    that σ_c may reach, static bending strength [Pa], and the largest normal approach as a fraction of m_n."""
+    """The limits of a loaded mesh result (module docstring).
+
+    Parameters
+    ----------
+    hardness_pa : float
+        Flank hardness [Pa].
+    contact_pressure_factor : float
+        Multiple of the hardness that σ_c may reach [-].
+    root_strength_pa : float
+        Static bending strength of the root [Pa].
+    approach_module_fraction : float
+        Largest normal approach as a fraction of m_n [-].
+    """
 
     hardness_pa: float = HARDNESS_CASE_CARBURISED_PA
     contact_pressure_factor: float = 0.6
@@ -57,8 +68,22 @@ def _entry(check: str, value: float, limit: float, unit: str, reason: str) -> di
 
 
 def mesh_checks(mesh, pair, limits: ValidityLimits = DEFAULT_LIMITS) -> list[dict]:
-    """The checks of a :class:`~efficiency.mesh_cycle.MeshCycleResult` of ``pair`` (σ_c and σ_b only when the
-    mesh computed stresses)."""
+    """The checks of a loaded mesh of ``pair``: σ_c and σ_b (only when the mesh computed stresses) and the approach.
+
+    Parameters
+    ----------
+    mesh : MeshCycleResult
+        The loaded mesh [-].
+    pair : GearPair
+        The pair [-].
+    limits : ValidityLimits
+        The limits [-].
+
+    Returns
+    -------
+    list of dict
+        One entry per check: ``check``, ``valid``, ``value``, ``limit``, ``unit``, ``reason``.
+    """
     out = []
     if mesh.sigma_c_max is not None:
         out.append(_entry("contact_pressure", mesh.sigma_c_max, limits.contact_pressure_limit_pa, "Pa",
@@ -81,10 +106,31 @@ def mesh_checks(mesh, pair, limits: ValidityLimits = DEFAULT_LIMITS) -> list[dic
 
 def friction_checks(loss, mesh, friction, temperature: float, rq1: float, rq2: float, *,
                     clip: bool = True) -> list[dict]:
-    """The surrogate-range check of a power loss ``loss`` computed on ``mesh`` with ``friction`` at the oil
-    temperature [K] and roughnesses [m] given (empty unless ``friction`` is a coefficient file's surrogate): the
-    share of the friction power loss at points with an input outside the fitted ranges
-    (:func:`surrogate.validity.judge`; ``clip``: whether the surrogate clipped them or extrapolated)."""
+    """The surrogate-range check of a power loss: the share of the friction power loss at points with an input outside
+    the fitted ranges (:func:`surrogate.validity.judge`); empty unless ``friction`` is a coefficient file's surrogate.
+
+    Parameters
+    ----------
+    loss : PowerLossResult
+        The power loss [-].
+    mesh : MeshCycleResult
+        The mesh it was computed on [-].
+    friction : callable
+        The friction model used [-].
+    temperature : float
+        Oil inlet temperature [K].
+    rq1 : float
+        RMS roughness of gear 1's flanks [m].
+    rq2 : float
+        RMS roughness of gear 2's flanks [m].
+    clip : bool
+        Whether the surrogate clipped its inputs (False: it extrapolated) [-].
+
+    Returns
+    -------
+    list of dict
+        The check entries.
+    """
     if not hasattr(friction, "coefficients") or not hasattr(friction, "clip"):
         return []
     from surrogate.validity import clipped_mask, judge
@@ -113,6 +159,17 @@ def _outside_counts(friction, cond, loaded, temperature, rq1, rq2) -> dict[str, 
 
 
 def summarize(checks: list[dict]) -> tuple[bool, list[str]]:
-    """(every check valid, the reasons of those that are not)."""
+    """Overall validity of a list of checks.
+
+    Parameters
+    ----------
+    checks : list of dict
+        Check entries (:func:`mesh_checks`, :func:`friction_checks`) [-].
+
+    Returns
+    -------
+    tuple
+        (every check valid, the reasons of those that are not).
+    """
     failed = [c["reason"] for c in checks if not c["valid"]]
     return not failed, failed
