@@ -34,10 +34,6 @@ PACKAGES = ("ehl_dataset", "surrogate", "efficiency", "workflows")
 
 # Modules rendered in the API reference whose docstrings are still to be converted to numpydoc with units.
 PENDING: set[str] = {
-    "efficiency.feasibility",
-    "efficiency.iso6336",
-    "efficiency.studies",
-    "efficiency.validity",
     "ehl_dataset.dataset.factorial",
     "ehl_dataset.dataset.runner",
     "ehl_dataset.dataset.store",
