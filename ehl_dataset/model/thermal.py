@@ -69,6 +69,7 @@ import math
 from dataclasses import asdict, dataclass
 from typing import Any
 
+import numba
 import numpy as np
 from scipy.linalg import solve_triangular
 from scipy.optimize import brentq
@@ -226,30 +227,121 @@ def film_parameter(eta_wall, u_s: float, h, tau0: float, beta, conductivity: flo
     kept inside a bracket [lo, hi] that shrinks with the sign of φ (a bisection step where Newton leaves it), until
     the step is below 1e-13 (1 + X)."""
     eta_wall, h, beta = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (eta_wall, h, beta)))
-    s = eta_wall * abs(u_s) / (tau0 * h)
-    a = beta * abs(u_s) * h * tau0 / (8.0 * conductivity)
-    rhs0 = a * np.arcsinh(s)
-    lo = np.zeros_like(s)
-    hi = 2.0 * rhs0 + 2.0          # X tanh X ≥ 0.96 X > A asinh(S) ≥ A asinh(S g) there
-    x = np.minimum(np.sqrt(rhs0), 0.5 * hi)   # small-X solution X² = A asinh S
-    for _ in range(NEWTON_STEPS):
-        g = _g(x)
-        sg = s * g
-        phi = x * np.tanh(x) - a * np.arcsinh(sg)
-        lo = np.where(phi < 0.0, x, lo)
-        hi = np.where(phi > 0.0, x, hi)
-        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-            dg = np.where(x > 1e-4, g * (1.0 / np.where(x > 0, x, 1.0) - 2.0 / np.tanh(np.maximum(2.0 * x, 1e-300))),
-                          -4.0 * x / 3.0)
-            dphi = np.tanh(x) + x / np.cosh(np.minimum(x, 350.0)) ** 2 - a * s * dg / np.sqrt(1.0 + sg**2)
-            new = x - phi / dphi
-        bad = ~np.isfinite(new) | (new < lo) | (new > hi)
-        new = np.where(bad, 0.5 * (lo + hi), new)
-        done = np.all(np.abs(new - x) <= 1e-13 * (1.0 + x))
-        x = new
+    shape = eta_wall.shape
+    x = _film_parameter_kernel(np.array(eta_wall).ravel(), float(u_s), np.array(h).ravel(), float(tau0),
+                               np.array(beta).ravel(), float(conductivity), NEWTON_STEPS)
+    return x.reshape(shape)
+
+
+@numba.njit(cache=True)
+def _g_scalar(x):
+    """:func:`_g` of one value."""
+    two = 2.0 * x
+    if two < 1e-8:
+        return 1.0 - two * two / 6.0
+    if two > 30.0:
+        return two * 2.0 * math.exp(-two) / (1.0 - math.exp(-2.0 * two))
+    return two / math.sinh(two)
+
+
+@numba.njit(cache=True)
+def _film_parameter_lockstep(s, a, steps):
+    """The roots X of X tanh X = A asinh(S g(X)) at every node (:func:`film_parameter`): the safeguarded Newton
+    iteration of all nodes in lockstep, stopped when every node's step is below 1e-13 (1 + X), as the array form does
+    (so that both give the same numbers); 0 where A asinh S is not positive."""
+    n = s.size
+    rhs0 = np.empty(n)
+    lo = np.zeros(n)
+    hi = np.empty(n)
+    x = np.empty(n)
+    for i in range(n):
+        rhs0[i] = a[i] * math.asinh(s[i])
+        hi[i] = 2.0 * rhs0[i] + 2.0
+        x[i] = min(math.sqrt(rhs0[i]), 0.5 * hi[i]) if rhs0[i] >= 0.0 else math.nan
+    for _ in range(steps):
+        done = True
+        for i in range(n):
+            xi = x[i]
+            g = _g_scalar(xi)
+            sg = s[i] * g
+            phi = xi * math.tanh(xi) - a[i] * math.asinh(sg)
+            if phi < 0.0:
+                lo[i] = xi
+            if phi > 0.0:
+                hi[i] = xi
+            if xi > 1e-4:
+                dg = g * (1.0 / xi - 2.0 / math.tanh(max(2.0 * xi, 1e-300)))
+            else:
+                dg = -4.0 * xi / 3.0
+            dphi = math.tanh(xi) + xi / math.cosh(min(xi, 350.0)) ** 2 - a[i] * s[i] * dg / math.sqrt(1.0 + sg * sg)
+            new = xi - phi / dphi if dphi != 0.0 else math.nan
+            if not math.isfinite(new) or new < lo[i] or new > hi[i]:
+                new = 0.5 * (lo[i] + hi[i])
+            if not abs(new - xi) <= 1e-13 * (1.0 + xi):
+                done = False
+            x[i] = new
         if done:
             break
-    return np.where(rhs0 > 0.0, x, 0.0)
+    for i in range(n):
+        if not rhs0[i] > 0.0:
+            x[i] = 0.0
+    return x
+
+
+@numba.njit(cache=True)
+def _film_parameter_kernel(eta_wall, u_s, h, tau0, beta, conductivity, steps):
+    """:func:`film_parameter` of flat arrays."""
+    s = eta_wall * abs(u_s) / (tau0 * h)
+    a = beta * abs(u_s) * h * tau0 / (8.0 * conductivity)
+    return _film_parameter_lockstep(s, a, steps)
+
+
+@numba.njit(cache=True)
+def _table_at(rises, log_eta, column, rise):
+    """(ln η, β) of :meth:`TemperatureTable.at` for one column and one rise."""
+    n = rises.size
+    j = np.searchsorted(rises, rise, side="right") - 1
+    j = min(max(j, 0), n - 2)
+    lo = log_eta[j, column]
+    slope = (log_eta[j + 1, column] - lo) / (rises[j + 1] - rises[j])
+    return lo + slope * (rise - rises[j]), -slope
+
+
+@numba.njit(cache=True)
+def _secant_film_kernel(rises, log_eta, rise, u_s, h, tau0, conductivity, secant_iterations, steps):
+    """:func:`film_with_secant_beta` of node ``i`` = column ``i`` of ``log_eta`` at ``rise[i]`` with film ``h[i]``:
+    the secant iteration of all nodes in lockstep, stopped when every β has converged to 1e-10, as the array form."""
+    n = rise.size
+    log_eta_s = np.empty(n)
+    beta = np.empty(n)
+    for i in range(n):
+        log_eta_s[i], slope_beta = _table_at(rises, log_eta, i, rise[i])
+        beta[i] = max(slope_beta, 0.0)
+    eta_s = np.exp(log_eta_s)
+    log_eta_s = np.log(eta_s)
+    s = eta_s * abs(u_s) / (tau0 * h)
+    for _ in range(secant_iterations):
+        x = _film_parameter_lockstep(s, beta * abs(u_s) * h * tau0 / (8.0 * conductivity), steps)
+        done = True
+        for i in range(n):
+            centre = 2.0 * (x[i] + math.log1p(math.exp(-2.0 * x[i])) - math.log(2.0)) / beta[i] if beta[i] > 0.0 \
+                else 0.0
+            secant = beta[i]
+            if centre > 1e-6:
+                eta_c = math.exp(_table_at(rises, log_eta, i, rise[i] + centre)[0])
+                secant = (log_eta_s[i] - math.log(eta_c)) / centre
+            secant = max(secant, 0.0)
+            if not abs(secant - beta[i]) <= 1e-10 * max(beta[i], 1e-300):
+                done = False
+            beta[i] = secant
+        if done:
+            break
+    x = _film_parameter_lockstep(s, beta * abs(u_s) * h * tau0 / (8.0 * conductivity), steps)
+    sign = 1.0 if u_s >= 0.0 else -1.0
+    tau = np.empty(n)
+    for i in range(n):
+        tau[i] = sign * tau0 * math.asinh(s[i] * _g_scalar(x[i]))
+    return tau, x, beta
 
 
 def film_shear_stress(eta_wall, u_s: float, h, tau0: float, beta, conductivity: float):
@@ -280,6 +372,11 @@ def film_with_secant_beta(table: TemperatureTable, rise, u_s: float, h, tau0: fl
     2 ln cosh X/β (iterated from the tangent β at the wall). For small rises it is the tangent; for a hot film
     it follows β falling with temperature. Returns (τ, X, β)."""
     rise = np.asarray(rise, dtype=float)
+    if table.log_eta.ndim == 2 and rise.ndim == 1 and rise.size == table.log_eta.shape[1]:
+        h_nodes = np.array(np.broadcast_to(np.asarray(h, dtype=float), rise.shape))
+        return _secant_film_kernel(np.asarray(table.rises, dtype=float), np.ascontiguousarray(table.log_eta), rise,
+                                   float(u_s), h_nodes, float(tau0), float(conductivity), SECANT_ITERATIONS,
+                                   NEWTON_STEPS)
     eta_s, beta = table.at(rise)
     log_eta_s = np.log(eta_s)
     beta = np.maximum(beta, 0.0)
