@@ -60,12 +60,25 @@ class RoughnessProfile:
     """A uniformly sampled, zero-mean, periodic-by-convention roughness profile.
 
     ``z`` heights [m] (positive = material above the mean line), ``spacing`` sampling interval [m], ``source``
-    a short provenance text. Position s [m] maps to sample s/spacing; reading wraps modulo :attr:`length`.
+    a short provenance text, ``grid_length_m`` the length scale [m] a solver grid resolves (None: the correlation
+    length; see :attr:`resolution_length`), ``name`` and ``sha256`` the registry name and file hash of a shipped
+    profile (:func:`named_profile`; empty otherwise). Position s [m] maps to sample s/spacing; reading wraps modulo
+    :attr:`length`.
     """
 
     z: np.ndarray
     spacing: float
     source: str = ""
+    grid_length_m: float | None = None
+    name: str = ""
+    sha256: str = ""
+
+    @property
+    def resolution_length(self) -> float:
+        """Length scale [m] a solver grid must resolve: ``grid_length_m`` (the short-wavelength cut-off of a
+        band-limited profile, e.g. :data:`FLANK_CUTOFF_WAVELENGTH_M`), else the correlation length (a Gaussian-ACF
+        profile has no roughness below ≈ β, see the module docstring)."""
+        return float(self.grid_length_m) if self.grid_length_m is not None else float(self.correlation_length)
 
     @property
     def length(self) -> float:
@@ -88,7 +101,8 @@ class RoughnessProfile:
         current = self.rq
         if current == 0.0:
             raise InputError("roughness profile", self.source or "<profile>", "a profile with non-zero Rq")
-        return RoughnessProfile(self.z * (rq / current), self.spacing, self.source)
+        return RoughnessProfile(self.z * (rq / current), self.spacing, self.source, self.grid_length_m, self.name,
+                                self.sha256)
 
     def sample(self, s) -> np.ndarray:
         """Heights [m] at positions ``s`` [m] (any shape) by periodic linear interpolation."""
@@ -217,15 +231,10 @@ def write_baseline(path: str | Path | None = None) -> Path:
     return target
 
 
-@functools.lru_cache(maxsize=1)
 def baseline_profile() -> RoughnessProfile:
-    """The shipped baseline profile (read once per process). Not detrended: it is periodic and zero-mean."""
-    path = data_path("roughness", BASELINE_FILE)
-    data = _read_two_columns(path)
-    x = data[:, 0] * 1e-6
-    z = data[:, 1] * 1e-6
-    spacing = float((x[-1] - x[0]) / (x.size - 1))
-    return RoughnessProfile(z - z.mean(), spacing, f"shipped baseline {BASELINE_FILE}")
+    """The shipped baseline profile, ``named_profile("baseline_synthetic")`` (read once per process, its sha256
+    checked). Not detrended: it is periodic and zero-mean."""
+    return named_profile(DEFAULT_PROFILE)
 
 
 @functools.lru_cache(maxsize=2)
@@ -245,6 +254,310 @@ def long_baseline_profile(n_points: int) -> RoughnessProfile:
     return RoughnessProfile(z - z.mean(), BASELINE_SPACING_M,
                             f"baseline process over {n_points} samples (gaussian ACF, beta="
                             f"{BASELINE_CORRELATION_LENGTH_M:g} m, seed={BASELINE_SEED})")
+
+
+# ---------------------------------------------------------------------------------------------------------------
+# Flank-like profile: self-affine between a roll-off and a short cut-off
+# ---------------------------------------------------------------------------------------------------------------
+FLANK_FILE = "flank_ground.txt"
+"""File name of the flank-like profile in ``data/roughness/``."""
+FLANK_SEED = 20170113
+"""Seed of the flank-like profile (legacy ``numpy.random.RandomState``, NEP 19)."""
+FLANK_POINTS = 2**17
+"""Number of samples of the flank-like profile (32.768 mm at :data:`FLANK_SPACING_M`)."""
+FLANK_SPACING_M = 0.25e-6
+"""Sampling interval of the flank-like profile [m]: a tenth of the short cut-off wavelength."""
+FLANK_HURST = 0.85
+"""Hurst exponent H of the flank-like profile [-]: fractal dimension D_f = 3 − H = 2.15, the centre of the
+D_f = 2.15 ± 0.15 that Persson (Tribol. Lett. 54 (2014) 99) finds on most engineering surfaces."""
+FLANK_ROLLOFF_WAVELENGTH_M = 50.0e-6
+"""Roll-off wavelength λ_r [m]: the PSD is flat at longer wavelengths (Jacobs, Junge & Pastewka 2017). A choice,
+not a measured flank value: it puts the 1/e correlation length near 10 µm (docs/explanation/roughness.md)."""
+FLANK_CUTOFF_WAVELENGTH_M = 2.5e-6
+"""Short cut-off wavelength λ_s [m]: no roughness at shorter wavelengths. 2.5 µm is the short-wave filter λs of a
+stylus profile with λc = 0.8 mm and a 2 µm tip (ISO 3274, ISO 4288): measured flank spectra end there."""
+FLANK_RQ_M = 0.5e-6
+"""RMS roughness of the shipped flank-like profile [m] (the baseline's; every case rescales it)."""
+
+
+def self_affine_psd(k, hurst: float, rolloff_wavelength: float, cutoff_wavelength: float):
+    """One-sided 1-D power spectral density shape (unnormalised) of a self-affine profile with a roll-off.
+
+    C(k) = 1 for k < k_r, (k/k_r)^−(1+2H) for k_r ≤ k ≤ k_s, 0 for k > k_s, with k_r = 2π/λ_r, k_s = 2π/λ_s
+    (Jacobs, Junge & Pastewka, Surf. Topogr. Metrol. Prop. 5 (2017) 013001, the 1-D form of their Eq. for a
+    self-affine surface with roll-off).
+
+    Parameters
+    ----------
+    k : array_like
+        Wavenumbers [rad/m].
+    hurst : float
+        Hurst exponent H, 0 < H < 1 [-].
+    rolloff_wavelength : float
+        Roll-off wavelength λ_r [m].
+    cutoff_wavelength : float
+        Short cut-off wavelength λ_s < λ_r [m].
+
+    Returns
+    -------
+    numpy.ndarray
+        C(k) [-], 1 on the plateau.
+    """
+    k = np.asarray(k, dtype=float)
+    k_r = 2.0 * math.pi / rolloff_wavelength
+    k_s = 2.0 * math.pi / cutoff_wavelength
+    ratio = np.maximum(k, k_r) / k_r
+    return np.where(k > k_s * (1.0 + 1e-12), 0.0, ratio ** (-(1.0 + 2.0 * hurst)))
+
+
+def johnson_su_heights(z: np.ndarray, skewness: float, kurtosis: float) -> np.ndarray:
+    """Monotone (Johnson S_U translation) transform of Gaussian heights to a skewed, heavy-tailed distribution.
+
+    y = sinh((g − γ)/δ) with g = z/std(z) standard normal (Johnson, Biometrika 36 (1949) 149); γ, δ are solved so
+    that the distribution of y has the requested skewness and kurtosis (scipy.stats.johnsonsu). The transform keeps
+    the order of the heights, so the profile's peaks stay where they were; it reshapes the spectrum a little (the
+    spectrum of the result is measured, not assumed).
+
+    Parameters
+    ----------
+    z : numpy.ndarray
+        Zero-mean Gaussian heights [m].
+    skewness : float
+        Target skewness Rsk [-].
+    kurtosis : float
+        Target kurtosis Rku > 3 + 1.5·Rsk² (the S_U region) [-].
+
+    Returns
+    -------
+    numpy.ndarray
+        Heights [-] with the target distribution (not yet scaled; the caller scales to Rq).
+    """
+    from scipy import optimize, stats
+
+    check_range("kurtosis", kurtosis, 3.0 + 1.5 * skewness**2, 50.0, low_inclusive=False)
+
+    def mismatch(params):
+        gamma, log_delta = params
+        sk, ku = stats.johnsonsu.stats(gamma, math.exp(log_delta), moments="sk")
+        return [float(sk) - skewness, float(ku) + 3.0 - kurtosis]
+
+    solution = optimize.least_squares(mismatch, x0=[-skewness, math.log(2.0)], xtol=1e-14, ftol=1e-14)
+    if max(abs(r) for r in solution.fun) > 1e-8:
+        raise InputError("skewness/kurtosis", (skewness, kurtosis), "a pair reachable by a Johnson S_U law",
+                         f"moment mismatch {solution.fun}")
+    gamma, delta = solution.x[0], math.exp(solution.x[1])
+    g = np.asarray(z, dtype=float) / np.std(z)
+    return np.sinh((g - gamma) / delta)
+
+
+def generate_self_affine_profile(n_points: int, spacing_m: float, hurst: float, rolloff_wavelength_m: float,
+                                 cutoff_wavelength_m: float, rq_m: float, seed: int, *,
+                                 skewness: float | None = None, kurtosis: float | None = None) -> RoughnessProfile:
+    """Synthesise a periodic self-affine profile with a roll-off and a short cut-off, scaled to Rq exactly.
+
+    Fourier synthesis as :func:`generate_profile` (c_k = √C(k)·(g1 + i g2)/√2, ``RandomState(seed)``, c_0 = 0, real
+    Nyquist term) with the spectrum :func:`self_affine_psd`; Gaussian heights, or with ``skewness`` and ``kurtosis``
+    the monotone Johnson S_U transform :func:`johnson_su_heights` of them. The profile's ``grid_length_m`` is the
+    cut-off wavelength: a solver grid resolves λ_s, not the correlation length.
+
+    Parameters
+    ----------
+    n_points : int
+        Number of samples, even, ≥ 16 [-].
+    spacing_m : float
+        Sampling interval, ≤ λ_s/4 [m].
+    hurst : float
+        Hurst exponent H, 0 < H < 1 [-].
+    rolloff_wavelength_m : float
+        Roll-off wavelength λ_r, ≤ profile length/8 [m].
+    cutoff_wavelength_m : float
+        Short cut-off wavelength λ_s < λ_r [m].
+    rq_m : float
+        RMS roughness [m].
+    seed : int
+        Seed of the legacy NumPy generator [-].
+    skewness, kurtosis : float, optional
+        Height distribution moments Rsk, Rku [-] (both or neither; None: Gaussian heights).
+
+    Returns
+    -------
+    RoughnessProfile
+        Zero-mean profile with Rq = ``rq_m`` and ``grid_length_m`` = λ_s.
+    """
+    if not isinstance(n_points, (int, np.integer)) or n_points < 16 or n_points % 2:
+        raise InputError("n_points", n_points, "an even integer >= 16")
+    check_range("spacing_m", spacing_m, 0.0, 1e-3, low_inclusive=False, unit="m")
+    check_range("hurst", hurst, 0.0, 1.0, low_inclusive=False, high_inclusive=False)
+    check_range("cutoff_wavelength_m", cutoff_wavelength_m, 4.0 * spacing_m, 1e-2, unit="m")
+    check_range("rolloff_wavelength_m", rolloff_wavelength_m, cutoff_wavelength_m, n_points * spacing_m / 8.0,
+                low_inclusive=False, unit="m")
+    check_range("rq_m", rq_m, 0.0, 1e-4, low_inclusive=False, unit="m")
+    if (skewness is None) != (kurtosis is None):
+        raise InputError("skewness/kurtosis", (skewness, kurtosis), "both given or both None")
+    k = 2.0 * math.pi * np.fft.rfftfreq(n_points, d=spacing_m)
+    amplitude = np.sqrt(self_affine_psd(k, hurst, rolloff_wavelength_m, cutoff_wavelength_m))
+    rng = np.random.RandomState(seed)
+    noise = rng.standard_normal((2, k.size))
+    coefficients = amplitude * (noise[0] + 1j * noise[1]) / math.sqrt(2.0)
+    coefficients[0] = 0.0
+    coefficients[-1] = amplitude[-1] * noise[0, -1]
+    z = np.fft.irfft(coefficients, n_points)
+    heights = "gaussian heights"
+    if skewness is not None:
+        z = johnson_su_heights(z, skewness, kurtosis)
+        heights = f"Johnson S_U heights Rsk={skewness:g} Rku={kurtosis:g}"
+    z = z - z.mean()
+    z *= rq_m / np.sqrt(np.mean(z**2))
+    return RoughnessProfile(z, float(spacing_m),
+                            f"synthetic self-affine H={hurst:g}, lambda_r={rolloff_wavelength_m:g} m, "
+                            f"lambda_s={cutoff_wavelength_m:g} m, {heights}, seed={seed}",
+                            grid_length_m=float(cutoff_wavelength_m))
+
+
+def generate_flank() -> RoughnessProfile:
+    """The flank-like profile from the ``FLANK_*`` constants (what ``data/roughness/flank_ground.txt`` ships)."""
+    return generate_self_affine_profile(FLANK_POINTS, FLANK_SPACING_M, FLANK_HURST, FLANK_ROLLOFF_WAVELENGTH_M,
+                                        FLANK_CUTOFF_WAVELENGTH_M, FLANK_RQ_M, FLANK_SEED)
+
+
+FLANK_HEADER = f"""gearloss synthetic flank-like roughness profile (ground gear flank stand-in; not a measurement)
+columns: x [um]  z [um]   (z positive = material above the mean line)
+Gaussian heights, self-affine PSD C(k) ~ k^-(1+2H) between lambda_r and lambda_s, flat above lambda_r, 0 below lambda_s
+H = {FLANK_HURST:g}, lambda_r = {FLANK_ROLLOFF_WAVELENGTH_M * 1e6:g} um, lambda_s = {FLANK_CUTOFF_WAVELENGTH_M * 1e6:g} um, \
+Rq = {FLANK_RQ_M * 1e6:g} um, spacing = {FLANK_SPACING_M * 1e6:g} um, N = {FLANK_POINTS}, periodic, seed = {FLANK_SEED}
+regenerate: python -c "from ehl_dataset.model.roughness import write_flank; write_flank()"
+"""
+
+
+def flank_text() -> str:
+    """Exact text of the shipped flank-like profile file."""
+    return profile_text(generate_flank(), FLANK_HEADER)
+
+
+def write_flank(path: str | Path | None = None) -> Path:
+    """Write the flank-like profile file (default: the shipped location) and return its path."""
+    target = Path(path) if path is not None else data_path("roughness", FLANK_FILE)
+    target.write_text(flank_text(), encoding="ascii")
+    return target
+
+
+# ---------------------------------------------------------------------------------------------------------------
+# Registry of named profiles
+# ---------------------------------------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class ProfileEntry:
+    """A shipped roughness profile: ``file`` in ``data/roughness/``, its ``sha256``, a ``description``, the
+    length scale [m] a solver grid resolves on it (``grid_length_m``; None: its correlation length) and the
+    ``source`` text results record (empty: ``shipped <name> (<file>)``)."""
+
+    file: str
+    sha256: str
+    description: str
+    grid_length_m: float | None = None
+    source: str = ""
+
+
+PROFILES = {
+    "baseline_synthetic": ProfileEntry(
+        BASELINE_FILE, "01f539a6266e17d2ad3cdda3e787b616d7e54a855d572c17f33573a26bb9258a",
+        "Gaussian heights, Gaussian ACF, beta 15 um, Rq 0.5 um (the default today)",
+        source=f"shipped baseline {BASELINE_FILE}"),
+    "flank_ground": ProfileEntry(
+        FLANK_FILE, "4631d4a6a54bdabb8e9c9d1b7327596efaabd452dc789a0ffc6364bbe4e1bf78",
+        "Gaussian heights, self-affine H 0.85 between lambda_r 50 um and lambda_s 2.5 um, Rq 0.5 um",
+        FLANK_CUTOFF_WAVELENGTH_M),
+}
+"""Named roughness profiles: name → :class:`ProfileEntry`. ``baseline_synthetic`` is the default of every model."""
+
+DEFAULT_PROFILE = "baseline_synthetic"
+"""Name of the default roughness profile."""
+
+
+def file_sha256(path: str | Path) -> str:
+    """Hex sha256 of a file's bytes."""
+    import hashlib
+
+    return hashlib.sha256(Path(path).read_bytes()).hexdigest()
+
+
+@functools.lru_cache(maxsize=4)
+def named_profile(name: str) -> RoughnessProfile:
+    """The shipped profile registered as ``name`` (:data:`PROFILES`), checked against its sha256.
+
+    Parameters
+    ----------
+    name : str
+        A key of :data:`PROFILES` [-].
+
+    Returns
+    -------
+    RoughnessProfile
+        Zero-mean profile read from ``data/roughness/`` carrying ``name``, ``sha256`` and ``grid_length_m``.
+    """
+    entry = PROFILES.get(name)
+    if entry is None:
+        raise InputError("roughness profile name", name, f"one of {sorted(PROFILES)}")
+    path = data_path("roughness", entry.file)
+    digest = file_sha256(path)
+    if digest != entry.sha256:
+        raise InputError("roughness file", str(path), f"sha256 {entry.sha256}", f"found {digest}")
+    data = _read_two_columns(path)
+    x = data[:, 0] * 1e-6
+    z = data[:, 1] * 1e-6
+    spacing = float((x[-1] - x[0]) / (x.size - 1))
+    return RoughnessProfile(z - z.mean(), spacing, entry.source or f"shipped {name} ({entry.file})",
+                            entry.grid_length_m, name, digest)
+
+
+def psd_slope(profile: RoughnessProfile, shortest_wavelength_m: float, longest_wavelength_m: float) -> dict:
+    """Power-law slope of the periodogram of ``profile`` between two wavelengths, and the Hurst exponent from it.
+
+    Least squares of ln I(k_j) on ln k_j over the Fourier ordinates in the band. For a Gaussian process each
+    periodogram ordinate is C(k_j)·E_j with E_j independent standard exponentials, so ln I = ln C + ln E with
+    Var ln E = π²/6 (a constant bias −γ that the intercept absorbs): the slope's standard error is
+    √(π²/6 / Σ(ln k_j − mean)²) (the log-periodogram regression of Geweke & Porter-Hudak, J. Time Ser. Anal. 4
+    (1983) 221). A 1-D self-affine profile has C ∝ k^−(1+2H), so H = (−slope − 1)/2.
+
+    Parameters
+    ----------
+    profile : RoughnessProfile
+        The profile (uniform, periodic by convention) [m].
+    shortest_wavelength_m, longest_wavelength_m : float
+        Band of the fit [m].
+
+    Returns
+    -------
+    dict
+        ``slope`` [-], ``slope_standard_error`` [-], ``hurst`` [-], ``hurst_standard_error`` [-], ``n_ordinates``.
+    """
+    check_range("shortest_wavelength_m", shortest_wavelength_m, 2.0 * profile.spacing, longest_wavelength_m,
+                unit="m")
+    z = profile.z - profile.z.mean()
+    k = 2.0 * math.pi * np.fft.rfftfreq(z.size, d=profile.spacing)
+    power = np.abs(np.fft.rfft(z)) ** 2
+    band = (k >= 2.0 * math.pi / longest_wavelength_m) & (k <= 2.0 * math.pi / shortest_wavelength_m) & (power > 0)
+    if band.sum() < 8:
+        raise InputError("wavelength band", (shortest_wavelength_m, longest_wavelength_m),
+                         "a band holding at least 8 non-zero Fourier ordinates", f"holds {int(band.sum())}")
+    x = np.log(k[band])
+    y = np.log(power[band])
+    xc = x - x.mean()
+    slope = float(np.sum(xc * (y - y.mean())) / np.sum(xc**2))
+    se = math.sqrt(math.pi**2 / 6.0 / float(np.sum(xc**2)))
+    return {"slope": slope, "slope_standard_error": se, "hurst": (-slope - 1.0) / 2.0,
+            "hurst_standard_error": se / 2.0, "n_ordinates": int(band.sum())}
+
+
+def periodogram(profile: RoughnessProfile) -> tuple[np.ndarray, np.ndarray]:
+    """(k [rad/m], C [m³]) one-sided 1-D PSD estimate of a profile: C(k_j) = 2·Δx/N·|Z_j|² (Z its DFT), so that
+    Σ_j C(k_j)·Δk/(2π) = Rq² (Parseval; the DC term excluded)."""
+    z = profile.z - profile.z.mean()
+    n = z.size
+    k = 2.0 * math.pi * np.fft.rfftfreq(n, d=profile.spacing)
+    power = np.abs(np.fft.rfft(z)) ** 2 * (2.0 * profile.spacing / n)
+    if n % 2 == 0:
+        power[-1] *= 0.5
+    return k[1:], power[1:]
 
 
 # ---------------------------------------------------------------------------------------------------------------
@@ -333,16 +646,119 @@ def load_profile(path: str | Path, *, unit: str = "um", spacing_m: float | None 
     if np.sqrt(np.mean(z**2)) <= 1e-9 * np.max(np.abs(raw)):
         raise InputError("roughness file", str(path), "a profile that is not flat after detrending",
                          "the heights lie on a straight line")
+    return _uniform_profile(x, z, path.name, spacing_m, target_rq_m)
+
+
+def _uniform_profile(x, z, label: str, spacing_m: float | None, target_rq_m: float | None) -> RoughnessProfile:
+    """Detrended heights ``z`` [m] at ``x`` [m] resampled to a uniform spacing and optionally scaled."""
     span = x[-1] - x[0]
     if spacing_m is None:
         spacing_m = float(np.median(np.diff(x)))
-    check_range("spacing_m", spacing_m, 0.0, span / 15.0, low_inclusive=False, unit=f"m for {path.name}")
+    check_range("spacing_m", spacing_m, 0.0, span / 15.0, low_inclusive=False, unit=f"m for {label}")
     _, zu = resample_uniform(x, z, spacing_m)
     zu = zu - zu.mean()
-    profile = RoughnessProfile(zu, float(spacing_m), f"measured {path.name} (detrended)")
+    profile = RoughnessProfile(zu, float(spacing_m), f"measured {label} (detrended)")
     if target_rq_m is not None:
         profile = profile.scaled(target_rq_m)
     return profile
+
+
+TEXT_SUFFIXES = (".txt", ".csv")
+"""File name endings read by the two-column text reader (:func:`load_profile`); other files go to
+:func:`read_topography_profile`."""
+
+
+def read_topography_profile(path: str | Path, *, unit: str | None = None, line: int | None = None,
+                            spacing_m: float | None = None, target_rq_m: float | None = None) -> RoughnessProfile:
+    """Read a profilometer file with SurfaceTopography (the ``roughness`` extra): line scans, or one line of a
+    topography map, in any format ``SurfaceTopography.open_topography`` knows (Digital Surf SUR, Zygo, Keyence,
+    Bruker, MI, x-y text, ...); detrended, resampled and scaled as :func:`load_profile`.
+
+    Parameters
+    ----------
+    path : str or Path
+        The file [-].
+    unit : str, optional
+        Length unit of the file when it does not state one (``"m"``, ``"mm"``, ``"um"``, ``"nm"``) [-].
+    line : int, optional
+        Index of the line along x of a 2-D map (default: the middle one) [-].
+    spacing_m : float, optional
+        Uniform spacing to resample to (default: the file's median spacing) [m].
+    target_rq_m : float, optional
+        Rq to scale the profile to [m].
+
+    Returns
+    -------
+    RoughnessProfile
+        The detrended, uniformly sampled profile.
+    """
+    path = Path(path)
+    if not path.is_file():
+        raise InputError("roughness file", str(path), "an existing profilometer file")
+    try:
+        from SurfaceTopography import open_topography
+        from SurfaceTopography.Support.UnitConversion import get_unit_conversion_factor
+    except ImportError:
+        raise InputError("roughness file", str(path), "a two-column text file (.txt, .csv), or install the "
+                         "'roughness' extra (SurfaceTopography) to read profilometer formats") from None
+    try:
+        topography = open_topography(str(path)).topography()
+    except Exception as error:  # the library raises many types for unreadable files
+        raise InputError("roughness file", str(path), "a profilometer file SurfaceTopography can read",
+                         f"{type(error).__name__}: {error}") from None
+    file_unit = topography.unit
+    if file_unit is None:
+        if unit is None:
+            raise InputError("unit", None, "the file's length unit ('m', 'mm', 'um', 'nm'): the file states none")
+        file_unit = unit
+    factor = get_unit_conversion_factor(file_unit.replace("um", "µm"), "m")
+    if topography.dim == 1:
+        if topography.is_uniform:
+            x = np.asarray(topography.positions(), dtype=float)
+            z = np.asarray(topography.heights(), dtype=float)
+        else:
+            x, z = (np.asarray(v, dtype=float) for v in topography.positions_and_heights())
+    else:
+        heights = np.asarray(topography.heights(), dtype=float)
+        j = heights.shape[1] // 2 if line is None else int(line)
+        check_range("line", j, 0, heights.shape[1] - 1)
+        x = np.arange(heights.shape[0]) * (topography.physical_sizes[0] / heights.shape[0])
+        z = heights[:, j]
+    x, z = x * factor, z * factor
+    if x.size < 16 or not np.all(np.isfinite(z)):
+        raise InputError("roughness file", str(path), "at least 16 finite heights along the line")
+    z = detrend(x, z)
+    if np.sqrt(np.mean(z**2)) == 0.0:
+        raise InputError("roughness file", str(path), "a profile that is not flat after detrending")
+    return _uniform_profile(x, z, path.name, spacing_m, target_rq_m)
+
+
+def resolve_profile(spec: str, *, unit: str | None = None, line: int | None = None) -> RoughnessProfile:
+    """A profile from a registry name (:data:`PROFILES`), a two-column text file (:data:`TEXT_SUFFIXES`; ``unit``
+    default µm) or a profilometer file (:func:`read_topography_profile`).
+
+    Parameters
+    ----------
+    spec : str
+        Registry name or file path [-].
+    unit : str, optional
+        Length unit of a file that does not state one [-].
+    line : int, optional
+        Line of a 2-D map [-].
+
+    Returns
+    -------
+    RoughnessProfile
+        The profile.
+    """
+    if spec in PROFILES:
+        return named_profile(spec)
+    path = Path(spec)
+    if path.suffix.lower() in TEXT_SUFFIXES:
+        return load_profile(path, unit=unit or "um")
+    if not path.exists():
+        raise InputError("roughness", spec, f"one of {sorted(PROFILES)} or an existing file")
+    return read_topography_profile(path, unit=unit, line=line)
 
 
 # ---------------------------------------------------------------------------------------------------------------
@@ -441,5 +857,10 @@ def surface_pair(case, x_m, t_s, t_end_s: float, profile: RoughnessProfile | Non
 
 
 def profile_record(profile: RoughnessProfile) -> dict:
-    """What a rough result records of the profile both surfaces took: its source and correlation length [m]."""
-    return {"roughness_profile": profile.source, "roughness_correlation_length_m": float(profile.correlation_length)}
+    """What a rough result records of the profile both surfaces took: its source, correlation length [m], and for a
+    named profile (:func:`named_profile`) its registry name and file sha256."""
+    record = {"roughness_profile": profile.source,
+              "roughness_correlation_length_m": float(profile.correlation_length)}
+    if profile.name:
+        record.update(roughness_name=profile.name, roughness_sha256=profile.sha256)
+    return record

@@ -303,14 +303,18 @@ first iterations were lost). On three 2-pass `fast` runs that saves 6–19 % of 
 
 def grid_spacing(profile: RoughnessProfile, rq1: float, rq2: float, h_b: float, options: DeterministicOptions,
                  inlet_length: float = math.inf) -> tuple[float, dict]:
-    """Grid spacing [m] that resolves the roughness (β/``points_per_beta``), the micro-EHL length
+    """Grid spacing [m] that resolves the roughness (its resolution length / ``points_per_beta``: the correlation
+    length β of a Gaussian-ACF profile, the short cut-off wavelength λ_s of a band-limited one,
+    :attr:`~ehl_dataset.model.roughness.RoughnessProfile.resolution_length`), the micro-EHL length
     ℓ = √(2 R_asp h_b) (ℓ/``points_per_ell``) and the smooth inlet length scale ``inlet_length`` [m]
     (``options.inlet_resolution`` of it), and the numbers it came from."""
     beta = profile.correlation_length
+    grid_length = profile.resolution_length
     r_asp = asperity_radius(profile, rq1, rq2)
     ell = math.sqrt(2.0 * r_asp * h_b)
-    dx = min(beta / options.points_per_beta, ell / options.points_per_ell, options.inlet_resolution * inlet_length)
-    return dx, {"beta_m": beta, "asperity_radius_m": r_asp, "micro_ehl_length_m": ell,
+    dx = min(grid_length / options.points_per_beta, ell / options.points_per_ell,
+             options.inlet_resolution * inlet_length)
+    return dx, {"beta_m": beta, "grid_length_m": grid_length, "asperity_radius_m": r_asp, "micro_ehl_length_m": ell,
                 "inlet_length_m": inlet_length}
 
 

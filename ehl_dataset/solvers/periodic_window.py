@@ -48,7 +48,9 @@ sub-step split (the whole-contact solver's default)."""
 
 @dataclass(frozen=True)
 class WindowOptions:
-    """``length_beta`` window length L in correlation lengths; ``points_per_beta`` grid; ``courant`` u_r Δt/Δx;
+    """``length_beta`` window length L in correlation lengths; ``points_per_beta`` grid points per resolution
+    length of the profile (its correlation length for a Gaussian-ACF profile, its short cut-off wavelength for a
+    band-limited one: :attr:`~ehl_dataset.model.roughness.RoughnessProfile.resolution_length`); ``courant`` u_r Δt/Δx;
     ``ramp_passes`` the roughness amplitude grows from 0 to 1 over this many passes (one pass: L at u_r);
     ``startup_passes`` after the ramp before averaging; ``average_passes`` the averaging window, at least
     ``relative_periods`` periods L/|u_s| of the relative motion of the two surfaces when they slide, at most
@@ -152,7 +154,9 @@ def solve_window(case: ContactCase, state: LubricantState, mean_pressure_pa: flo
     scales = ContactScales.of(case, state, True)
     a, beta = scales.a, profile.correlation_length
     length_m = options.length_beta * beta
-    n = int(round(options.length_beta * options.points_per_beta))
+    grid_per_beta = (options.points_per_beta if profile.grid_length_m is None  # Gaussian ACF: exactly as always
+                     else options.points_per_beta * beta / profile.resolution_length)
+    n = int(round(options.length_beta * grid_per_beta))
     dx_m = length_m / n
     h_b_m = options.boundary_film_m if options.boundary_film_m is not None else BOUNDARY_FILM_M
     x = np.arange(n) * (dx_m / a)

@@ -204,7 +204,7 @@ def solve_wide(case: ContactCase, state: LubricantState, plan: Effects, options:
                   "inlet_over_beta": inlet_over_beta, "film_law_extrapolated": extrapolated,
                   "smooth_central_film_m": h_smooth_centre,
                   "n_nodes": sum(w["n_nodes"] for w in windows), "n_steps": sum(w["n_steps"] for w in windows),
-                  "dx_m": profile.correlation_length / options.window.points_per_beta})
+                  "dx_m": profile.resolution_length / options.window.points_per_beta})
     return ContactResult(
         mu=float(mu), h_min=float(np.min(mean_film)), h_central=float(np.interp(0.0, x_m[zone], mean_film)),
         p_max=float(np.max(p_s)), converged=True, iterations=0, wall_time=time.perf_counter() - start,
@@ -226,7 +226,7 @@ def wide_options(case: ContactCase, profile: RoughnessProfile, options: Determin
     term (or ``dx_m``), the same time step, Newton and face options."""
     h_b_m = options.boundary_film_m if options.boundary_film_m is not None else BOUNDARY_FILM_M
     dx_m = options.dx_m if options.dx_m is not None else grid_spacing(profile, case.rq1, case.rq2, h_b_m, options)[0]
-    window = WindowOptions(length_beta=options.window_length_beta, points_per_beta=profile.correlation_length / dx_m,
+    window = WindowOptions(length_beta=options.window_length_beta, points_per_beta=profile.resolution_length / dx_m,
                            courant=options.courant, boundary_film_m=options.boundary_film_m,
                            yield_pressure_pa=options.yield_pressure_pa, newton_tolerance=options.newton_tolerance,
                            max_substeps=options.max_substeps, face_mean=options.face_mean,
