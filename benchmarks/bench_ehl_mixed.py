@@ -8,7 +8,7 @@
     python benchmarks/bench_ehl_mixed.py --model smooth --sample random --n 500 --seed 2    # the same points, smooth
 
 Corners: p_h {0.5, 2.5} GPa × r_eq {5, 80} mm × u_r {1, 20} m/s × SR {0, 1} × T {25, 100} °C × Rq1 = Rq2
-{0.05, 1.0} µm (docs/dataset_format.md), ATF, effects=full (``--effects``). Random: uniform draws from the paper's levels. Writes per-case rows
+{0.05, 1.0} µm (docs/reference/dataset-format.md), ATF, effects=full (``--effects``). Random: uniform draws from the paper's levels. Writes per-case rows
 and a summary (converged count, mean/median time of all and of converged cases, projected time for 42,000 points on
 this machine with one process per core) to benchmarks/results/ehl_mixed_<sample>_<level>.json
 (``..._<sample>_<level>_<model>[_<closure>].json`` with ``--model`` other than auto). ``--model`` is one of

@@ -2,7 +2,7 @@
 
     python benchmarks/bench_ehl_smooth.py [--repeats 3] [--out benchmarks/results/ehl_smooth.json]
 
-Cases: 12 points of the paper's factorial (docs/dataset_format.md) spanning p_h, r_eq, u_r, SR and T, ATF lubricant, smooth
+Cases: 12 points of the paper's factorial (docs/reference/dataset-format.md) spanning p_h, r_eq, u_r, SR and T, ATF lubricant, smooth
 steady effects. Reports per level the median / max wall time per solve (one BLAS thread, the solver's own
 setting), the median number of grid nodes and Newton iterations, and the machine.
 """

@@ -11,7 +11,7 @@ Layers (each imports only from the ones before it; ``tests/test_architecture.py`
 * :mod:`ehl_dataset.dataset` — factorials, the HDF5 store, the runner and its executors.
 
 :mod:`ehl_dataset.validation` (input checks, ``InputError``/``SolverError``) and :mod:`ehl_dataset.data_files`
-(the shipped-data locator) serve every stage of gearloss (docs/architecture.md).
+(the shipped-data locator) serve every stage of gearloss (docs/explanation/architecture.md).
 
 The names below are re-exported here and imported on first use, so that ``import ehl_dataset.validation`` (which
 every stage does) does not load the solver, numba and h5py.

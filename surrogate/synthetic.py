@@ -1,6 +1,6 @@
 """Synthetic friction tables for tests, benchmarks and demos (no EHL solver involved).
 
-* :func:`factorial_inputs` — the paper's factorial levels (docs/dataset_format.md), or a subset, as a table of SI inputs.
+* :func:`factorial_inputs` — the paper's factorial levels (docs/reference/dataset-format.md), or a subset, as a table of SI inputs.
 * :func:`toy_mu` — a smooth, *illustrative* μ(λ̄, SR, p_h) with a boundary share μ_d e^{−(λ̄/λ0)²} and a film
   share growing with SR and p_h. It is NOT a physical model; it only supplies realistic magnitudes (0.01–0.1) and a
   two-regime shape so that :func:`reference_coefficients` yields coefficient vectors of plausible size.
@@ -29,7 +29,7 @@ PAPER_LEVELS: dict[str, list] = {
     "rq_um": [(0.05, 0.05), (0.1, 0.1), (0.2, 0.2), (0.3, 0.3), (0.4, 0.4), (0.5, 0.5), (0.7, 0.7), (1.0, 1.0),
               (0.2, 0.5), (0.4, 1.0)],
 }
-"""The paper's factorial (docs/dataset_format.md): 5 × 5 × 6 × 7 × 4 × 10 = 42,000 points."""
+"""The paper's factorial (docs/reference/dataset-format.md): 5 × 5 × 6 × 7 × 4 × 10 = 42,000 points."""
 
 SMALL_LEVELS: dict[str, list] = {
     "p_h_gpa": [0.5, 1.5, 2.5],

@@ -3,7 +3,7 @@
 Stages: ``ehl_dataset`` < ``surrogate`` < ``efficiency`` < ``workflows`` (a stage imports only from itself and the
 stages before it). Within ``ehl_dataset``: ``validation``, ``data_files``, ``lazy`` and ``names`` (shared by every stage) <
 ``model`` and ``discretisation`` < ``solvers`` and the entry ``solver`` < ``dataset`` < the package's own
-``__init__`` (the lazy public API). docs/architecture.md explains the layout.
+``__init__`` (the lazy public API). docs/explanation/architecture.md explains the layout.
 
 The graph is read from the source with :mod:`ast`: every ``import`` and ``from ... import`` anywhere in a module
 (function-local ones included), relative imports resolved, ``from package import submodule`` counted as an import

@@ -1,5 +1,5 @@
 """How much of a fit's scatter is the thermal correction? Refit a dataset with the thermally corrected rows replaced
-by their isothermal μ (docs/pipeline.md, "Measured").
+by their isothermal μ (docs/getting-started.md).
 
     gearloss pipeline quick --workers 2 --out-dir pq       # first: the main job
     python validation/quick_fit_isothermal.py pq/dataset.h5

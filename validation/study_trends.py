@@ -1,4 +1,4 @@
-"""The numbers of the verification table of docs/studies.md: the paper's Fig. 3a, 4a-c and 6a trend lines with a
+"""The numbers of the verification table of docs/explanation/gear-model.md: the paper's Fig. 3a, 4a-c and 6a trend lines with a
 constant μ = 0.05 at the study point (data/studies/paper2009.toml), exactly as tests/efficiency/test_studies.py
 evaluates them (the tests assert the trends; this prints their values).
 

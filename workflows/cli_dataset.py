@@ -1,4 +1,4 @@
-"""``gearloss dataset run|resume|info``: a factorial of EHL contacts into one HDF5 file (docs/dataset_format.md).
+"""``gearloss dataset run|resume|info``: a factorial of EHL contacts into one HDF5 file (docs/reference/dataset-format.md).
 
 Exit status (workflows.exit_codes): 0 when the session ends with no pending rows (failed rows are reported, not an
 error), 2 for bad input, 130 / 143 when interrupted by SIGINT / SIGTERM (finished points are on disk; the resume

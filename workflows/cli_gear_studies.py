@@ -7,7 +7,7 @@ TE p-p, σ_c, σ_b per design into a CSV (``--out``), then searches for designs 
 ``modifications`` evaluates one design over M_P × M_L × torque (paper Fig. 6). Friction: ``--friction
 COEFFS.json|xu2007|benedict_kelley|iso14179|constant:MU`` (default ``atf``, the shipped fit of the paper factorial;
 published formulas with the study's lubricant). ``gearloss report sweep|modifications`` draws the figures.
-See :mod:`efficiency.studies` and docs/studies.md.
+See :mod:`efficiency.studies` and docs/explanation/gear-model.md.
 """
 
 from __future__ import annotations

@@ -1,5 +1,5 @@
 """``gearloss lubricant show|fit``: a lubricant definition checked and tabulated, and the route from a user's own
-lubricant to its friction coefficient file (factorial → HDF5 → Eq. 9 fit) in one command (docs/pipeline.md, "Your
+lubricant to its friction coefficient file (factorial → HDF5 → Eq. 9 fit) in one command (docs/how-to/fit-a-lubricant.md, "Your
 own lubricant").
 """
 
@@ -33,7 +33,7 @@ def register(subparsers) -> None:
 
     show = sub.add_parser("show", help="check a lubricant (name or TOML file) and tabulate its properties",
                           description="Load and check a lubricant (a shipped name or a TOML file; format in "
-                                      "docs/data.md) and print its properties at the given temperatures: "
+                                      "docs/reference/data.md) and print its properties at the given temperatures: "
                                       "kinematic and dynamic viscosity, density, the pressure–viscosity "
                                       "coefficient, η(p) at the given pressures, the Eyring stress and the "
                                       "boundary friction, with the data range and the sources.")
@@ -51,7 +51,7 @@ def register(subparsers) -> None:
                                      "DIR/<lubricant>_<factorial>.json (+ .summary.txt). The lubricant's "
                                      "temperature range must cover the factorial's temperatures (checked before "
                                      "anything is computed).", epilog=FIT_EPILOG)
-    fit.add_argument("lubricant", help="TOML file of the lubricant (format in docs/data.md) or a shipped name")
+    fit.add_argument("lubricant", help="TOML file of the lubricant (format in docs/reference/data.md) or a shipped name")
     fit.add_argument("--factorial", default="quick",
                      help="quick (324 points, fast level), paper2009 (42,000 points, standard level), smoke (96 "
                           "smooth-surface points: checks the route, not a friction model) or a factorial TOML "

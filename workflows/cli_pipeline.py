@@ -6,7 +6,7 @@ factorial (the long run; ``--scheduler ADDRESS`` sends the points to a Dask clus
 writes ``DIR/dataset.h5`` and ``DIR/<lubricant>_<factorial>.json`` (+ ``.summary.txt``), DIR named after the
 factorial, level, model and effects (``gearloss_quick_fast_isothermal``; ``--out-dir`` chooses another), and prints Design D's P [kW], η,
 TE, σ_c, σ_b at the study's operating point and the time of each stage. Running the same command again resumes an
-interrupted run. See :mod:`workflows.pipeline` and docs/pipeline.md.
+interrupted run. See :mod:`workflows.pipeline` and docs/getting-started.md.
 """
 
 from __future__ import annotations

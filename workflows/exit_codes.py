@@ -1,4 +1,4 @@
-"""One exit-code convention for every ``gearloss`` command (printed by ``gearloss --help``, docs/cli.md).
+"""One exit-code convention for every ``gearloss`` command (printed by ``gearloss --help``, docs/reference/cli.md).
 
 =====  ===============================================================================================
 code   meaning
@@ -50,7 +50,7 @@ def table_text(indent: str = "  ") -> str:
 
 
 def table_markdown() -> str:
-    """The exit-code table as a Markdown table (docs/cli.md holds a copy; a test compares them)."""
+    """The exit-code table as a Markdown table (docs/reference/cli.md holds a copy; a test compares them)."""
     rows = ["| exit code | meaning |", "|---|---|"]
     rows += [f"| {code} | {meaning} |" for code, _, meaning in TABLE]
     return "\n".join(rows)

@@ -1,4 +1,4 @@
-"""The figures gear engineers expect, computed and drawn (``gearloss report ...``, docs/report.md).
+"""The figures gear engineers expect, computed and drawn (``gearloss report ...``, docs/how-to/studies-and-reports.md).
 
 * :func:`efficiency_map` — η and P of one design over input torque × speed, cells outside the models' validity
   hatched (:mod:`efficiency.validity`);

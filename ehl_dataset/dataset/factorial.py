@@ -1,6 +1,6 @@
 """Factorial plans of contact conditions: load a TOML plan, validate it, expand it to points, hash it.
 
-A factorial is data (``data/factorials/*.toml``, docs/dataset_format.md), written in engineering units with the unit in each key::
+A factorial is data (``data/factorials/*.toml``, docs/reference/dataset-format.md), written in engineering units with the unit in each key::
 
     name = "paper2009"
     lubricant = "atf"            # default lubricant (NAME or FILE), overridable at run time

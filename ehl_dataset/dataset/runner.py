@@ -152,7 +152,7 @@ def judge_record(record: dict, message: str = "") -> tuple[int, str]:
 
 
 def _one_blas_thread():
-    """One BLAS/OpenMP thread during a solve (one core per case, docs/dataset_format.md "Execution"). Without it
+    """One BLAS/OpenMP thread during a solve (one core per case, docs/how-to/run-a-dataset.md, "Workers"). Without it
     every worker's LAPACK would start one thread per core (oversubscription), and a point's last bits would depend
     on where it ran (threaded reductions), so a resumed or distributed run could differ from an uninterrupted local
     one."""

@@ -1,5 +1,5 @@
 """The HDF5 store of a factorial run: one file per run, one preallocated row per point, resumable
-(docs/dataset_format.md).
+(docs/reference/dataset-format.md).
 
 Layout (format ``gearloss-ehl-dataset``, version :data:`FORMAT_VERSION`)::
 

@@ -13,7 +13,7 @@ from ehl_dataset.model.film_formulas import dowson_higginson_min_film
 from ehl_dataset.model.lubricant import load_lubricant
 from ehl_dataset.validation import InputError
 
-# Li & Kahraman 2009, Sect. 2.1, with roughness as (Rq1, Rq2) pairs (docs/dataset_format.md).
+# Li & Kahraman 2009, Sect. 2.1, with roughness as (Rq1, Rq2) pairs (docs/reference/dataset-format.md).
 PAPER_AXES = {
     "p_h_gpa": [0.5, 1.0, 1.5, 2.0, 2.5],
     "r_eq_mm": [5, 10, 20, 40, 80],
@@ -38,7 +38,7 @@ def small_plan(**changes):
 
 
 def test_paper_plan_is_the_published_5x5x6x7x4x10_factorial():
-    """The shipped paper2009.toml lists exactly the levels of Li & Kahraman 2009 (docs/dataset_format.md): 42,000 points."""
+    """The shipped paper2009.toml lists exactly the levels of Li & Kahraman 2009 (docs/reference/dataset-format.md): 42,000 points."""
     plan = load_factorial("paper2009")
     assert plan.shape == (5, 5, 6, 7, 4, 10)
     assert plan.size == 42_000

@@ -18,7 +18,7 @@ C = 273.15
 
 
 def test_walther_reproduces_the_two_defining_viscosities():
-    """ASTM D341 through (40 °C, 30 mm²/s) and (100 °C, 6 mm²/s) returns them (the representative ATF of docs/data.md)."""
+    """ASTM D341 through (40 °C, 30 mm²/s) and (100 °C, 6 mm²/s) returns them (the representative ATF of docs/reference/data.md)."""
     atf = load_lubricant("atf")
     nu = atf.kinematic_viscosity(np.array([40 + C, 100 + C])) * 1e6
     np.testing.assert_allclose(nu, [30.0, 6.0], rtol=1e-10)

@@ -389,7 +389,7 @@ def test_progress_bar_shows_rate_and_counts(tmp_path, plan):
 
 
 def test_each_solve_runs_on_one_blas_thread(tmp_path, plan):
-    """One core per case (docs/dataset_format.md, "Execution"): LAPACK inside a solve is single-threaded wherever the point runs, which also
+    """One core per case (docs/how-to/run-a-dataset.md, "Workers"): LAPACK inside a solve is single-threaded wherever the point runs, which also
     makes a point's result independent of where it ran."""
     for workers in (0, 2):
         run_factorial(tmp_path / f"w{workers}.h5", plan, workers=workers, solver=blas_threads_solve,

@@ -13,7 +13,7 @@ CHEAP = tuple(spec for spec in accuracy.ACCURACY_CASES if spec[0] in ("full-film
 
 
 def test_case_set_spans_the_factorial():
-    """≥ 12 cases; every axis of the paper's factorial (docs/dataset_format.md) at both ends; the hardest corner is present."""
+    """≥ 12 cases; every axis of the paper's factorial (docs/reference/dataset-format.md) at both ends; the hardest corner is present."""
     cases = accuracy.ACCURACY_CASES
     assert len(cases) >= 12
     columns = list(zip(*cases))

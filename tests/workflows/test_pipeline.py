@@ -201,7 +201,7 @@ def test_pipeline_end_to_end_with_the_ehl_solver(tmp_path, capsys):
     assert len(bad) == 0, bad[["lambda_bar", "status", "error"]].to_string()
     payload = json.loads(captured.out)
     # exit 1 when design D lies outside the fit's validity (this factorial has r_eq 20 mm only; design D's contacts
-    # are at 12-13 mm, so their r_eq is clipped: issue 16, docs/cli.md "Validity")
+    # are at 12-13 mm, so their r_eq is clipped: issue 16, docs/reference/cli.md "Validity")
     assert code == (0 if payload["valid"] else 1), f"pipeline exit {code}: {captured.err.strip()}"
     assert payload["valid"] or "r_eq" in payload["stages"]["design"]["not_valid_because"]
     stages = payload["stages"]
