@@ -275,7 +275,7 @@ def design_sweep(space: DesignSpace, friction: Callable, point: StudyPoint,
                  limits: FeasibilityLimits = FeasibilityLimits(), options: MeshOptions = MeshOptions(), *,
                  where: Mapping[str, float] | None = None, stride: int = 1, limit: int | None = None,
                  progress: Callable[[int, int], None] | None = None) -> pd.DataFrame:
-    """Evaluate every feasible design of ``space`` at ``point`` with ``friction``: the table behind the paper's Fig. 3–5.
+    """Evaluate every feasible design of ``space`` at ``point`` with ``friction``: the table of the paper's Fig. 3–5.
 
     One design's error does not stop the sweep: it is recorded in the row's ``error`` column, and its warnings in
     ``warning`` (module docstring).

@@ -63,13 +63,54 @@ DEFAULT_STEM = "accuracy_levels_rough"
 
 
 def case_from_spec(spec: CaseSpec) -> ContactCase:
-    """ContactCase from one row of :data:`ACCURACY_CASES`."""
+    """The contact case of one row of :data:`ACCURACY_CASES`.
+
+    Parameters
+    ----------
+    spec : tuple
+        name, p_h in GPa, r_eq in mm, u_r in m/s, SR, T in °C, Rq1 and Rq2 in µm [-].
+
+    Returns
+    -------
+    ContactCase
+        The case in SI.
+    """
     return ContactCase.from_engineering(*spec[1:])
 
 
 @dataclass
 class CaseRun:
-    """One solve of the study (SI units; ``wall_time_s`` measured around the call)."""
+    """One solve of the study (SI units; ``wall_time_s`` measured around the call).
+
+    Parameters
+    ----------
+    case : str
+        Case name [-].
+    level : str
+        Accuracy level [-].
+    effects_mode : str
+        Effect plan [-].
+    mu : float
+        Friction coefficient [-].
+    h_min_m : float
+        Minimum film thickness [m].
+    wall_time_s : float
+        Wall time of the solve [s].
+    converged : bool
+        Whether the solve converged [-].
+    lambda_bar : float
+        Film parameter λ̄ of the solve [-].
+    roughness : bool
+        Whether the plan simulated roughness [-].
+    message : str
+        The solver's message [-].
+    mu_error : float
+        |μ − μ_ref|/μ_ref [-].
+    h_min_error : float
+        |h_min − h_min,ref|/h_min,ref [-].
+    mu_sem : float
+        Standard error of a time-averaged μ (NaN for steady solves) [-].
+    """
 
     case: str
     level: str
@@ -89,7 +130,21 @@ class CaseRun:
 
 @dataclass
 class AccuracyStudy:
-    """All runs of a study plus provenance (solver commit, machine)."""
+    """All runs of a study plus provenance (solver commit, machine).
+
+    Parameters
+    ----------
+    runs : list of CaseRun
+        Every solve, reference runs included [-].
+    reference_level : str
+        Level of the reference solves [-].
+    levels : tuple of str
+        The levels compared [-].
+    cases : tuple of tuple
+        The cases (rows of :data:`ACCURACY_CASES`) [-].
+    provenance : dict
+        Machine and code version (:func:`provenance`) [-].
+    """
 
     runs: list[CaseRun]
     reference_level: str
@@ -98,10 +153,28 @@ class AccuracyStudy:
     provenance: dict[str, Any] = field(default_factory=dict)
 
     def for_level(self, level: str) -> list[CaseRun]:
+        """The runs at one level, in case order.
+
+        Parameters
+        ----------
+        level : str
+            Level name [-].
+
+        Returns
+        -------
+        list of CaseRun
+            The runs.
+        """
         return [r for r in self.runs if r.level == level]
 
     def summary(self) -> dict[str, dict[str, float]]:
-        """Per level: median and max relative errors, mean and median wall time, converged count."""
+        """Per level: median and max relative errors of μ and h_min, mean and median wall time, converged count.
+
+        Returns
+        -------
+        dict
+            {level: {statistic: value}}, errors as fractions [-] and times in seconds.
+        """
         out = {}
         groups = [(level, [r for r in self.runs if r.level == level and r.effects_mode != "reference"])
                   for level in self.levels]
@@ -204,7 +277,20 @@ def _solve(solve: Callable, case: ContactCase, lubricant, level, effects, name: 
 
 
 def relative_error(value: float, reference: float) -> float:
-    """|value − reference|/|reference|; NaN if the reference is not a positive finite number."""
+    """Relative error |value − reference|/|reference|.
+
+    Parameters
+    ----------
+    value : float
+        The value [-].
+    reference : float
+        The reference, in the unit of ``value`` [-].
+
+    Returns
+    -------
+    float
+        The error; NaN if the reference is not a positive finite number [-].
+    """
     if not (math.isfinite(reference) and reference > 0.0) or not math.isfinite(value):
         return math.nan
     return abs(value - reference) / reference
@@ -214,8 +300,35 @@ def run_study(cases: Sequence[CaseSpec] = ACCURACY_CASES, levels: Sequence[str] 
               reference: str = "reference", lubricant="atf", reference_effects: str = "full",
               level_effects: str = "auto", solve: Callable | None = None,
               progress: Callable[[str], None] | None = None, checkpoint: str | Path | None = None) -> AccuracyStudy:
-    """Solve every case at the reference and at each level; errors relative to the reference (see module doc).
-    With ``checkpoint`` the runs so far are written there as JSON after every case (a long study can be stopped)."""
+    """Solve every case at the reference and at each level; errors relative to the reference (module docstring).
+
+    Parameters
+    ----------
+    cases : sequence of tuple
+        Cases as rows of :data:`ACCURACY_CASES`: name, p_h in GPa, r_eq in mm, u_r in m/s, SR, T in °C, Rq1 and Rq2
+        in µm [-].
+    levels : sequence of str
+        Accuracy levels compared with the reference [-].
+    reference : str
+        Level of the reference solves [-].
+    lubricant : str or Lubricant
+        The lubricant [-].
+    reference_effects : str
+        Effect plan of the reference solves [-].
+    level_effects : str
+        Effect plan of the level solves [-].
+    solve : callable, optional
+        Solve function with the signature of :func:`ehl_dataset.solver.solve_contact`; None: that function [-].
+    progress : callable, optional
+        Called with a one-line message after every solve [-].
+    checkpoint : str or Path, optional
+        JSON file the runs so far are written to after every case, so that a long study can be stopped [-].
+
+    Returns
+    -------
+    AccuracyStudy
+        Every run with its errors, and the provenance.
+    """
     from ehl_dataset.model.lubricant import Lubricant, load_lubricant
 
     if not cases:
@@ -259,7 +372,22 @@ REFINEMENTS: dict[str, tuple[str, ...]] = {
 
 
 def refined_level(base, kind: str, factor: float):
-    """Copy of level ``base`` with the fields of refinement ``kind`` refined by ``factor`` (> 1 finer)."""
+    """Copy of level ``base`` with the fields of refinement ``kind`` divided by ``factor``.
+
+    Parameters
+    ----------
+    base : str or AccuracyLevel
+        The level [-].
+    kind : str
+        The refinement, a key of :data:`REFINEMENTS` [-].
+    factor : float
+        Refinement factor (> 1 finer) [-].
+
+    Returns
+    -------
+    AccuracyLevel
+        The refined level.
+    """
     from ehl_dataset.solvers.levels import get_level
 
     lvl = get_level(base)
@@ -270,8 +398,20 @@ def refined_level(base, kind: str, factor: float):
 
 
 def observed_order(values: Sequence[float], ratio: float = 2.0) -> float:
-    """Observed order p = log(|f1 − f2|/|f2 − f3|)/log(ratio) from the last three values of a refinement
-    sequence with constant refinement ratio; NaN if undefined."""
+    """Observed order p = log(|f1 − f2|/|f2 − f3|)/log(ratio) from the last three values of a refinement sequence.
+
+    Parameters
+    ----------
+    values : sequence of float
+        Values at successive refinements with a constant ratio [-].
+    ratio : float
+        Refinement ratio [-].
+
+    Returns
+    -------
+    float
+        p, NaN if undefined [-].
+    """
     if len(values) < 3:
         return math.nan
     f1, f2, f3 = values[-3:]
@@ -285,9 +425,32 @@ def convergence_study(spec: CaseSpec, kind: str = "grid", base_level: str = "sta
                       lubricant="atf", effects="auto", solve: Callable | None = None) -> dict[str, Any]:
     """μ and h_min of one case as one aspect of the level is refined by each factor (relative to ``base_level``).
 
-    Returns the table rows and the observed orders of μ and h_min from the three finest runs. A plan with the
-    transient rough solve (every effect on a rough case, or the reference level's rough model) is refused: the
-    deterministic model's grid is its own rule, not the level's fields (its convergence: docs/validation/deterministic-reference.md).
+    A plan with the transient rough solve (every effect on a rough case, or the reference level's rough model) is
+    refused: the deterministic model's grid is its own rule, not the level's fields (its convergence:
+    docs/validation/deterministic-reference.md).
+
+    Parameters
+    ----------
+    spec : tuple
+        The case, a row of :data:`ACCURACY_CASES` [-].
+    kind : str
+        The refinement, a key of :data:`REFINEMENTS` [-].
+    base_level : str
+        Level refined [-].
+    factors : sequence of float
+        Refinement factors (> 1 finer) [-].
+    lubricant : str or Lubricant
+        The lubricant [-].
+    effects : str or Effects
+        Effect plan [-].
+    solve : callable, optional
+        Solve function; None: :func:`ehl_dataset.solver.solve_contact` [-].
+
+    Returns
+    -------
+    dict
+        The table rows (factor, μ, its standard error, h_min [m], wall time [s]) and the observed orders of μ and
+        h_min from the three finest runs.
     """
     from ehl_dataset.model.lubricant import Lubricant, load_lubricant
     from ehl_dataset.solvers.planner import resolve_effects
@@ -455,7 +618,24 @@ def plot_error_vs_time(study: AccuracyStudy, path: Path, floor: float = 1e-6) ->
 
 def write_report(study: AccuracyStudy, out_dir: str | Path, convergence: Sequence[dict] = (),
                  stem: str = DEFAULT_STEM) -> dict[str, Path]:
-    """Write ``<stem>.md``, ``<stem>.png`` and ``<stem>.json`` (raw runs) into ``out_dir``."""
+    """Write ``<stem>.md``, ``<stem>.png`` and ``<stem>.json`` (raw runs) into ``out_dir``.
+
+    Parameters
+    ----------
+    study : AccuracyStudy
+        The study [-].
+    out_dir : str or Path
+        Output directory [-].
+    convergence : sequence of dict
+        Results of :func:`convergence_study` [-].
+    stem : str
+        File name stem [-].
+
+    Returns
+    -------
+    dict of str to Path
+        The files written, keyed ``markdown``, ``plot``, ``json``.
+    """
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     png = plot_error_vs_time(study, out / f"{stem}.png")
@@ -471,8 +651,20 @@ def write_report(study: AccuracyStudy, out_dir: str | Path, convergence: Sequenc
 
 
 def load_study(path: str | Path) -> tuple[AccuracyStudy, list[dict]]:
-    """Read a study and its convergence records back from the ``<stem>.json`` written by :func:`write_report`
-    (to re-render the report without solving again)."""
+    """Read a study and its convergence records back from the ``<stem>.json`` written by :func:`write_report`.
+
+    Re-renders the report without solving again.
+
+    Parameters
+    ----------
+    path : str or Path
+        The JSON file [-].
+
+    Returns
+    -------
+    tuple
+        (AccuracyStudy, list of convergence records).
+    """
     data = json.loads(Path(path).read_text(encoding="utf-8"))
     runs = [CaseRun(**row) for row in data["runs"]]
     names = []
@@ -486,8 +678,22 @@ def load_study(path: str | Path) -> tuple[AccuracyStudy, list[dict]]:
 
 
 def merge_studies(studies: Sequence[AccuracyStudy], notes: Sequence[str] = ()) -> AccuracyStudy:
-    """One study from several runs of the same levels and reference on disjoint case subsets (e.g. run in
-    parallel processes); cases in the order of :data:`ACCURACY_CASES`, provenance of the first plus ``notes``."""
+    """One study from several runs of the same levels and reference on disjoint case subsets (e.g. parallel processes).
+
+    Cases in the order of :data:`ACCURACY_CASES`, provenance of the first plus ``notes``.
+
+    Parameters
+    ----------
+    studies : sequence of AccuracyStudy
+        The partial studies [-].
+    notes : sequence of str
+        Notes added to the provenance [-].
+
+    Returns
+    -------
+    AccuracyStudy
+        The merged study.
+    """
     if not studies:
         raise InputError("studies", 0, "at least one study")
     first = studies[0]

@@ -47,8 +47,19 @@ SMOKE_LABEL = ("SMOKE RUN: smooth-surface solves (model smooth) of the smoke fac
 
 @dataclass
 class StageResult:
-    """One stage: ``name``, the file it wrote (``artefact``), its wall time [s] and the numbers it reports
-    (``details``, SI units with the unit in each key)."""
+    """One stage of a pipeline run.
+
+    Parameters
+    ----------
+    name : str
+        Stage name [-].
+    artefact : str or None
+        The file it wrote [-].
+    wall_time_s : float
+        Its wall time [s].
+    details : dict
+        The numbers it reports, SI units with the unit in each key [-].
+    """
 
     name: str
     artefact: str | None
@@ -56,12 +67,31 @@ class StageResult:
     details: dict[str, Any] = field(default_factory=dict)
 
     def to_dict(self) -> dict[str, Any]:
+        """The stage as a JSON-serialisable dict.
+
+        Returns
+        -------
+        dict
+            ``name``, ``artefact``, ``wall_time_s`` [s] and the ``details`` entries.
+        """
         return {"name": self.name, "artefact": self.artefact, "wall_time_s": self.wall_time_s, **self.details}
 
 
 @dataclass
 class PipelineResult:
-    """All stages of one pipeline run, in order, and the total wall time [s]."""
+    """All stages of one pipeline run, in order, and the total wall time.
+
+    Parameters
+    ----------
+    out_dir : str
+        Output directory [-].
+    stages : list of StageResult
+        The stages, in order [-].
+    wall_time_s : float
+        Total wall time [s].
+    label : str
+        Label of the run [-].
+    """
 
     out_dir: str
     stages: list[StageResult]
@@ -69,12 +99,36 @@ class PipelineResult:
     label: str = ""
 
     def stage(self, name: str) -> StageResult:
+        """The stage called ``name``.
+
+        Parameters
+        ----------
+        name : str
+            ``dataset``, ``fit`` or ``design`` [-].
+
+        Returns
+        -------
+        StageResult
+            The stage.
+
+        Raises
+        ------
+        KeyError
+            When the run has no such stage.
+        """
         for stage in self.stages:
             if stage.name == name:
                 return stage
         raise KeyError(name)
 
     def to_dict(self) -> dict[str, Any]:
+        """The run as a JSON-serialisable dict.
+
+        Returns
+        -------
+        dict
+            ``out_dir``, ``wall_time_s`` [s], ``label`` and ``stages`` (stage name to :meth:`StageResult.to_dict`).
+        """
         return {"out_dir": self.out_dir, "wall_time_s": self.wall_time_s, "label": self.label,
                 "stages": {s.name: s.to_dict() for s in self.stages}}
 
@@ -97,8 +151,29 @@ def default_out_dir(factorial_name: str, level: str, model: str = "auto", lubric
 
 @dataclass
 class PipelinePlan:
-    """The checked inputs of a run (:func:`check_inputs`): the factorial, its level, contact model and lubricant
-    name, the design, the files it will write and the effect plan of stage 1."""
+    """The checked inputs of a run (:func:`check_inputs`).
+
+    Parameters
+    ----------
+    factorial : Factorial
+        The factorial [-].
+    level : str
+        Accuracy level [-].
+    model : str
+        Contact model [-].
+    lubricant_name : str
+        Lubricant name [-].
+    study : str
+        Study of the design stage [-].
+    design : str or None
+        Design of the design stage; None: no design stage [-].
+    out_dir : Path
+        Output directory [-].
+    resumable : int
+        Points already done in an existing dataset file of the same run (0: new run) [-].
+    effects : str
+        Effect plan of stage 1 [-].
+    """
 
     factorial: Any
     level: str
@@ -126,11 +201,50 @@ class PipelinePlan:
 def check_inputs(factorial=QUICK_FACTORIAL, *, out_dir=None, level: str | None = None, model: str | None = None,
                  lubricant=None, study: str = "paper2009", design: str | None = "D", overwrite: bool = False,
                  workers: int = 1, time_limit_s: float | None = None, effects: str | None = None) -> PipelinePlan:
-    """Check everything a run needs before stage 1 computes anything (a typo in ``design`` must not cost the
-    stage-1 run): factorial, level, model, effect plan (None: the factorial's; one of
-    :data:`ehl_dataset.dataset.factorial.EFFECTS_MODES`), lubricant (its data range covers the factorial's temperatures), the
-    design (a name of ``study`` or a design TOML file; None: no design stage), workers, time limit, and that
-    ``out_dir`` either holds nothing of this run or the same run (then it resumes)."""
+    """Check everything a run needs before stage 1 computes anything.
+
+    A typo in ``design`` must not cost the stage-1 run.
+
+    Checks the factorial, level, model, effect plan, lubricant (its data range covers the factorial's temperatures),
+    the design, workers, time limit, and that ``out_dir`` either holds nothing of this run or the same run (then it
+    resumes).
+
+    Parameters
+    ----------
+    factorial : Factorial or str or Path
+        The factorial: an object, a shipped name (``quick``, ``paper2009``, ...) or a TOML path [-].
+    out_dir : str or Path, optional
+        Output directory; None: :func:`default_out_dir` [-].
+    level : str, optional
+        Accuracy level of the EHL solves; None: the factorial's [-].
+    model : str, optional
+        Contact model of the solves (``auto``, ``homogenised``, ``deterministic``); None: the factorial's [-].
+    lubricant : str or Path or Lubricant, optional
+        Lubricant (shipped name, TOML path or object); None: the factorial's [-].
+    study : str
+        Study whose design and operating point stage 3 evaluates (shipped name or TOML path) [-].
+    design : str, optional
+        Design name of ``study`` or a design TOML file; None: no design stage [-].
+    overwrite : bool
+        Start the run afresh: the directory's dataset and coefficient file are replaced [-].
+    workers : int
+        Worker processes of stage 1 [-].
+    time_limit_s : float, optional
+        Wall-time budget per stage-1 point; a point that spends it is stored not converged with its message [s].
+    effects : str, optional
+        Stage 1's effect plan (one of :data:`ehl_dataset.dataset.factorial.EFFECTS_MODES`; ``isothermal`` gives the
+        isothermal data the paper fitted); None: the factorial's [-].
+
+    Returns
+    -------
+    PipelinePlan
+        The checked inputs.
+
+    Raises
+    ------
+    InputError
+        Naming the first bad input.
+    """
     from ehl_dataset.dataset.runner import check_lubricant_covers, check_model, check_time_limit, recorded_model
     from ehl_dataset.dataset.factorial import EFFECTS_MODES, canonical_json
     from ehl_dataset.dataset.store import SOLVER_DEFAULTS, read_metadata
@@ -198,11 +312,41 @@ def dataset_stage(out_dir: str | Path, factorial, *, workers: int = 1, scheduler
                   lubricant=None, level: str | None = None, progress: str = "auto", overwrite: bool = False,
                   time_limit_s: float | None = None, model: str | None = None, effects: str | None = None,
                   **runner_options) -> StageResult:
-    """Compute ``factorial`` (a :class:`~ehl_dataset.dataset.factorial.Factorial`, a shipped name or a TOML path) into
-    ``out_dir/dataset.h5``; continue the file if it holds the same run. ``time_limit_s``: wall-time budget per
-    point [s] (None: none; a point that spends it is stored not converged with its message; an execution option, so
-    a file continues whatever budget it was started with). ``effects``: the effect plan (None: the factorial's). ``runner_options`` go to
-    :func:`ehl_dataset.dataset.runner.run_factorial` (``window``, ``max_attempts``, ``stream``, ...)."""
+    """Compute ``factorial`` into ``out_dir/dataset.h5``; continue the file if it holds the same run.
+
+    Parameters
+    ----------
+    out_dir : str or Path
+        Output directory [-].
+    factorial : Factorial or str or Path
+        The factorial: an object, a shipped name (``quick``, ``paper2009``, ...) or a TOML path [-].
+    workers : int
+        Worker processes of stage 1 [-].
+    scheduler : str, optional
+        Address of a Dask scheduler to run stage 1 on; None: local processes [-].
+    lubricant : str or Path or Lubricant, optional
+        Lubricant (shipped name, TOML path or object); None: the factorial's [-].
+    level : str, optional
+        Accuracy level of the EHL solves; None: the factorial's [-].
+    progress : str
+        Progress display of stage 1: ``auto``, ``bar``, ``log`` or ``none`` [-].
+    overwrite : bool
+        Replace an existing dataset file [-].
+    time_limit_s : float, optional
+        Wall-time budget per point (None: none); a point that spends it is stored not converged with its message.
+        An execution option: a file continues whatever budget it was started with [s].
+    model : str, optional
+        Contact model of the solves (``auto``, ``homogenised``, ``deterministic``); None: the factorial's [-].
+    effects : str, optional
+        The effect plan; None: the factorial's [-].
+    **runner_options
+        Options of :func:`ehl_dataset.dataset.runner.run_factorial` (``window``, ``max_attempts``, ``stream``, ...) [-].
+
+    Returns
+    -------
+    StageResult
+        The dataset file, wall time and row counts.
+    """
     from ehl_dataset.dataset.runner import check_time_limit, run_factorial
 
     time_limit_s = check_time_limit(time_limit_s)
@@ -243,7 +387,26 @@ def fit_stage(dataset_path: str | Path, coefficients_path: str | Path, *, allow_
               blend_half_width: float = 0.1) -> StageResult:
     """Fit paper Eq. 9a/9b on the dataset and write the coefficient file (and its summary beside it).
 
-    Raises :class:`SolverError` ("fit stage: ...") when the rows cannot determine a branch of the regression.
+    Parameters
+    ----------
+    dataset_path : str or Path
+        The stage-1 dataset [-].
+    coefficients_path : str or Path
+        The coefficient file to write [-].
+    allow_unstable : bool
+        Write a fit flagged numerically unstable instead of raising [-].
+    blend_half_width : float
+        Half width δ of the branch blend band in λ̄ [-].
+
+    Returns
+    -------
+    StageResult
+        The coefficient file, wall time and fit statistics.
+
+    Raises
+    ------
+    SolverError
+        ("fit stage: ...") when the rows cannot determine a branch of the regression.
     """
     from surrogate.coefficients import summary_path, write_coefficients
     from surrogate.dataset_io import load_dataset
@@ -295,11 +458,31 @@ def _row_digest(data) -> str:
 # ---------------------------------------------------------------------- stage 3
 def design_stage(friction, *, study: str = "paper2009", design: str = "D", options=None,
                  clip_to_fitted_ranges: bool = True) -> StageResult:
-    """Evaluate the study's published design (default: Design D of Table 1) at the study's operating point with
-    ``friction`` (a coefficient file path / shipped name or any other spec of
-    :func:`efficiency.friction.friction_from_spec`, or a friction model). A coefficient file is evaluated with its
-    inputs clipped to its fitted ranges (the surrogate's own clipping; the number of clipped contact points per
-    input is reported) unless ``clip_to_fitted_ranges`` is False, in which case it extrapolates with warnings."""
+    """Evaluate the study's published design at the study's operating point with ``friction``.
+
+    A coefficient file is evaluated with its inputs clipped to its fitted ranges (the surrogate's own clipping; the
+    number of clipped contact points per input is reported) unless ``clip_to_fitted_ranges`` is False, in which case
+    it extrapolates with warnings.
+
+    Parameters
+    ----------
+    friction : str or Path or callable
+        A coefficient file path or shipped name, any other spec of :func:`efficiency.friction.friction_from_spec`, or
+        a friction model [-].
+    study : str
+        The study (shipped name or TOML path) [-].
+    design : str
+        Design name of the study (default Design D of Table 1) [-].
+    options : MeshOptions, optional
+        Mesh resolution and models [-].
+    clip_to_fitted_ranges : bool
+        Clip a surrogate's inputs to its fitted ranges [-].
+
+    Returns
+    -------
+    StageResult
+        P, η, TE, σ_c, σ_b and the validity of the design.
+    """
     from efficiency.design_io import load_study
     from efficiency.friction import friction_from_spec
     from efficiency.mesh_cycle import MeshOptions
@@ -345,13 +528,55 @@ def run_pipeline(out_dir: str | Path | None = None, factorial=QUICK_FACTORIAL, *
                  mesh_options=None, clip_to_fitted_ranges: bool = True, time_limit_s: float | None = None,
                  overwrite: bool = False, resume_command: str | None = None, checked: PipelinePlan | None = None,
                  effects: str | None = None, **runner_options) -> PipelineResult:
-    """Stages 1–3 in one process: dataset → coefficient file → design evaluation (see the module docstring).
+    """Stages 1–3 in one process: dataset → coefficient file → design evaluation (module docstring).
 
-    ``out_dir`` None: :func:`default_out_dir`. ``time_limit_s``: stage 1's wall-time budget per point [s]
-    (:func:`dataset_stage`). ``effects``: stage 1's effect plan (None: the factorial's). ``overwrite``: start the run afresh (the directory's dataset and coefficient file
-    are replaced). ``resume_command``: the command that continues this run, named in the
-    :class:`~workflows.exit_codes.Interrupted` raised when a signal stops stage 1. ``checked``: the result of
-    :func:`check_inputs` for these arguments (computed here when None).
+    Parameters
+    ----------
+    out_dir : str or Path, optional
+        Output directory; None: :func:`default_out_dir` [-].
+    factorial : Factorial or str or Path
+        The factorial: an object, a shipped name (``quick``, ``paper2009``, ...) or a TOML path [-].
+    workers : int
+        Worker processes of stage 1 [-].
+    scheduler : str, optional
+        Address of a Dask scheduler to run stage 1 on; None: local processes [-].
+    lubricant : str or Path or Lubricant, optional
+        Lubricant (shipped name, TOML path or object); None: the factorial's [-].
+    level : str, optional
+        Accuracy level of the EHL solves; None: the factorial's [-].
+    model : str, optional
+        Contact model of the solves (``auto``, ``homogenised``, ``deterministic``); None: the factorial's [-].
+    progress : str
+        Progress display of stage 1: ``auto``, ``bar``, ``log`` or ``none`` [-].
+    study : str
+        Study whose design and operating point stage 3 evaluates (shipped name or TOML path) [-].
+    design : str
+        Design name of ``study`` (A–D) or a design TOML file [-].
+    allow_unstable : bool
+        Write a fit flagged numerically unstable instead of raising [-].
+    mesh_options : MeshOptions, optional
+        Mesh resolution and models of stage 3 [-].
+    clip_to_fitted_ranges : bool
+        Clip the surrogate's inputs to its fitted ranges in stage 3 (False: extrapolate, with warnings) [-].
+    time_limit_s : float, optional
+        Wall-time budget per stage-1 point; a point that spends it is stored not converged with its message [s].
+    overwrite : bool
+        Start the run afresh: the directory's dataset and coefficient file are replaced [-].
+    resume_command : str, optional
+        The command that continues this run, named in the :class:`~workflows.exit_codes.Interrupted` raised when a
+        signal stops stage 1 [-].
+    checked : PipelinePlan, optional
+        The result of :func:`check_inputs` for these arguments; None: computed here [-].
+    effects : str, optional
+        Stage 1's effect plan (one of :data:`ehl_dataset.dataset.factorial.EFFECTS_MODES`; ``isothermal`` gives the
+        isothermal data the paper fitted); None: the factorial's [-].
+    **runner_options
+        Options of :func:`ehl_dataset.dataset.runner.run_factorial` (``window``, ``max_attempts``, ``stream``, ...) [-].
+
+    Returns
+    -------
+    PipelineResult
+        The three stages with their files, wall times and numbers.
     """
     started = time.perf_counter()
     run = checked or check_inputs(factorial, out_dir=out_dir, level=level, model=model, lubricant=lubricant,
@@ -390,16 +615,53 @@ def run_lubricant_fit(lubricant, factorial=QUICK_FACTORIAL, *, out_dir=None, wor
                       overwrite: bool = False, resume_command: str | None = None,
                       checked: PipelinePlan | None = None, effects: str | None = None,
                       **runner_options) -> PipelineResult:
-    """Stages 1–2 for ``lubricant`` (a name, a TOML file or a :class:`~ehl_dataset.model.lubricant.Lubricant`):
-    ``factorial`` → ``OUT/dataset.h5`` → ``OUT/<lubricant>_<factorial>.json``, the coefficient file that
-    ``gearloss gear evaluate --friction FILE`` and :func:`efficiency.friction.friction_from_spec` read.
+    """Stages 1–2 for ``lubricant``: ``factorial`` → ``OUT/dataset.h5`` → ``OUT/<lubricant>_<factorial>.json``.
 
-    ``out_dir`` None: ``gearloss_<lubricant>_<factorial>_<level>[_<model>][_<effects>]``. ``effects``: stage 1's
-    effect plan (None: the factorial's; ``isothermal`` gives the isothermal data the paper fitted). Resumable like
-    :func:`run_pipeline` (same directory, same factorial, level, model, effects and lubricant definition), on local
-    processes or on the Dask cluster at ``scheduler``. Every input is checked before stage 1, the lubricant's
-    temperature range against the factorial's temperature levels included (docs/pipeline.md, "Your own
-    lubricant").
+    The coefficient file is what ``gearloss gear evaluate --friction FILE`` and
+    :func:`efficiency.friction.friction_from_spec` read. Resumable like :func:`run_pipeline` (same directory, same
+    factorial, level, model, effects and lubricant definition), on local processes or on a Dask cluster. Every input
+    is checked before stage 1, the lubricant's temperature range against the factorial's temperature levels included.
+
+    Parameters
+    ----------
+    lubricant : str or Path or Lubricant
+        The lubricant: a shipped name, a TOML file or an object [-].
+    factorial : Factorial or str or Path
+        The factorial: an object, a shipped name (``quick``, ``paper2009``, ...) or a TOML path [-].
+    out_dir : str or Path, optional
+        Output directory; None: ``gearloss_<lubricant>_<factorial>_<level>`` with the model and effects appended
+        when not the defaults [-].
+    workers : int
+        Worker processes of stage 1 [-].
+    scheduler : str, optional
+        Address of a Dask scheduler to run stage 1 on; None: local processes [-].
+    level : str, optional
+        Accuracy level of the EHL solves; None: the factorial's [-].
+    model : str, optional
+        Contact model of the solves (``auto``, ``homogenised``, ``deterministic``); None: the factorial's [-].
+    progress : str
+        Progress display of stage 1: ``auto``, ``bar``, ``log`` or ``none`` [-].
+    allow_unstable : bool
+        Write a fit flagged numerically unstable instead of raising [-].
+    time_limit_s : float, optional
+        Wall-time budget per stage-1 point; a point that spends it is stored not converged with its message [s].
+    overwrite : bool
+        Start the run afresh: the directory's dataset and coefficient file are replaced [-].
+    resume_command : str, optional
+        The command that continues this run, named in the :class:`~workflows.exit_codes.Interrupted` raised when a
+        signal stops stage 1 [-].
+    checked : PipelinePlan, optional
+        The result of :func:`check_inputs` for these arguments; None: computed here [-].
+    effects : str, optional
+        Stage 1's effect plan (one of :data:`ehl_dataset.dataset.factorial.EFFECTS_MODES`; ``isothermal`` gives the
+        isothermal data the paper fitted); None: the factorial's [-].
+    **runner_options
+        Options of :func:`ehl_dataset.dataset.runner.run_factorial` (``window``, ``max_attempts``, ``stream``, ...) [-].
+
+    Returns
+    -------
+    PipelineResult
+        The dataset and fit stages.
     """
     started = time.perf_counter()
     run = checked or check_inputs(factorial, out_dir=out_dir, level=level, model=model, lubricant=lubricant,

@@ -34,8 +34,20 @@ STYLES = ("-", "--", ":", "-.")
 
 
 def provenance(command: str, note: str = "") -> str:
-    """The footer of every figure: the command, the package and EHL solver versions, and ``note`` (e.g. the solver
-    version of a coefficient file's data)."""
+    """The footer of every figure: the command, the package and EHL solver versions, and ``note``.
+
+    Parameters
+    ----------
+    command : str
+        The command that made the figure [-].
+    note : str
+        Extra text, e.g. the solver version of a coefficient file's data [-].
+
+    Returns
+    -------
+    str
+        The footer.
+    """
     return f"{command}\n{versions()}" + (f"; {note}" if note else "")
 
 
@@ -93,8 +105,31 @@ def _evaluate(pair, friction, point, options) -> dict:
 # ---------------------------------------------------------------------- efficiency map
 @dataclass
 class EfficiencyMap:
-    """η and P over torque × speed: ``torque_nm`` (T,), ``speed_rpm`` (N,), ``efficiency``, ``power_loss_w``,
-    ``valid`` (T, N); ``reasons`` the distinct reasons of the cells that are not valid."""
+    """η and P over torque × speed.
+
+    Parameters
+    ----------
+    design : str
+        Design name [-].
+    friction : str
+        Friction model name [-].
+    torque_nm : ndarray
+        (T,) input torques [N·m].
+    speed_rpm : ndarray
+        (N,) input speeds [rpm].
+    efficiency : ndarray
+        (T, N) mechanical efficiency η [-].
+    power_loss_w : ndarray
+        (T, N) friction power loss [W].
+    valid : ndarray of bool
+        (T, N) whether each cell lies inside the models' validity [-].
+    converged : ndarray of bool
+        (T, N) whether each load distribution converged [-].
+    reasons : list of str
+        The distinct reasons of the cells that are not valid [-].
+    wall_time_s : float
+        Evaluation time [s].
+    """
 
     design: str
     friction: str
@@ -108,6 +143,13 @@ class EfficiencyMap:
     wall_time_s: float = 0.0
 
     def to_dict(self) -> dict[str, Any]:
+        """The map as a JSON-ready dict (arrays as arrays; ``friction_model``, ``not_valid_reasons`` as named there).
+
+        Returns
+        -------
+        dict
+            The fields, units in the key names.
+        """
         return {"design": self.design, "friction_model": self.friction, "torque_nm": self.torque_nm,
                 "speed_rpm": self.speed_rpm, "efficiency": self.efficiency, "power_loss_w": self.power_loss_w,
                 "valid": self.valid, "converged": self.converged, "not_valid_reasons": self.reasons,
@@ -116,7 +158,32 @@ class EfficiencyMap:
 
 def efficiency_map(pair, friction, torques_nm, speeds_rpm, point, options, *, design: str = "",
                    friction_name: str = "") -> EfficiencyMap:
-    """Evaluate ``pair`` at every torque × speed (the other conditions of the study point ``point``)."""
+    """Evaluate ``pair`` at every torque × speed, the other conditions those of the study point ``point``.
+
+    Parameters
+    ----------
+    pair : GearPair
+        A scalar pair [-].
+    friction : callable
+        Friction model [-].
+    torques_nm : array_like
+        Input torques [N·m].
+    speeds_rpm : array_like
+        Input speeds [rpm].
+    point : StudyPoint
+        The other operating conditions (oil temperature, roughness, modifications) [-].
+    options : MeshOptions
+        Mesh resolution and models [-].
+    design : str
+        Design name shown in the figure [-].
+    friction_name : str
+        Friction model name shown in the figure [-].
+
+    Returns
+    -------
+    EfficiencyMap
+        η and P on the torque × speed grid with the validity of each cell.
+    """
     from efficiency.studies import StudyPoint
 
     started = time.perf_counter()
@@ -151,6 +218,26 @@ def _reason_kind(reason: str) -> str:
 
 def efficiency_map_figure(result: EfficiencyMap, path, command: str, study_point: tuple[float, float] | None,
                           note: str = "") -> str:
+    """Draw η and P over torque × speed (contours, cells outside the validity marked) and save the figure.
+
+    Parameters
+    ----------
+    result : EfficiencyMap
+        The map [-].
+    path : str or Path
+        The PNG to write [-].
+    command : str
+        The command that made the figure, printed in its footer (:func:`provenance`) [-].
+    study_point : tuple of float, optional
+        (speed in rpm, torque in N·m) of the study's operating point, marked on the map [-].
+    note : str
+        Extra footer text [-].
+
+    Returns
+    -------
+    str
+        The path written.
+    """
     plt = _pyplot()
     fig, axes = plt.subplots(1, 2, figsize=(13, 5.4))
     t, n = result.torque_nm, result.speed_rpm
@@ -189,8 +276,31 @@ def efficiency_map_figure(result: EfficiencyMap, path, command: str, study_point
 # ---------------------------------------------------------------------- mesh cycle and line of action
 @dataclass
 class MeshCycleLoss:
-    """Per friction model: P(φ) over the cycle, and the cycle-mean loss, load-weighted μ and SR in bins of roll
-    distance along the line of action (from T1); the pitch point and the active path of contact."""
+    """Per friction model: P(φ) over the cycle, and the cycle-mean loss, load-weighted μ and SR in bins of roll distance
+    along the line of action (from T1); the pitch point and the active path of contact.
+
+    Parameters
+    ----------
+    design : str
+        Design name [-].
+    mesh_angle_rad : ndarray
+        (M,) mesh angles [rad].
+    roll_bins_m : ndarray
+        Bin edges of roll distance from T1 [m].
+    pitch_roll_m : float
+        Roll distance of the pitch point [m].
+    contact_start_m : float
+        Start of the active path of contact [m].
+    contact_end_m : float
+        End of the active path of contact [m].
+    models : dict of str to dict
+        Per model: ``power_loss_w`` [W], ``efficiency``, ``power_loss_instant_w`` [W], ``loss_per_length_w_per_m``
+        [W/m], ``mu_load_weighted`` and ``sr_load_weighted`` per bin [-].
+    torque_nm : float
+        Input torque [N·m].
+    speed_rpm : float
+        Input speed [rpm].
+    """
 
     design: str
     mesh_angle_rad: np.ndarray
@@ -203,6 +313,13 @@ class MeshCycleLoss:
     speed_rpm: float = 0.0
 
     def to_dict(self) -> dict[str, Any]:
+        """The result as a JSON-ready dict (``roll_bin_edges_m`` for the bin edges).
+
+        Returns
+        -------
+        dict
+            The fields, units in the key names.
+        """
         return {"design": self.design, "torque_nm": self.torque_nm, "speed_rpm": self.speed_rpm,
                 "mesh_angle_rad": self.mesh_angle_rad, "roll_bin_edges_m": self.roll_bins_m,
                 "pitch_roll_m": self.pitch_roll_m, "contact_start_m": self.contact_start_m,
@@ -211,7 +328,28 @@ class MeshCycleLoss:
 
 def mesh_cycle_loss(pair, frictions: dict[str, Any], point, options, *, design: str = "", bins: int = 40,
                     ) -> MeshCycleLoss:
-    """P(φ) and the loss along the line of action of ``pair`` at ``point`` for each friction model."""
+    """P(φ) over the cycle and the loss along the line of action of ``pair`` at ``point`` for each friction model.
+
+    Parameters
+    ----------
+    pair : GearPair
+        A scalar pair [-].
+    frictions : dict of str to callable
+        Friction models by name [-].
+    point : StudyPoint
+        The operating point [-].
+    options : MeshOptions
+        Mesh resolution and models [-].
+    design : str
+        Design name [-].
+    bins : int
+        Bins of roll distance along the line of action [-].
+
+    Returns
+    -------
+    MeshCycleLoss
+        Per model: P(φ) and the binned loss, μ and SR.
+    """
     from efficiency.mesh_cycle import evaluate_mesh
     from efficiency.power_loss import mesh_power_loss
 
@@ -250,6 +388,24 @@ def _sorted_pair(x, y):
 
 
 def mesh_cycle_figure(result: MeshCycleLoss, path, command: str, note: str = "") -> str:
+    """Draw P(φ) and the loss, μ and SR along the line of action for every model and save the figure.
+
+    Parameters
+    ----------
+    result : MeshCycleLoss
+        The result [-].
+    path : str or Path
+        The PNG to write [-].
+    command : str
+        The command that made the figure, printed in its footer [-].
+    note : str
+        Extra footer text [-].
+
+    Returns
+    -------
+    str
+        The path written.
+    """
     plt = _pyplot()
     fig, axes = plt.subplots(1, 3, figsize=(15, 4.6))
     centres = 0.5 * (result.roll_bins_m[1:] + result.roll_bins_m[:-1])
@@ -291,8 +447,28 @@ def mesh_cycle_figure(result: MeshCycleLoss, path, command: str, note: str = "")
 
 # ---------------------------------------------------------------------- the paper's studies
 def study_sweep(study, frictions: dict[str, Any], point, options, *, stride: int = 1, limit: int | None = None):
-    """The sweep table of the first friction model (scatter of the feasible designs), the paper's trend lines and
-    Table 1 designs for every model: ``(table, lines {model: {column: table}}, designs {model: {name: row}})``."""
+    """The paper's design sweep for every friction model: the scatter table, the trend lines and the Table 1 designs.
+
+    Parameters
+    ----------
+    study : PaperStudy
+        The study [-].
+    frictions : dict of str to callable
+        Friction models by name; the first one gives the scatter table [-].
+    point : StudyPoint
+        The operating point [-].
+    options : MeshOptions
+        Mesh resolution and models [-].
+    stride : int
+        Keep every stride-th feasible design in the scatter [-].
+    limit : int, optional
+        Keep the first ``limit`` designs after the stride [-].
+
+    Returns
+    -------
+    tuple
+        (table, lines {model: {column: table}}, designs {model: {name: row}}).
+    """
     from efficiency.studies import design_sweep, evaluate_design, trend_line
 
     names = list(frictions)
@@ -311,6 +487,32 @@ def study_sweep(study, frictions: dict[str, Any], point, options, *, stride: int
 
 
 def sweep_figures(table, lines, designs, study, out_dir, command: str, point_text: str, note: str = "") -> list[str]:
+    """Draw the sweep figures (P against the design parameters, as the paper's Fig. 3–5) into ``out_dir``.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        The scatter table of :func:`study_sweep` [-].
+    lines : dict
+        The trend lines of :func:`study_sweep` [-].
+    designs : dict
+        The Table 1 designs of :func:`study_sweep` [-].
+    study : PaperStudy
+        The study [-].
+    out_dir : str or Path
+        Output directory [-].
+    command : str
+        The command that made the figures, printed in their footer [-].
+    point_text : str
+        The operating point, printed in the titles [-].
+    note : str
+        Extra footer text [-].
+
+    Returns
+    -------
+    list of str
+        The paths written.
+    """
     plt = _pyplot()
     names = list(lines)
     ok = table[table["converged"].astype(bool)]
@@ -376,7 +578,30 @@ def sweep_figures(table, lines, designs, study, out_dir, command: str, point_tex
 
 
 def study_modifications(pair, frictions: dict[str, Any], profile_crowns, lead_crowns, torques, point, options):
-    """:func:`efficiency.studies.modification_study` for every friction model: {model: table}."""
+    """:func:`efficiency.studies.modification_study` for every friction model.
+
+    Parameters
+    ----------
+    pair : GearPair
+        A scalar pair [-].
+    frictions : dict of str to callable
+        Friction models by name [-].
+    profile_crowns : iterable of float
+        Profile crowns M_P [m].
+    lead_crowns : iterable of float
+        Lead crowns M_L [m].
+    torques : iterable of float
+        Input torques [N·m].
+    point : StudyPoint
+        The other operating conditions [-].
+    options : MeshOptions
+        Mesh resolution and models [-].
+
+    Returns
+    -------
+    dict of str to pandas.DataFrame
+        {model: table}.
+    """
     from efficiency.studies import modification_study
 
     return {name: modification_study(pair, friction, profile_crowns, lead_crowns, torques, point, options)
@@ -384,6 +609,26 @@ def study_modifications(pair, frictions: dict[str, Any], profile_crowns, lead_cr
 
 
 def modifications_figure(tables: dict, design: str, path, command: str, note: str = "") -> str:
+    """Draw P, TE, σ_c and σ_b against the profile crown at the middle lead crown, per torque (paper Fig. 6), and save it.
+
+    Parameters
+    ----------
+    tables : dict of str to pandas.DataFrame
+        :func:`study_modifications` [-].
+    design : str
+        Design name [-].
+    path : str or Path
+        The PNG to write [-].
+    command : str
+        The command that made the figure, printed in its footer [-].
+    note : str
+        Extra footer text [-].
+
+    Returns
+    -------
+    str
+        The path written.
+    """
     plt = _pyplot()
     names = list(tables)
     first = tables[names[0]]
