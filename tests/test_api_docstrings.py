@@ -50,9 +50,6 @@ PENDING: set[str] = {
     "ehl_dataset.solvers.planner",
     "ehl_dataset.solvers.result",
     "ehl_dataset.validation",
-    "workflows.accuracy",
-    "workflows.pipeline",
-    "workflows.report",
 }
 
 # Unit vocabulary: SI symbols (the numerics' units) and the engineering units of input files and reports.
