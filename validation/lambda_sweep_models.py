@@ -35,8 +35,7 @@ OUT = ROOT / "validation" / "results" / "lambda_sweep_models.json"
 FIGURE = ROOT / "docs" / "figures" / "mu_lambda_models.png"
 MODELS = ("smooth-standard", "homogenised-transverse-standard", "homogenised-isotropic-standard",
           "homogenised-film_law-standard")
-"""The models run (the transient solver's rows, ``transient-fast`` and ``transient-standard``, were measured with
-ehl-2026.11-14 before it was deleted; the results file keeps them and the figure still draws them)."""
+"""The models run and drawn (the results file may hold rows of other models; the figure draws only these)."""
 COMMAND = "python validation/lambda_sweep_models.py"
 
 
@@ -98,11 +97,12 @@ def plot(record: dict, figure: Path = FIGURE) -> Path:
     lam = np.array([r["lambda_bar"] for r in det])
     ax.errorbar(lam, [r["mu"] for r in det], yerr=[2 * r["mu_sem"] for r in det], color="k", marker="o", lw=2,
                 capsize=3, label=f"deterministic (β/{record['deterministic']['points_per_beta']:g}, ±2 SE)")
-    styles = {"smooth-standard": ("tab:gray", "s", "--"), "transient-fast": ("tab:red", "v", ":"),
-              "transient-standard": ("tab:red", "^", "-"), "homogenised-transverse-standard": ("tab:blue", "D", "-"),
+    styles = {"smooth-standard": ("tab:gray", "s", "--"), "homogenised-transverse-standard": ("tab:blue", "D", "-"),
               "homogenised-isotropic-standard": ("tab:green", "D", "-"),
               "homogenised-film_law-standard": ("tab:purple", "o", "-.")}
     for name, runs in record["runs"].items():
+        if name not in MODELS:  # rows of models the package no longer has stay in the results file, not the figure
+            continue
         rows = sorted((r for r in runs.values() if r["converged"]), key=lambda r: r["lambda_bar"])
         missing = len(runs) - len(rows)
         color, marker, line = styles.get(name, ("tab:purple", "x", "-"))
