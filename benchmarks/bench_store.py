@@ -1,4 +1,4 @@
-"""Benchmark of the dataset store and runner (issue 4): JSON to ``benchmarks/results/store.json``.
+"""Benchmark of the dataset store and runner: JSON to ``benchmarks/results/store.json``.
 
 Measures
 1. the store's own cost per point: ``DatasetStore.record`` + its share of ``flush`` (quick factorial, in process),

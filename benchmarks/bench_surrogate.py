@@ -1,4 +1,4 @@
-"""Benchmark of the surrogate stage (issue 6): fit time on 42,000 synthetic rows and vectorised evaluation rates.
+"""Benchmark of the surrogate stage: fit time on 42,000 synthetic rows and vectorised evaluation rates.
 
 Data: the paper's full factorial (docs/reference/dataset-format.md, 42,000 points) with μ from the exact Eq. 9 forms (coefficients from
 :func:`surrogate.synthetic.reference_coefficients`) plus N(0, 0.05²) noise in ln μ. Timings are medians of

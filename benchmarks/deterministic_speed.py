@@ -1,4 +1,4 @@
-"""Benchmark (issue 14, Speed): the deterministic mixed solver's time per case on random factorial points, one core.
+"""Benchmark: the deterministic mixed solver's time per case on random factorial points, one core.
 
 The comparison with the transient mixed solver on the same points in the same run is recorded in
 ``benchmarks/results/deterministic_speed_fast_det-2026.11-13.json`` (EHL solver ehl-2026.11-14, commit 8019d33): that solver was

@@ -1,4 +1,4 @@
-"""The validation set of the deterministic mixed-EHL solver (issue 14): rough cases across the paper's factorial, each
+"""The validation set of the deterministic mixed-EHL solver: rough cases across the paper's factorial, each
 solved at three grid spacings (β/8, β/16, β/32; β/16, β/32, β/64 where asperities carry a large share of the load,
 see ``SPACINGS``), the grid-converged μ and asperity share with their uncertainty.
 
@@ -575,7 +575,7 @@ standard error of μ ≤ 1.5 %."""
 
 
 def acceptance_lines(rows: list[dict]) -> list[str]:
-    """One line per grid target of issue 14: how many cases meet it and which do not (the standard error rounded to
+    """One line per grid target: how many cases meet it and which do not (the standard error rounded to
     0.1 % as in the table)."""
     def sem(r):
         long_n = r.get("long_run_points_per_beta", r["points_per_beta"][1])
@@ -609,7 +609,7 @@ def acceptance_lines(rows: list[dict]) -> list[str]:
                ("μ fine step ≤ 5 % at two standard errors (|step| + 2 × its scaled standard error)",
                 lambda r: "mu_fine_step_sem_scaled" in r and step_bound(r) <= GRID_TARGET,
                 lambda r: f"{100 * step_bound(r):.1f} %" if "mu_fine_step_sem_scaled" in r else "not recorded"))
-    lines = ["Targets of issue 14 on this set:", ""]
+    lines = ["Grid targets on this set:", ""]
     short = [r for r in rows if "window_reliable" in r and not all(r["window_reliable"].values())]
     for text, met, value in checks:
         failing = [r for r in rows if not met(r)]

@@ -1,4 +1,4 @@
-"""3-D linear-elastic FE check of the face coupling of the slice load-distribution model (issue 17).
+"""3-D linear-elastic FE check of the face coupling of the slice load-distribution model.
 
 One tooth of each gear of FZG H501 as a straight extrusion of its transverse section (involute flank above the base
 circle, constant thickness below it as in efficiency.compliance, a rim sector one module deep clamped at its

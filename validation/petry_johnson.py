@@ -1,6 +1,6 @@
 """The Ohio State spur pair of Petry-Johnson et al. (J. Mech. Des. 130 (2008) 062601) at 413 N·m and
 2,000–10,000 rpm: mesh friction power loss and efficiency against speed with the project's friction routes, with and
-without the thermal correction of the EHL traction (ehl_dataset/model/thermal.py, issue 17 deliverable 5).
+without the thermal correction of the EHL traction (ehl_dataset/model/thermal.py).
 
 The pair from its manufacturing data (shared/reference/gear_cases.md: z 40/40, pitch diameter 92.74 mm, α 28°,
 outside diameter 95.95 mm, root diameter 85.90 mm, circular tooth thickness 2.925 mm, fillet radius 0.83 mm, face
