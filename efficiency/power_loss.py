@@ -12,6 +12,17 @@ SR = |u_s|/u_r. A friction model gives μ_q; then
 
 The friction models (callables ``mu(p_h, r_eq, u_r, sr, temperature, rq1, rq2) -> array`` in SI units) and the
 constructor of the ``--friction`` option are in :mod:`efficiency.friction`.
+
+Band of P. A friction model with a prediction interval (a coefficient file of format 2 or of the learned form:
+``mu_interval`` and ``has_interval``, :class:`surrogate.evaluate.FrictionSurrogate`) gives [μ_low,q, μ_high,q] at
+every contact point; the band of P is
+
+    P_low = mean_m Σ_q μ_low,q W_q |u_s,q|,   P_high = mean_m Σ_q μ_high,q W_q |u_s,q|,
+
+i.e. every contact point at the same end of its interval at once: the errors of a fitted surrogate are taken as fully
+correlated across the mesh. That is the honest, conservative choice for a fit's model error, which is systematic
+(neighbouring contacts of one mesh have nearly the same conditions, so the fit errs the same way at all of them);
+independent errors would shrink the band by about √(number of points) and understate it. η's band follows from P's.
 """
 
 from __future__ import annotations
@@ -27,6 +38,9 @@ from ehl_dataset.model.materials import STEEL, Material, reduced_modulus
 from ehl_dataset.validation import InputError, check_range
 
 from .friction import FrictionModel, describe_friction
+
+BAND_COVERAGE = 0.90
+"""Nominal coverage of the μ intervals behind the band of P."""
 
 
 @dataclass(frozen=True)
@@ -55,6 +69,11 @@ class PowerLossResult:
         Description of the friction model used [-].
     wall_time_s : float
         Evaluation time [s].
+    power_loss_band : tuple of float or None
+        (P_low, P_high) from the friction model's prediction intervals, fully correlated over the mesh (module
+        docstring); None when the model gives no interval [W].
+    band_coverage : float or None
+        Nominal coverage of the μ intervals behind ``power_loss_band`` [-].
     extra : dict
         Records of the friction model (solves, clipped inputs, ...) [-].
     """
@@ -70,6 +89,15 @@ class PowerLossResult:
     friction_model: str
     wall_time_s: float
     extra: dict = field(default_factory=dict)
+    power_loss_band: tuple[float, float] | None = None
+    band_coverage: float | None = None
+
+    @property
+    def efficiency_band(self) -> tuple[float, float] | None:
+        """(η_low, η_high) matching ``power_loss_band`` (η_low from P_high), or None [-]."""
+        if self.power_loss_band is None:
+            return None
+        return 1.0 - self.power_loss_band[1] / self.input_power, 1.0 - self.power_loss_band[0] / self.input_power
 
 
 def contact_conditions(mesh, material1: Material = STEEL, material2: Material = STEEL) -> dict[str, np.ndarray]:
@@ -103,7 +131,8 @@ def contact_conditions(mesh, material1: Material = STEEL, material2: Material = 
 
 
 def mesh_power_loss(mesh, friction: FrictionModel | Callable, temperature: float, rq1: float, rq2: float,
-                    material1: Material = STEEL, material2: Material = STEEL) -> PowerLossResult:
+                    material1: Material = STEEL, material2: Material = STEEL,
+                    band_coverage: float = BAND_COVERAGE) -> PowerLossResult:
     """Mechanical power loss (paper Eq. 10–11) of a loaded mesh cycle with a friction model.
 
     The friction model is called once, vectorised over all loaded points of all mesh positions.
@@ -124,11 +153,13 @@ def mesh_power_loss(mesh, friction: FrictionModel | Callable, temperature: float
         Material of gear 1 [-].
     material2 : Material
         Material of gear 2 [-].
+    band_coverage : float
+        Nominal coverage of the μ intervals behind the band of P, for a model that has them [-].
 
     Returns
     -------
     PowerLossResult
-        Mean and instantaneous loss and efficiency, μ, p_h and SR per point.
+        Mean and instantaneous loss and efficiency, μ, p_h and SR per point, and the band of P.
     """
     started = time.perf_counter()
     check_range("temperature", temperature, 0.0, 1000.0, low_inclusive=False, unit="K")
@@ -143,20 +174,37 @@ def mesh_power_loss(mesh, friction: FrictionModel | Callable, temperature: float
         friction = friction.for_mesh(mesh, loaded, material1, material2)
     mu = np.full(mesh.loads.shape, np.nan)
     n = int(loaded.sum())
-    mu_loaded = np.asarray(friction(cond["p_h"][loaded], cond["r_eq"][loaded], cond["u_r"][loaded],
-                                    cond["sr"][loaded], np.full(n, temperature), np.full(n, rq1),
-                                    np.full(n, rq2)), dtype=float)
+    args = (cond["p_h"][loaded], cond["r_eq"][loaded], cond["u_r"][loaded], cond["sr"][loaded],
+            np.full(n, temperature), np.full(n, rq1), np.full(n, rq2))
+    bounds = None
+    if getattr(friction, "has_interval", False) and hasattr(friction, "mu_interval"):
+        mu_loaded, low, high = friction.mu_interval(*args, alpha=1.0 - band_coverage)
+        bounds = (np.asarray(low, dtype=float), np.asarray(high, dtype=float))
+    else:
+        mu_loaded = friction(*args)
+    mu_loaded = np.asarray(mu_loaded, dtype=float)
     if mu_loaded.shape != (n,) or not np.all(np.isfinite(mu_loaded)) or np.any(mu_loaded < 0.0):
         raise InputError("friction model output", f"{mu_loaded!r:.80}", "finite μ ≥ 0 at every loaded point")
     mu[loaded] = mu_loaded
-    dissipation = np.where(loaded, np.nan_to_num(mu) * mesh.loads * np.abs(kin.u_s), 0.0)
-    instant = dissipation.sum(axis=(1, 2))
+    work = np.where(loaded, mesh.loads * np.abs(kin.u_s), 0.0)
+    instant = (np.nan_to_num(mu) * work).sum(axis=(1, 2))
     input_power = mesh.torque * kin.omega1
     power = float(instant.mean())
+    band = None
+    if bounds is not None:
+        band = tuple(_cycle_mean(work, loaded, values) for values in bounds)
     return PowerLossResult(
         power_loss=power, power_loss_instant=instant, efficiency=1.0 - power / input_power,
         efficiency_instant=1.0 - instant / input_power, input_power=input_power, mu=mu, p_h=cond["p_h"],
         sr=cond["sr"], friction_model=describe_friction(friction, short=True),
         wall_time_s=time.perf_counter() - started,
         extra=dict(friction.last_stats()) if hasattr(friction, "last_stats") else {},
+        power_loss_band=band, band_coverage=band_coverage if band is not None else None,
     )
+
+
+def _cycle_mean(work: np.ndarray, loaded: np.ndarray, mu_loaded: np.ndarray) -> float:
+    """mean_m Σ_q μ_q W_q |u_s,q| for μ given at the loaded points."""
+    mu = np.zeros(work.shape)
+    mu[loaded] = mu_loaded
+    return float((mu * work).sum(axis=(1, 2)).mean())

@@ -55,7 +55,7 @@ def fitted_ranges(prepared: PreparedTable) -> dict[str, list[float]]:
 
 
 def fit_learned(table: pd.DataFrame, lubricant, e_reduced: float, *, members: int = 5,
-                hidden: tuple[int, ...] = (32, 32), l2: float = 1e-3, seed: int = 0) -> LearnedFit:
+                hidden: tuple[int, ...] = (16, 16), l2: float = 1e-3, seed: int = 0) -> LearnedFit:
     """Fit the learned surrogate on a dataset table (columns of the HDF5 store, SI units).
 
     Parameters

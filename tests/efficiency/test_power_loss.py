@@ -129,3 +129,39 @@ def test_bad_friction_output_and_inputs_are_rejected():
         mesh_power_loss(mesh, lambda *a: np.full(np.shape(a[0]), np.nan), 353.15, 0.4e-6, 0.4e-6)
     with pytest.raises(InputError, match="rq1"):
         mesh_power_loss(mesh, ConstantFriction(0.05), 353.15, -1e-6, 0.4e-6)
+
+
+class _BandedFriction:
+    """μ = 0.05 with the interval [μ e^-h, μ e^+h] at every point (a stand-in for a surrogate with intervals)."""
+
+    has_interval = True
+
+    def __init__(self, half_width):
+        self.half_width = half_width
+        self.alpha = None
+
+    def __call__(self, p_h, *args):
+        return np.full(np.shape(p_h), 0.05)
+
+    def mu_interval(self, p_h, *args, alpha=0.1):
+        self.alpha = alpha
+        mu = self(p_h)
+        return mu, mu * math.exp(-self.half_width), mu * math.exp(self.half_width)
+
+
+def test_power_loss_band_is_the_fully_correlated_sum_of_the_mu_intervals():
+    """P is linear in μ, so with every point at the same end of its interval (fully correlated errors) the band is
+    exactly P·e^(±h) for a uniform half width h of ln μ; η's band follows from P's; 90 % intervals by default."""
+    pair = fzg("H501")
+    mesh = evaluate_mesh(pair, 300.0, 100.0, options=MeshOptions(positions=12, slices=20, outputs=frozenset()))
+    friction = _BandedFriction(0.2)
+    result = mesh_power_loss(mesh, friction, 353.15, 0.4e-6, 0.4e-6)
+    plain = mesh_power_loss(mesh, ConstantFriction(0.05), 353.15, 0.4e-6, 0.4e-6)
+    assert result.power_loss == pytest.approx(plain.power_loss, rel=1e-14)
+    low, high = result.power_loss_band
+    assert low == pytest.approx(plain.power_loss * math.exp(-0.2), rel=1e-12)
+    assert high == pytest.approx(plain.power_loss * math.exp(0.2), rel=1e-12)
+    eta_low, eta_high = result.efficiency_band
+    assert eta_low == pytest.approx(1 - high / result.input_power, rel=1e-14) and eta_low < result.efficiency < eta_high
+    assert friction.alpha == pytest.approx(0.10) and result.band_coverage == pytest.approx(0.90)
+    assert plain.power_loss_band is None and plain.efficiency_band is None
