@@ -191,7 +191,7 @@ def run_sweep(args: argparse.Namespace) -> int:
         payload["out"] = _write_csv(table, args.out)
     payload["wall_time_s"] = time.perf_counter() - started
     emit(payload, args.json, _human_sweep)
-    # exit 1: designs that raised or did not converge (issue 16 exit codes); designs outside the validity are
+    # exit 1: designs that raised or did not converge; designs outside the validity are
     # counted and flagged per row (valid, not_valid_because), part of a study's result
     return 0 if not math.isnan(payload["time_per_design_s"]) and payload["failed"] == 0 else 1
 

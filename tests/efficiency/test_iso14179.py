@@ -1,6 +1,6 @@
 """ISO/TR 14179-2 μ_mz and P_VZP (efficiency.iso14179) against an independent computation of the standard.
 
-Acceptance case (issue 17): FZG C (gear_cases.md) at T1 = 200 N·m, n1 = 1500 rpm, mineral ISO VG 32 at 60 °C.
+Acceptance case: FZG C (gear_cases.md) at T1 = 200 N·m, n1 = 1500 rpm, mineral ISO VG 32 at 60 °C.
 The reference below is computed by hand in the test from the standard's formula (ISO/TR 14179-2:2001, Schlenk)
 with inputs taken from the published gear data, not from the package: d_w1 = 2a z1/(z1 + z2) = 73.2 mm,
 α_wt = 22.4389° (gear_cases.md), d_b1 = z1 m cos 20°; the oil is GEARpie's "M32" (cfernandesFEUP/GEARpie,

@@ -1,4 +1,4 @@
-"""A pair given by its manufacturing data (issue 17, deliverable 4), and feasibility limits that belong to the
+"""A pair given by its manufacturing data, and feasibility limits that belong to the
 paper's study only.
 
 Reference: the Ohio State unity-ratio spur pair of Petry-Johnson, Kahraman, Anderson & Chase, J. Mech. Des. 130

@@ -1,4 +1,4 @@
-"""Spur single-pair stiffness along the path of contact and load sharing in the double-contact zones (issue 17).
+"""Spur single-pair stiffness along the path of contact and load sharing in the double-contact zones.
 
 References: ISO 6336-1:2006 §9 — c' is the maximum single-pair tooth stiffness per unit face width, reached in the
 single-contact zone near the pitch point for spur gears (the Weber/Banaschek single-pair stiffness curve has its

@@ -70,7 +70,7 @@ def test_spur_elastic_sharing_lies_below_ohlendorf():
     assert 0.97 * prefactor * ohlendorf < h_v < prefactor * ohlendorf
 
 
-@pytest.mark.xfail(strict=True, reason="issue 17 acceptance 'spur elastic H within 1 % of H_V' not met: "
+@pytest.mark.xfail(strict=True, reason="acceptance 'spur elastic H within 1 % of H_V' not met: "
                    "elastic sharing gives −1.6 % (see test above)")
 def test_spur_elastic_loss_factor_within_one_percent_of_ohlendorf():
     pair = fzg("C")
@@ -88,7 +88,7 @@ def test_helical_stiffness_weighted_sharing_lies_below_wimmer():
     assert mesh.loss_factor < 0.97 * wimmer_loss_factor(pair)
 
 
-@pytest.mark.xfail(strict=True, reason="issue 17 acceptance 'helical elastic H <= H_VL' not met: with the face "
+@pytest.mark.xfail(strict=True, reason="acceptance 'helical elastic H <= H_VL' not met: with the face "
                    "coupling of tooth and gear body (0.6 tooth depth) H501 gives +2.2 % over H_VL; a 3-D FE of the "
                    "teeth on their gear body gives +1.6 % (docs/gear_validation.md §3)")
 def test_helical_elastic_loss_factor_at_most_wimmer():

@@ -1,4 +1,4 @@
-"""The deterministic mixed-EHL reference solver (issue 14): discrete equations, Newton–Krylov, conservation, limits.
+"""The deterministic mixed-EHL reference solver: discrete equations, Newton–Krylov, conservation, limits.
 
 Long measurements (grid convergence, time step, h_b sensitivity, the validation set) are in
 docs/deterministic_solver.md with the commands that make them; the tests here check the machinery on short runs.
@@ -181,7 +181,7 @@ def test_gmres_with_the_banded_preconditioner_solves_the_newton_system():
 
 def test_smooth_surfaces_reproduce_the_steady_solver():
     """S_c = 0: the deterministic discretisation (uniform grid, mass-conserving cavitation, harmonic faces) gives
-    the steady smooth solver's μ and h_min (clustered grid, reference level) within 0.5 % (issue 14, limits). Both
+    the steady smooth solver's μ and h_min (clustered grid, reference level) within 0.5 % (a limit case). Both
     isothermal: the deterministic solver has no thermal model (the reference plan would correct the traction)."""
     case = ContactCase.from_engineering(1.0, 10, 5, 0.3, 90)
     reference = solve_contact(case, ATF, "reference", "isothermal")
@@ -201,7 +201,7 @@ def _short_rough_run(checkpoint=None, **overrides):
 
 def test_mass_and_load_are_balanced_at_every_step():
     """Σ over all cells of (flux in − flux out − storage change) and ∫p dx − W' stay ≤ 1e-10 (relative) at every
-    time step of a rough run (issue 14, conservation); the averaging target is out of reach, so the run goes on to
+    time step of a rough run (conservation); the averaging target is out of reach, so the run goes on to
     its cap of 0.6 passes."""
     result = _short_rough_run(mu_sem_target=1e-9)
     assert result.converged, result.message
@@ -289,7 +289,7 @@ def test_runs_of_different_length_read_the_same_roughness_when_they_share_the_la
 
 
 def test_tiny_roughness_gives_the_smooth_friction():
-    """Rq → 0: a transient run with Rq = 0.1 nm gives the smooth steady μ within 0.5 % (issue 14, limits). The
+    """Rq → 0: a transient run with Rq = 0.1 nm gives the smooth steady μ within 0.5 % (a limit case). The
     deviation is linear in Rq (measured 5e-5, 5e-4, 5e-3, 4e-2 of μ at Rq = 0.01, 0.1, 1, 10 nm on this short
     window: the stretch of roughness in a short window has a non-zero local mean, which shifts the mean film)."""
     case = ContactCase.from_engineering(0.5, 5, 5, 0.3, 90, 0.0001, 0.0001)

@@ -252,7 +252,7 @@ def test_follows_the_deterministic_roughness_sweep_where_the_traction_is_eyring_
     0.16, det-2026.11-10 at β/8: `python validation/deterministic_lambda_sweep.py --spacing 8 --passes 6
     --conditions 1.0 10 2 0.4 50 --tag J`), because the rough inlet feeds a thicker film and a saturated traction
     gains little from the pressure fluctuations (docs/deterministic_solver.md, "Roughness sweep"). Asserted: the
-    film law is within 10 % of every point (issue 15's accuracy target; measured +1.1 % to +6.5 % under
+    film law is within 10 % of every point (the film law's accuracy target; measured +1.1 % to +6.5 % under
     ehl-2026.11-14) and is lower at λ̄ 0.16 than at 0.64, like the reference (measured 0.0354 → 0.0328)."""
     sweep = json.loads((ROOT / "validation" / "results" / "deterministic_lambda_sweep_J.json").read_text())
     assert all(pair["delta_mu"] < -2.0 * pair["delta_mu_sem"] for pair in sweep["pairs"])
@@ -273,7 +273,7 @@ def test_rises_at_every_step_of_the_deterministic_roughness_sweep_where_the_trac
     a/β 2.9), where the deterministic model's μ rises at every step as the roughness grows, gently above λ̄ ≈ 1 and
     steeply below (the paper's Fig. 2; det-2026.11-9 at β/16 over 11 passes: 0.0138 → 0.0279 from λ̄ 5.0 to 0.12,
     `python validation/deterministic_lambda_sweep.py --spacing 16 --passes 11`). The planner's model (auto at
-    `standard`, isothermal) rises at every step too, and meets issue 15's accuracy targets on the sweep: median
+    `standard`, isothermal) rises at every step too, and meets the film law's accuracy targets on the sweep: median
     |error| ≤ 10 % and every point within the 90th-percentile target of 25 % (measured under ehl-2026.11-14: median
     9.8 %, from +14.6 % at λ̄ 0.99 to −22.6 % at λ̄ 0.12, gentler than the reference below λ̄ 0.33)."""
     sweep = json.loads((ROOT / "validation" / "results" / "lambda_sweep_models.json").read_text())

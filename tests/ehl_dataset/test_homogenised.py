@@ -1,4 +1,4 @@
-"""The homogenised mixed-EHL model (issue 15, prototype): limits against the smooth solver and conservation of the
+"""The homogenised mixed-EHL model (prototype): limits against the smooth solver and conservation of the
 load. Its validation against the deterministic reference is in docs/homogenised_model.md (not yet reached)."""
 
 import numpy as np

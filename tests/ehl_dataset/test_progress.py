@@ -1,4 +1,4 @@
-"""Progress of a run (issue 16, finding 3): counts of the whole file on resume, and a time to go predicted from the
+"""Progress of a run: counts of the whole file on resume, and a time to go predicted from the
 measured cost of the points done."""
 
 import io

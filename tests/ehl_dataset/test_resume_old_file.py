@@ -4,7 +4,7 @@
 regrouped into layers (commit b399435), with rows 6, 7, 8 and 12 left pending as an interrupted run leaves them
 (``python benchmarks/behaviour_snapshot.py partial``). Until version -7 its resume gave the rows of the
 uninterrupted run recorded before the regrouping (``benchmarks/results/behaviour_before.json``): the regrouping
-changed no result. Version ehl-2026.11-8 (the thermal correction of the traction, issue 17) can change solved
+changed no result. Version ehl-2026.11-8 (the thermal correction of the traction) can change solved
 values, so the store must refuse to continue the file, naming both versions (docs/reference/dataset-format.md).
 """
 

@@ -212,7 +212,7 @@ def test_modified_input_columns_are_detected(tmp_path, plan):
 
 
 def test_sigkill_part_way_then_resume_completes_without_recomputing(tmp_path):
-    """Acceptance (issue 4): a real ``gearloss dataset run`` killed with SIGKILL, then resumed: the file is
+    """Acceptance: a real ``gearloss dataset run`` killed with SIGKILL, then resumed: the file is
     complete, no finished point is computed again, and the rows equal an uninterrupted run's."""
     plan_file = tmp_path / "plan.toml"
     plan_file.write_text(
@@ -307,7 +307,7 @@ def test_sigterm_stops_the_run_at_once_with_finished_points_on_disk(tmp_path):
 
 @pytest.mark.slow
 def test_dask_local_cluster_gives_the_same_rows_as_local_processes(tmp_path, plan, monkeypatch):
-    """Acceptance (issue 4): a run through a Dask LocalCluster (2 worker processes) equals the local default."""
+    """Acceptance: a run through a Dask LocalCluster (2 worker processes) equals the local default."""
     pytest.importorskip("distributed")
     monkeypatch.setenv("PYTHONPATH", os.pathsep.join([str(REPO), os.environ.get("PYTHONPATH", "")]))
     local = run_factorial(tmp_path / "local.h5", plan, workers=2, solver=analytic_solve, progress="none")

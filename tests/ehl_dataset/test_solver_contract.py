@@ -99,5 +99,5 @@ def test_a_requested_model_is_recorded_as_it_ran_with_the_planners_choice_kept()
     forced = solve_contact(smooth, "atf", "fast", model="deterministic")
     assert not forced.effects["roughness"] and not forced.effects["transient"]
     assert "smooth surfaces, steady smooth solve" in forced.effects["reasons"]["decisions"]["model"]
-    # issue 14's smooth limit: the smooth solver's μ within 0.5 %
+    # the smooth limit: the smooth solver's μ within 0.5 %
     assert forced.mu == pytest.approx(solve_contact(smooth, "atf", "fast", model="smooth").mu, rel=5e-3)

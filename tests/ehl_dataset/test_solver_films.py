@@ -1,4 +1,4 @@
-"""Smooth steady EHL films against the classic line-contact formulas (issue 2 acceptance).
+"""Smooth steady EHL films against the classic line-contact formulas.
 
 Like is compared with like (docs/ehl_solver.md, "Validation"): Moes and Dowson–Toyoda are fits to incompressible Newtonian Barus
 solutions → incompressible Barus fluid; Dowson–Higginson's minimum film comes from compressible Barus solutions →

@@ -1,4 +1,4 @@
-"""EHL solver numerics: published numerical case, Hertz limit, load balance, grid convergence (issue 2)."""
+"""EHL solver numerics: published numerical case, Hertz limit, load balance, grid convergence."""
 
 import math
 from dataclasses import replace
@@ -80,7 +80,7 @@ def _hertz_deviation(point):
 def test_pressure_tends_to_hertz_at_high_load_and_load_balances():
     """Hertz limit (docs/ehl_solver.md, "Validation"): as the Moes load parameter grows (M = 26 → 231 → 729) the pressure over
     |x| ≤ 0.7a approaches the Hertz ellipse monotonically (max deviation 1.7 % → 0.10 % → 0.011 % of p_h measured),
-    and ∫p dx = W' to 1e−4 relative or better (issue 2)."""
+    and ∫p dx = W' to 1e−4 relative or better."""
     deviations = []
     for point in [(1.0, 20, 5), (2.5, 40, 5), (2.5, 80, 1)]:
         deviation, load_ratio = _hertz_deviation(point)
@@ -91,7 +91,7 @@ def test_pressure_tends_to_hertz_at_high_load_and_load_balances():
 
 
 def test_grid_convergence_is_second_order():
-    """Grid convergence (issue 2): halving both spacings of the clustered grid three times, the changes of h_c,
+    """Grid convergence: halving both spacings of the clustered grid three times, the changes of h_c,
     h_min and μ shrink by ≈ 4 per halving. Observed orders (measured): h_c 1.97/1.99, h_min 2.4/1.8, μ 2.01/2.01
     at p_h = 2 GPa (M ≈ 60, ATF with Eyring shear); asserted 1.5–2.6 (second-order finite volumes, linear-upwind
     Couette flux, exact log-kernel deflection of a piecewise-linear pressure)."""

@@ -1,4 +1,4 @@
-"""Stability over the paper's operating range (issue 2 acceptance; the factorial of docs/reference/dataset-format.md)."""
+"""Stability over the paper's operating range (the factorial of docs/reference/dataset-format.md)."""
 
 import itertools
 import math

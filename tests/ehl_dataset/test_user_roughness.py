@@ -1,5 +1,5 @@
-"""A user's measured roughness profile through ``solve_contact`` and ``gearloss contact solve`` (issue 3,
-deliverable 1: the loader's profile must reach the rough solvers: the deterministic transient model and the
+"""A user's measured roughness profile through ``solve_contact`` and ``gearloss contact solve`` (the
+loader's profile must reach the rough solvers: the deterministic transient model and the
 production film-law model)."""
 
 import json

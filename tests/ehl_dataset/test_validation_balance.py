@@ -20,7 +20,7 @@ def cases():
 
 
 def test_every_validation_case_records_its_balance_at_every_spacing(cases):
-    """Each of the 12 cases carries the balance of each spacing it was solved at (issue 14: at least 12 cases)."""
+    """Each of the 12 cases carries the balance of each spacing it was solved at (at least 12 cases)."""
     assert len(cases) >= 12
     for case in cases:
         assert set(case["mass_error_max"]) == set(case["wall_time_s"]), case["case"]

@@ -129,7 +129,7 @@ def test_a_narrow_contact_or_a_given_spacing_is_resolved(wide_case):
 
 
 def test_the_command_line_reports_the_route(capsys, monkeypatch):
-    """``gearloss contact solve ... --model deterministic --wide windows --json`` (issue 14, deliverable 2): the JSON
+    """``gearloss contact solve ... --model deterministic --wide windows --json``: the JSON
     names the route and carries the fields of a deterministic run. (The ``fast`` level's layout is shrunk to the
     coarse one above to keep the test to seconds.)"""
     from ehl_dataset.solvers import levels

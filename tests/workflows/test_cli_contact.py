@@ -37,7 +37,7 @@ def test_thermal_correction_reported_and_switchable(capsys):
 
 
 def test_validation_fluid_by_name_and_by_file(capsys, tmp_path):
-    """A Newtonian Barus fluid can be chosen by shipped name or by a TOML file path (issue 2, deliverable 5)."""
+    """A Newtonian Barus fluid can be chosen by shipped name or by a TOML file path."""
     from ehl_dataset.data_files import data_path
 
     assert main(BASE + ["--lubricant", "validation_barus", "--json"]) == 0

@@ -1,4 +1,4 @@
-"""`gear evaluate`: --load-sharing, the loss factors and the ISO/TR 14179-2 block (issue 17)."""
+"""`gear evaluate`: --load-sharing, the loss factors and the ISO/TR 14179-2 block."""
 
 import json
 import math

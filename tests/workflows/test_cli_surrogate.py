@@ -56,7 +56,7 @@ def test_fit_writes_a_file_and_reports_exclusions(dataset, tmp_path, capsys):
 
 def test_predict_matches_the_library_and_flags_inputs_outside_the_fitted_ranges(fitted, capsys):
     """Inside the fitted ranges: the library's μ, valid, exit 0. Outside (u_r 40 m/s, fitted up to 20): the policy
-    of gear evaluate (issue 16, finding 5): μ of the surrogate with its inputs clipped, the clipped input counted,
+    of gear evaluate: μ of the surrogate with its inputs clipped, the clipped input counted,
     valid false and exit 1; --no-clip gives the raw regression, flagged the same way."""
     from surrogate.evaluate import FrictionSurrogate
 

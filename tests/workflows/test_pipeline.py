@@ -110,7 +110,7 @@ def test_pipeline_stops_at_the_fit_when_the_factorial_cannot_determine_eq9(tmp_p
     assert code == 3
     error = [line for line in captured.err.splitlines() if "fit stage" in line]
     assert len(error) == 1 and captured.err.strip().splitlines()[-1] == error[0]
-    # issue 16, finding 7: the error says which rows were usable and what each branch needs
+    # the error says which rows were usable and what each branch needs
     assert "rows: 4 in the file; excluded: none" in error[0] and "mixed 0 (needs 10)" in error[0]
     assert "full_film 4 (needs 14)" in error[0]
     assert json.loads(captured.out)["error"]["exit_code"] == 3
@@ -201,7 +201,7 @@ def test_pipeline_end_to_end_with_the_ehl_solver(tmp_path, capsys):
     assert len(bad) == 0, bad[["lambda_bar", "status", "error"]].to_string()
     payload = json.loads(captured.out)
     # exit 1 when design D lies outside the fit's validity (this factorial has r_eq 20 mm only; design D's contacts
-    # are at 12-13 mm, so their r_eq is clipped: issue 16, docs/reference/cli.md "Validity")
+    # are at 12-13 mm, so their r_eq is clipped: docs/reference/cli.md "Validity")
     assert code == (0 if payload["valid"] else 1), f"pipeline exit {code}: {captured.err.strip()}"
     assert payload["valid"] or "r_eq" in payload["stages"]["design"]["not_valid_because"]
     stages = payload["stages"]
