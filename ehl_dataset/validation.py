@@ -8,7 +8,19 @@ from typing import Any
 
 
 class InputError(ValueError):
-    """Bad user input. ``str(err)`` is a single line: parameter, value, accepted range."""
+    """Bad user input; ``str(err)`` is a single line naming the parameter, the value and the accepted range.
+
+    Parameters
+    ----------
+    parameter : str
+        Name of the bad parameter [-].
+    value : object
+        The value given [-].
+    accepted : str
+        The accepted range or choices, with the unit [-].
+    detail : str
+        Further detail, e.g. the index of the first bad element [-].
+    """
 
     def __init__(self, parameter: str, value: Any, accepted: str, detail: str = ""):
         self.parameter = parameter
@@ -25,7 +37,25 @@ class SolverError(RuntimeError):
 
 
 def check_finite(name: str, value: float) -> float:
-    """Return ``float(value)`` or raise :class:`InputError` if it is not a finite number."""
+    """Check that a value is a finite number.
+
+    Parameters
+    ----------
+    name : str
+        Parameter name for the error message [-].
+    value : float
+        The value [-].
+
+    Returns
+    -------
+    float
+        ``float(value)``.
+
+    Raises
+    ------
+    InputError
+        When it is not a finite number.
+    """
     try:
         number = float(value)
     except (TypeError, ValueError):
@@ -45,7 +75,35 @@ def check_range(
     high_inclusive: bool = True,
     unit: str = "",
 ) -> float:
-    """Check ``low <= value <= high`` (bounds inclusive or not) and return the value as float."""
+    """Check ``low <= value <= high`` (bounds inclusive or not) and return the value as float.
+
+    Parameters
+    ----------
+    name : str
+        Parameter name for the error message [-].
+    value : float
+        The value, in ``unit`` [-].
+    low : float
+        Lower bound, in ``unit`` [-].
+    high : float
+        Upper bound, in ``unit`` [-].
+    low_inclusive : bool
+        Whether ``low`` itself is accepted [-].
+    high_inclusive : bool
+        Whether ``high`` itself is accepted [-].
+    unit : str
+        Unit named in the error message [-].
+
+    Returns
+    -------
+    float
+        The value.
+
+    Raises
+    ------
+    InputError
+        Naming the parameter, the value and the accepted range.
+    """
     number = check_finite(name, value)
     too_low = number < low if low_inclusive else number <= low
     too_high = number > high if high_inclusive else number >= high

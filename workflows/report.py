@@ -609,7 +609,7 @@ def study_modifications(pair, frictions: dict[str, Any], profile_crowns, lead_cr
 
 
 def modifications_figure(tables: dict, design: str, path, command: str, note: str = "") -> str:
-    """Draw P, TE, σ_c and σ_b against the profile crown at the middle lead crown, per torque (paper Fig. 6), and save it.
+    """Draw P, TE, σ_c and σ_b against the profile crown (middle lead crown) per torque, as paper Fig. 6.
 
     Parameters
     ----------

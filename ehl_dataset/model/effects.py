@@ -26,7 +26,25 @@ from typing import Any
 
 @dataclass(frozen=True)
 class Effects:
-    """Which effects a solve includes, why, and whether the plan was automatic (``mode="auto"``) or forced."""
+    """Which effects a solve includes, why, and whether the plan was automatic (``mode="auto"``) or forced.
+
+    Parameters
+    ----------
+    roughness : bool
+        Simulate the surface roughness (a mixed-regime model) [-].
+    transient : bool
+        Simulate the roughness moving through the contact (time-dependent) [-].
+    shear_thinning : bool
+        Non-Newtonian (Eyring) lubricant [-].
+    compressibility : bool
+        Compressible lubricant (Dowson–Higginson density) [-].
+    mode : str
+        How the plan was made: ``auto`` (the planner) or the name of a forced plan (``full``, ...) [-].
+    reasons : dict
+        Why each effect is on or off: the planner's numbers and decisions [-].
+    thermal : bool
+        The thermal (shear heating) correction of the traction [-].
+    """
 
     roughness: bool = True
     transient: bool = True
@@ -38,14 +56,37 @@ class Effects:
 
     @classmethod
     def full(cls) -> "Effects":
-        """Every effect on (``--effects full``), the thermal correction included."""
+        """Every effect on (``--effects full``), the thermal correction included.
+
+        Returns
+        -------
+        Effects
+            The plan.
+        """
         return cls(True, True, True, True, "full", {"forced": "effects=full"}, thermal=True)
 
     @classmethod
     def smooth_steady(cls, **reasons: Any) -> "Effects":
-        """Steady smooth-surface solve (still non-Newtonian and compressible)."""
+        """Steady smooth-surface solve (still non-Newtonian and compressible).
+
+        Parameters
+        ----------
+        **reasons
+            Entries recorded as the plan's reasons [-].
+
+        Returns
+        -------
+        Effects
+            The plan.
+        """
         return cls(False, False, True, True, "auto", dict(reasons))
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-serialisable form stored with results."""
+        """JSON-serialisable form stored with results.
+
+        Returns
+        -------
+        dict
+            The flags, ``mode`` and ``reasons``.
+        """
         return asdict(self)

@@ -10,7 +10,30 @@ import numpy as np
 
 
 def dimensionless_groups(eta0, u_r, alpha, e_reduced, r_eq, load_per_length):
-    """Return (U, G, W) for a line contact."""
+    """Dimensionless speed, material and load groups of a line contact (rolling-velocity convention).
+
+    U = η0 u_r/(E' R), G = α E', W = w/(E' R).
+
+    Parameters
+    ----------
+    eta0 : array_like
+        Dynamic viscosity at the inlet, ambient pressure [Pa s].
+    u_r : array_like
+        Rolling (mean) velocity (u1 + u2)/2 [m/s].
+    alpha : array_like
+        Pressure–viscosity coefficient [1/Pa].
+    e_reduced : array_like
+        Reduced modulus E' [Pa].
+    r_eq : array_like
+        Equivalent radius of curvature R [m].
+    load_per_length : array_like
+        Normal load per unit length w [N/m].
+
+    Returns
+    -------
+    tuple of ndarray
+        (U, G, W) [-].
+    """
     u = np.asarray(eta0) * np.asarray(u_r) / (np.asarray(e_reduced) * np.asarray(r_eq))
     g = np.asarray(alpha) * np.asarray(e_reduced)
     w = np.asarray(load_per_length) / (np.asarray(e_reduced) * np.asarray(r_eq))
@@ -18,17 +41,37 @@ def dimensionless_groups(eta0, u_r, alpha, e_reduced, r_eq, load_per_length):
 
 
 def dowson_higginson_min_film(eta0, u_r, alpha, e_reduced, r_eq, load_per_length):
-    """Dowson–Higginson minimum film thickness [m] for a line contact.
+    """Dowson–Higginson minimum film thickness for a line contact.
 
     H_min = 2.65 U^0.70 G^0.54 W^−0.13 (Dowson & Higginson, *Elasto-hydrodynamic lubrication*, 1977 SI edition),
     the formula the paper uses for its λ̄ (Li & Kahraman 2009, Sect. 2.1).
+
+    Parameters
+    ----------
+    eta0 : array_like
+        Dynamic viscosity at the inlet, ambient pressure [Pa s].
+    u_r : array_like
+        Rolling (mean) velocity (u1 + u2)/2 [m/s].
+    alpha : array_like
+        Pressure–viscosity coefficient [1/Pa].
+    e_reduced : array_like
+        Reduced modulus E' [Pa].
+    r_eq : array_like
+        Equivalent radius of curvature R [m].
+    load_per_length : array_like
+        Normal load per unit length w [N/m].
+
+    Returns
+    -------
+    ndarray
+        h_min [m].
     """
     u, g, w = dimensionless_groups(eta0, u_r, alpha, e_reduced, r_eq, load_per_length)
     return 2.65 * np.asarray(r_eq) * u**0.70 * g**0.54 * w**-0.13
 
 
 def moes_central_film(eta0, u_r, alpha, e_reduced, r_eq, load_per_length):
-    """Moes central film thickness [m] for an isothermal Newtonian line contact.
+    """Moes central film thickness for an isothermal Newtonian line contact.
 
     Moes (1992), as given by Venner & Lubrecht, *Multilevel Methods in Lubrication* (Elsevier 2000), Ch. 5: with
     the rolling-velocity groups U, G, W of :func:`dimensionless_groups`,
@@ -42,6 +85,26 @@ def moes_central_film(eta0, u_r, alpha, e_reduced, r_eq, load_per_length):
     regimes (a compressible solution lies 13–19 % below it: docs/ehl_solver.md, "Validation"). At the point U = 1e−11,
     G = 5000, W = 1e−4 it agrees with Dowson–Toyoda to 2 % (60 % apart with the sum-velocity convention), which
     pins the velocity convention (mean velocity).
+
+    Parameters
+    ----------
+    eta0 : array_like
+        Dynamic viscosity at the inlet, ambient pressure [Pa s].
+    u_r : array_like
+        Rolling (mean) velocity (u1 + u2)/2 [m/s].
+    alpha : array_like
+        Pressure–viscosity coefficient [1/Pa].
+    e_reduced : array_like
+        Reduced modulus E' [Pa].
+    r_eq : array_like
+        Equivalent radius of curvature R [m].
+    load_per_length : array_like
+        Normal load per unit length w [N/m].
+
+    Returns
+    -------
+    ndarray
+        h_c [m].
     """
     u, g, w = dimensionless_groups(eta0, u_r, alpha, e_reduced, r_eq, load_per_length)
     two_u = 2.0 * u
@@ -59,32 +122,114 @@ def moes_central_film(eta0, u_r, alpha, e_reduced, r_eq, load_per_length):
 
 
 def moes_parameters(eta0, u_r, alpha, e_reduced, r_eq, load_per_length):
-    """Moes' load and material parameters (M, L) of :func:`moes_central_film`."""
+    """Moes' load and material parameters (M, L) of :func:`moes_central_film`.
+
+    Parameters
+    ----------
+    eta0 : array_like
+        Dynamic viscosity at the inlet, ambient pressure [Pa s].
+    u_r : array_like
+        Rolling (mean) velocity (u1 + u2)/2 [m/s].
+    alpha : array_like
+        Pressure–viscosity coefficient [1/Pa].
+    e_reduced : array_like
+        Reduced modulus E' [Pa].
+    r_eq : array_like
+        Equivalent radius of curvature R [m].
+    load_per_length : array_like
+        Normal load per unit length w [N/m].
+
+    Returns
+    -------
+    tuple of ndarray
+        (M, L) [-].
+    """
     u, g, w = dimensionless_groups(eta0, u_r, alpha, e_reduced, r_eq, load_per_length)
     return w / np.sqrt(2.0 * u), g * (2.0 * u) ** 0.25
 
 
 def dowson_toyoda_central_film(eta0, u_r, alpha, e_reduced, r_eq, load_per_length):
-    """Dowson–Toyoda central film thickness [m]: H_c = 3.06 U^0.69 G^0.56 W^−0.10.
+    """Dowson–Toyoda central film thickness: H_c = 3.06 U^0.69 G^0.56 W^−0.10.
 
     Dowson & Toyoda, "A central film thickness formula for elastohydrodynamic line contacts", Proc. 5th
     Leeds–Lyon Symposium (1979) 60–65; a fit to isothermal Newtonian numerical solutions (U on the mean velocity).
+
+    Parameters
+    ----------
+    eta0 : array_like
+        Dynamic viscosity at the inlet, ambient pressure [Pa s].
+    u_r : array_like
+        Rolling (mean) velocity (u1 + u2)/2 [m/s].
+    alpha : array_like
+        Pressure–viscosity coefficient [1/Pa].
+    e_reduced : array_like
+        Reduced modulus E' [Pa].
+    r_eq : array_like
+        Equivalent radius of curvature R [m].
+    load_per_length : array_like
+        Normal load per unit length w [N/m].
+
+    Returns
+    -------
+    ndarray
+        h_c [m].
     """
     u, g, w = dimensionless_groups(eta0, u_r, alpha, e_reduced, r_eq, load_per_length)
     return 3.06 * np.asarray(r_eq) * u**0.69 * g**0.56 * w**-0.10
 
 
 def pan_hamrock_min_film(eta0, u_r, alpha, e_reduced, r_eq, load_per_length):
-    """Pan–Hamrock minimum film thickness [m]: H_min = 1.714 W^−0.128 U^0.694 G^0.568.
+    """Pan–Hamrock minimum film thickness: H_min = 1.714 W^−0.128 U^0.694 G^0.568.
 
     Pan & Hamrock, "Simple formulas for performance parameters used in elastohydrodynamically lubricated line
     contacts", J. Tribol. 111 (1989) 246–251; fit to compressible (Dowson–Higginson) Roelands solutions.
+
+    Parameters
+    ----------
+    eta0 : array_like
+        Dynamic viscosity at the inlet, ambient pressure [Pa s].
+    u_r : array_like
+        Rolling (mean) velocity (u1 + u2)/2 [m/s].
+    alpha : array_like
+        Pressure–viscosity coefficient [1/Pa].
+    e_reduced : array_like
+        Reduced modulus E' [Pa].
+    r_eq : array_like
+        Equivalent radius of curvature R [m].
+    load_per_length : array_like
+        Normal load per unit length w [N/m].
+
+    Returns
+    -------
+    ndarray
+        h_min [m].
     """
     u, g, w = dimensionless_groups(eta0, u_r, alpha, e_reduced, r_eq, load_per_length)
     return 1.714 * np.asarray(r_eq) * w**-0.128 * u**0.694 * g**0.568
 
 
 def pan_hamrock_central_film(eta0, u_r, alpha, e_reduced, r_eq, load_per_length):
-    """Pan–Hamrock central film thickness [m]: H_c = 2.922 W^−0.166 U^0.692 G^0.470 (same source as the minimum)."""
+    """Pan–Hamrock central film thickness: H_c = 2.922 W^−0.166 U^0.692 G^0.470 (same source as the minimum).
+
+    Parameters
+    ----------
+    eta0 : array_like
+        Dynamic viscosity at the inlet, ambient pressure [Pa s].
+    u_r : array_like
+        Rolling (mean) velocity (u1 + u2)/2 [m/s].
+    alpha : array_like
+        Pressure–viscosity coefficient [1/Pa].
+    e_reduced : array_like
+        Reduced modulus E' [Pa].
+    r_eq : array_like
+        Equivalent radius of curvature R [m].
+    load_per_length : array_like
+        Normal load per unit length w [N/m].
+
+    Returns
+    -------
+    ndarray
+        h_c [m].
+    """
     u, g, w = dimensionless_groups(eta0, u_r, alpha, e_reduced, r_eq, load_per_length)
     return 2.922 * np.asarray(r_eq) * w**-0.166 * u**0.692 * g**0.470

@@ -21,7 +21,24 @@ import numpy as np
 
 
 def eyring_shear_stress(eta, u_s: float, h, tau0: float):
-    """Couette shear stress τ = τ0 asinh(η u_s/(τ0 h)) [Pa] (sign of u_s)."""
+    """Couette shear stress τ = τ0 asinh(η u_s/(τ0 h)), with the sign of u_s.
+
+    Parameters
+    ----------
+    eta : array_like
+        Dynamic viscosity [Pa s].
+    u_s : float
+        Sliding velocity u1 − u2 [m/s].
+    h : array_like
+        Film thickness [m].
+    tau0 : float
+        Eyring stress τ0 [Pa].
+
+    Returns
+    -------
+    ndarray
+        τ [Pa].
+    """
     return tau0 * np.arcsinh(np.asarray(eta) * u_s / (tau0 * np.asarray(h)))
 
 
@@ -49,13 +66,39 @@ def _integrate(x, f):
 
 def friction_components(x, pressure, film, eta, u_s: float, tau0: float, load_per_length: float,
                         mu_d: float = 0.0, contact=None, couette_stress=None) -> dict[str, float]:
-    """Friction coefficient and its parts from profiles (SI arrays on nodes ``x`` [m]).
+    """Friction coefficient and its parts from the profiles of a solve.
 
-    Returns ``mu`` and ``mu_poiseuille`` (rolling, pressure-gradient part), ``mu_couette`` (Eyring shear part),
-    ``mu_asperity`` (μ_d share), all divided by ``load_per_length`` W' [N/m]. ``contact`` marks asperity-contact
-    nodes (None: none). The pressure gradient is the second-order finite difference on the (non-uniform) nodes.
-    ``couette_stress`` [Pa] on the nodes replaces the isothermal Eyring stress where given (the thermal correction,
-    :func:`ehl_dataset.model.thermal.thermal_couette_traction`; None: isothermal).
+    The pressure gradient is the second-order finite difference on the (non-uniform) nodes.
+
+    Parameters
+    ----------
+    x : ndarray
+        Nodes [m].
+    pressure : ndarray
+        Pressure at the nodes [Pa].
+    film : ndarray
+        Film thickness at the nodes [m].
+    eta : ndarray
+        Viscosity at the nodes [Pa s].
+    u_s : float
+        Sliding velocity [m/s].
+    tau0 : float
+        Eyring stress τ0 [Pa].
+    load_per_length : float
+        Normal load per unit length W' [N/m].
+    mu_d : float
+        Boundary (dry-contact) friction coefficient of asperity-contact nodes [-].
+    contact : ndarray of bool, optional
+        Asperity-contact nodes; None: none [-].
+    couette_stress : ndarray, optional
+        Shear stress at the nodes replacing the isothermal Eyring stress (the thermal correction,
+        :func:`ehl_dataset.model.thermal.thermal_couette_traction`); None: isothermal [Pa].
+
+    Returns
+    -------
+    dict of str to float
+        ``mu`` and its parts ``mu_poiseuille`` (rolling, pressure-gradient part), ``mu_couette`` (Eyring shear part)
+        and ``mu_asperity`` (μ_d share), all divided by W' [-].
     """
     x = np.asarray(x, dtype=float)
     p = np.asarray(pressure, dtype=float)

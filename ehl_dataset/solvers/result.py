@@ -32,17 +32,49 @@ RECORD_UNITS: dict[str, str] = {
 
 @dataclass
 class ContactResult:
-    """Outcome of an EHL line-contact solve.
+    """Outcome of an EHL line-contact solve; ``residuals`` make non-convergence visible.
 
-    Scalars: ``mu`` friction coefficient [-] (time average for transient runs), ``mu_std`` its standard deviation
-    over the averaging window [-] (0 for steady runs), ``mu_sem`` the standard error of that time average [-]
-    (autocorrelation-corrected, :mod:`ehl_dataset.solvers.time_average`; 0 for steady runs), ``h_min`` minimum film [m],
-    ``h_central`` film at x = 0 [m],
-    ``lambda_bar`` Dowson–Higginson film over composite roughness [-] (inf for smooth surfaces),
-    ``asperity_load_share`` fraction of the load carried where asperities touch [-], ``p_max`` [Pa],
-    ``converged``, ``iterations``, ``wall_time`` [s], ``effects`` the plan that was simulated, ``level`` the accuracy
-    level name. Profiles (optional): ``x`` [m], ``pressure`` [Pa], ``film`` [m] at the last step.
-    ``residuals`` records the final residual norms (and ``history`` where kept) so non-convergence is visible.
+    Parameters
+    ----------
+    mu : float
+        Friction coefficient, the time average for transient runs [-].
+    h_min : float
+        Minimum film thickness [m].
+    h_central : float
+        Film thickness at x = 0 [m].
+    p_max : float
+        Largest pressure [Pa].
+    converged : bool
+        Whether the solve met its tolerances [-].
+    iterations : int
+        Iterations of the solver [-].
+    wall_time : float
+        Wall time of the solve [s].
+    level : str
+        Accuracy level name [-].
+    effects : dict
+        The plan that was simulated (:meth:`Effects.to_dict`) [-].
+    mu_std : float
+        Standard deviation of μ over the averaging window (0 for steady runs) [-].
+    mu_sem : float
+        Standard error of the time average of μ, autocorrelation-corrected (:mod:`ehl_dataset.solvers.time_average`;
+        0 for steady runs) [-].
+    lambda_bar : float
+        Dowson–Higginson film over composite roughness (inf for smooth surfaces) [-].
+    asperity_load_share : float
+        Fraction of the load carried where asperities touch [-].
+    residuals : dict of str to float
+        Final residual norms (and ``history`` where kept) [-].
+    message : str
+        The solver's message (why it stopped, what did not converge) [-].
+    x : ndarray, optional
+        Nodes of the profiles [m].
+    pressure : ndarray, optional
+        Pressure at the nodes, at the last step [Pa].
+    film : ndarray, optional
+        Film thickness at the nodes, at the last step [m].
+    extra : dict
+        Model-specific records (grid, time steps, thermal correction, ...) [-].
     """
 
     mu: float
@@ -66,7 +98,13 @@ class ContactResult:
     extra: dict[str, Any] = field(default_factory=dict)
 
     def to_record(self) -> dict[str, Any]:
-        """Flat dict of the scalar outputs named as in :data:`RECORD_UNITS` (effects as a JSON string)."""
+        """Flat dict of the scalar outputs named as in :data:`RECORD_UNITS` (effects as a JSON string).
+
+        Returns
+        -------
+        dict
+            Output name to value, in the units of :data:`RECORD_UNITS`.
+        """
         return {
             "mu": float(self.mu),
             "mu_std": float(self.mu_std),
@@ -125,9 +163,15 @@ class ContactResult:
         }
 
     def grid_record(self) -> dict[str, Any]:
-        """The discretisation a solve used, from ``extra``: ``dx`` the uniform grid spacing [m] of the deterministic
-        model (NaN for the steady solvers' graded grids), ``n_nodes`` the grid nodes (-1: not recorded), ``n_steps``
-        the time steps (0 for a steady solve, -1: not recorded)."""
+        """The discretisation a solve used, from ``extra``.
+
+        Returns
+        -------
+        dict
+            ``dx`` the uniform grid spacing of the deterministic model (NaN for the steady solvers' graded grids) [m],
+            ``n_nodes`` the grid nodes (-1: not recorded), ``n_steps`` the time steps (0 for a steady solve, -1: not
+            recorded).
+        """
         steps = self.extra.get("n_steps")
         if steps is None:
             steps = -1 if self.effects.get("transient") else 0
