@@ -38,18 +38,12 @@ PENDING: set[str] = {
     "ehl_dataset.dataset.runner",
     "ehl_dataset.dataset.store",
     "ehl_dataset.model.contact",
-    "ehl_dataset.model.effects",
-    "ehl_dataset.model.film_formulas",
     "ehl_dataset.model.lubricant",
-    "ehl_dataset.model.materials",
     "ehl_dataset.model.roughness",
-    "ehl_dataset.model.traction",
     "ehl_dataset.solver",
     "ehl_dataset.solvers.deterministic",
     "ehl_dataset.solvers.levels",
     "ehl_dataset.solvers.planner",
-    "ehl_dataset.solvers.result",
-    "ehl_dataset.validation",
 }
 
 # Unit vocabulary: SI symbols (the numerics' units) and the engineering units of input files and reports.
