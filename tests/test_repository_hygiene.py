@@ -25,8 +25,8 @@ MACHINE_PATH = re.compile(r"""(^|[\s"'`(=])/(work|scratch|tmp|root|home|mnt)/[A-
 parenthesis or equals sign."""
 DESIGN_NOTE = re.compile(r"DESIGN[ ]§")
 """A section citation of the design note, which is not part of the repository."""
-WORK_LOG = re.compile(r"\bsessions?[ ][0-9]+|\bthis[ ]session\b|\bissue[ ]#[0-9]+", re.IGNORECASE)
-"""Work-log wording: numbered work sessions, "this session", issue numbers."""
+WORK_LOG = re.compile(r"\bsessions?[ ][0-9]+|\bthis[ ]session\b|\bissues?[ ]#?[0-9]+", re.IGNORECASE)
+"""Work-log wording: numbered work sessions, the current session, issue numbers."""
 CHECKS = (("machine path", MACHINE_PATH), ("design-note citation", DESIGN_NOTE), ("work-log wording", WORK_LOG))
 
 RESULT_FOLDERS = ("benchmarks/results", "validation/results")

@@ -217,7 +217,7 @@ def test_mass_and_load_are_balanced_at_every_step():
 
 
 def test_mass_is_balanced_at_every_step_at_the_flooded_inlet_of_a_thin_slow_film():
-    """Issue 14, conservation, where it was not met: at case B's conditions (0.5 GPa, 5 mm, 1 m/s, SR 0.05, 100 °C,
+    """Conservation, where it was not met: at case B's conditions (0.5 GPa, 5 mm, 1 m/s, SR 0.05, 100 °C,
     Rq 0.5 µm; λ̄ 0.05) the inlet film is ~30× the central one and the fluid factor changes by 1e-4–1e-6 from node to
     node, where ``(a − b)/log(a/b)`` lost ≈ eps/|ln(a/b)| of the face conductance: det-2026.11-10 stalled at 1.9e-10
     on 3 % of the steps of this 0.6-pass run (2.8e-10 over 2 passes), det-2026.11-11 (``logarithmic_mean``) stays
@@ -233,7 +233,7 @@ def test_mass_is_balanced_at_every_step_at_the_flooded_inlet_of_a_thin_slow_film
 
 
 def test_mass_is_balanced_at_every_step_at_2_5_gpa_where_the_round_off_stop_once_accepted_imbalance():
-    """Issue 14, conservation, at validation case L's conditions (2.5 GPa, 5 mm, 5 m/s, SR 0.1, 100 °C, Rq 0.4 µm) on
+    """Conservation at validation case L's conditions (2.5 GPa, 5 mm, 5 m/s, SR 0.1, 100 °C, Rq 0.4 µm) on
     β/8, 0.6 passes of a layout for 1 pass: under det-2026.11-14 the Newton solve stopped at a "round-off floor" when
     its correction fell below 1e-12 p_h, and 2 of these 1,131 steps kept a global balance of up to 1.3e-10, which a
     further iteration meets (a correction of 1e-13 p_h is 450 units in the last place of a pressure of order p_h);

@@ -109,7 +109,7 @@ def test_meets_issue_15_accuracy_against_the_deterministic_wide_route_on_the_rec
     """Every sliding corner of the paper's factorial with r_eq 80 mm (a/β 47–236, λ̄ 0.04–62) that the deterministic
     model has solved by its periodic windows (``python benchmarks/bench_ehl_mixed.py --model deterministic --sample
     corners --level fast --resume --out benchmarks/results/ehl_mixed_corners_fast_deterministic.json``): same smooth
-    pressure and film law, so this measures the gap-averaged traction against the windows' micro-EHL. Issue 15's
+    pressure and film law, so this measures the gap-averaged traction against the windows' micro-EHL. The
     acceptance for the homogenised model: median |Δμ| ≤ 10 %, 90th percentile ≤ 25 %. (The worst corner, λ̄ 0.06 at
     0.5 GPa and 100 °C, outside the closure's range and flagged so, is +162 % with the closure since ehl-2026.11-14,
     −44 % without: docs/homogenised_model.md.)"""
@@ -132,7 +132,7 @@ def test_narrow_contacts_are_flagged(atf):
 @given(p_h=st.floats(0.5, 2.5), r_eq=st.floats(5, 80), u_r=st.floats(1, 20), sr=st.sampled_from([0.0, 0.05, 0.3, 1.0]),
        temp=st.floats(25, 100), rq1=st.floats(0.05, 1.0), rq2=st.floats(0.05, 1.0))
 def test_random_points_of_the_paper_ranges_converge_bounded_or_are_marked(atf, p_h, r_eq, u_r, sr, temp, rq1, rq2):
-    """Issue 15 acceptance (property; the 64 corners and 1,000 random points are the benchmark runs of
+    """Acceptance (property; the 64 corners and 1,000 random points are the benchmark runs of
     docs/homogenised_model.md and docs/performance.md): the default model (``model="auto"`` at ``standard``, with the
     planner's effects: thermal correction where it matters) solves a point of the paper's ranges steady, by the smooth
     solver or (rough, any a/β since ehl-2026.11-11) the film-law model, and converges with finite, bounded outputs —
@@ -197,7 +197,7 @@ def engineering_inputs(row: dict) -> list[float]:
 
 
 def test_the_planners_model_meets_issue_15_accuracy_on_every_reference_case_it_counts_within_its_range(atf):
-    """Issue 15 acceptance, "median |Δμ| ≤ 10 %, 90th percentile ≤ 25 %" on the reference cases where the planner picks
+    """Acceptance, "median |Δμ| ≤ 10 %, 90th percentile ≤ 25 %" on the reference cases where the planner picks
     the homogenised model: the default model (auto, `standard`, isothermal like the reference) on every case of the
     deterministic validation set (data/reference/deterministic_validation.json, μ extrapolated from three grid
     spacings). The planner counts A, E, F, G, H, I, J, K, L within the film law's measured range and B, C, D (λ̄ 0.054
