@@ -68,11 +68,38 @@ was fitted to), ``full`` (every effect)."""
 
 @dataclass(frozen=True)
 class Factorial:
-    """A full factorial plan in engineering units (as written in its TOML file).
+    """A full factorial plan in engineering units, as written in its TOML file.
 
-    Attributes: ``name``; ``p_h_gpa`` [GPa], ``r_eq_mm`` [mm], ``u_r_m_s`` [m/s], ``sr`` [-], ``temp_c`` [°C] axis
-    levels; ``roughness_um`` ((Rq1, Rq2) [µm], ...) pairs; default ``lubricant`` (name or file), ``level`` and
-    ``effects`` for the solver; ``description`` and ``source`` free text.
+    Parameters
+    ----------
+    name : str
+        Name of the factorial [-].
+    p_h_gpa : tuple of float
+        Hertz pressure levels [GPa].
+    r_eq_mm : tuple of float
+        Equivalent radius levels [mm].
+    u_r_m_s : tuple of float
+        Rolling velocity levels [m/s].
+    sr : tuple of float
+        Slide-to-roll ratio levels [-].
+    temp_c : tuple of float
+        Inlet temperature levels [°C].
+    roughness_um : tuple of tuple of float
+        (Rq1, Rq2) roughness pairs [µm].
+    lubricant : str
+        Default lubricant of the solves (shipped name or TOML file) [-].
+    level : str
+        Default accuracy level [-].
+    effects : str
+        Default effect plan [-].
+    model : str
+        Default contact model [-].
+    description : str
+        Free text [-].
+    source : str
+        Where the plan comes from (free text) [-].
+    origin : str
+        Where the definition was read from, for messages [-].
     """
 
     name: str
@@ -101,7 +128,14 @@ class Factorial:
         return math.prod(self.shape)
 
     def points(self) -> np.ndarray:
-        """Structured array (dtype :data:`POINT_DTYPE`, SI units) of every point, C order over :data:`AXIS_KEYS`."""
+        """Every point of the plan in SI, in C order over :data:`AXIS_KEYS`.
+
+        Returns
+        -------
+        ndarray
+            Structured array of dtype :data:`POINT_DTYPE` (p_h [Pa], r_eq [m], u_r [m/s], sr [-], temperature [K], rq1,
+            rq2 [m]).
+        """
         grids = np.meshgrid(
             np.asarray(self.p_h_gpa) * 1e9,
             np.asarray(self.r_eq_mm) * 1e-3,
@@ -121,11 +155,23 @@ class Factorial:
         return out
 
     def points_hash(self) -> str:
-        """SHA-256 (hex) of the expanded SI point table (little-endian float64 bytes, row order included)."""
+        """SHA-256 of the expanded SI point table (little-endian float64 bytes, row order included).
+
+        Returns
+        -------
+        str
+            Hex digest.
+        """
         return hashlib.sha256(np.ascontiguousarray(self.points()).tobytes()).hexdigest()
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-serialisable definition (the TOML structure, with the point count and hash)."""
+        """JSON-serialisable definition (the TOML structure, with the point count and hash).
+
+        Returns
+        -------
+        dict
+            The definition.
+        """
         return {
             "name": self.name,
             "description": self.description,
@@ -191,9 +237,26 @@ def _string(data: dict, key: str, default: str, where: str) -> str:
 
 
 def factorial_from_dict(data: dict[str, Any], origin: str = "<dict>") -> Factorial:
-    """Validate a parsed factorial (TOML structure, see the module docstring) and build a :class:`Factorial`.
+    """Validate a parsed factorial (TOML structure, module docstring) and build a :class:`Factorial`.
 
     Unknown keys are rejected (a misspelt axis would otherwise be silently ignored); every error names the field.
+
+    Parameters
+    ----------
+    data : dict
+        The parsed TOML structure [-].
+    origin : str
+        Where it was read from, for messages [-].
+
+    Returns
+    -------
+    Factorial
+        The factorial.
+
+    Raises
+    ------
+    InputError
+        Naming the first bad field.
     """
     if not isinstance(data, dict):
         raise InputError("factorial", type(data).__name__, f"a table (in {origin})")
@@ -232,7 +295,18 @@ def factorial_from_dict(data: dict[str, Any], origin: str = "<dict>") -> Factori
 
 
 def load_factorial(name_or_path: str | Path) -> Factorial:
-    """Load a factorial by shipped name (``paper2009``, ``quick``, ``smoke``) or from a TOML file path."""
+    """Load a factorial by shipped name (``paper2009``, ``quick``, ``smoke``) or from a TOML file.
+
+    Parameters
+    ----------
+    name_or_path : str or Path
+        Shipped name or TOML path [-].
+
+    Returns
+    -------
+    Factorial
+        The validated factorial.
+    """
     path = resolve_named_file("factorials", name_or_path, ".toml")
     try:
         with open(path, "rb") as handle:

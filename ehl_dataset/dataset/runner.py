@@ -434,7 +434,35 @@ class _StopFlag:
 # ---------------------------------------------------------------------------------------------------------------
 @dataclass
 class RunSummary:
-    """Outcome of one run or resume session."""
+    """Outcome of one run or resume session.
+
+    Parameters
+    ----------
+    path : str
+        The dataset file [-].
+    n_points : int
+        Points of the factorial [-].
+    computed : int
+        Points computed in this session [-].
+    ok : int
+        Rows with status ok [-].
+    failed : int
+        Rows with status failed [-].
+    pending : int
+        Rows still pending [-].
+    non_converged : int
+        Rows stored ok whose solve did not converge [-].
+    wall_time_s : float
+        Wall time of the session [s].
+    points_per_s : float
+        Throughput of the session [1/s].
+    store_time_s : float
+        Time spent writing the file [s].
+    interrupted : str or None
+        Name of the signal that stopped the session early, or ``exception``; None when it finished [-].
+    executor : dict
+        Where it ran: workers, scheduler [-].
+    """
 
     path: str
     n_points: int
@@ -450,6 +478,13 @@ class RunSummary:
     executor: dict
 
     def to_dict(self) -> dict[str, Any]:
+        """The summary as a JSON-serialisable dict.
+
+        Returns
+        -------
+        dict
+            The fields.
+        """
         out = dataclasses.asdict(self)
         out["store_time_per_point_s"] = self.store_time_s / self.computed if self.computed else 0.0
         return out
@@ -461,14 +496,48 @@ def run_factorial(out, factorial: Factorial | str | os.PathLike, *, lubricant=No
                   model: str | None = None, **options) -> RunSummary:
     """Compute ``factorial`` into the HDF5 file ``out``.
 
-    ``lubricant`` (name, file or :class:`~ehl_dataset.model.lubricant.Lubricant`), ``level``, ``effects`` and the
-    contact ``model`` (:data:`ehl_dataset.solver.MODELS`, recorded in the solver configuration and passed to the
-    solver) default to the factorial's. If ``out`` exists and records the same factorial, solver (model included)
-    and lubricant, the run continues it
-    (like :func:`resume_run`); if it records something else the call is refused (``InputError``) unless
-    ``overwrite``. ``time_limit_s``: wall-time budget of each point's solve [s] (None: none), an execution option
-    that does not enter the solver configuration (see :func:`execute`). ``options``: see :func:`execute` (window,
-    max_attempts, flush_interval_s, progress, warm_up, stream, log_every_s).
+    If ``out`` exists and records the same factorial, solver (model included) and lubricant, the run continues it
+    (like :func:`resume_run`); if it records something else the call is refused unless ``overwrite``.
+
+    Parameters
+    ----------
+    out : str or Path
+        The HDF5 dataset file [-].
+    factorial : Factorial or str or Path
+        The factorial: an object, a shipped name or a TOML path [-].
+    lubricant : str or Path or Lubricant, optional
+        Lubricant; None: the factorial's [-].
+    level : str, optional
+        Accuracy level; None: the factorial's [-].
+    effects : str, optional
+        Effect plan; None: the factorial's [-].
+    workers : int
+        Worker processes [-].
+    scheduler : str, optional
+        Address of a Dask scheduler; None: local processes [-].
+    solver : str or callable
+        The solve function or its ``"module:function"`` reference [-].
+    overwrite : bool
+        Replace a file that records another run [-].
+    time_limit_s : float, optional
+        Wall-time budget of each point's solve (None: none); an execution option that does not enter the solver
+        configuration [s].
+    model : str, optional
+        Contact model (:data:`ehl_dataset.solver.MODELS`), recorded in the solver configuration and passed to the
+        solver; None: the factorial's [-].
+    **options
+        Execution options: ``window``, ``max_attempts``, ``flush_interval_s``, ``flush_rows``, ``progress``,
+        ``warm_up``, ``stream``, ``log_every_s`` [-].
+
+    Returns
+    -------
+    RunSummary
+        Counts, times and how the session ended.
+
+    Raises
+    ------
+    InputError
+        For bad input or a file that records another run.
     """
     _check_options(workers, options)
     time_limit_s = check_time_limit(time_limit_s, solver)
@@ -512,17 +581,45 @@ def resume_run(path, *, workers: int = 1, scheduler: str | None = None, solver: 
                factorial=None, lubricant=None, level: str | None = None, effects: str | None = None,
                model: str | None = None, time_limit_s: float | None = None, retry_not_converged: bool = False,
                **options) -> RunSummary:
-    """Continue the run recorded in ``path``: compute every row that is not ``ok`` (and, with
-    ``retry_not_converged``, the ``ok`` rows whose solve did not converge).
+    """Continue the run recorded in ``path``: compute every row that is not ``ok``.
 
     The solver, level, effects, contact model and lubricant are those recorded in the file (a file that records no
-    model ran ``"auto"``). The solver's current version (and level definition) must equal the recorded ones;
-    ``factorial``, ``lubricant``, ``level``, ``effects``, ``model`` and ``solver``, when given, must match the file
-    too — otherwise the resume is refused with ``InputError``.
-    ``time_limit_s`` (wall-time budget per point [s]) may differ from the earlier sessions' budgets: it is not part
-    of the solver configuration. It applies to the rows computed now (pending and failed, plus the non-converged
-    ones with ``retry_not_converged``); otherwise rows stored not converged — including those stopped by an earlier
-    budget — are ``ok`` and are not recomputed.
+    model ran ``"auto"``). The solver's current version (and level definition) must equal the recorded ones; the
+    arguments below that name the configuration must match the file too, otherwise the resume is refused with
+    ``InputError``. Rows stored not converged, including those stopped by an earlier budget, are ``ok`` and are not
+    recomputed unless ``retry_not_converged``.
+
+    Parameters
+    ----------
+    path : str or Path
+        The HDF5 dataset file [-].
+    workers : int
+        Worker processes [-].
+    scheduler : str, optional
+        Address of a Dask scheduler; None: local processes [-].
+    solver : str or callable, optional
+        Must match the recorded solve function [-].
+    factorial : Factorial or str, optional
+        Must match the recorded factorial [-].
+    lubricant : str or Lubricant, optional
+        Must match the recorded lubricant [-].
+    level : str, optional
+        Must match the recorded level [-].
+    effects : str, optional
+        Must match the recorded effect plan [-].
+    model : str, optional
+        Must match the recorded contact model [-].
+    time_limit_s : float, optional
+        Wall-time budget per point, for the rows computed now; it may differ from earlier sessions' budgets [s].
+    retry_not_converged : bool
+        Also recompute the ``ok`` rows whose solve did not converge [-].
+    **options
+        Execution options, as for :func:`run_factorial` [-].
+
+    Returns
+    -------
+    RunSummary
+        Counts, times and how the session ended.
     """
     _check_options(workers, options)
     time_limit_s = check_time_limit(time_limit_s)  # the solver's keyword is checked by execute()

@@ -635,24 +635,51 @@ def _reading(path):
 
 
 def read_table(path, status: str | None = "ok"):
-    """Tidy table of a dataset file as a :class:`pandas.DataFrame` (SI units), rows filtered by ``status``.
+    """Tidy table of a dataset file (SI units), rows filtered by ``status``.
 
     Columns: ``point`` (row index), ``p_h`` [Pa], ``r_eq`` [m], ``u_r`` [m/s], ``sr`` [-], ``temperature`` [K],
     ``rq1``, ``rq2`` [m], ``mu``, ``mu_std``, ``h_min`` [m], ``h_central`` [m], ``lambda_bar``,
     ``asperity_load_share``, ``p_max`` [Pa], ``iterations``, ``converged``, ``wall_time`` [s], ``effects`` (JSON
     str), ``level``, ``status`` (pending/ok/failed), ``error``; then ``attempts``, ``worker_time`` [s],
-    ``finished_at`` [s since the epoch], ``worker``, ``warnings``, ``mu_sem``, ``dx`` [m], ``n_nodes``, ``n_steps``
-    (the last four absent from older files: read as their fill, NaN or -1). ``status=None`` returns every row.
-    A corrupt, truncated or foreign file raises :class:`InputError` naming the file and the problem.
+    ``finished_at`` (s since the epoch), ``worker``, ``warnings``, ``mu_sem``, ``dx`` [m], ``n_nodes``, ``n_steps``
+    (the last four absent from older files: read as their fill, NaN or -1).
+
+    Parameters
+    ----------
+    path : str or Path
+        The HDF5 dataset file [-].
+    status : str, optional
+        Keep the rows of this status (``ok``, ``failed``, ``pending``); None: every row [-].
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per point.
+
+    Raises
+    ------
+    InputError
+        For a corrupt, truncated or foreign file, naming the file and the problem.
     """
     with _reading(path) as store:
         return store.table(status)
 
 
 def read_metadata(path) -> dict[str, Any]:
-    """Provenance of a dataset file: format_version, package_version, created, git_revision, factorial (dict),
-    solver (dict: function, version, level, effects, ...), lubricant (dict as parsed from the lubricant TOML:
-    rebuild with :func:`ehl_dataset.model.lubricant.lubricant_from_dict`), sessions, n_points and counts by status."""
+    """Provenance of a dataset file.
+
+    Parameters
+    ----------
+    path : str or Path
+        The HDF5 dataset file [-].
+
+    Returns
+    -------
+    dict
+        format_version, package_version, created, git_revision, factorial (dict), solver (dict: function, version,
+        level, effects, ...), lubricant (dict as parsed from the lubricant TOML: rebuild with
+        :func:`ehl_dataset.model.lubricant.lubricant_from_dict`), sessions, n_points and counts by status.
+    """
     with _reading(path) as store:
         return store.metadata()
 
@@ -670,8 +697,22 @@ def summarize(path, slowest: int = 5, failures: int = 5) -> dict[str, Any]:
     """What ``gearloss dataset info`` shows: counts by status, time spent, slowest points, failures, configuration.
 
     Times: ``solver_time_s`` sums the solvers' own wall times of the recorded results, ``worker_time_s`` the
-    worker-side times (retries included), ``session_wall_time_s`` the coordinator's wall time over the sessions
-    that ended; ``open_sessions`` counts sessions without an end (still running, or killed).
+    worker-side times (retries included), ``session_wall_time_s`` the coordinator's wall time over the sessions that
+    ended; ``open_sessions`` counts sessions without an end (still running, or killed).
+
+    Parameters
+    ----------
+    path : str or Path
+        The HDF5 dataset file [-].
+    slowest : int
+        How many of the slowest points to list [-].
+    failures : int
+        How many failures to list [-].
+
+    Returns
+    -------
+    dict
+        The summary.
     """
     with _reading(path) as store:
         meta = store.metadata()
