@@ -34,9 +34,6 @@ PACKAGES = ("ehl_dataset", "surrogate", "efficiency", "workflows")
 
 # Modules rendered in the API reference whose docstrings are still to be converted to numpydoc with units.
 PENDING: set[str] = {
-    "ehl_dataset.dataset.factorial",
-    "ehl_dataset.dataset.runner",
-    "ehl_dataset.dataset.store",
     "ehl_dataset.model.contact",
     "ehl_dataset.model.lubricant",
     "ehl_dataset.model.roughness",
