@@ -383,7 +383,7 @@ def central_film(name: str, fine: dict, middle: dict) -> dict:
 
 
 BALANCE_TARGET = 1e-10
-"""Issue 14's conservation target: lubricant mass and load balanced to ≤ 1e-10 (relative) at every step."""
+"""The conservation target: lubricant mass and load balanced to ≤ 1e-10 (relative) at every step."""
 
 
 def balance_record(runs: dict[int, dict], chain: tuple[int, ...]) -> dict:
@@ -570,7 +570,7 @@ def _order_text(order: float) -> str:
 
 
 GRID_TARGET, SHARE_TARGET, SEM_TARGET = 0.05, 0.03, LONG_TARGET
-"""Issue 14's grid targets: μ at the two finest spacings within 5 % and the asperity share within 0.03, with the
+"""The grid targets: μ at the two finest spacings within 5 % and the asperity share within 0.03, with the
 standard error of μ ≤ 1.5 %."""
 
 

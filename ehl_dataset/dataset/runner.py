@@ -443,7 +443,7 @@ class RunSummary:
     n_points : int
         Points of the factorial [-].
     computed : int
-        Points computed in this session [-].
+        Points computed in this run [-].
     ok : int
         Rows with status ok [-].
     failed : int

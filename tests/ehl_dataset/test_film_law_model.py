@@ -227,7 +227,7 @@ def test_the_planners_model_meets_issue_15_accuracy_on_every_reference_case_it_c
 
 
 def test_central_film_is_within_10_percent_of_the_reference_where_the_planner_keeps_the_film_law(atf):
-    """Issue 15 acceptance, "h_min within 10 %" (the central film: a rough film's minimum is a contact spot): on the
+    """Acceptance, "h_min within 10 %" (the central film: a rough film's minimum is a contact spot): on the
     reference cases where the planner keeps the film law within its measured range (E, F, K above λ̄ 1; I, J, H, L at
     X_h ≥ 150; A, G within the pressure-fluctuation closure's range, docs/narrow_contacts.md) the film law's central
     film is within 10 % of the reference's, the time mean of the deterministic film at x = 0 over its longest
@@ -246,7 +246,7 @@ def test_central_film_is_within_10_percent_of_the_reference_where_the_planner_ke
 
 
 def test_follows_the_deterministic_roughness_sweep_where_the_traction_is_eyring_saturated(atf):
-    """Issue 15 limit "μ monotone in λ̄", measured against the reference where the traction is Eyring-saturated:
+    """Limit "μ monotone in λ̄", measured against the reference where the traction is Eyring-saturated:
     at case J's conditions (1 GPa, 10 mm, 2 m/s, SR 0.4, 50 °C, X_h ≈ 960, a/β 11.8) the deterministic model's μ
     *falls* as the roughness grows, at every paired step by 3–13 standard errors (0.0351 → 0.0310 from λ̄ 2.6 to
     0.16, det-2026.11-10 at β/8: `python validation/deterministic_lambda_sweep.py --spacing 8 --passes 6
@@ -269,7 +269,7 @@ def test_follows_the_deterministic_roughness_sweep_where_the_traction_is_eyring_
 
 
 def test_rises_at_every_step_of_the_deterministic_roughness_sweep_where_the_traction_is_unsaturated(atf):
-    """Issue 15 limit "μ monotone in λ̄", at case A's conditions (0.5 GPa, 5 mm, 5 m/s, SR 0.3, 90 °C; X_h ≈ 3.6,
+    """Limit "μ monotone in λ̄", at case A's conditions (0.5 GPa, 5 mm, 5 m/s, SR 0.3, 90 °C; X_h ≈ 3.6,
     a/β 2.9), where the deterministic model's μ rises at every step as the roughness grows, gently above λ̄ ≈ 1 and
     steeply below (the paper's Fig. 2; det-2026.11-9 at β/16 over 11 passes: 0.0138 → 0.0279 from λ̄ 5.0 to 0.12,
     `python validation/deterministic_lambda_sweep.py --spacing 16 --passes 11`). The planner's model (auto at

@@ -91,7 +91,7 @@ def test_a_higher_flow_floor_conducts_more_and_entrains_less():
        sr=st.sampled_from([0.0, 0.2, 1.0]), temp=st.sampled_from([25, 100]), rq=st.sampled_from([0.05, 0.3, 1.0]),
        closure=st.sampled_from(["transverse", "isotropic"]))
 def test_random_factorial_points_converge_bounded_or_are_marked(p_h, r_eq, u_r, sr, temp, rq, closure):
-    """Issue 15 acceptance (property; the 64 corners and 500 random points are the benchmark run of
+    """Acceptance (property; the 64 corners and 500 random points are the benchmark run of
     docs/homogenised_model.md): a point of the paper's ranges converges with finite, bounded outputs — μ in
     [0, μ_d] when sliding (|μ| ≤ 0.01 in pure rolling), a positive film, an asperity share in [0, 1], the load
     balanced — or comes back not converged with a message; never NaN reported as converged."""

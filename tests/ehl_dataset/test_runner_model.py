@@ -71,7 +71,7 @@ def gridded_solve(case, lubricant, level="fast", effects="auto", model="auto"):
 
 
 def test_the_grid_and_time_steps_of_each_point_are_stored(tmp_path):
-    """Issue 14, deliverable 2 in ``dataset run``: every point stores the grid spacing, nodes and time steps its
+    """In ``dataset run``, every point stores the grid spacing, nodes and time steps its
     solve took (a steady solve: no time steps, and no uniform spacing); files written before these columns read them
     as not recorded (NaN, -1)."""
     import numpy as np

@@ -28,7 +28,7 @@ def test_every_validation_case_records_its_balance_at_every_spacing(cases):
 
 
 def test_the_load_is_balanced_to_1e_10_at_every_step_of_every_validation_run(cases):
-    """Issue 14's conservation target for the load: ∫p dx = W' to ≤ 1e-10 (relative) at every step."""
+    """The conservation target for the load: ∫p dx = W' to ≤ 1e-10 (relative) at every step."""
     for case in cases:
         assert max(case["load_error_max"].values()) <= 1e-10, case["case"]
 

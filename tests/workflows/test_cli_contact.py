@@ -98,7 +98,7 @@ def test_checkpoint_flag_is_refused_where_no_deterministic_run_takes_it(capsys, 
 
 
 def test_deterministic_model_json_carries_its_grid_steps_and_the_requested_model(capsys):
-    """Issue 14, deliverable 2: ``--model deterministic --dx-um D`` reports the run's grid and steps. A narrow rough
+    """``--model deterministic --dx-um D`` reports the run's grid and steps. A narrow rough
     contact (0.5 GPa, 5 mm, a = 44 µm, Rq 0.3 µm) at D = 4 µm: the grid spans the domain (−2.5a, 1.5a) with
     round(4a/D) + 1 nodes, so dx_m = 4a/(n − 1); the run lasts at least the ramp, the start-up and the shortest
     averaging window, and at most the level's cap, in time steps of Courant·dx/u_r; the effects record the transient

@@ -114,7 +114,7 @@ def test_fit_runs_the_route_resumes_and_refuses_a_changed_lubricant(my_oil, tmp_
 def test_fit_through_a_dask_scheduler_address_gives_the_rows_and_coefficients_of_local_processes(my_oil, tmp_path,
                                                                                                    capsys,
                                                                                                    monkeypatch):
-    """Issue 15 deliverable 6 through the command itself: `lubricant fit ... --scheduler tcp://...` sends the points
+    """A distributed fit through the command itself: `lubricant fit ... --scheduler tcp://...` sends the points
     to a Dask cluster (here a LocalCluster of 2 worker processes behind a TCP scheduler), records that executor, and
     stores the same physics rows and the same coefficients as local worker processes."""
     import os

@@ -1,4 +1,4 @@
-"""Issue 16, "the first hour of a new user": one test (or more) per finding, in process.
+"""The first hour of a new user: one test (or more) per finding, in process.
 
 The real-subprocess acceptance (main job / smoke / main job again, Ctrl-C → 130) is in test_first_hour_subprocess.py.
 """

@@ -1,4 +1,4 @@
-"""Issue 16 acceptance with real processes: the README's main job, the smoke pipeline and the main job again, in any
+"""The first hour of a new user with real processes: the README's main job, the smoke pipeline and the main job again, in any
 order, without collisions; Ctrl-C gives exit 130 and the command that resumes; SIGTERM 143.
 
 The main job (`gearloss pipeline quick`) takes about two CPU-minutes (79 s with 2 workers), so here it runs with a
