@@ -18,11 +18,11 @@ from contextlib import contextmanager
 from ehl_dataset.validation import InputError, SolverError
 
 from . import (cli_accuracy, cli_contact, cli_dataset, cli_gear, cli_lubricant, cli_pipeline, cli_report,
-               cli_surrogate, exit_codes)
+               cli_roughness, cli_surrogate, exit_codes)
 from .cli_help import GearlossParser, UsageError
 
 GROUP_MODULES = (cli_lubricant, cli_contact, cli_dataset, cli_surrogate, cli_gear, cli_pipeline, cli_report,
-                 cli_accuracy)
+                 cli_accuracy, cli_roughness)
 """The command groups, in the order of ``gearloss --help``; each module adds its sub-commands (``register``)."""
 
 DESCRIPTION = """\
