@@ -208,6 +208,56 @@ class MeshCycleResult:
         Σ_q W_q |u_s,q| / (T_in ω1) (Ohlendorf 1958; Wimmer 2006's H_VL for rigid uniform load; ISO/TR 14179-2)."""
         return float(self.friction_power(1.0).mean() / (self.torque * self.kinematics.omega1))
 
+    def to_dict(self, per_position: bool = False) -> dict:
+        """The loaded mesh as one JSON-ready mapping in SI units, keys named with their unit: the schema of a mesh
+        cycle wherever one is printed or tabulated (``gear evaluate``, the design studies, the pipeline, reports).
+
+        Parameters
+        ----------
+        per_position : bool
+            Also return the arrays over the cycle: ``mesh_angle_rad``, ``mesh_stiffness_n_per_m`` (None for rigid
+            teeth), ``transmission_error_m`` (with TE) and ``loaded_points`` per position [-].
+
+        Returns
+        -------
+        dict
+            ``torque_nm`` [N·m], ``normal_load_n`` [N], ``positions``, ``slices``, ``loss_factor`` [-],
+            ``mesh_stiffness_mean_n_per_m`` [N/m] and ``mesh_stiffness_per_width_n_per_m2`` [N/m²] (None for rigid
+            teeth), ``max_load_per_length_n_per_m`` [N/m], ``converged``, ``active_set_iterations``,
+            ``equilibrium_residual`` [-], ``max_penetration_m`` [m], ``model_time_s`` [s]; with TE ``te_pp_m`` and
+            ``te_mean_m`` [m]; with stresses ``sigma_c_pa`` (the cycle's maximum Hertz pressure) [Pa],
+            ``sigma_c_position_rad`` [rad], ``sigma_b_pa`` (the maximum root stress) [Pa], ``sigma_b_gear`` and
+            ``sigma_b_position_rad`` [rad].
+        """
+        kin = self.kinematics
+        rigid = not np.isfinite(self.mesh_stiffness_per_width)
+        out = {
+            "torque_nm": self.torque, "normal_load_n": self.normal_load,
+            "positions": int(kin.shape[0]), "slices": int(kin.shape[2]), "loss_factor": self.loss_factor,
+            # rigid teeth have no finite mesh stiffness: null in the JSON
+            "mesh_stiffness_mean_n_per_m": None if rigid else float(np.mean(self.mesh_stiffness)),
+            "mesh_stiffness_per_width_n_per_m2": None if rigid else self.mesh_stiffness_per_width,
+            "max_load_per_length_n_per_m": float(self.load_per_length.max()),
+            "converged": self.converged, "active_set_iterations": int(self.iterations.sum()),
+            "equilibrium_residual": self.equilibrium_residual, "max_penetration_m": self.max_penetration,
+            "model_time_s": self.wall_time_s,
+        }
+        if self.te_peak_to_peak is not None:
+            out["te_pp_m"] = self.te_peak_to_peak
+            out["te_mean_m"] = float(self.transmission_error.mean())
+        if self.sigma_c_max is not None:
+            out.update(sigma_c_pa=self.sigma_c_max, sigma_c_position_rad=float(kin.mesh_angle[self.sigma_c_position]),
+                       sigma_b_pa=self.sigma_b_max, sigma_b_gear=self.sigma_b_position[0],
+                       sigma_b_position_rad=float(kin.mesh_angle[self.sigma_b_position[1]]))
+        if per_position:
+            out["mesh_angle_rad"] = kin.mesh_angle
+            out["mesh_stiffness_n_per_m"] = (self.mesh_stiffness if np.all(np.isfinite(self.mesh_stiffness))
+                                             else None)
+            if self.transmission_error is not None:
+                out["transmission_error_m"] = self.transmission_error
+            out["loaded_points"] = (self.loads > 0).sum(axis=(1, 2))
+        return out
+
     def friction_power(self, mu) -> np.ndarray:
         """Instantaneous friction power loss P(φ_m) = Σ_q μ_q W_q |u_s,q| (paper Eq. 11a).
 

@@ -242,9 +242,10 @@ def evaluate_design(pair: GearPair, friction: Callable, point: StudyPoint,
     valid, reasons = summarize(mesh_checks(mesh, pair) + friction_checks(
         loss, mesh, friction, point.oil_temperature, point.rq1, point.rq2,
         clip=getattr(friction, "clip_to_fitted_ranges", True)))
+    summary = mesh.to_dict()
     return {
-        "power_loss_w": loss.power_loss, "efficiency": loss.efficiency, "te_pp_m": mesh.te_peak_to_peak,
-        "sigma_c_pa": mesh.sigma_c_max, "sigma_b_pa": mesh.sigma_b_max, "mu_mean": mu_mean,
+        "power_loss_w": loss.power_loss, "efficiency": loss.efficiency,
+        **{key: summary[key] for key in ("te_pp_m", "sigma_c_pa", "sigma_b_pa")}, "mu_mean": mu_mean,
         "converged": bool(mesh.converged), "valid": valid, "not_valid_because": " | ".join(reasons), "error": "",
         "warning": "", "wall_time_s": time.perf_counter() - started,
     }

@@ -57,6 +57,7 @@ SI_PARAMETERS: dict[str, SiOption] = {
     "torque": SiOption(("torque_nm",), 1.0, 0.0, "N·m", "N·m"),
     "input_torque": SiOption(("torque_nm",), 1.0, 0.0, "N·m", "N·m"),
     "speed": SiOption(("speed_rpm",), 30.0 / math.pi, 0.0, "rad/s", "rpm"),
+    "input_speed": SiOption(("speed_rpm",), 30.0 / math.pi, 0.0, "rad/s", "rpm"),
     "positions": SiOption(("positions",)),
     "slices": SiOption(("slices",)),
     "contact_model": SiOption(("contact_model",)),

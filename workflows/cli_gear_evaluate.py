@@ -19,6 +19,8 @@ from __future__ import annotations
 
 import argparse
 import math
+from dataclasses import dataclass
+from typing import Any
 
 
 def register(gear_subparsers) -> None:
@@ -118,76 +120,96 @@ def _pair_from_args(args):
     return build_pair(args)
 
 
-def run_evaluate(args: argparse.Namespace) -> int:
-    import time
+@dataclass(frozen=True)
+class EvaluateInputs:
+    """The inputs of ``gear evaluate``, resolved once from the options (each value checked once, where it is built).
 
-    import numpy as np
+    Parameters
+    ----------
+    pair : GearPair
+        The design [SI].
+    point : StudyPoint
+        Operating point: input torque [N·m], speed [rad/s], oil temperature [K], flank roughness [m] and the flank
+        modifications (the design studies' operating point).
+    options : MeshOptions
+        Resolution and contact model of the mesh evaluation [-].
+    friction : callable or None
+        The friction model of ``--friction`` (None: no power loss) [-].
+    lubricant : Lubricant or None
+        The ``--lubricant``, loaded once where a model needs it (the ISO/TR 14179-2 block without an oil viscosity
+        option; the published and EHL friction models) [-].
+    """
 
-    from ehl_dataset.validation import InputError, check_range
-    from efficiency import iso6336
-    from efficiency.mesh_cycle import MeshOptions, evaluate_mesh
+    pair: Any
+    point: Any
+    options: Any
+    friction: Any = None
+    lubricant: Any = None
 
-    started = time.perf_counter()
+
+def resolve_inputs(args: argparse.Namespace) -> EvaluateInputs:
+    """Build the design, the operating point, the mesh options, the lubricant and the friction model from the
+    options, once; inner code takes them as they are."""
+    from ehl_dataset.model.lubricant import load_lubricant
+    from ehl_dataset.validation import InputError
+    from efficiency.mesh_cycle import DEFAULT_COUPLING_LENGTH_FACTOR, MeshOptions
+    from efficiency.studies import StudyPoint
+
     pair = _pair_from_args(args)
-    torque = check_range("torque-nm", args.torque_nm, 0.0, 1e7, low_inclusive=False, unit="N·m")
-    speed = check_range("speed-rpm", args.speed_rpm, 0.0, 1e6, low_inclusive=False, unit="rpm")
-    outputs = frozenset(o.strip() for o in args.outputs.split(",") if o.strip())
-    mods = _modifications(args)
-    from efficiency.loss_factor import ohlendorf_loss_factor, wimmer_loss_factor
-    from efficiency.mesh_cycle import DEFAULT_COUPLING_LENGTH_FACTOR
-
+    rq = list(args.rq_um)
+    if len(rq) not in (1, 2):
+        raise InputError("rq-um", rq, "one value (both flanks) or two values RQ1 RQ2 [µm]")
+    point = StudyPoint(args.torque_nm, args.speed_rpm * math.pi / 30.0, args.oil_temp_c + 273.15, rq[0] * 1e-6,
+                       rq[-1] * 1e-6, _modifications(args))
     coupling = DEFAULT_COUPLING_LENGTH_FACTOR if args.coupling_length_factor is None else args.coupling_length_factor
-    options = MeshOptions(positions=args.positions, slices=args.slices, outputs=outputs,
+    options = MeshOptions(positions=args.positions, slices=args.slices,
+                          outputs=frozenset(o.strip() for o in args.outputs.split(",") if o.strip()),
                           contact_model=args.contact_model, coupling_length_factor=coupling,
                           foundation_coupling_length_factor=args.foundation_coupling_length_factor,
                           load_sharing=args.load_sharing)
-    result = evaluate_mesh(pair, torque, speed_rad_s=speed * math.pi / 30.0, modifications=mods, options=options)
+    lubricant = None
+    if args.iso14179_2 and args.nu40_cst is None and args.eta_oil_mpas is None:
+        lubricant = load_lubricant(args.lubricant)
+    friction = None
+    if args.friction is not None:
+        from efficiency.friction import friction_from_spec
 
-    kin = result.kinematics
+        friction = friction_from_spec(args.friction, lubricant if lubricant is not None else args.lubricant,
+                                      clip_to_fitted_ranges=not args.no_clip, oil_type=args.oil_type)
+    return EvaluateInputs(pair, point, options, friction, lubricant)
+
+
+def run_evaluate(args: argparse.Namespace) -> int:
+    import time
+
+    from ehl_dataset.validation import InputError
+    from efficiency import iso6336
+    from efficiency.loss_factor import ohlendorf_loss_factor, wimmer_loss_factor
+    from efficiency.mesh_cycle import evaluate_mesh
+
+    started = time.perf_counter()
+    inputs = resolve_inputs(args)
+    pair, point, options = inputs.pair, inputs.point, inputs.options
+    mods = point.modifications
+    result = evaluate_mesh(pair, point.input_torque, speed_rad_s=point.input_speed, modifications=mods,
+                           options=options)
     payload = {
-        "torque_nm": torque, "speed_rpm": speed,
+        "speed_rpm": args.speed_rpm,
         "profile_crown_m": mods.profile_crown, "lead_crown_m": mods.lead_crown, "lead_slope_m": mods.lead_slope,
-        "positions": int(kin.shape[0]), "slices": int(kin.shape[2]), "contact_model": options.contact_model,
-        "load_sharing": options.load_sharing,
-        "loss_factor": result.loss_factor, "loss_factor_ohlendorf": ohlendorf_loss_factor(pair),
-        "loss_factor_wimmer": wimmer_loss_factor(pair),
-        "normal_load_n": result.normal_load,
-        # rigid teeth have no finite mesh stiffness: null in the JSON
-        "mesh_stiffness_mean_n_per_m": (float(np.mean(result.mesh_stiffness))
-                                        if np.isfinite(result.mesh_stiffness_per_width) else None),
-        "mesh_stiffness_per_width_n_per_m2": (result.mesh_stiffness_per_width
-                                              if np.isfinite(result.mesh_stiffness_per_width) else None),
-        "max_load_per_length_n_per_m": float(result.load_per_length.max()),
-        "converged": result.converged, "active_set_iterations": int(result.iterations.sum()),
-        "equilibrium_residual": result.equilibrium_residual, "max_penetration_m": result.max_penetration,
+        "contact_model": options.contact_model, "load_sharing": options.load_sharing,
+        "loss_factor_ohlendorf": ohlendorf_loss_factor(pair), "loss_factor_wimmer": wimmer_loss_factor(pair),
+        **result.to_dict(per_position=args.per_position),
     }
-    if result.te_peak_to_peak is not None:
-        payload["te_pp_m"] = result.te_peak_to_peak
-        payload["te_mean_m"] = float(result.transmission_error.mean())
-    if result.sigma_c_max is not None:
-        payload.update(
-            sigma_c_max_pa=result.sigma_c_max,
-            sigma_c_position_rad=float(kin.mesh_angle[result.sigma_c_position]),
-            sigma_b_max_pa=result.sigma_b_max, sigma_b_gear=result.sigma_b_position[0],
-            sigma_b_position_rad=float(kin.mesh_angle[result.sigma_b_position[1]]))
     try:
-        ref = iso6336.reference_values(pair, torque)
+        ref = iso6336.reference_values(pair, point.input_torque)
         payload["iso6336"] = {k: ref[k] for k in ("sigma_h0_pa", "sigma_f0_1_pa", "sigma_f0_2_pa",
                                                   "c_single_n_per_m2", "c_gamma_alpha_n_per_m2")}
     except InputError as err:
         payload["iso6336"] = {"error": str(err)}
-    if args.per_position:
-        payload["mesh_angle_rad"] = kin.mesh_angle
-        payload["mesh_stiffness_n_per_m"] = (result.mesh_stiffness if np.all(np.isfinite(result.mesh_stiffness))
-                                             else None)
-        if result.transmission_error is not None:
-            payload["transmission_error_m"] = result.transmission_error
-        payload["loaded_points"] = (result.loads > 0).sum(axis=(1, 2))
     if args.iso14179_2:
-        payload["iso14179_2"] = _iso14179(pair, torque, speed * math.pi / 30.0, args)
-    payload["model_time_s"] = result.wall_time_s
-    if args.friction is not None:
-        payload.update(_power_loss(result, args))
+        payload["iso14179_2"] = _iso14179(inputs, args)
+    if inputs.friction is not None:
+        payload.update(_power_loss(result, inputs, args))
     payload["wall_time_s"] = time.perf_counter() - started
     from efficiency.validity import mesh_checks
 
@@ -199,20 +221,21 @@ def run_evaluate(args: argparse.Namespace) -> int:
                            "friction_surrogate_range": "friction"})
 
 
-def _iso14179(pair, torque, omega, args) -> dict:
+def _iso14179(inputs: EvaluateInputs, args) -> dict:
     """ISO/TR 14179-2 μ_mz, H_V, P_VZP (efficiency.iso14179) from the oil and roughness options."""
     from ehl_dataset.validation import InputError, check_range
     from efficiency.iso14179 import SimpleOil, iso_14179_2_mesh, lubricant_factor
     from surrogate.published import RA_PER_RQ
 
-    temperature, rq1, rq2 = _friction_inputs(args)
+    point = inputs.point
+    temperature = point.oil_temperature
     if args.ra_um:
         if len(args.ra_um) not in (1, 2):
             raise InputError("ra-um", args.ra_um, "one value (both flanks) or two values RA1 RA2 [µm]")
         ra1 = check_range("ra-um", args.ra_um[0], 0.0, 100.0, low_inclusive=False, unit="µm") * 1e-6
         ra2 = check_range("ra-um", args.ra_um[-1], 0.0, 100.0, low_inclusive=False, unit="µm") * 1e-6
     else:
-        ra1, ra2 = RA_PER_RQ * rq1, RA_PER_RQ * rq2
+        ra1, ra2 = RA_PER_RQ * point.rq1, RA_PER_RQ * point.rq2
     x_l = lubricant_factor(args.oil_type)
     if (args.nu40_cst is None) != (args.nu100_cst is None):
         raise InputError("nu40-cst/nu100-cst", (args.nu40_cst, args.nu100_cst), "both or neither")
@@ -226,40 +249,24 @@ def _iso14179(pair, torque, omega, args) -> dict:
                         oil_type=args.oil_type)
         eta, source = oil.dynamic_viscosity(temperature), "nu40/nu100 (Walther)"
     else:
-        from ehl_dataset.model.lubricant import load_lubricant
         from surrogate.features import lubricant_properties
 
-        eta, _ = lubricant_properties(load_lubricant(args.lubricant), temperature)
+        eta, _ = lubricant_properties(inputs.lubricant, temperature)
         eta, source = float(eta), f"lubricant {args.lubricant}"
-    out = iso_14179_2_mesh(pair, torque, omega, eta, ra1, ra2, x_l)
+    out = iso_14179_2_mesh(inputs.pair, point.input_torque, point.input_speed, eta, ra1, ra2, x_l)
     out.update(oil_type=args.oil_type, viscosity_source=source, oil_temperature_k=temperature)
     return out
 
 
-def _friction_inputs(args) -> tuple[float, float, float]:
-    """Oil temperature [K] and the two RMS roughnesses [m] from the options (checked)."""
-    from ehl_dataset.validation import InputError, check_range
-
-    temp_c = check_range("oil-temp-c", args.oil_temp_c, -50.0, 350.0, unit="°C")
-    rq = list(args.rq_um)
-    if len(rq) not in (1, 2):
-        raise InputError("rq-um", rq, "one value (both flanks) or two values RQ1 RQ2 [µm]")
-    rq1 = check_range("rq-um", rq[0], 0.0, 100.0, unit="µm")
-    rq2 = check_range("rq-um", rq[-1], 0.0, 100.0, unit="µm")
-    return temp_c + 273.15, rq1 * 1e-6, rq2 * 1e-6
-
-
-def _power_loss(mesh, args) -> dict:
-    """Mean and instantaneous friction power loss (Li & Kahraman 2009, Eq. 10-11) with the chosen model."""
+def _power_loss(mesh, inputs: EvaluateInputs, args) -> dict:
+    """Mean and instantaneous friction power loss (Li & Kahraman 2009, Eq. 10-11) with the resolved model."""
     import warnings
 
-    from efficiency.friction import friction_from_spec
     from efficiency.friction_accuracy import load_weighted_mu, pitch_region_share
     from efficiency.power_loss import mesh_power_loss
 
-    temperature, rq1, rq2 = _friction_inputs(args)
-    friction = friction_from_spec(args.friction, args.lubricant, clip_to_fitted_ranges=not args.no_clip,
-                                  oil_type=args.oil_type)
+    point, friction = inputs.point, inputs.friction
+    temperature, rq1, rq2 = point.oil_temperature, point.rq1, point.rq2
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         loss = mesh_power_loss(mesh, friction, temperature, rq1, rq2)
@@ -299,10 +306,10 @@ def _human(p: dict) -> str:
     ]
     if "te_pp_m" in p:
         lines.append(f"transmission error peak-to-peak {p['te_pp_m'] * 1e6:.3f} µm (mean {p['te_mean_m'] * 1e6:.2f} µm)")
-    if "sigma_c_max_pa" in p:
-        lines.append(f"max contact pressure σ_c {p['sigma_c_max_pa'] / 1e6:.0f} MPa at φ = "
+    if "sigma_c_pa" in p:
+        lines.append(f"max contact pressure σ_c {p['sigma_c_pa'] / 1e6:.0f} MPa at φ = "
                      f"{p['sigma_c_position_rad'] * 1e3:.2f} mrad")
-        lines.append(f"max root stress σ_b {p['sigma_b_max_pa'] / 1e6:.0f} MPa (gear {p['sigma_b_gear']}) at φ = "
+        lines.append(f"max root stress σ_b {p['sigma_b_pa'] / 1e6:.0f} MPa (gear {p['sigma_b_gear']}) at φ = "
                      f"{p['sigma_b_position_rad'] * 1e3:.2f} mrad")
     iso = p.get("iso6336", {})
     if "sigma_h0_pa" in iso:

@@ -191,3 +191,33 @@ def test_tip_relief_reduces_spur_transmission_error():
     assert np.all(np.diff(te) < 0)
     assert te[-1] < 0.6 * te[0]
     assert np.allclose([r.sigma_c_max for r in results], results[0].sigma_c_max, rtol=1e-9)
+
+
+def test_to_dict_is_the_one_schema_of_a_mesh_cycle():
+    """``MeshCycleResult.to_dict``: the maxima by their definitions (σ_c the largest Hertz pressure of the cycle, σ_b
+    the largest root stress of either gear, TE p-p = max − min of the loaded TE, paper §3), the mean mesh stiffness
+    per face width, the positions at which the maxima occur, and the optional arrays only when asked for; the design
+    studies' rows carry the same keys and values (one σ_c key, ``sigma_c_pa``, everywhere)."""
+    import json
+
+    from efficiency.friction import ConstantFriction
+    from efficiency.studies import StudyPoint, evaluate_design
+
+    pair = design_d()
+    options = MeshOptions(positions=6, slices=10)
+    result = evaluate_mesh(pair, 250.0, 4000 * math.pi / 30, options=options)
+    d = result.to_dict()
+    assert d["sigma_c_pa"] == np.max(result.contact_pressure)
+    assert d["sigma_b_pa"] == np.max(result.root_stress)
+    assert d["te_pp_m"] == np.max(result.transmission_error) - np.min(result.transmission_error)
+    assert d["mesh_stiffness_per_width_n_per_m2"] == pytest.approx(
+        np.mean(result.mesh_stiffness) / pair.face_width, rel=1e-12)
+    position = int(np.argmax(np.max(result.contact_pressure, axis=(1, 2))))
+    assert d["sigma_c_position_rad"] == result.kinematics.mesh_angle[position]
+    assert d["torque_nm"] == 250.0 and (d["positions"], d["slices"]) == (6, 10)
+    assert "mesh_angle_rad" not in d and len(result.to_dict(per_position=True)["mesh_angle_rad"]) == 6
+    json.dumps(d)
+    row = evaluate_design(pair, ConstantFriction(0.05), StudyPoint(250.0, 4000 * math.pi / 30, 363.15, 4e-7, 4e-7),
+                          options)
+    assert {k: row[k] for k in ("te_pp_m", "sigma_c_pa", "sigma_b_pa")} == {
+        k: d[k] for k in ("te_pp_m", "sigma_c_pa", "sigma_b_pa")}
