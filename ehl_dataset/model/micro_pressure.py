@@ -21,7 +21,7 @@ traction is not saturated, τ grows nearly exponentially with p, and its mean ov
 from __future__ import annotations
 
 import numpy as np
-from scipy import stats
+from scipy.special import gammaincinv
 
 from .dry_contact import composite_windows, profile_hash, windows_that_fit
 from .roughness import RoughnessProfile
@@ -91,7 +91,8 @@ def gamma_pressure_quantiles(mean_pa, std_pa, count: int = PRESSURE_QUANTILES) -
     if not spread.any():
         return out
     m, s = mean[spread], std[spread]
-    quantiles = stats.gamma.ppf(levels[None, :], ((m / s) ** 2)[:, None], scale=(s ** 2 / m)[:, None])
+    # the gamma quantile function, as scipy.stats.gamma.ppf computes it (without its argument handling)
+    quantiles = gammaincinv(((m / s) ** 2)[:, None], levels[None, :]) * (s ** 2 / m)[:, None]
     total = quantiles.mean(axis=1)
     positive = total > 0.0  # a shape so small that every level rounds to 0: the mass goes to the last one
     quantiles[positive] *= (m[positive] / total[positive])[:, None]

@@ -22,7 +22,6 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from statsmodels.tsa.stattools import acf
 
 SOKAL_WINDOW = 5.0
 """c of Sokal's automatic window (M ≥ c·g(M))."""
@@ -64,6 +63,8 @@ def time_mean(series) -> TimeMean:
     var = float(x.var())
     if var <= 1e-30 * max(mean * mean, 1e-300):
         return TimeMean(mean, 0.0, 1.0, float(n), True, math.sqrt(max(var, 0.0)))
+    from statsmodels.tsa.stattools import acf  # statsmodels loads pandas: only where a time mean is taken
+
     rho = acf(x, nlags=n - 1, fft=True)
     g = 1.0
     for lag in range(1, n):
