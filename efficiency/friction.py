@@ -31,11 +31,13 @@ from typing import Any, Callable, Protocol
 import numpy as np
 
 from ehl_dataset.model.materials import STEEL, Material, reduced_modulus
+from ehl_dataset.names import EFFECT_PLANS, LEVELS
 from ehl_dataset.validation import InputError, SolverError, check_range
 
-EHL_EFFECTS = ("auto", "isothermal", "full")
-"""Effect plans an EHL friction model accepts (``ehl:LEVEL:EFFECTS``; ``isothermal``: the planner's plan without the
-thermal correction); the Python classes also take an :class:`ehl_dataset.model.effects.Effects` used as given."""
+EHL_EFFECTS = EFFECT_PLANS
+"""Effect plans an EHL friction model accepts (:data:`ehl_dataset.names.EFFECT_PLANS`; ``ehl:LEVEL:EFFECTS``;
+``isothermal``: the planner's plan without the thermal correction); the Python classes also take an
+:class:`ehl_dataset.model.effects.Effects` used as given."""
 SR_FLOOR = 1e-3
 """Below this slide-to-roll ratio :class:`EhlGridFriction` interpolates linearly in SR towards the pitch point."""
 PUBLISHED_NAMES = {"xu2007": "xu_2007", "xu_2007": "xu_2007", "benedict_kelley": "benedict_kelley_1961",
@@ -583,8 +585,6 @@ def _lubricant(lubricant):
 
 def _ehl_from_spec(spec: str, kind: str, rest: str, lubricant) -> Callable:
     """``ehl:LEVEL[:EFFECTS]`` or ``ehl-grid:LEVEL[:EFFECTS][:NSxNP]`` (``rest`` is what follows the first colon)."""
-    from ehl_dataset.solvers.levels import LEVELS
-
     parts = [p for p in rest.split(":") if p] if rest else []
     level = parts.pop(0) if parts else "fast"
     if level not in LEVELS:

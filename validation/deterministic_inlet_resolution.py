@@ -8,7 +8,7 @@ slow, hot corners of the paper's factorial, where L_in is shortest.
 
 Each row: the conditions, a and L_in [µm], and per factor f the spacing in % of β, the relative error of μ and of
 the central film h_c [%] and the solve time [s]. This is what the level-dependent inlet term of the grid rule
-(``DeterministicOptions.inlet_resolution``, :data:`~ehl_dataset.solvers.deterministic.LEVEL_OPTIONS`) rests on.
+(``DeterministicOptions.inlet_resolution``, :data:`~ehl_dataset.solvers.levels.REGISTRY`) rests on.
 """
 
 from __future__ import annotations

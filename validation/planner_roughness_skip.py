@@ -22,7 +22,7 @@ from ehl_dataset.model.contact import ContactCase
 from ehl_dataset.model.lubricant import load_lubricant
 from ehl_dataset.solver import SOLVER_VERSION, solve_contact
 from ehl_dataset.solvers.deterministic import MODEL_VERSION
-from ehl_dataset.solvers.planner import THRESHOLDS, dimensionless_numbers
+from ehl_dataset.solvers.planner import dimensionless_numbers, thresholds_for
 
 CONTACT = (1.0, 5.0, 10.0, 0.3, 50.0)
 """p_h [GPa], r_eq [mm], u_r [m/s], SR, T [°C] of the contact."""
@@ -30,7 +30,7 @@ CONTACT = (1.0, 5.0, 10.0, 0.3, 50.0)
 
 def measure(level: str, lubricant) -> dict:
     smooth_case = ContactCase.from_engineering(*CONTACT, 0.0, 0.0)
-    lam = THRESHOLDS[level].lambda_smooth
+    lam = thresholds_for(level).lambda_smooth
     rq = dimensionless_numbers(smooth_case, lubricant)["h_min_dh_m"] / lam / math.sqrt(2)
     rough_case = ContactCase(smooth_case.p_h, smooth_case.r_eq, smooth_case.u_r, smooth_case.sr,
                              smooth_case.temperature, rq, rq)
@@ -38,7 +38,7 @@ def measure(level: str, lubricant) -> dict:
     start = time.perf_counter()
     full = solve_contact(rough_case, lubricant, level, "full")
     wall = time.perf_counter() - start
-    return {"level": level, "lambda_bar_threshold": lam, "tolerance": THRESHOLDS[level].tolerance, "rq_m": rq,
+    return {"level": level, "lambda_bar_threshold": lam, "tolerance": thresholds_for(level).tolerance, "rq_m": rq,
             "planned_roughness": bool(planned.effects["roughness"]), "mu_planned": planned.mu, "mu_full": full.mu,
             "mu_full_sem": full.mu_sem, "full_converged": full.converged, "full_model": full.extra.get("model"),
             "relative_difference": (planned.mu - full.mu) / full.mu, "full_wall_time_s": wall}
