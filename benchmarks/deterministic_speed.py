@@ -2,7 +2,7 @@
 
 The comparison with the transient mixed solver on the same points in the same run is recorded in
 ``benchmarks/results/deterministic_speed_fast_det-2026.11-13.json`` (EHL solver ehl-2026.11-14, commit 8019d33): that solver was
-deleted at ehl-2026.11-15 (docs/transient_solver_record.md), so this script now runs the deterministic side only
+deleted at ehl-2026.11-15, so this script now runs the deterministic side only
 (a new run under the current version writes its own rows; the transient rows of the recorded file are not reused).
 
     python benchmarks/deterministic_speed.py                 # the first 50 draws of the seed-1 random sample

@@ -79,7 +79,7 @@ gives the film law on narrow contacts a micro-EHL pressure-fluctuation closure (
 of the inlet length in correlation lengths on every contact, narrow and wide, instead of a constant below a/β 15 and
 none above (film-law-2026.11-3; the wide unsaturated contacts resolved whole were 40 % above the film law without
 it), and extends the closure's measured range to wide contacts; ehl-2026.11-15 deletes the transient mixed solver
-(its grid-dependent μ, recorded in docs/transient_solver_record.md) and sends forced effects with ``transient`` on
+(its grid-dependent μ) and sends forced effects with ``transient`` on
 (``effects="full"``) on rough contacts to the deterministic solver at the level's grid rule."""
 
 __all__ = ["solve_contact", "solve_problem", "resolve_contact", "SOLVER_VERSION", "MODELS"]

@@ -1,4 +1,4 @@
-"""Surface roughness profiles for the rough EHL models (paper Sect. 2.1, Eq. 3; docs/data.md).
+"""Surface roughness profiles for the rough EHL models (paper Sect. 2.1, Eq. 3; docs/reference/data.md).
 
 The paper scales one measured shaved-gear profile (Rq = 0.5 µm) by a constant to get every roughness level. No
 measured profile is available to this project, so :func:`generate_profile` makes a synthetic stand-in: a stationary
