@@ -71,17 +71,31 @@ temperature is checked once more against the lubricant's data where the lubrican
 
 @dataclass(frozen=True)
 class ContactCase:
-    """One line-contact operating condition (paper Sect. 2.1; docs/ehl_solver.md), all SI.
+    """One line-contact operating condition (paper Sect. 2.1), all SI.
 
-    Attributes
+    Every input is checked once, when the case is built, against :data:`CONTACT_LIMITS`; the temperature is checked
+    against the lubricant where it is used.
+
+    Parameters
     ----------
-    p_h : maximum Hertz pressure [Pa], > 0
-    r_eq : equivalent radius of curvature r1 r2/(r1 + r2) [m], > 0
-    u_r : rolling (entrainment) velocity (u1 + u2)/2 [m/s], > 0
-    sr : slide-to-roll ratio (u1 − u2)/u_r [-], in [−2, 2]
-    temperature : oil inlet temperature [K] (checked against the lubricant where it is used)
-    rq1, rq2 : RMS roughness of surfaces 1 and 2 [m], ≥ 0
-    material1, material2 : elastic materials (default steel, E = 206 GPa, ν = 0.3)
+    p_h : float
+        Maximum Hertz pressure, > 0 [Pa].
+    r_eq : float
+        Equivalent radius of curvature r1 r2/(r1 + r2), > 0 [m].
+    u_r : float
+        Rolling (entrainment) velocity (u1 + u2)/2, > 0 [m/s].
+    sr : float
+        Slide-to-roll ratio (u1 − u2)/u_r, between −2 and 2 [-].
+    temperature : float
+        Oil inlet temperature [K].
+    rq1 : float
+        RMS roughness of surface 1, ≥ 0 (0: smooth) [m].
+    rq2 : float
+        RMS roughness of surface 2, ≥ 0 [m].
+    material1 : Material
+        Elastic material of surface 1 (default steel, E = 206 GPa, ν = 0.3) [-].
+    material2 : Material
+        Elastic material of surface 2 [-].
     """
 
     p_h: float
@@ -140,7 +154,13 @@ class ContactCase:
         return self.rq1 * self.rq2 / total if total > 0 else 0.0
 
     def to_dict(self) -> dict:
-        """Plain dictionary of the inputs (materials as nested dicts)."""
+        """Plain dictionary of the inputs (materials as nested dicts).
+
+        Returns
+        -------
+        dict
+            Field name to value, SI.
+        """
         return asdict(self)
 
     @classmethod
@@ -160,10 +180,12 @@ class ContactCase:
             Slide-to-roll ratio [-].
         temp_c : float
             Oil inlet temperature [°C].
-        rq1_um, rq2_um : float
-            RMS roughness of surfaces 1 and 2 [µm].
+        rq1_um : float
+            RMS roughness of surface 1 [µm].
+        rq2_um : float
+            RMS roughness of surface 2 [µm].
         **kwargs
-            ``material1``, ``material2`` (:class:`~ehl_dataset.model.materials.Material`).
+            ``material1``, ``material2`` (:class:`~ehl_dataset.model.materials.Material`) [-].
 
         Returns
         -------

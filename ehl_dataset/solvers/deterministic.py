@@ -158,32 +158,76 @@ WIDE_ROUTES = ("auto", "resolve", "windows")
 
 @dataclass(frozen=True)
 class DeterministicOptions:
-    """Discretisation and stopping rules of a deterministic run (all physical inputs are in the case/lubricant).
+    """Discretisation and stopping rules of a deterministic run (all physical inputs are in the case and lubricant).
 
-    ``dx_m`` grid spacing [m] (None: :func:`grid_spacing` with ``points_per_beta``, ``points_per_ell`` and
-    ``inlet_resolution``, the largest spacing in units of the smooth inlet length a·H_c^(2/3));
-    ``boundary_film_m`` h_b [m] (None: :data:`BOUNDARY_FILM_M`); ``yield_pressure_pa`` the contact-pressure cap;
-    ``courant`` u_r Δt/Δx; ``domain`` (x_start, x_end) [a]; ``ramp_passes`` the roughness amplitude grows from 0
-    to 1 over this many passes (one pass: the domain length at u_r); ``startup_passes`` passes after the ramp before
-    averaging starts; ``min_average_passes``, ``max_passes`` bounds of the averaging window, extended until the
-    standard error of the time-averaged μ is ≤ ``mu_sem_target``·max(|μ|, 0.01) over ≥ 20 correlation times;
-    ``layout_passes`` the run length [passes] the roughness is laid out for (None: ``max_passes``): where each
-    surface reads the profile depends on it, so runs to be compared pairwise (the same roughness at the same times,
-    e.g. at different grid spacings with different ``max_passes``) must share it, and it must be ≥ ``max_passes``;
-    ``face_mean`` of the Poiseuille conductance; ``couette_flux`` its shear-flux scheme (:data:`COUETTE_FLUXES`);
-    ``band`` half-width of the banded inverse kernel in the
-    preconditioner; ``newton_tolerance`` max scaled residual (mass rows relative to the central Couette flux,
-    complementarity rows in p_h) of every step; ``max_substeps`` largest split of a time step whose Newton solve
-    failed (128 since 2026-11-24, 32 before: validation case C at β/16 needs more than 32 at one step and converges
-    with 128; the cap is reached only by a step that fails every smaller split, so converged results do not
-    change); ``clock`` the wall clock (time.perf_counter).
+    The averaging window is extended from ``min_average_passes`` until the standard error of the time-averaged μ is
+    ≤ ``mu_sem_target``·max(|μ|, 0.01) over ≥ 20 correlation times, or ``max_passes`` is reached; one pass is the
+    domain length at u_r.
 
-    ``wide`` how :func:`ehl_dataset.solvers.wide_contact.solve_deterministic_contact` (the entry point of
-    ``solve_contact(model="deterministic")``) covers a contact (:data:`WIDE_ROUTES`): ``"resolve"`` solves the whole
-    conjunction (:func:`solve_deterministic`, which always does); ``"windows"`` solves ``wide_windows`` periodic
-    windows of ``window_length_beta`` correlation lengths across the Hertzian zone, fed by the film law;
-    ``"auto"`` takes the windows when a/β exceeds :data:`~ehl_dataset.solvers.wide_contact.WIDE_A_OVER_BETA` and no
-    ``dx_m`` is given.
+    Parameters
+    ----------
+    dx_m : float, optional
+        Grid spacing; None: :func:`grid_spacing` with ``points_per_beta``, ``points_per_ell`` and
+        ``inlet_resolution`` [m].
+    points_per_beta : float
+        Grid points per roughness correlation length β [-].
+    points_per_ell : float
+        Grid points per micro-EHL length [-].
+    inlet_resolution : float
+        Largest spacing in units of the smooth inlet length a·H_c^(2/3) [-].
+    boundary_film_m : float, optional
+        Boundary film h_b; None: :data:`BOUNDARY_FILM_M` [m].
+    yield_pressure_pa : float
+        Contact-pressure cap [Pa].
+    courant : float
+        Courant number u_r Δt/Δx [-].
+    domain : tuple of float
+        (x_start, x_end) in units of the Hertz half width a [-].
+    ramp_passes : float
+        Passes over which the roughness amplitude grows from 0 to 1 [-].
+    startup_passes : float
+        Passes after the ramp before averaging starts [-].
+    min_average_passes : float
+        Shortest averaging window, in passes [-].
+    max_passes : float
+        Longest averaging window, in passes [-].
+    layout_passes : float, optional
+        Run length in passes the roughness is laid out for; None: ``max_passes``. Where each surface reads the
+        profile depends on it, so runs to be compared pairwise (the same roughness at the same times, e.g. at
+        different grid spacings with different ``max_passes``) must share it, and it must be ≥ ``max_passes`` [-].
+    mu_sem_target : float
+        Target standard error of the time-averaged μ relative to max(|μ|, 0.01) [-].
+    face_mean : str
+        Face mean of the Poiseuille conductance (:data:`ehl_dataset.discretisation.mixed_system.FACE_MEANS`) [-].
+    couette_flux : str
+        Shear-flux scheme (:data:`COUETTE_FLUXES`) [-].
+    band : int
+        Half width of the banded inverse kernel in the preconditioner [-].
+    newton_tolerance : float
+        Largest scaled residual of every step (mass rows relative to the central Couette flux, complementarity rows
+        in p_h) [-].
+    newton_iterations : int
+        Newton iterations per step [-].
+    film_floor : float
+        The conductance reads films below ``film_floor``·h_b as that floor (interfering asperities) [-].
+    max_substeps : int
+        Largest split of a time step whose Newton solve failed; reached only by a step that fails every smaller
+        split, so converged results do not depend on it [-].
+    max_nodes : int
+        Largest grid accepted [-].
+    wide : str
+        How :func:`ehl_dataset.solvers.wide_contact.solve_deterministic_contact` (the entry point of
+        ``solve_contact(model="deterministic")``) covers a contact (:data:`WIDE_ROUTES`): ``"resolve"`` solves the
+        whole conjunction (:func:`solve_deterministic`, which always does); ``"windows"`` solves ``wide_windows``
+        periodic windows of ``window_length_beta`` correlation lengths across the Hertzian zone, fed by the film law;
+        ``"auto"`` takes the windows when a/β exceeds :data:`~ehl_dataset.solvers.wide_contact.WIDE_A_OVER_BETA` and
+        no ``dx_m`` is given [-].
+    wide_windows : int
+        Number of periodic windows across a wide contact [-].
+    window_length_beta : float
+        Window length in correlation lengths β [-].
+    clock : callable
+        The wall clock, ``time.perf_counter`` [-].
     """
 
     dx_m: float | None = None
@@ -249,7 +293,7 @@ def deterministic_options(level: str = "reference", **overrides) -> Deterministi
         An accuracy level of the registry :data:`ehl_dataset.solvers.levels.REGISTRY`, whose grid rule and averaging
         target (``Level.deterministic``) the options take [-].
     **overrides
-        Fields of :class:`DeterministicOptions` to set instead (e.g. ``dx_m`` [m], ``wide``).
+        Fields of :class:`DeterministicOptions` to set instead (e.g. ``dx_m``, ``wide``) [-].
 
     Returns
     -------

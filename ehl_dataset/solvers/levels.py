@@ -27,17 +27,40 @@ from ..validation import InputError
 
 @dataclass(frozen=True)
 class AccuracyLevel:
-    """Discretisation and tolerances of one accuracy level.
+    """Discretisation and tolerances of the steady solves at one accuracy level.
 
-    Grid (steady): ``x_start``, ``x_end`` domain ends [a]; ``dx_fine``, ``dx_coarse`` spacings [a];
-    ``inlet_band``, ``outlet_band`` (start, end) of the fine bands [a]; ``transition`` length over which the spacing
-    grows from fine to coarse [a]; ``inlet_resolution`` caps the fine spacing at this fraction of the inlet length
-    scale H_c^(2/3) (H_c = h_c r_eq/a², Moes' estimate): at heavy load the inlet meniscus zone and the outlet
-    spike shrink like H_c^(2/3), and a fixed spacing would under-resolve them.
-    Newton: ``tol_residual`` max relative Reynolds residual (scaled by the Couette flux ρ̄H), ``tol_load`` relative
-    load-balance error, ``tol_step`` max pressure correction [p_h]; ``max_iterations`` per continuation stage.
-    What each level costs and gives: docs/ehl_solver.md ("Accuracy levels"). (The rough-run fields ``dx_rough``,
-    ``courant``, ``n_passes``, ``mu_sem_target``, ... were the deleted transient solver's, removed at ehl-2026.11-15.)
+    Lengths are in units of the Hertz half width a. ``inlet_resolution`` caps the fine spacing at a fraction of the
+    inlet length scale H_c^(2/3) (H_c = h_c r_eq/a², Moes' estimate): at heavy load the inlet meniscus zone and the
+    outlet spike shrink like H_c^(2/3), and a fixed spacing would under-resolve them.
+
+    Parameters
+    ----------
+    name : str
+        Level name (:data:`ehl_dataset.names.LEVELS`) [-].
+    x_start : float
+        Inlet end of the domain, in units of a [-].
+    x_end : float
+        Outlet end of the domain, in units of a [-].
+    dx_fine : float
+        Fine grid spacing, in units of a [-].
+    dx_coarse : float
+        Coarse grid spacing, in units of a [-].
+    inlet_band : tuple of float
+        (start, end) of the fine band at the inlet, in units of a [-].
+    outlet_band : tuple of float
+        (start, end) of the fine band at the outlet, in units of a [-].
+    transition : float
+        Length over which the spacing grows from fine to coarse, in units of a [-].
+    inlet_resolution : float
+        Largest fine spacing as a fraction of the inlet length scale H_c^(2/3) [-].
+    tol_residual : float
+        Largest relative Reynolds residual (scaled by the Couette flux ρ̄H) [-].
+    tol_load : float
+        Largest relative load-balance error [-].
+    tol_step : float
+        Largest pressure correction, relative to p_h [-].
+    max_iterations : int
+        Newton iterations per continuation stage [-].
     """
 
     name: str
@@ -55,7 +78,20 @@ class AccuracyLevel:
     max_iterations: int = 60
 
     def with_domain(self, x_start: float, x_end: float) -> "AccuracyLevel":
-        """Copy with another domain [x_start, x_end] (in units of a), e.g. −2b…1.5b for the Huang case."""
+        """Copy with another domain, e.g. −2b…1.5b for the Huang case.
+
+        Parameters
+        ----------
+        x_start : float
+            Inlet end, in units of a [-].
+        x_end : float
+            Outlet end, in units of a [-].
+
+        Returns
+        -------
+        AccuracyLevel
+            The copy.
+        """
         if not (x_start < -1.0 and x_end > 1.0):
             raise InputError("domain", (x_start, x_end), "x_start < −1 and x_end > 1 (units of the Hertz half width)")
         return replace(self, x_start=float(x_start), x_end=float(x_end))
@@ -113,15 +149,16 @@ class PlannerThresholds:
         Solver of the other narrow rough contacts (:data:`ehl_dataset.names.ROUGH_MODELS`): ``"homogenised"`` (the
         same film-law model, recorded as outside its validated range) or ``"deterministic"`` (the deterministic
         reference solver) [-].
-    narrow_film_law_lambda, narrow_film_law_eyring : float
-        A narrower rough contact is still within the film law's measured range above this λ̄ or at or above this
-        Eyring number at the Hertz pressure X_h (an Eyring-saturated traction, τ ≈ τ0 ln(2X) linear in the pressure,
-        which the micro-EHL pressure fluctuations leave unchanged in the mean), and is solved by it [-]
-        (docs/narrow_contacts.md).
-    narrow_closure_lambda, narrow_closure_roughness : float
+    narrow_film_law_lambda : float
+        A narrower rough contact is still within the film law's measured range above this λ̄, and is solved by it [-].
+    narrow_film_law_eyring : float
+        ... or at or above this Eyring number X_h at the Hertz pressure (an Eyring-saturated traction, τ ≈ τ0 ln(2X)
+        linear in the pressure, which the micro-EHL pressure fluctuations leave unchanged in the mean) [-].
+    narrow_closure_lambda : float
         The other narrow rough contacts are within the range where the film law's pressure-fluctuation closure was
-        calibrated (:mod:`ehl_dataset.model.micro_pressure`) at λ̄ at or above the first and a Greenwood–Tripp
-        roughness parameter α = S_c·r_eq/a² at or below the second [-].
+        calibrated (:mod:`ehl_dataset.model.micro_pressure`) at λ̄ at or above this [-].
+    narrow_closure_roughness : float
+        ... and a Greenwood–Tripp roughness parameter α = S_c·r_eq/a² at or below this [-].
     """
 
     lambda_smooth: float

@@ -75,16 +75,28 @@ def thresholds_for(level) -> PlannerThresholds:
 
 
 def dimensionless_numbers(case, lubricant, correlation_length_m: float | None = None) -> dict[str, float]:
-    """The numbers the planner decides from (SI inputs; ``lubricant`` a Lubricant, whose temperature range is
-    checked, or its LubricantState at the case's temperature, already checked).
-    ``correlation_length_m``: β of the roughness profile [m] (None: the shipped baseline profile's).
+    """The numbers the planner decides from.
 
-    Returns ``lambda_bar``, ``a_over_beta`` (Hertz half width over β), ``h_min_dh_m``, ``s_c_m``, ``sr``, ``eyring_inlet`` (X_in), ``eyring_number`` (X_h at
-    the Hertz pressure), ``tau_m_over_tau0`` (asinh X_h), ``eta_hertz_pa_s``, ``density_change`` (ρ(p_h)/ρ0 − 1), ``p_h_over_p_a`` (NaN if the law has no
-    p_a), ``moes_m``, ``moes_l``, and the thermal estimate at the Hertz centre: ``thermal_change`` (predicted
-    relative reduction of the Couette traction), ``flash_rise_k``, ``film_centre_rise_k``, ``nahme_number``,
-    ``beta_hertz_per_k`` (β(p_h)), ``surface_peclet`` (u_i a/(2κ) of the slower surface), ``film_peclet``
-    (ρ c u_r h_c²/(k a): convection against conduction across the film; the model assumes ≲ 1).
+    Parameters
+    ----------
+    case : ContactCase
+        Operating conditions [SI].
+    lubricant : Lubricant or LubricantState
+        A lubricant, whose temperature range is checked, or its state at the case's temperature, already checked [-].
+    correlation_length_m : float, optional
+        Correlation length β of the roughness profile; None: the shipped baseline profile's [m].
+
+    Returns
+    -------
+    dict of str to float
+        ``lambda_bar``, ``a_over_beta`` (Hertz half width over β), ``h_min_dh_m``, ``s_c_m``, ``sr``,
+        ``eyring_inlet`` (X_in), ``eyring_number`` (X_h at the Hertz pressure), ``tau_m_over_tau0`` (asinh X_h),
+        ``eta_hertz_pa_s``, ``density_change`` (ρ(p_h)/ρ0 − 1), ``p_h_over_p_a`` (NaN if the law has no p_a),
+        ``moes_m``, ``moes_l``, and the thermal estimate at the Hertz centre: ``thermal_change`` (predicted relative
+        reduction of the Couette traction), ``flash_rise_k``, ``film_centre_rise_k``, ``nahme_number``,
+        ``beta_hertz_per_k`` (β(p_h)), ``surface_peclet`` (u_i a/(2κ) of the slower surface), ``film_peclet``
+        (ρ c u_r h_c²/(k a): convection against conduction across the film; the model assumes ≲ 1); units in the
+        key names, the others dimensionless.
     """
     state = lubricant if isinstance(lubricant, LubricantState) else lubricant.state(case.temperature)
     e_red = case.e_reduced
@@ -151,16 +163,35 @@ def narrow_film_law_range(nums: dict, limits: PlannerThresholds) -> tuple[bool, 
 
 
 def plan_effects(case, lubricant, level="standard", correlation_length_m: float | None = None) -> Effects:
-    """Decide which effects to simulate for ``case`` with ``lubricant`` at accuracy ``level``
-    (``correlation_length_m``: β of the roughness profile [m]; None: the shipped baseline profile's).
+    """Decide which effects to simulate for ``case`` with ``lubricant`` at accuracy ``level``.
 
-    Returns an :class:`~ehl_dataset.model.effects.Effects` with ``mode="auto"`` and ``reasons`` holding the numbers,
-    the thresholds and one sentence per decision; for a rough contact also ``film_law_range``:
-    ``within_measured_range`` (whether the film law with its pressure-fluctuation closure is within its measured
-    range) and ``limit``, the limit that decided (``lambda_bar``, ``eyring_number``, ``closure_range``,
-    ``below_closure_lambda`` or ``above_closure_roughness``: :func:`narrow_film_law_range`), and for one narrower
-    than ``a_over_beta_homogenised`` the same under ``narrow_contact``. Bad input raises :class:`InputError` (unknown level,
-    temperature outside the lubricant's data).
+    For a rough contact ``reasons`` also holds ``film_law_range``: ``within_measured_range`` (whether the film law
+    with its pressure-fluctuation closure is within its measured range) and ``limit``, the limit that decided
+    (``lambda_bar``, ``eyring_number``, ``closure_range``, ``below_closure_lambda`` or ``above_closure_roughness``:
+    :func:`narrow_film_law_range`), and for one narrower than ``a_over_beta_homogenised`` the same under
+    ``narrow_contact``.
+
+    Parameters
+    ----------
+    case : ContactCase
+        Operating conditions [SI].
+    lubricant : Lubricant
+        The lubricant; the case's temperature is checked against its data [-].
+    level : str or AccuracyLevel or Level
+        Accuracy level, whose :class:`PlannerThresholds` apply [-].
+    correlation_length_m : float, optional
+        Correlation length β of the roughness profile; None: the shipped baseline profile's [m].
+
+    Returns
+    -------
+    Effects
+        The plan, with ``mode="auto"`` and ``reasons`` holding the numbers, the thresholds and one sentence per
+        decision.
+
+    Raises
+    ------
+    InputError
+        For an unknown level or a temperature outside the lubricant's data.
     """
     limits = thresholds_for(level)
     nums = dimensionless_numbers(case, lubricant, correlation_length_m)
