@@ -35,8 +35,9 @@ from typing import Any
 import numpy as np
 
 from ..data_files import resolve_named_file
+from ..model.contact import CONTACT_LIMITS
 from ..names import EFFECT_PLANS
-from ..validation import InputError, check_range
+from ..validation import InputError
 
 CELSIUS_ZERO_K = 273.15
 
@@ -49,14 +50,8 @@ POINT_UNITS: dict[str, str] = {
 
 POINT_DTYPE = np.dtype([(name, "<f8") for name in POINT_FIELDS])
 
-# axis key -> (accepted low, high, unit, low inclusive) in the file's engineering units
-_SCALAR_AXES: dict[str, tuple[float, float, str, bool]] = {
-    "p_h_gpa": (0.0, 10.0, "GPa", False),
-    "r_eq_mm": (0.0, 1e4, "mm", False),
-    "u_r_m_s": (0.0, 200.0, "m/s", False),
-    "sr": (-2.0, 2.0, "", True),
-    "temp_c": (-CELSIUS_ZERO_K, 726.0, "C", False),
-}
+# axis key -> the input of a contact it sets, whose accepted range (ehl_dataset.model.contact.CONTACT_LIMITS) it has
+_SCALAR_AXES: dict[str, str] = {"p_h_gpa": "p_h", "r_eq_mm": "r_eq", "u_r_m_s": "u_r", "sr": "sr", "temp_c": "temperature"}
 _ROUGHNESS_AXIS = "roughness_um"
 AXIS_KEYS: tuple[str, ...] = (*_SCALAR_AXES, _ROUGHNESS_AXIS)
 _TOP_KEYS = {"name", "description", "source", "lubricant", "level", "effects", "model", "axes"}
@@ -194,7 +189,7 @@ class Factorial:
 
 
 def _number_list(axes: dict, key: str, where: str) -> tuple[float, ...]:
-    low, high, unit, low_inclusive = _SCALAR_AXES[key]
+    limit = CONTACT_LIMITS[_SCALAR_AXES[key]]
     values = axes.get(key)
     name = f"{where}.{key}"
     if not isinstance(values, list) or not values:
@@ -203,7 +198,7 @@ def _number_list(axes: dict, key: str, where: str) -> tuple[float, ...]:
     for i, value in enumerate(values):
         if isinstance(value, bool) or not isinstance(value, (int, float)):
             raise InputError(f"{name}[{i}]", value, "a number")
-        out.append(check_range(f"{name}[{i}]", value, low, high, low_inclusive=low_inclusive, unit=unit))
+        out.append(limit.check_engineering(f"{name}[{i}]", value))
     if len(set(out)) != len(out):
         raise InputError(name, values, "distinct levels (a repeated level would duplicate points)")
     return tuple(out)
@@ -222,8 +217,8 @@ def _roughness_pairs(axes: dict, where: str) -> tuple[tuple[float, float], ...]:
         for j, value in enumerate(pair):
             if isinstance(value, bool) or not isinstance(value, (int, float)):
                 raise InputError(f"{name}[{i}][{j}]", value, "a number")
-        pairs.append((check_range(f"{name}[{i}][0]", pair[0], 0.0, 100.0, unit="um"),
-                      check_range(f"{name}[{i}][1]", pair[1], 0.0, 100.0, unit="um")))
+        pairs.append((CONTACT_LIMITS["rq1"].check_engineering(f"{name}[{i}][0]", pair[0]),
+                      CONTACT_LIMITS["rq2"].check_engineering(f"{name}[{i}][1]", pair[1])))
     if len(set(pairs)) != len(pairs):
         raise InputError(name, values, "distinct pairs (a repeated pair would duplicate points)")
     return tuple(pairs)

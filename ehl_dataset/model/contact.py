@@ -48,6 +48,17 @@ class Limit:
         return check_range(name, value, self.low, self.high, low_inclusive=self.low_inclusive,
                            high_inclusive=self.high_inclusive, unit=self.unit)
 
+    def check_engineering(self, name: str, value: float) -> float:
+        """An engineering ``value`` (e.g. in GPa) checked against the range, returned unchanged as float; outside,
+        :class:`InputError` naming ``name``, the value and the range in engineering units."""
+        try:
+            self.check(name, self.to_si_value(float(value)))
+        except (TypeError, ValueError) as err:
+            accepted = "a finite number" if getattr(err, "accepted", "a finite number") == "a finite number" \
+                else self.engineering_range()
+            raise InputError(name, value, accepted) from None
+        return float(value)
+
     def engineering_range(self) -> str:
         """The accepted range in engineering units, e.g. ``(0, 10] GPa``."""
         low, high = (round((v - self.si_offset) / self.to_si, 10) for v in (self.low, self.high))
