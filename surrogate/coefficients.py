@@ -244,6 +244,30 @@ def write_coefficients(fit, path: str | Path, *, source: dict[str, Any] | None =
     return path
 
 
+def record_offgrid(path: str | Path, offgrid: dict[str, Any]) -> Path:
+    """Add (or replace) the ``offgrid`` table of an existing coefficient file, re-hashing its content.
+
+    Parameters
+    ----------
+    path : str or Path
+        The coefficient file (validated before it is rewritten) [-].
+    offgrid : dict
+        The off-grid validation (:func:`surrogate.offgrid.offgrid_report`) [-].
+
+    Returns
+    -------
+    Path
+        The path.
+    """
+    path = Path(path)
+    doc = load_coefficients(path).document
+    doc = _finish({**{k: v for k, v in doc.items() if k != "content_sha256"}, "offgrid": offgrid})
+    tmp = path.with_name(path.name + ".tmp")
+    tmp.write_text(json.dumps(doc, indent=1, sort_keys=True, allow_nan=False) + "\n", encoding="utf-8")
+    tmp.replace(path)
+    return path
+
+
 # ---------------------------------------------------------------------------------------------------------------
 # Loading and validation
 # ---------------------------------------------------------------------------------------------------------------

@@ -275,7 +275,7 @@ def fit_mlp_ensemble(features: dict[str, np.ndarray], ln_mu: np.ndarray, *, memb
     _, spread = ensemble.predict(x)
     s0 = float(np.median(spread))
     scores = np.abs(y - oof) / (spread + s0)
-    quantiles = {c: conformal_quantile(scores, c) for c in COVERAGES}
+    quantiles = {c: q for c in COVERAGES if math.isfinite(q := conformal_quantile(scores, c))}  # too few rows: none
     ensemble = MlpEnsemble(ensemble.weights, ensemble.biases, x_mean, x_scale, y_mean, y_scale, s0, quantiles)
     return MlpFitResult(ensemble, oof, spread, time.perf_counter() - started,
                         {"members": members, "hidden": list(hidden), "l2": l2, "max_iter": max_iter, "seed": seed,

@@ -383,20 +383,24 @@ def _failure_digest(path: Path, keep: int = 3) -> dict[str, int]:
 
 
 # ---------------------------------------------------------------------- stage 2
-def fit_stage(dataset_path: str | Path, coefficients_path: str | Path, *, allow_unstable: bool = False,
-              blend_half_width: float = 0.1) -> StageResult:
-    """Fit paper Eq. 9a/9b on the dataset and write the coefficient file (and its summary beside it).
+def fit_stage(dataset_path, coefficients_path: str | Path, *, allow_unstable: bool = False,
+              blend_half_width: float = 0.1, form: str = "eq9", offgrid_path: str | Path | None = None) -> StageResult:
+    """Fit paper Eq. 9a/9b (or the learned form) on the dataset and write the coefficient file (and its summary).
 
     Parameters
     ----------
-    dataset_path : str or Path
-        The stage-1 dataset [-].
+    dataset_path : str or Path or list
+        The stage-1 dataset, or several dataset files of one lubricant (an adaptive run's batches) [-].
     coefficients_path : str or Path
         The coefficient file to write [-].
     allow_unstable : bool
         Write a fit flagged numerically unstable instead of raising [-].
     blend_half_width : float
         Half width δ of the branch blend band in λ̄ [-].
+    form : str
+        ``eq9`` (statsmodels OLS of the paper's form) or ``learned`` (:mod:`surrogate.mlp`) [-].
+    offgrid_path : str or Path, optional
+        A solved off-grid sample whose errors the file records (:mod:`workflows.surrogate_stage`) [-].
 
     Returns
     -------
@@ -408,34 +412,108 @@ def fit_stage(dataset_path: str | Path, coefficients_path: str | Path, *, allow_
     SolverError
         ("fit stage: ...") when the rows cannot determine a branch of the regression.
     """
-    from surrogate.coefficients import summary_path, write_coefficients
-    from surrogate.dataset_io import load_dataset
-    from surrogate.fit import fit_surrogate
+    from .surrogate_stage import fit_and_write, load_rows
 
     started = time.perf_counter()
-    data = load_dataset(dataset_path)
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always")
-        try:
-            fit = fit_surrogate(data.table, data.lubricant, data.e_reduced, allow_unstable=allow_unstable,
-                                blend_half_width=blend_half_width)
-        except SolverError as err:
-            raise SolverError(f"fit stage ({dataset_path}): {err}; {_row_digest(data)}") from err
-        except (InputError, ValueError, IndexError) as err:
-            raise SolverError(f"fit stage ({dataset_path}): the data cannot determine the regression: "
-                              f"{type(err).__name__}: {err}; {_row_digest(data)}") from err
-    path = write_coefficients(fit, coefficients_path, source=data.source)
-    cv = fit.cv["overall"]
-    details = {
-        "lubricant": data.lubricant.name, "n_input_rows": fit.n_input_rows, "n_used": fit.n_used,
-        "exclusions": fit.exclusions, "stable": fit.stable,
-        "branches": {b: {"n_obs": f.n_obs, "adj_r2": f.adj_r2, "resid_std_error": f.resid_std_error}
-                     for b, f in fit.branches.items()},
-        "cv_rmse_ln_mu": cv["rmse_ln_mu"], "cv_mean_rel_err_mu": cv["mean_rel_err_mu"],
-        "summary": str(summary_path(path)),
-        "warnings": sorted({str(w.message)[:200] for w in caught}),
-    }
-    return StageResult("fit", str(path), time.perf_counter() - started, details)
+    where = dataset_path if isinstance(dataset_path, (str, Path)) else Path(list(dataset_path)[0]).parent
+    try:
+        path, details, caught = fit_and_write(dataset_path, coefficients_path, form=form,
+                                              allow_unstable=allow_unstable, blend_half_width=blend_half_width,
+                                              offgrid_path=offgrid_path)
+    except SolverError as err:
+        raise SolverError(f"fit stage ({where}): {err}; {_row_digest(load_rows(dataset_path)[1])}") from err
+    except (InputError, ValueError, IndexError) as err:
+        raise SolverError(f"fit stage ({where}): the data cannot determine the regression: "
+                          f"{type(err).__name__}: {err}; {_row_digest(load_rows(dataset_path)[1])}") from err
+    details["warnings"] = sorted({message[:200] for message in caught})
+    return StageResult("fit", path, time.perf_counter() - started, details)
+
+
+def surrogate_stages(run: PipelinePlan, dataset: str | None, lubricant=None, *, form: str = "eq9",
+                     offgrid_points: int = 0,
+                     adaptive_budget: int | None = None, target_median: float | None = None,
+                     target_p90: float | None = None, allow_unstable: bool = False, workers: int = 1,
+                     scheduler: str | None = None, progress: str = "auto", time_limit_s: float | None = None,
+                     resume_command: str | None = None) -> list[StageResult]:
+    """Stage 2 after the dataset: the fit of ``form`` written to its coefficient file, the off-grid validation
+    sample (``offgrid_points`` seeded random contacts in the factorial's ranges, solved by its route into
+    ``OUT/offgrid.h5``; 0: none) and its errors recorded in the file; with ``adaptive_budget`` the training rows are
+    the adaptive design (:mod:`workflows.adaptive`, up to that many solves, stopping early at the off-grid targets)
+    instead of ``dataset``. Smooth-surface runs (the smoke factorial) get no off-grid sample.
+
+    Parameters
+    ----------
+    run : PipelinePlan
+        The checked run.
+    dataset : str, optional
+        The stage-1 dataset (None with ``adaptive_budget``) [-].
+    lubricant : str or Path or Lubricant, optional
+        The lubricant of the run; None: the factorial's [-].
+    form : str
+        ``eq9`` or ``learned`` [-].
+    offgrid_points : int
+        Points of the off-grid sample (0: none) [-].
+    adaptive_budget : int, optional
+        Budget of adaptive training solves; None: train on ``dataset`` [-].
+    target_median, target_p90 : float, optional
+        Off-grid targets that stop the adaptive design early [-].
+    allow_unstable : bool
+        Keep an Eq. 9 fit flagged unstable [-].
+    workers : int
+        Local worker processes [-].
+    scheduler : str, optional
+        Dask scheduler [-].
+    progress : str
+        Progress mode [-].
+    time_limit_s : float, optional
+        Wall-time budget per solve [s].
+    resume_command : str, optional
+        The command that continues the run (named when a signal stops a solve stage) [-].
+
+    Returns
+    -------
+    list of StageResult
+        ``offgrid`` (when solved), ``adaptive`` (when adaptive), ``fit``.
+    """
+    import sys
+
+    from ehl_dataset.model.lubricant import Lubricant, load_lubricant
+
+    from .surrogate_stage import adaptive_stage, check_form, coefficients_path, offgrid_stage, validate_offgrid
+
+    check_form(form)
+    route = {"level": run.level, "effects": run.effects, "model": run.model, "workers": workers,
+             "scheduler": scheduler, "progress": progress, "time_limit_s": time_limit_s}
+    lub = lubricant if isinstance(lubricant, Lubricant) else load_lubricant(lubricant or run.factorial.lubricant)
+    stages: list[StageResult] = []
+
+    def solve_offgrid() -> str | None:
+        if not offgrid_points or run.smoke:
+            return None
+        solved = offgrid_stage(run.out_dir, run.factorial, lub, n=offgrid_points, **route)
+        stages.append(StageResult("offgrid", solved["artefact"], solved["wall_time_s"], solved["details"]))
+        if solved["details"]["interrupted"]:
+            raise Interrupted(solved["details"]["interrupted"], f"off-grid sample ({solved['details']['computed']} "
+                              f"points computed, {solved['details']['pending']} pending in {solved['artefact']})",
+                              resume_command)
+        return solved["artefact"]
+
+    out = coefficients_path(run.coefficients, form, adaptive=adaptive_budget is not None)
+    if adaptive_budget is not None:  # the off-grid set first: it is the adaptive design's stop test
+        offgrid_path = solve_offgrid()
+        ran = adaptive_stage(run.out_dir, run.factorial, lub, budget=adaptive_budget, offgrid_path=offgrid_path,
+                             target_median=target_median, target_p90=target_p90,
+                             log=lambda line: print(line, file=sys.stderr, flush=True) if progress != "none" else None,
+                             **route)
+        stages.append(StageResult("adaptive", str(run.out_dir / "adaptive"), ran["wall_time_s"], ran["details"]))
+        stages.append(fit_stage(ran["artefacts"], out, allow_unstable=allow_unstable, form=form,
+                                offgrid_path=offgrid_path))
+        return stages
+    fit = fit_stage(dataset, out, allow_unstable=allow_unstable, form=form)  # a fit the data cannot determine
+    offgrid_path = solve_offgrid()                                            # stops before the off-grid solves
+    if offgrid_path is not None:
+        fit.details["offgrid"] = validate_offgrid(fit.artefact, offgrid_path)
+    return stages + [fit]
 
 
 def _row_digest(data) -> str:
@@ -527,7 +605,8 @@ def run_pipeline(out_dir: str | Path | None = None, factorial=QUICK_FACTORIAL, *
                  progress: str = "auto", study: str = "paper2009", design: str = "D", allow_unstable: bool = False,
                  mesh_options=None, clip_to_fitted_ranges: bool = True, time_limit_s: float | None = None,
                  overwrite: bool = False, resume_command: str | None = None, checked: PipelinePlan | None = None,
-                 effects: str | None = None, **runner_options) -> PipelineResult:
+                 effects: str | None = None, form: str = "eq9", offgrid_points: int = 0,
+                 **runner_options) -> PipelineResult:
     """Stages 1–3 in one process: dataset → coefficient file → design evaluation (module docstring).
 
     Parameters
@@ -570,6 +649,11 @@ def run_pipeline(out_dir: str | Path | None = None, factorial=QUICK_FACTORIAL, *
     effects : str, optional
         Stage 1's effect plan (one of :data:`ehl_dataset.dataset.factorial.EFFECTS_MODES`; ``isothermal`` gives the
         isothermal data the paper fitted); None: the factorial's [-].
+    form : str
+        Form of the fitted surrogate: ``eq9`` or ``learned`` [-].
+    offgrid_points : int
+        Points of the off-grid validation sample recorded in the coefficient file (0: none;
+        :func:`surrogate_stages`) [-].
     **runner_options
         Options of :func:`ehl_dataset.dataset.runner.run_factorial` (``window``, ``max_attempts``, ``stream``, ...) [-].
 
@@ -599,8 +683,10 @@ def run_pipeline(out_dir: str | Path | None = None, factorial=QUICK_FACTORIAL, *
     if dataset.details["interrupted"]:
         raise Interrupted(dataset.details["interrupted"], f"pipeline stage 1 ({dataset.details['computed']} points "
                           f"computed, {dataset.details['pending']} pending in {dataset.artefact})", resume_command)
-    stages.append(fit_stage(dataset.artefact, run.coefficients, allow_unstable=allow_unstable))
-    stages.append(design_stage(stages[1].artefact, study=study, design=design, options=mesh_options,
+    stages.extend(surrogate_stages(run, dataset.artefact, lubricant, form=form, offgrid_points=offgrid_points,
+                                   allow_unstable=allow_unstable, workers=workers, scheduler=scheduler,
+                                   progress=progress, time_limit_s=time_limit_s, resume_command=resume_command))
+    stages.append(design_stage(stages[-1].artefact, study=study, design=design, options=mesh_options,
                                clip_to_fitted_ranges=clip_to_fitted_ranges))
     result = PipelineResult(str(out), stages, time.perf_counter() - started)
     if run.smoke:
@@ -613,7 +699,9 @@ def run_lubricant_fit(lubricant, factorial=QUICK_FACTORIAL, *, out_dir=None, wor
                       scheduler: str | None = None, level: str | None = None, model: str | None = None,
                       progress: str = "auto", allow_unstable: bool = False, time_limit_s: float | None = None,
                       overwrite: bool = False, resume_command: str | None = None,
-                      checked: PipelinePlan | None = None, effects: str | None = None,
+                      checked: PipelinePlan | None = None, effects: str | None = None, form: str = "eq9",
+                      offgrid_points: int = 0, adaptive_budget: int | None = None,
+                      target_median: float | None = None, target_p90: float | None = None,
                       **runner_options) -> PipelineResult:
     """Stages 1–2 for ``lubricant``: ``factorial`` → ``OUT/dataset.h5`` → ``OUT/<lubricant>_<factorial>.json``.
 
@@ -655,13 +743,22 @@ def run_lubricant_fit(lubricant, factorial=QUICK_FACTORIAL, *, out_dir=None, wor
     effects : str, optional
         Stage 1's effect plan (one of :data:`ehl_dataset.dataset.factorial.EFFECTS_MODES`; ``isothermal`` gives the
         isothermal data the paper fitted); None: the factorial's [-].
+    form : str
+        Form of the fitted surrogate: ``eq9`` or ``learned`` [-].
+    offgrid_points : int
+        Points of the off-grid validation sample recorded in the coefficient file (0: none) [-].
+    adaptive_budget : int, optional
+        Train on an adaptive design of at most this many solves in the factorial's ranges instead of the factorial
+        (:mod:`workflows.adaptive`); None: the factorial [-].
+    target_median, target_p90 : float, optional
+        Off-grid targets of |Δμ/μ| that stop the adaptive design early [-].
     **runner_options
         Options of :func:`ehl_dataset.dataset.runner.run_factorial` (``window``, ``max_attempts``, ``stream``, ...) [-].
 
     Returns
     -------
     PipelineResult
-        The dataset and fit stages.
+        The dataset (or adaptive), off-grid and fit stages.
     """
     started = time.perf_counter()
     run = checked or check_inputs(factorial, out_dir=out_dir, level=level, model=model, lubricant=lubricant,
@@ -670,15 +767,22 @@ def run_lubricant_fit(lubricant, factorial=QUICK_FACTORIAL, *, out_dir=None, wor
     if overwrite:
         for path in (run.dataset, run.coefficients, run.coefficients.with_suffix(".summary.txt")):
             path.unlink(missing_ok=True)
-    dataset = dataset_stage(run.out_dir, run.factorial, workers=workers, scheduler=scheduler, lubricant=lubricant,
-                            level=run.level, model=run.model, progress=progress, time_limit_s=time_limit_s,
-                            effects=run.effects, **runner_options)
-    if dataset.details["interrupted"]:
-        raise Interrupted(dataset.details["interrupted"], f"lubricant fit stage 1 ({dataset.details['computed']} "
-                          f"points computed, {dataset.details['pending']} pending in {dataset.artefact})",
-                          resume_command)
-    fit = fit_stage(dataset.artefact, run.coefficients, allow_unstable=allow_unstable)
-    result = PipelineResult(str(run.out_dir), [dataset, fit], time.perf_counter() - started)
+    stages = []
+    if adaptive_budget is None:
+        dataset = dataset_stage(run.out_dir, run.factorial, workers=workers, scheduler=scheduler,
+                                lubricant=lubricant, level=run.level, model=run.model, progress=progress,
+                                time_limit_s=time_limit_s, effects=run.effects, **runner_options)
+        if dataset.details["interrupted"]:
+            raise Interrupted(dataset.details["interrupted"], f"lubricant fit stage 1 ({dataset.details['computed']} "
+                              f"points computed, {dataset.details['pending']} pending in {dataset.artefact})",
+                              resume_command)
+        stages.append(dataset)
+    stages.extend(surrogate_stages(run, stages[0].artefact if stages else None, lubricant, form=form,
+                                   offgrid_points=offgrid_points, adaptive_budget=adaptive_budget,
+                                   target_median=target_median, target_p90=target_p90,
+                                   allow_unstable=allow_unstable, workers=workers, scheduler=scheduler,
+                                   progress=progress, time_limit_s=time_limit_s, resume_command=resume_command))
+    result = PipelineResult(str(run.out_dir), stages, time.perf_counter() - started)
     if run.smoke:
         result.label = SMOKE_LABEL
     return result

@@ -1,0 +1,278 @@
+"""Stage 2 of the pipeline and of ``gearloss lubricant fit`` in both forms: the off-grid validation sample, the
+adaptive training design, and the fit written to a coefficient file with its off-grid errors.
+
+* :func:`offgrid_stage` solves the off-grid validation sample of a factorial (``OUT/offgrid.h5``, seeded uniform
+  points in the factorial's ranges, :func:`workflows.sample_runs.offgrid_points`) by the factorial's route;
+* :func:`adaptive_stage` runs :func:`workflows.adaptive.run_adaptive` (``OUT/adaptive/batch_NNN.h5``);
+* :func:`fit_and_write` fits the chosen form (``eq9``: paper Eq. 9 with statsmodels; ``learned``: the ensemble of
+  :mod:`surrogate.mlp`) on one or more dataset files and writes the coefficient file with the ``offgrid`` table.
+
+The functions return plain dictionaries (artefact path, wall time, details); :mod:`workflows.pipeline` wraps them in
+its stage results.
+"""
+
+from __future__ import annotations
+
+import time
+import warnings
+from pathlib import Path
+from typing import Any
+
+import pandas as pd
+
+from ehl_dataset.validation import InputError
+
+from .sample_runs import OFFGRID_POINTS, OFFGRID_SEED, offgrid_points, run_sample
+
+FORMS = ("eq9", "learned")
+OFFGRID_FILE = "offgrid.h5"
+
+
+def check_form(form: str) -> str:
+    """``form`` if it is one of :data:`FORMS`, else :class:`InputError`."""
+    if form not in FORMS:
+        raise InputError("form", form, f"one of {list(FORMS)}")
+    return form
+
+
+def coefficients_path(base: Path, form: str, adaptive: bool = False) -> Path:
+    """The coefficient file of a run: ``<lubricant>_<factorial>[_adaptive][_learned].json`` beside ``base``."""
+    stem = base.stem + ("_adaptive" if adaptive else "") + ("_learned" if form == "learned" else "")
+    return base.with_name(stem + ".json")
+
+
+def offgrid_stage(out_dir: str | Path, factorial, lubricant, *, level: str, effects: str, model: str,
+                  n: int = OFFGRID_POINTS, seed: int = OFFGRID_SEED, workers: int = 1, scheduler: str | None = None,
+                  progress: str = "auto", time_limit_s: float | None = None) -> dict[str, Any]:
+    """Solve the off-grid validation sample of ``factorial`` into ``out_dir/offgrid.h5`` (resumable).
+
+    Parameters
+    ----------
+    out_dir : str or Path
+        Run directory [-].
+    factorial : Factorial
+        The factorial whose ranges the sample fills.
+    lubricant : Lubricant
+        The lubricant.
+    level, effects, model : str
+        The route of the factorial [-].
+    n : int
+        Points of the sample [-].
+    seed : int
+        Seed [-].
+    workers : int
+        Local worker processes [-].
+    scheduler : str, optional
+        Dask scheduler [-].
+    progress : str
+        Progress mode [-].
+    time_limit_s : float, optional
+        Wall-time budget per solve [s].
+
+    Returns
+    -------
+    dict
+        ``artefact`` (the store), ``wall_time_s``, ``details`` (counts, seed, interrupted).
+    """
+    started = time.perf_counter()
+    points, description = offgrid_points(factorial, n, seed)
+    path = Path(out_dir) / OFFGRID_FILE
+    summary = run_sample(path, points, description, lubricant=lubricant, level=level, effects=effects, model=model,
+                         workers=workers, scheduler=scheduler, progress=progress, time_limit_s=time_limit_s)
+    details = {"n_points": summary.n_points, "seed": seed, "computed": summary.computed, "ok": summary.ok,
+               "failed": summary.failed, "pending": summary.pending, "non_converged": summary.non_converged,
+               "interrupted": summary.interrupted}
+    return {"artefact": str(path), "wall_time_s": time.perf_counter() - started, "details": details}
+
+
+def adaptive_stage(out_dir: str | Path, factorial, lubricant, *, level: str, effects: str, model: str, budget: int,
+                   offgrid_path: str | Path | None = None, target_median: float | None = None,
+                   target_p90: float | None = None, workers: int = 1, scheduler: str | None = None,
+                   progress: str = "auto", time_limit_s: float | None = None, log=None) -> dict[str, Any]:
+    """Adaptive training design (:func:`workflows.adaptive.run_adaptive`) with the off-grid set as stop test.
+
+    Parameters
+    ----------
+    out_dir : str or Path
+        Run directory [-].
+    factorial : Factorial
+        Box and route.
+    lubricant : Lubricant
+        The lubricant.
+    level, effects, model : str
+        The route [-].
+    budget : int
+        Largest number of training solves [-].
+    offgrid_path : str or Path, optional
+        Solved off-grid sample [-].
+    target_median, target_p90 : float, optional
+        Off-grid targets of |Δμ/μ| [-].
+    workers : int
+        Local worker processes [-].
+    scheduler : str, optional
+        Dask scheduler [-].
+    progress : str
+        Progress mode of each batch [-].
+    time_limit_s : float, optional
+        Wall-time budget per solve [s].
+    log : callable, optional
+        Receives one line per round [-].
+
+    Returns
+    -------
+    dict
+        ``artefacts`` (batch files), ``wall_time_s``, ``details`` (solves, rounds, stop reason).
+    """
+    from .adaptive import run_adaptive
+
+    offgrid_table = None
+    if offgrid_path is not None:
+        from surrogate.dataset_io import load_dataset
+
+        offgrid_table = load_dataset(offgrid_path).table
+    result = run_adaptive(out_dir, factorial, lubricant, level=level, effects=effects, model=model, budget=budget,
+                          offgrid_table=offgrid_table, target_median=target_median, target_p90=target_p90,
+                          workers=workers, scheduler=scheduler, progress=progress, time_limit_s=time_limit_s,
+                          log=log)
+    folder = Path(out_dir) / "adaptive"
+    return {"artefacts": [str(folder / name) for name in result.batch_files], "wall_time_s": result.wall_time_s,
+            "details": result.to_dict()}
+
+
+def load_rows(paths) -> tuple[pd.DataFrame, Any]:
+    """Every row of one or more dataset files (same lubricant and E'), and the first file's :class:`Dataset`."""
+    from surrogate.dataset_io import load_dataset
+
+    paths = [paths] if isinstance(paths, (str, Path)) else list(paths)
+    datasets = [load_dataset(p) for p in paths]
+    first = datasets[0]
+    for other, path in zip(datasets[1:], paths[1:]):
+        if other.lubricant.to_json_dict() != first.lubricant.to_json_dict() or other.e_reduced != first.e_reduced:
+            raise InputError("dataset", str(path), f"a dataset of the lubricant and E' of {paths[0]}")
+    table = pd.concat([d.table for d in datasets], ignore_index=True) if len(datasets) > 1 else first.table
+    if len(datasets) > 1:
+        first.table = table
+        first.source["files"] = [{"path": Path(p).name, "sha256": d.source["sha256"], "n_points": len(d.table)}
+                                 for p, d in zip(paths, datasets)]
+        first.source["n_points"] = int(len(table))
+    return table, first
+
+
+def fit_form(form: str, table: pd.DataFrame, data, *, allow_unstable: bool = False, blend_half_width: float = 0.1):
+    """The fit of ``form`` on ``table`` (``eq9``: :func:`surrogate.fit.fit_surrogate`; ``learned``:
+    :func:`surrogate.learned_fit.fit_learned`)."""
+    if check_form(form) == "learned":
+        from surrogate.learned_fit import fit_learned
+
+        return fit_learned(table, data.lubricant, data.e_reduced)
+    from surrogate.fit import fit_surrogate
+
+    return fit_surrogate(table, data.lubricant, data.e_reduced, allow_unstable=allow_unstable,
+                         blend_half_width=blend_half_width)
+
+
+def offgrid_table_for(fit, offgrid_path: str | Path | None) -> dict[str, Any] | None:
+    """The ``offgrid`` table of the coefficient file of ``fit`` from the solved sample at ``offgrid_path``."""
+    if offgrid_path is None:
+        return None
+    from surrogate.coefficients import coefficients_payload, validate_coefficients
+    from surrogate.evaluate import FrictionSurrogate
+
+    return offgrid_of(FrictionSurrogate(validate_coefficients(coefficients_payload(fit))), offgrid_path)
+
+
+def offgrid_of(surrogate, offgrid_path: str | Path) -> dict[str, Any]:
+    """The ``offgrid`` table of ``surrogate`` (a :class:`~surrogate.evaluate.FrictionSurrogate`) on the solved sample
+    at ``offgrid_path``."""
+    from surrogate.dataset_io import load_dataset
+    from surrogate.offgrid import offgrid_errors, offgrid_report
+
+    sample = load_dataset(offgrid_path)
+    errors = offgrid_errors(surrogate, sample.table)
+    described = {"file": Path(offgrid_path).name, "sha256": sample.source["sha256"],
+                 "n_points": sample.source.get("n_points"), "level": sample.source.get("accuracy_level"),
+                 "effects": sample.source.get("effects"), "solver_version": sample.source.get("solver_version")}
+    from ehl_dataset.dataset.store import read_metadata
+
+    plan = read_metadata(offgrid_path).get("factorial") or {}
+    described.update({k: plan.get(k) for k in ("kind", "seed", "within_factorial", "box")})
+    return offgrid_report(errors, described)
+
+
+def fit_details(fit) -> dict[str, Any]:
+    """The numbers a fit stage reports, for either form."""
+    cv = fit.cv["overall"]
+    details = {"n_input_rows": fit.n_input_rows, "n_used": fit.n_used, "exclusions": fit.exclusions,
+               "cv_rmse_ln_mu": cv["rmse_ln_mu"], "cv_mean_rel_err_mu": cv["mean_rel_err_mu"],
+               "cv_median_rel_err_mu": cv["median_rel_err_mu"]}
+    if hasattr(fit, "branches"):
+        details.update(form="eq9", stable=fit.stable,
+                       branches={b: {"n_obs": f.n_obs, "adj_r2": f.adj_r2, "resid_std_error": f.resid_std_error}
+                                 for b, f in fit.branches.items()})
+    else:
+        details.update(form="learned", stable=True, members=fit.ensemble.members,
+                       interval_q90=fit.ensemble.score_quantiles.get(0.9))
+    return details
+
+
+def fit_and_write(dataset_paths, coefficients_file: str | Path, *, form: str = "eq9", allow_unstable: bool = False,
+                  blend_half_width: float = 0.1, offgrid_path: str | Path | None = None) -> tuple[str, dict, list]:
+    """Fit ``form`` on the dataset file(s), validate it off the grid, write the coefficient file.
+
+    Parameters
+    ----------
+    dataset_paths : str, Path or list
+        Dataset file(s) of the training rows [-].
+    coefficients_file : str or Path
+        The coefficient file to write [-].
+    form : str
+        ``eq9`` or ``learned`` [-].
+    allow_unstable : bool
+        Keep an Eq. 9 fit flagged unstable [-].
+    blend_half_width : float
+        Eq. 9's λ̄ blend half width [-].
+    offgrid_path : str or Path, optional
+        Solved off-grid sample whose errors the file records [-].
+
+    Returns
+    -------
+    tuple
+        (path written, details, warnings caught).
+    """
+    from surrogate.coefficients import summary_path, write_coefficients
+
+    table, data = load_rows(dataset_paths)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        fit = fit_form(form, table, data, allow_unstable=allow_unstable, blend_half_width=blend_half_width)
+        offgrid = offgrid_table_for(fit, offgrid_path)
+    path = write_coefficients(fit, coefficients_file, source=data.source, offgrid=offgrid)
+    details = fit_details(fit) | {"lubricant": data.lubricant.name, "summary": str(summary_path(path))}
+    if offgrid is not None:
+        details["offgrid"] = offgrid
+    return str(path), details, [str(w.message) for w in caught]
+
+
+def validate_offgrid(coefficients_file: str | Path, offgrid_path: str | Path) -> dict[str, Any]:
+    """Measure a written coefficient file on the solved off-grid sample and record the result in the file.
+
+    Parameters
+    ----------
+    coefficients_file : str or Path
+        The coefficient file [-].
+    offgrid_path : str or Path
+        The solved off-grid sample [-].
+
+    Returns
+    -------
+    dict
+        The ``offgrid`` table recorded.
+    """
+    from surrogate.coefficients import record_offgrid
+    from surrogate.evaluate import FrictionSurrogate
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        offgrid = offgrid_of(FrictionSurrogate.load(coefficients_file), offgrid_path)
+    record_offgrid(coefficients_file, offgrid)
+    return offgrid
