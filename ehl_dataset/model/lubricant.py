@@ -154,12 +154,31 @@ class ViscosityPressureLaw:
 class LubricantState:
     """Properties of a lubricant at one temperature (SI): what a contact solver needs.
 
-    ``eta0`` [Pa·s], ``rho0`` [kg/m³], ``alpha1`` [1/Pa] (for the dimensionless groups), ``law`` the
-    viscosity–pressure law, ``tau0`` [Pa] Eyring stress, ``mu_d`` [-] boundary friction, ``compressible``
-    whether Dowson–Higginson density applies (False: ρ = ρ0), ``thermal`` the thermal properties
-    (:mod:`ehl_dataset.model.thermal`), ``log_viscosity_at`` (p, T) → ln η of the lubricant's laws at any
-    temperature (not range-checked: the thermal correction extrapolates; None: β = 0 unless
-    ``thermal.beta_override`` gives it).
+    Parameters
+    ----------
+    temperature : float
+        The temperature [K].
+    eta0 : float
+        Dynamic viscosity at ambient pressure [Pa s].
+    rho0 : float
+        Density at ambient pressure [kg/m³].
+    alpha1 : float
+        Low-pressure viscosity–pressure coefficient, for the dimensionless groups [1/Pa].
+    law : ViscosityPressureLaw
+        The viscosity–pressure law at this temperature [-].
+    tau0 : float
+        Eyring stress [Pa].
+    mu_d : float
+        Boundary friction coefficient [-].
+    compressible : bool
+        Dowson–Higginson density applies (False: ρ = ρ0) [-].
+    thermal : ThermalProperties
+        Thermal properties (:mod:`ehl_dataset.model.thermal`) [SI].
+    log_viscosity_at : callable, optional
+        (p, T) → ln η of the lubricant's laws at any temperature (not range-checked: the thermal correction
+        extrapolates); None: β = 0 unless ``thermal.beta_override`` gives it [-].
+    log_viscosity_rows : callable, optional
+        (p, temperatures) → ln η rows, as :meth:`Lubricant.log_viscosity_rows` [-].
     """
 
     temperature: float
@@ -175,14 +194,39 @@ class LubricantState:
     log_viscosity_rows: Callable | None = field(default=None, compare=False, repr=False)
 
     def viscosity(self, p):
-        """η(p) [Pa·s]."""
+        """Viscosity η(p) at this temperature.
+
+        Parameters
+        ----------
+        p : array_like
+            Pressure [Pa].
+
+        Returns
+        -------
+        ndarray
+            η [Pa·s].
+        """
         return self.law.viscosity(p)
 
     def temperature_table(self, p, rises=THERMAL_RISES_K) -> TemperatureTable:
-        """ln η(p, T + ΔT) on the rises ΔT [K] (rows) for the pressures ``p`` [Pa] (columns): the lubricant's own
-        laws (Walther, the temperature dependence of its pressure–viscosity law) extrapolated beyond its range where
-        the contact gets hotter, or ln η(p, T) − β ΔT with the lubricant file's constant β
-        (``thermal.viscosity_temperature_coefficient_per_k``); β = 0 for a state built without the lubricant."""
+        """ln η(p, T + ΔT) on the temperature rises ΔT (rows) for the pressures ``p`` (columns).
+
+        The lubricant's own laws (Walther, the temperature dependence of its pressure–viscosity law) extrapolated beyond
+        its range where the contact gets hotter, or ln η(p, T) − β ΔT with the lubricant file's constant β
+        (``thermal.viscosity_temperature_coefficient_per_k``); β = 0 for a state built without the lubricant.
+
+        Parameters
+        ----------
+        p : array_like
+            Pressures [Pa].
+        rises : array_like
+            Temperature rises ΔT [K].
+
+        Returns
+        -------
+        TemperatureTable
+            The table.
+        """
         p_arr = np.atleast_1d(np.asarray(p, dtype=float))
         rises = np.asarray(rises, dtype=float)
         base = np.log(self.law.viscosity(p_arr))
@@ -197,9 +241,21 @@ class LubricantState:
         return TemperatureTable(rises, np.vstack(rows))
 
     def viscosity_temperature_coefficient(self, p):
-        """β(p) = −∂ln η(p, T)/∂T [1/K] at this temperature: the lubricant file's constant if it gives one, else the
-        central difference (± :data:`BETA_STEP_K`) of the lubricant's ln η(p, T) (it includes the temperature
-        dependence of α)."""
+        """β(p) = −∂ln η(p, T)/∂T at this temperature.
+
+        The lubricant file's constant if it gives one, else the central difference (± :data:`BETA_STEP_K`) of the
+        lubricant's ln η(p, T) (it includes the temperature dependence of α).
+
+        Parameters
+        ----------
+        p : array_like
+            Pressure [Pa].
+
+        Returns
+        -------
+        ndarray
+            β [1/K].
+        """
         p_arr = np.asarray(p, dtype=float)
         if self.thermal.beta_override is not None:
             return np.full_like(p_arr, self.thermal.beta_override)
@@ -210,13 +266,35 @@ class LubricantState:
             2.0 * BETA_STEP_K)
 
     def density(self, p):
-        """ρ(p) [kg/m³] (Dowson–Higginson, or constant if incompressible)."""
+        """Density ρ(p): Dowson–Higginson (paper Eq. 6), or constant if incompressible.
+
+        Parameters
+        ----------
+        p : array_like
+            Pressure [Pa].
+
+        Returns
+        -------
+        ndarray
+            ρ [kg/m³].
+        """
         if not self.compressible:
             return np.full_like(np.asarray(p, dtype=float), self.rho0)
         return dowson_higginson_density(p, self.rho0)
 
     def density_derivative(self, p):
-        """dρ/dp [kg/(m³·Pa)]."""
+        """dρ/dp of :meth:`density`.
+
+        Parameters
+        ----------
+        p : array_like
+            Pressure [Pa].
+
+        Returns
+        -------
+        ndarray
+            dρ/dp [kg/(m³·Pa)].
+        """
         if not self.compressible:
             return np.zeros_like(np.asarray(p, dtype=float))
         return dowson_higginson_density_derivative(p, self.rho0)
@@ -226,9 +304,56 @@ class LubricantState:
 class Lubricant:
     """A lubricant defined over a temperature range. Build with :func:`load_lubricant` or the constructor.
 
-    Viscosity: either Walther (``walther_a``, ``walther_b``) or a fixed ``eta0_fixed`` [Pa·s] (isoviscous-in-T
-    validation fluids). Density at ``t_ref`` [K] with expansion ``beta`` [1/K]. ``alpha_points`` ((T [K], α [1/Pa]),
-    ...) one or two points, log-linear in T. Temperatures outside ``t_min..t_max`` [K] are rejected.
+    Viscosity is either Walther's law (``walther_a``, ``walther_b``) or a fixed ``eta0_fixed`` (isoviscous-in-T
+    validation fluids); the viscosity–pressure law is ``pressure_law`` (paper Eq. 5 for ``two_slope``).
+    Temperatures outside ``t_min`` … ``t_max`` are rejected.
+
+    Parameters
+    ----------
+    name : str
+        Lubricant name [-].
+    t_min : float
+        Lowest temperature of the data [K].
+    t_max : float
+        Highest temperature of the data [K].
+    rho_ref : float
+        Density at ``t_ref`` and ambient pressure [kg/m³].
+    t_ref : float
+        Reference temperature of the density [K].
+    beta : float
+        Thermal expansion coefficient of the density, ρ = ρ_ref (1 − β (T − t_ref)) [1/K].
+    alpha_points : tuple of tuple of float
+        One or two (T [K], α1 [1/Pa]) points of the low-pressure viscosity–pressure coefficient, log-linear in T [-].
+    pressure_law : str
+        ``two_slope``, ``barus`` or ``roelands`` [-].
+    tau0 : float
+        Eyring stress τ0 [Pa].
+    mu_d : float
+        Boundary (dry-contact) friction coefficient [-].
+    walther_a : float, optional
+        Walther constant A of log10 log10(ν + 0.7) = A − B log10 T, ν in mm²/s and T in K [-].
+    walther_b : float, optional
+        Walther constant B [-].
+    eta0_fixed : float, optional
+        Temperature-independent viscosity at ambient pressure, instead of Walther's law [Pa s].
+    alpha2_ratio : float
+        α2/α1 of the two-slope law [-].
+    p_t : float
+        Transition pressure of the two-slope law [Pa].
+    p_a : float
+        Start of the cubic transition of the two-slope law [Pa].
+    p_b : float
+        End of the cubic transition of the two-slope law [Pa].
+    roelands_z : float, optional
+        Roelands pressure index; None: from α1 [-].
+    compressible : bool
+        Dowson–Higginson density (False: ρ = ρ0) [-].
+    sources : dict of str to str
+        Source of each property [-].
+    definition : dict
+        The parsed file, kept for provenance [-].
+    thermal : ThermalProperties
+        Thermal properties of the thermal correction (:mod:`ehl_dataset.model.thermal`) [SI].
     """
 
     name: str
@@ -256,27 +381,87 @@ class Lubricant:
     _laws: dict = field(default_factory=dict, init=False, compare=False, repr=False)
 
     def check_temperature(self, temperature_k: float) -> float:
-        """Return the temperature [K] or raise :class:`InputError` if it is outside the lubricant's data."""
+        """Check a temperature against the lubricant's data range.
+
+        Parameters
+        ----------
+        temperature_k : float or array_like
+            Temperature [K].
+
+        Returns
+        -------
+        float
+            The temperature [K].
+
+        Raises
+        ------
+        InputError
+            When it is outside ``t_min`` … ``t_max``.
+        """
         return check_range("temperature", temperature_k, self.t_min, self.t_max, unit=f"K for lubricant {self.name}")
 
     def kinematic_viscosity(self, temperature_k):
-        """ν(T) [m²/s]."""
+        """Kinematic viscosity ν(T) at ambient pressure.
+
+        Parameters
+        ----------
+        temperature_k : float or array_like
+            Temperature [K].
+
+        Returns
+        -------
+        ndarray
+            ν [m²/s].
+        """
         if self.eta0_fixed is not None:
             return self.eta0_fixed / self.density_at(temperature_k)
         return walther_viscosity(temperature_k, self.walther_a, self.walther_b)
 
     def density_at(self, temperature_k):
-        """ρ(T) [kg/m³] at ambient pressure."""
+        """Density ρ(T) at ambient pressure.
+
+        Parameters
+        ----------
+        temperature_k : float or array_like
+            Temperature [K].
+
+        Returns
+        -------
+        ndarray
+            ρ [kg/m³].
+        """
         return self.rho_ref * (1.0 - self.beta * (np.asarray(temperature_k, dtype=float) - self.t_ref))
 
     def dynamic_viscosity(self, temperature_k):
-        """η0(T) [Pa·s] at ambient pressure."""
+        """Dynamic viscosity η0(T) at ambient pressure.
+
+        Parameters
+        ----------
+        temperature_k : float or array_like
+            Temperature [K].
+
+        Returns
+        -------
+        ndarray
+            η0 [Pa·s].
+        """
         if self.eta0_fixed is not None:
             return np.full_like(np.asarray(temperature_k, dtype=float), self.eta0_fixed)
         return self.kinematic_viscosity(temperature_k) * self.density_at(temperature_k)
 
     def alpha1(self, temperature_k):
-        """Low-pressure viscosity–pressure coefficient α1(T) [1/Pa], log-linear in T between the data points."""
+        """Low-pressure viscosity–pressure coefficient α1(T), log-linear in T between the data points.
+
+        Parameters
+        ----------
+        temperature_k : float or array_like
+            Temperature [K].
+
+        Returns
+        -------
+        ndarray
+            α1 [1/Pa].
+        """
         t = np.asarray(temperature_k, dtype=float)
         if len(self.alpha_points) == 1:
             return np.full_like(t, self.alpha_points[0][1])
@@ -284,32 +469,57 @@ class Lubricant:
         return np.exp(math.log(a1) + (t - t1) / (t2 - t1) * (math.log(a2) - math.log(a1)))
 
     def state(self, temperature_k: float) -> LubricantState:
-        """All properties at one temperature [K] (validated against the lubricant's range)."""
+        """All properties at one temperature, validated against the lubricant's range.
+
+        Parameters
+        ----------
+        temperature_k : float
+            Temperature [K].
+
+        Returns
+        -------
+        LubricantState
+            The properties a contact solver needs.
+        """
         t = self.check_temperature(temperature_k)
         eta0, alpha1, law = self._pressure_law(t)
         return LubricantState(t, eta0, float(self.density_at(t)), alpha1, law, self.tau0, self.mu_d, self.compressible,
                               self.thermal, self.log_viscosity, self.log_viscosity_rows)
 
     def log_viscosity(self, p, temperature_k: float):
-        """ln η(p, T) of the lubricant's laws at ``temperature_k`` [K] for pressures ``p`` [Pa], **not** checked
-        against its temperature range (the thermal correction extrapolates the laws to the contact temperature)."""
-        return np.log(self._pressure_law(float(temperature_k))[2].viscosity(p))
-
-    def log_viscosity_rows(self, p, temperatures_k) -> np.ndarray:
-        """ln η(p, T) [ln Pa·s] of :meth:`log_viscosity` for every temperature of ``temperatures_k`` [K] (rows) and
-        pressure of ``p`` [Pa] (columns), in one array evaluation of the laws (not range-checked).
+        """ln η(p, T) of the lubricant's laws, **not** checked against its temperature range (the thermal correction
+        extrapolates the laws to the contact temperature).
 
         Parameters
         ----------
         p : array_like
-            Pressures [Pa], 1-D.
+            Pressures [Pa].
+        temperature_k : float
+            Temperature [K].
+
+        Returns
+        -------
+        ndarray
+            ln η, η in Pa·s [-].
+        """
+        return np.log(self._pressure_law(float(temperature_k))[2].viscosity(p))
+
+    def log_viscosity_rows(self, p, temperatures_k) -> np.ndarray:
+        """ln η(p, T) of :meth:`log_viscosity` for every temperature (rows) and pressure (columns).
+
+        One array evaluation of the laws (not range-checked).
+
+        Parameters
+        ----------
+        p : array_like
+            1-D pressures [Pa].
         temperatures_k : array_like
-            Temperatures [K], 1-D.
+            1-D temperatures [K].
 
         Returns
         -------
         numpy.ndarray
-            Shape (len(temperatures_k), len(p)) [ln Pa·s].
+            Shape (len(temperatures_k), len(p)); ln η, η in Pa·s [-].
         """
         t = np.asarray(temperatures_k, dtype=float)[:, None]
         pp = np.maximum(np.atleast_1d(np.asarray(p, dtype=float)), 0.0)[None, :]
@@ -357,7 +567,13 @@ class Lubricant:
         return eta0, alpha1, law
 
     def to_json_dict(self) -> dict[str, Any]:
-        """The definition as read from its file (for provenance in HDF5 and coefficient files)."""
+        """The definition as read from its file (for provenance in HDF5 and coefficient files).
+
+        Returns
+        -------
+        dict
+            The parsed file, or only the name for a lubricant built in code.
+        """
         return dict(self.definition) if self.definition else {"name": self.name}
 
 
@@ -375,7 +591,25 @@ def _get(table: dict, key: str, where: str, *, low: float = -math.inf, high: flo
 
 
 def lubricant_from_dict(data: dict[str, Any], origin: str = "<dict>") -> Lubricant:
-    """Build a :class:`Lubricant` from the parsed TOML structure (see ``data/lubricants/atf.toml``)."""
+    """Build a :class:`Lubricant` from the parsed TOML structure (see ``data/lubricants/atf.toml``).
+
+    Parameters
+    ----------
+    data : dict
+        The parsed TOML structure (engineering units, as the key names say) [-].
+    origin : str
+        Where it was read from, for messages [-].
+
+    Returns
+    -------
+    Lubricant
+        The lubricant, in SI.
+
+    Raises
+    ------
+    InputError
+        Naming the first missing or bad field.
+    """
     if not isinstance(data.get("name"), str):
         raise InputError("name", data.get("name", "<missing>"), f"a string naming the lubricant in {origin}")
     for section in ("temperature_range", "density", "viscosity", "pressure_viscosity", "traction"):
@@ -455,7 +689,23 @@ def lubricant_from_dict(data: dict[str, Any], origin: str = "<dict>") -> Lubrica
 
 
 def load_lubricant(name_or_path: str | Path = "atf") -> Lubricant:
-    """Load a lubricant by shipped name (``atf``, ``gear_oil_75w90``, ...) or from a TOML file path."""
+    """Load a lubricant by shipped name (``atf``, ``gear_oil_75w90``, ...) or from a TOML file.
+
+    Parameters
+    ----------
+    name_or_path : str or Path
+        Shipped name (``data/lubricants/NAME.toml``) or path of a lubricant TOML file [-].
+
+    Returns
+    -------
+    Lubricant
+        The validated lubricant.
+
+    Raises
+    ------
+    InputError
+        For a missing or invalid file, naming the first bad field.
+    """
     path = resolve_named_file("lubricants", name_or_path, ".toml")
     try:
         with open(path, "rb") as handle:

@@ -59,11 +59,22 @@ _UNIT_SCALE = {"m": 1.0, "mm": 1e-3, "um": 1e-6}
 class RoughnessProfile:
     """A uniformly sampled, zero-mean, periodic-by-convention roughness profile.
 
-    ``z`` heights [m] (positive = material above the mean line), ``spacing`` sampling interval [m], ``source``
-    a short provenance text, ``grid_length_m`` the length scale [m] a solver grid resolves (None: the correlation
-    length; see :attr:`resolution_length`), ``name`` and ``sha256`` the registry name and file hash of a shipped
-    profile (:func:`named_profile`; empty otherwise). Position s [m] maps to sample s/spacing; reading wraps modulo
-    :attr:`length`.
+    Position s maps to sample s/spacing; reading wraps modulo :attr:`length`.
+
+    Parameters
+    ----------
+    z : ndarray
+        Heights, positive = material above the mean line [m].
+    spacing : float
+        Sampling interval [m].
+    source : str
+        A short provenance text [-].
+    grid_length_m : float, optional
+        The length scale a solver grid resolves; None: the correlation length (:attr:`resolution_length`) [m].
+    name : str
+        Registry name of a shipped profile (:func:`named_profile`; empty otherwise) [-].
+    sha256 : str
+        File hash of a shipped profile (empty otherwise) [-].
     """
 
     z: np.ndarray
@@ -96,7 +107,18 @@ class RoughnessProfile:
         return autocorrelation_length(self.z, self.spacing)
 
     def scaled(self, rq: float) -> "RoughnessProfile":
-        """The same profile multiplied by a constant so that its Rq equals ``rq`` [m] (paper Sect. 2.1)."""
+        """The same profile multiplied by a constant so that its Rq equals ``rq`` (paper Sect. 2.1).
+
+        Parameters
+        ----------
+        rq : float
+            Target RMS roughness [m].
+
+        Returns
+        -------
+        RoughnessProfile
+            The scaled profile.
+        """
         check_range("rq", rq, 0.0, 1e-4, unit="m")
         current = self.rq
         if current == 0.0:
@@ -105,7 +127,18 @@ class RoughnessProfile:
                                 self.sha256)
 
     def sample(self, s) -> np.ndarray:
-        """Heights [m] at positions ``s`` [m] (any shape) by periodic linear interpolation."""
+        """Heights at positions ``s`` (any shape) by periodic linear interpolation.
+
+        Parameters
+        ----------
+        s : array_like
+            Positions [m].
+
+        Returns
+        -------
+        ndarray
+            Heights, shaped like ``s`` [m].
+        """
         pos = np.asarray(s, dtype=float) / self.spacing
         base = np.floor(pos)
         frac = pos - base
@@ -135,6 +168,26 @@ def generate_profile(n_points: int, spacing_m: float, correlation_length_m: floa
     Fourier coefficients c_k = √S(k)·(g1 + i g2)/√2 with g1, g2 independent standard normals from
     ``numpy.random.RandomState(seed)`` (legacy stream, frozen by NumPy), c_0 = 0, c_{N/2} real; z = irfft(c);
     then z ← z·rq/rms(z). Deterministic for given arguments.
+
+    Parameters
+    ----------
+    n_points : int
+        Number of samples, even and ≥ 16 [-].
+    spacing_m : float
+        Sampling interval [m].
+    correlation_length_m : float
+        Correlation length β of the autocorrelation [m].
+    rq_m : float
+        RMS roughness [m].
+    seed : int
+        Seed of the random stream [-].
+    acf : str
+        Autocorrelation: ``gaussian`` exp(−τ²/β²) or ``exponential`` exp(−|τ|/β) [-].
+
+    Returns
+    -------
+    RoughnessProfile
+        The profile.
     """
     if not isinstance(n_points, (int, np.integer)) or n_points < 16 or n_points % 2:
         raise InputError("n_points", n_points, "an even integer >= 16")
@@ -168,7 +221,20 @@ def circular_autocorrelation(z: np.ndarray) -> np.ndarray:
 
 
 def autocorrelation_length(z: np.ndarray, spacing: float) -> float:
-    """First lag [m] where the circular autocorrelation falls to 1/e (linear interpolation between samples)."""
+    """First lag where the circular autocorrelation falls to 1/e (linear interpolation between samples).
+
+    Parameters
+    ----------
+    z : ndarray
+        Heights of a uniformly sampled profile [m].
+    spacing : float
+        Sampling interval [m].
+
+    Returns
+    -------
+    float
+        The 1/e lag [m].
+    """
     rho = circular_autocorrelation(z)[: z.size // 2]
     below = np.flatnonzero(rho <= math.exp(-1.0))
     if below.size == 0:
@@ -232,8 +298,15 @@ def write_baseline(path: str | Path | None = None) -> Path:
 
 
 def baseline_profile() -> RoughnessProfile:
-    """The shipped baseline profile, ``named_profile("baseline_synthetic")`` (read once per process, its sha256
-    checked). Not detrended: it is periodic and zero-mean."""
+    """The shipped baseline profile, ``named_profile("baseline_synthetic")``.
+
+    Read once per process, its sha256 checked. Not detrended: it is periodic and zero-mean.
+
+    Returns
+    -------
+    RoughnessProfile
+        The profile.
+    """
     return named_profile(DEFAULT_PROFILE)
 
 
@@ -549,8 +622,20 @@ def psd_slope(profile: RoughnessProfile, shortest_wavelength_m: float, longest_w
 
 
 def periodogram(profile: RoughnessProfile) -> tuple[np.ndarray, np.ndarray]:
-    """(k [rad/m], C [m³]) one-sided 1-D PSD estimate of a profile: C(k_j) = 2·Δx/N·|Z_j|² (Z its DFT), so that
-    Σ_j C(k_j)·Δk/(2π) = Rq² (Parseval; the DC term excluded)."""
+    """One-sided 1-D power spectral density estimate of a profile, C(k_j) = 2·Δx/N·|Z_j|² (Z its DFT).
+
+    Σ_j C(k_j)·Δk/(2π) = Rq² (Parseval; the DC term excluded).
+
+    Parameters
+    ----------
+    profile : RoughnessProfile
+        The profile [-].
+
+    Returns
+    -------
+    tuple of ndarray
+        (k [rad/m], C [m³]).
+    """
     z = profile.z - profile.z.mean()
     n = z.size
     k = 2.0 * math.pi * np.fft.rfftfreq(n, d=profile.spacing)
@@ -629,12 +714,32 @@ def resample_uniform(x, z, spacing: float) -> tuple[np.ndarray, np.ndarray]:
 
 def load_profile(path: str | Path, *, unit: str = "um", spacing_m: float | None = None,
                  target_rq_m: float | None = None) -> RoughnessProfile:
-    """Read a measured roughness profile: two columns x, z in ``unit`` (``"um"`` default, ``"mm"`` or ``"m"``),
-    whitespace/comma separated, ``#`` comments. The profile is detrended (least-squares line), resampled to a
-    uniform ``spacing_m`` [m] (default: the file's median spacing) and scaled to ``target_rq_m`` [m] if given.
+    """Read a measured roughness profile: two columns x, z in ``unit``, whitespace or comma separated, ``#`` comments.
 
-    Raises :class:`InputError` naming the file and the problem (non-numeric line, wrong column count, NaN,
-    non-increasing x, fewer than 16 points, flat profile, spacing outside the data).
+    The profile is detrended (least-squares line), resampled to a uniform spacing and scaled to ``target_rq_m`` if
+    given.
+
+    Parameters
+    ----------
+    path : str or Path
+        The text file [-].
+    unit : str
+        Unit of both columns: ``um``, ``mm`` or ``m`` [-].
+    spacing_m : float, optional
+        Uniform spacing to resample to; None: the file's median spacing [m].
+    target_rq_m : float, optional
+        RMS roughness to scale to; None: as measured [m].
+
+    Returns
+    -------
+    RoughnessProfile
+        The profile.
+
+    Raises
+    ------
+    InputError
+        Naming the file and the problem (non-numeric line, wrong column count, NaN, non-increasing x, fewer than 16
+        points, flat profile, spacing outside the data).
     """
     if unit not in _UNIT_SCALE:
         raise InputError("unit", unit, f"one of {sorted(_UNIT_SCALE)}")
