@@ -34,10 +34,7 @@ API_DOCS = REPO / "docs" / "reference" / "api"
 PACKAGES = ("ehl_dataset", "surrogate", "efficiency", "workflows")
 
 # Modules rendered in the API reference whose docstrings are still to be converted to numpydoc with units.
-PENDING: set[str] = {
-    "ehl_dataset.model.lubricant",
-    "ehl_dataset.model.roughness",
-}
+PENDING: set[str] = set()
 
 # Unit vocabulary: SI symbols (the numerics' units) and the engineering units of input files and reports.
 _SYMBOLS = {
