@@ -12,11 +12,11 @@ holds (100 °C in that file, an assumption it flags); the bulk temperature of th
 - ``iso14179-2``: ISO/TR 14179-2's μ_mz with X_L of a mineral base oil (0.846; the base of this 75W90 is not
   published) and Ra = √(2/π) Rq, P_VZP = μ_mz H_V P_in (efficiency.iso14179);
 - ``ehl-grid:fast``: the project's default EHL route (the planner decides every effect, the thermal correction
-  included; where λ̄ < 3.5 it solves the rough transient problem, which has no thermal model and runs isothermal);
+  included; where λ̄ < 3.5 the rough contact goes to the steady film-law model);
 - ``ehl-grid:fast:isothermal``: the same without the thermal correction;
 - ``ehl-smooth:isothermal`` / ``ehl-smooth:thermal``: the EHL solver on smooth surfaces (steady), without and with
   the thermal correction at every point (``fast`` level, the same 5 × 9 grid per side of the pitch point).
-The measured losses of the paper are not in the sources available to this project; see docs/gear_validation.md.
+The measured losses of the paper are not in the sources available to this project; see docs/validation/gear.md.
 
 Run: ``python validation/petry_johnson.py [--figure docs/figures/petry_johnson.png]``; writes
 validation/results/petry_johnson.json (``--from-json validation/results/petry_johnson.json --figure F`` redraws the
