@@ -98,10 +98,13 @@ def wrapped_convolution(values: np.ndarray, weights: np.ndarray, index: np.ndarr
     return np.convolve(values[index], weights, mode="valid")
 
 
-def gmres(matvec, precondition, b: np.ndarray, tol: float, max_iterations: int = 60):
+def gmres(matvec, precondition, b: np.ndarray, tol: float, max_iterations: int = 60, give_up_after: int | None = None):
     """Solve A x = b by GMRES with right preconditioning (x = M⁻¹y; Saad 2003, Alg. 9.5), modified Gram–Schmidt and
     Givens rotations, no restart. Stops when ‖b − A x‖ ≤ ``tol``·‖b‖ (the Arnoldi estimate, exact in exact
-    arithmetic for right preconditioning). Returns (x, iterations, relative residual)."""
+    arithmetic for right preconditioning). With ``give_up_after`` = k it also stops after k or more iterations when
+    the residual's mean reduction so far, continued geometrically, would not reach ``tol`` within ``max_iterations``
+    (a caller with a fallback, e.g. a fresh factorisation, wastes no more work). Returns (x, iterations, relative
+    residual)."""
     beta = math.sqrt(float(b @ b))
     if beta == 0.0:
         return np.zeros_like(b), 0, 0.0
@@ -137,6 +140,9 @@ def gmres(matvec, precondition, b: np.ndarray, tol: float, max_iterations: int =
         done = k + 1
         relative = abs(g[k + 1]) / beta
         if relative <= tol or hess[k, k] == 0.0:
+            break
+        if give_up_after is not None and done >= give_up_after and relative > 0.0 \
+                and math.log(relative) * max_iterations / done > math.log(tol):
             break
     diagonal = np.abs(np.diag(hess[:done, :done]))
     if done and diagonal.min() <= 1e-300 * max(diagonal.max(), 1e-300):  # breakdown: least squares

@@ -32,6 +32,9 @@ EXPONENT_CAP = 600.0
 """Cap on ln(η/η0) so that viscosities stay finite in double precision during wild Newton iterates."""
 EXPONENT_FLOOR = 10.0
 """Floor −10 on ln(η/η0) for the linear continuation below p = 0 (wild Newton iterates only)."""
+REUSE_FACTORISATION = True
+"""Whether :class:`LinearSolver` reuses factorisations (False: the dense path, one LU per Newton iteration, kept as the
+baseline of ``benchmarks/bench_stage1_floor.py``; both give the same iterates to within :data:`KRYLOV_TOLERANCE`)."""
 REUSE_MIN_UNKNOWNS = 200
 """Newton systems of at least this many unknowns reuse an LU factorisation across iterations (:class:`LinearSolver`);
 smaller ones are factorised every iteration, which costs less than a Krylov solve there."""
@@ -39,7 +42,8 @@ KRYLOV_TOLERANCE = 1e-10
 """Relative residual ‖b − S δ‖/‖b‖ to which :class:`LinearSolver` solves a Newton system by GMRES: far below the
 Newton tolerances, so that the iterates are those of exact linear solves up to round-off."""
 KRYLOV_ITERATIONS = 10
-"""GMRES iterations allowed with a reused factorisation before the Newton matrix is factorised afresh."""
+"""GMRES iterations allowed with a reused factorisation before the Newton matrix is factorised afresh (GMRES gives up
+from the third iteration on when its mean residual reduction would not reach :data:`KRYLOV_TOLERANCE` within them)."""
 
 
 @dataclass
@@ -179,9 +183,15 @@ class LinearSolver:
     changes little between iterations, so one O(N³) factorisation serves several O(N²) iterations, and every
     correction is that of an exact linear solve to within the Krylov tolerance (the Newton iteration keeps its
     quadratic convergence). Counters: ``factorisations``, ``krylov_solves``, ``krylov_iterations``.
+
+    Parameters
+    ----------
+    reuse : bool or None
+        Reuse factorisations (False: one LU per system, the dense path); None takes :data:`REUSE_FACTORISATION` [-].
     """
 
-    def __init__(self):
+    def __init__(self, reuse: bool | None = None):
+        self.reuse = REUSE_FACTORISATION if reuse is None else bool(reuse)
         self.lu = None
         self.factorisations = 0
         self.krylov_solves = 0
@@ -193,7 +203,7 @@ class LinearSolver:
         if self.lu is not None and self.lu[0].shape == system.shape:
             lu = self.lu
             delta, its, relative = gmres(system.dot, lambda r: scipy.linalg.lu_solve(lu, r, check_finite=False), rhs,
-                                         KRYLOV_TOLERANCE, KRYLOV_ITERATIONS)
+                                         KRYLOV_TOLERANCE, KRYLOV_ITERATIONS, give_up_after=3)
             self.krylov_iterations += its
             if relative <= KRYLOV_TOLERANCE and np.all(np.isfinite(delta)):
                 self.krylov_solves += 1
@@ -204,7 +214,7 @@ class LinearSolver:
         if np.any(lu[0].diagonal() == 0.0):
             raise np.linalg.LinAlgError("singular Newton matrix")
         self.factorisations += 1
-        self.lu = lu if system.shape[0] >= REUSE_MIN_UNKNOWNS else None
+        self.lu = lu if self.reuse and system.shape[0] >= REUSE_MIN_UNKNOWNS else None
         return scipy.linalg.lu_solve(lu, rhs, check_finite=False)
 
 
