@@ -26,7 +26,8 @@ from ehl_dataset.model.contact import ContactCase  # noqa: E402
 from ehl_dataset.dataset.factorial import load_factorial  # noqa: E402
 from ehl_dataset.model.lubricant import load_lubricant  # noqa: E402
 from ehl_dataset.solver import SOLVER_VERSION  # noqa: E402
-from ehl_dataset.solvers.planner import NARROW_FILM_LAW_EYRING, dimensionless_numbers  # noqa: E402
+from ehl_dataset.solvers.levels import NARROW_FILM_LAW_EYRING  # noqa: E402
+from ehl_dataset.solvers.planner import dimensionless_numbers  # noqa: E402
 from ehl_dataset.solvers.wide_contact import WIDE_A_OVER_BETA  # noqa: E402
 
 RESULTS = Path(__file__).resolve().parent / "results"

@@ -36,9 +36,9 @@ from ehl_dataset.model.micro_pressure import (MICRO_PRESSURE_C0, MICRO_PRESSURE_
                                               micro_pressure_coefficient)
 from ehl_dataset.solver import SOLVER_VERSION, solve_contact  # noqa: E402
 from ehl_dataset.solvers.homogenised import HomogenisedOptions  # noqa: E402
-from ehl_dataset.solvers.planner import (NARROW_CLOSURE_LAMBDA, NARROW_CLOSURE_ROUGHNESS,  # noqa: E402
-                                         NARROW_FILM_LAW_EYRING, dimensionless_numbers,
-                                         narrow_film_law_range, thresholds_for)
+from ehl_dataset.solvers.levels import (NARROW_CLOSURE_LAMBDA, NARROW_CLOSURE_ROUGHNESS,  # noqa: E402
+                                        NARROW_FILM_LAW_EYRING)
+from ehl_dataset.solvers.planner import dimensionless_numbers, narrow_film_law_range, thresholds_for  # noqa: E402
 from ehl_dataset.solvers.wide_contact import WIDE_A_OVER_BETA  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -40,8 +40,8 @@ from ehl_dataset.model.lubricant import load_lubricant
 from ehl_dataset.model.roughness import baseline_profile
 from ehl_dataset.solver import SOLVER_VERSION
 from ehl_dataset.model.micro_pressure import MICRO_PRESSURE_C0, MICRO_PRESSURE_INLET_SCALE
-from ehl_dataset.solvers.planner import (NARROW_CLOSURE_LAMBDA, NARROW_CLOSURE_ROUGHNESS, NARROW_FILM_LAW_EYRING,
-                                         dimensionless_numbers, narrow_film_law_range, thresholds_for)
+from ehl_dataset.solvers.levels import NARROW_CLOSURE_LAMBDA, NARROW_CLOSURE_ROUGHNESS, NARROW_FILM_LAW_EYRING
+from ehl_dataset.solvers.planner import dimensionless_numbers, narrow_film_law_range, thresholds_for
 from ehl_dataset.solvers.wide_contact import WIDE_A_OVER_BETA
 
 ROOT = Path(__file__).resolve().parents[1]
