@@ -114,6 +114,6 @@ def offgrid_lines(offgrid: dict[str, Any] | None) -> list[str]:
         cov = m.get("coverage")
         lines.append(f"  {key:9s} n = {m['n']:4d}: |rel err mu| median {m['median_rel_err_mu']:.1%}, 90th percentile "
                      f"{m['p90_rel_err_mu']:.1%}, max {m['max_rel_err_mu']:.1%}; "
-                     + (f"{offgrid.get('coverage_nominal', COVERAGE):.0%} interval covers {cov:.0%}"
+                     + (f"{offgrid.get('coverage_nominal', COVERAGE):.0%} interval covers {cov:.1%}"
                         if cov is not None else "no interval"))
     return lines

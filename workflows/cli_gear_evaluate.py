@@ -278,6 +278,9 @@ def _power_loss(mesh, inputs: EvaluateInputs, args) -> dict:
         "power_loss_instant_max_w": float(instant.max()), "mu_mean": load_weighted_mu(loss, mesh),
         "pitch_region_power_share": pitch_region_share(loss, mesh), "power_loss_time_s": loss.wall_time_s,
     }
+    from .cli_fit_lines import band_entries
+
+    out.update(band_entries(loss, friction))
     if "ehl_solves" in loss.extra:
         out["ehl_solves"] = int(loss.extra["ehl_solves"])
         out["ehl_points"] = int(loss.extra["ehl_points"])
@@ -322,6 +325,9 @@ def _human(p: dict) -> str:
                         else ""))
         lines.append(f"power loss P = {p['power_loss_w'] / 1e3:.4g} kW of {p['input_power_w'] / 1e3:.4g} kW, "
                      f"efficiency η = {p['efficiency'] * 100:.3f} %, load-weighted μ = {p['mu_mean']:.4f}")
+        from .cli_fit_lines import band_lines
+
+        lines.extend(band_lines(p))
         lines.append(f"instantaneous P(φ) {p['power_loss_instant_min_w'] / 1e3:.4g} to "
                      f"{p['power_loss_instant_max_w'] / 1e3:.4g} kW over the cycle "
                      f"({p['power_loss_time_s'] * 1e3:.0f} ms)")

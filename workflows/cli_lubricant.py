@@ -9,6 +9,7 @@ import argparse
 
 from ehl_dataset.names import LEVELS, MODELS
 
+from .cli_fit_lines import add_form_options, fit_line, form_arguments, stage2_lines
 from .cli_help import ACCURACY_EPILOG, EFFECTS_CHOICES, EFFECTS_HELP, model_help
 from .cli_output import emit
 
@@ -72,6 +73,7 @@ def register(subparsers) -> None:
                      help="wall-time budget per point [s]; a point that spends it is stored as not converged")
     fit.add_argument("--allow-unstable", action="store_true",
                      help="keep a regression flagged unstable (ill-conditioned) instead of stopping")
+    add_form_options(fit, adaptive=True)
     fit.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
     fit.set_defaults(handler=_fit)
 
@@ -138,7 +140,8 @@ def _fit(args: argparse.Namespace) -> int:
     result = run_lubricant_fit(args.lubricant, run.factorial, out_dir=run.out_dir, workers=args.workers,
                                scheduler=args.scheduler, level=run.level, model=run.model, progress=args.progress,
                                allow_unstable=args.allow_unstable, time_limit_s=args.time_limit_s,
-                               overwrite=args.overwrite, resume_command=resume, checked=run)
+                               overwrite=args.overwrite, resume_command=resume, checked=run,
+                               **form_arguments(args, run.factorial.size))
     payload = result.to_dict()
     payload["coefficients"] = result.stage("fit").artefact
     payload["resume_command"] = resume
@@ -146,14 +149,16 @@ def _fit(args: argparse.Namespace) -> int:
 
     def human(p):
         s = p["stages"]
-        lines = ([p["label"]] if p.get("label") else []) + dataset_fit_lines(s["dataset"], s["fit"])
+        lines = ([p["label"]] if p.get("label") else [])
+        lines += dataset_fit_lines(s["dataset"], s["fit"]) if "dataset" in s else [fit_line(s["fit"])]
+        lines += stage2_lines(s)
         lines.append(f"coefficient file {p['coefficients']} — use it with: {p['use_with']} ...")
         lines.append(f"total {p['wall_time_s']:.1f} s")
         return "\n".join(lines)
 
     emit(payload, args.json, human)
-    data = result.stage("dataset").details
-    return exit_codes.OK if not (data["failed"] or data["non_converged"]) else exit_codes.NOT_VALID
+    solved = [s.details for s in result.stages if s.name in ("dataset", "offgrid")]
+    return exit_codes.OK if not any(d["failed"] or d["non_converged"] for d in solved) else exit_codes.NOT_VALID
 
 
 def _resume_command(args, run) -> str:

@@ -16,6 +16,7 @@ import sys
 
 from ehl_dataset.names import LEVELS, MODELS
 
+from .cli_fit_lines import add_form_options, fit_line, stage2_lines
 from .cli_help import ACCURACY_EPILOG, EFFECTS_CHOICES, EFFECTS_HELP, model_help
 from .cli_output import emit
 
@@ -75,6 +76,7 @@ def register(subparsers) -> None:
         if name == "paper":
             p.add_argument("--scheduler", default=None, metavar="ADDRESS",
                            help="Dask scheduler address (tcp://host:8786); default: local processes")
+        add_form_options(p)
         p.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
         p.set_defaults(handler=run_pipeline_command)
 
@@ -95,7 +97,8 @@ def run_pipeline_command(args: argparse.Namespace) -> int:
                           scheduler=getattr(args, "scheduler", None), progress=args.progress, level=run.level,
                           model=run.model, design=args.design, allow_unstable=args.allow_unstable,
                           clip_to_fitted_ranges=not args.no_clip, time_limit_s=args.time_limit_s,
-                          overwrite=args.overwrite, resume_command=resume, checked=run)
+                          overwrite=args.overwrite, resume_command=resume, checked=run, form=args.form or "eq9",
+                          offgrid_points=int(check_range("offgrid_points", args.offgrid_points, 0, 100000)))
     payload = result.to_dict()
     design = result.stage("design").details
     payload.update({k: design[k] for k in ("power_loss_w", "efficiency", "te_pp_m", "sigma_c_pa", "sigma_b_pa",
@@ -144,9 +147,7 @@ def dataset_fit_lines(data: dict, fit: dict) -> list[str]:
         f"{data['non_converged']} — {data['wall_time_s']:.1f} s"]
     for message, count in (data.get("failures") or {}).items():
         lines.append(f"                  {count} failed: {message}")
-    branches = ", ".join(f"{b}: n={v['n_obs']}, adj R² {v['adj_r2']:.3f}" for b, v in fit["branches"].items())
-    lines.append(f"stage 2 fit       {fit['artefact']}: {fit['n_used']} rows used ({branches}); CV RMSE ln μ "
-                 f"{fit['cv_rmse_ln_mu']:.3f}; stable {fit['stable']} — {fit['wall_time_s']:.1f} s")
+    lines.append(fit_line(fit))
     return lines
 
 
@@ -154,7 +155,7 @@ def _human(p: dict) -> str:
     s = p["stages"]
     data, fit, design = s["dataset"], s["fit"], s["design"]
     lines = [p["label"]] if p.get("label") else []
-    lines += dataset_fit_lines(data, fit)
+    lines += dataset_fit_lines(data, fit) + stage2_lines(s)
     lines.append(f"stage 3 design {design['design']} at {design['torque_nm']:.0f} N·m, {design['speed_rpm']:.0f} rpm, "
                  f"{design['oil_temperature_k'] - 273.15:.0f} °C, Rq {design['rq1_m'] * 1e6:.2g} µm, M_P "
                  f"{design['profile_crown_m'] * 1e6:.3g} µm, M_L {design['lead_crown_m'] * 1e6:.3g} µm — "

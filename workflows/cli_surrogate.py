@@ -20,6 +20,12 @@ def register(subparsers) -> None:
                      help="half width of the lambda band where the branches are blended (0 = hard switch; 0.1)")
     fit.add_argument("--allow-unstable", action="store_true", help="write the file even if the fit is unstable")
     fit.add_argument("--figures", default=None, metavar="DIR", help="also write diagnostic figures into DIR")
+    fit.add_argument("--form", choices=("eq9", "learned"), default="eq9",
+                     help="eq9 (paper Eq. 9, statsmodels OLS, prediction intervals) or learned (ensemble of small "
+                          "perceptrons, calibrated intervals); default eq9")
+    fit.add_argument("--offgrid", default=None, metavar="DATASET",
+                     help="solved off-grid sample (HDF5, e.g. DIR/offgrid.h5 of gearloss lubricant fit) whose errors "
+                          "of mu and interval coverage the coefficient file records")
     fit.add_argument("--json", action="store_true", help="print one JSON object")
     fit.set_defaults(handler=_fit)
 
@@ -35,6 +41,10 @@ def register(subparsers) -> None:
     from .cli_validity import add_validity_options
 
     add_validity_options(pred)
+    pred.add_argument("--coverage", type=float, default=0.9,
+                      help="coverage of the printed prediction interval of mu (default 0.9)")
+    pred.add_argument("--offgrid", action="store_true",
+                      help="also print the off-grid validation the coefficient file records (always in --json)")
     pred.add_argument("--json", action="store_true", help="print one JSON object")
     pred.set_defaults(handler=_predict)
 
@@ -63,13 +73,23 @@ def _fit(args) -> int:
     from surrogate.fit import fit_surrogate
     from workflows.cli_output import emit
 
+    from workflows.surrogate_stage import offgrid_table_for
+
     _check_folds(args.k_folds)
     data = load_dataset(args.dataset, args.lubricant)
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        fit = fit_surrogate(data.table, data.lubricant, data.e_reduced, k_folds=args.k_folds, seed=args.seed,
-                            blend_half_width=args.blend, allow_unstable=args.allow_unstable)
-    path = write_coefficients(fit, args.out, source=data.source)
+        if args.form == "learned":
+            from surrogate.learned_fit import fit_learned
+
+            fit = fit_learned(data.table, data.lubricant, data.e_reduced, members=args.k_folds, seed=args.seed)
+        else:
+            fit = fit_surrogate(data.table, data.lubricant, data.e_reduced, k_folds=args.k_folds, seed=args.seed,
+                                blend_half_width=args.blend, allow_unstable=args.allow_unstable)
+        offgrid = offgrid_table_for(fit, args.offgrid)
+    path = write_coefficients(fit, args.out, source=data.source, offgrid=offgrid)
+    if args.form == "learned":
+        return _fit_learned_output(args, fit, path, offgrid, caught)
     figures = []
     if args.figures:
         from surrogate.diagnostics import plot_figures
@@ -96,8 +116,34 @@ def _fit(args) -> int:
         "figures": figures,
         "warnings": notes,
         "wall_time_s": fit.fit_time_s,
+        "offgrid": offgrid,
     }
     emit(payload, args.json, _fit_text)
+    return 0
+
+
+def _fit_learned_output(args, fit, path, offgrid, caught) -> int:
+    from surrogate.coefficients import summary_path
+    from surrogate.offgrid import offgrid_lines
+    from workflows.cli_output import emit
+
+    notes = [str(w.message) for w in caught]
+    for note in notes:
+        print(f"gearloss: warning: {note}", file=sys.stderr)
+    payload = {"coefficients_path": str(path), "summary_path": str(summary_path(path)), "form": "learned",
+               "n_input_rows": fit.n_input_rows, "n_used": fit.n_used, "exclusions": fit.exclusions,
+               "members": fit.ensemble.members, "cross_validation": fit.cv,
+               "interval_score_quantiles": {f"{c:g}": q for c, q in fit.ensemble.score_quantiles.items()},
+               "offgrid": offgrid, "warnings": notes, "wall_time_s": fit.fit_time_s}
+
+    def text(p):
+        cv = p["cross_validation"]["overall"]
+        return "\n".join([f"wrote {p['coefficients_path']} (+ {p['summary_path']})",
+                          f"learned ensemble of {p['members']} perceptrons on {p['n_used']} rows: out-of-fold RMSE "
+                          f"ln mu = {cv['rmse_ln_mu']:.4f}, median |rel err mu| = {cv['median_rel_err_mu']:.2%}"]
+                         + (offgrid_lines(p["offgrid"]) if p["offgrid"] else []))
+
+    emit(payload, args.json, text)
     return 0
 
 
@@ -115,6 +161,10 @@ def _fit_text(p) -> str:
         lines.append(f"jump of the unblended branches at lambda = 1: median |d ln mu| = "
                      f"{jump['median_abs_delta_ln_mu']:.3f}, p95 = {jump['p95_abs_delta_ln_mu']:.3f}")
     lines.append(f"stable: {p['stable']}")
+    if p.get("offgrid"):
+        from surrogate.offgrid import offgrid_lines
+
+        lines.extend(offgrid_lines(p["offgrid"]))
     lines.extend(f"figure: {f}" for f in p["figures"])
     return "\n".join(lines)
 
@@ -142,10 +192,12 @@ def _predict(args) -> int:
     surrogate = FrictionSurrogate.load(args.coefficients, clip_to_fitted_ranges=not args.no_clip)
     inputs = (args.p_h_gpa * 1e9, args.r_eq_mm * 1e-3, args.u_r, args.sr, args.temp_c + 273.15,
               args.rq1_um * 1e-6, args.rq2_um * 1e-6)
+    check_range("coverage", args.coverage, 0.0, 1.0, low_inclusive=False, high_inclusive=False)
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         feats = surrogate.features(*inputs, warn=False)
-        mu = float(np.ravel(surrogate.mu(*inputs, warn=False))[0])
+        mu_arr, low_arr, high_arr = surrogate.mu_interval(*inputs, alpha=1.0 - args.coverage, warn=False)
+        mu = float(np.ravel(mu_arr)[0])
     notes = [str(w.message) for w in caught]
     # the policy of gear evaluate (surrogate.validity): inputs clipped to the fitted ranges, counted per input
     arrays = surrogate.validate(*inputs)
@@ -162,6 +214,13 @@ def _predict(args) -> int:
         "extrapolated_inputs": outside if args.no_clip else {k: 0 for k in outside},
         "note": clipping_note(outside, 1, clipped=not args.no_clip) if any(outside.values()) else "",
         "warnings": notes,
+        "mu_low": None if low_arr is None else float(np.ravel(low_arr)[0]),
+        "mu_high": None if high_arr is None else float(np.ravel(high_arr)[0]),
+        "interval_coverage": args.coverage if low_arr is not None else None,
+        "interval_note": "" if low_arr is not None else ("no prediction interval: the coefficient file (format 1) "
+                                                         "records no coefficient covariance; refit to get one"),
+        "form": surrogate.form,
+        "offgrid": surrogate.offgrid,
         "formula": doc["formula"]["name"],
         "lubricant": surrogate.lubricant.name,
         "coefficients": surrogate.coefficients.path,
@@ -170,13 +229,21 @@ def _predict(args) -> int:
     options = {"p_h": "p-h-gpa", "r_eq": "r-eq-mm", "u_r": "u-r", "sr": "sr", "temperature": "temp-c",
                "rq1": "rq1-um", "rq2": "rq2-um"}
     first = next((k for k, v in outside.items() if v), None)
-    return finish(payload, [check], args, _predict_text,
+    return finish(payload, [check], args, lambda p: _predict_text(p, args.offgrid),
                   options={"friction_surrogate_range": options.get(first, "p-h-gpa")})
 
 
-def _predict_text(p) -> str:
+def _predict_text(p, show_offgrid: bool = False) -> str:
     text = (f"mu = {p['mu']:.5f}  (lambda_bar = {p['lambda_bar']:.3f}, branch {p['branch']}, {p['formula']}, "
             f"lubricant {p['lubricant']})")
+    if p.get("mu_low") is not None:
+        text += f"\n{p['interval_coverage']:.0%} prediction interval of mu: [{p['mu_low']:.5f}, {p['mu_high']:.5f}]"
+    elif p.get("interval_note"):
+        text += f"\n{p['interval_note']}"
+    if show_offgrid:
+        from surrogate.offgrid import offgrid_lines
+
+        text += "\n" + "\n".join(offgrid_lines(p.get("offgrid")))
     return text
 
 
