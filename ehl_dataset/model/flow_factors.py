@@ -69,7 +69,18 @@ DEFAULT_BLEND = (2.5, 3.5)
 
 
 def pc_pressure_flow_factor(H):
-    """Patir & Cheng (1978) pressure flow factor φ_x(H) = 1 − 0.90 e^{−0.56H} (γ = 1) and dφ_x/dH."""
+    """Patir & Cheng (1978) pressure flow factor φ_x(H) = 1 − 0.90 e^{−0.56H} (γ = 1) and dφ_x/dH.
+
+    Parameters
+    ----------
+    H : array_like
+        Nominal separation over the composite RMS roughness, h/σ [-].
+
+    Returns
+    -------
+    tuple of ndarray
+        (φ_x, its derivative with respect to the argument) [-].
+    """
     c, r = PC_PRESSURE
     e = c * np.exp(-r * np.asarray(H, dtype=float))
     return 1.0 - e, r * e
@@ -77,8 +88,20 @@ def pc_pressure_flow_factor(H):
 
 def pc_shear_flow_factor(H):
     """Patir & Cheng (1979) shear flow factor Φ_s(H) (γ = 1, one rough surface of variance ratio 1) and dΦ_s/dH.
+
     The published branches A1 H^α1 e^{−α2H+α3H²} (H ≤ 5) and A2 e^{−H/4} (H > 5) differ by 0.06 % at H = 5 and
-    their slopes by 10 %; they are blended over 4.75 ≤ H ≤ 5.25 (cubic smoothstep) to make Φ_s C¹. H ≤ 0 gives 0."""
+    their slopes by 10 %; they are blended over 4.75 ≤ H ≤ 5.25 (cubic smoothstep) to make Φ_s C¹. H ≤ 0 gives 0.
+
+    Parameters
+    ----------
+    H : array_like
+        Nominal separation over the composite RMS roughness, h/σ [-].
+
+    Returns
+    -------
+    tuple of ndarray
+        (Φ_s, its derivative with respect to the argument) [-].
+    """
     a1, al1, al2, al3, a2 = PC_SHEAR_FLOW
     H = np.asarray(H, dtype=float)
     hp = np.maximum(H, 1e-300)
@@ -90,9 +113,21 @@ def pc_shear_flow_factor(H):
 
 
 def pc_couette_stress_factor(H):
-    """Patir & Cheng (1979) shear stress factor φ_f(H) of Gaussian heights truncated at ±3σ (density
-    (35/96)(1 − x²/9)³): φ_f = E[h/h_local] with local gaps cut off at 0.01σ for H ≤ 3; 1 for H ≥ 30. Returns
-    (φ_f, dφ_f/dH) (derivative by a centred difference of the closed form)."""
+    """Patir & Cheng (1979) shear stress factor φ_f(H) of Gaussian heights truncated at ±3σ.
+
+    Density (35/96)(1 − x²/9)³: φ_f = E(h/h_local) with local gaps cut off at 0.01σ for H ≤ 3; 1 for H ≥ 30. The
+    derivative is a centred difference of the closed form.
+
+    Parameters
+    ----------
+    H : array_like
+        Nominal separation over the composite RMS roughness, h/σ [-].
+
+    Returns
+    -------
+    tuple of ndarray
+        (φ_f, its derivative with respect to the argument) [-].
+    """
     def closed(Hv):
         z = np.asarray(Hv, dtype=float) / 3.0
         zc = np.minimum(z, 1.0)
@@ -109,8 +144,20 @@ def pc_couette_stress_factor(H):
 
 
 def pc_shear_stress_factor(H):
-    """Patir & Cheng (1979) Φ_fs(H) = 11.1 H^2.31 exp(−2.38H + 0.11H²) for 0 < H < 7, 0 beyond (γ = 1), and its
-    derivative (the published form drops from 0.0127 to 0 at H = 7)."""
+    """Patir & Cheng (1979) Φ_fs(H) = 11.1 H^2.31 exp(−2.38H + 0.11H²) for 0 < H < 7, 0 beyond (γ = 1).
+
+    The published form drops from 0.0127 to 0 at H = 7.
+
+    Parameters
+    ----------
+    H : array_like
+        Nominal separation over the composite RMS roughness, h/σ [-].
+
+    Returns
+    -------
+    tuple of ndarray
+        (Φ_fs, its derivative with respect to the argument) [-].
+    """
     a3, a4, a5, a6 = PC_SHEAR_STRESS
     H = np.asarray(H, dtype=float)
     inside = (H > 0) & (H < 7.0)
@@ -120,23 +167,61 @@ def pc_shear_stress_factor(H):
 
 
 def pc_pressure_stress_factor(H):
-    """Patir & Cheng (1979) φ_fp(H) = 1 − 1.40 e^{−0.66H} (γ = 1) and its derivative."""
+    """Patir & Cheng (1979) φ_fp(H) = 1 − 1.40 e^{−0.66H} (γ = 1) and its derivative.
+
+    Parameters
+    ----------
+    H : array_like
+        Nominal separation over the composite RMS roughness, h/σ [-].
+
+    Returns
+    -------
+    tuple of ndarray
+        (φ_fp, its derivative with respect to the argument) [-].
+    """
     dd, s = PC_PRESSURE_STRESS
     e = dd * np.exp(-s * np.asarray(H, dtype=float))
     return 1.0 - e, s * e
 
 
 def wm_pressure_conductance(H_T):
-    """Wilson & Marsault (1998) normalised pressure-flow conductance φ_x H_T³ = a2 (H_T − H_c)² + a3 (H_T − H_c)³
-    for H_T ≥ H_c, else 0 (γ = 1: H_c = 0.2777, a2 = 0.3774, a3 = 1.0019), and its derivative."""
+    """Wilson & Marsault (1998) normalised pressure-flow conductance φ_x H_T³ and its derivative.
+
+    φ_x H_T³ = a2 (H_T − H_c)² + a3 (H_T − H_c)³ for H_T ≥ H_c, else 0 (γ = 1: H_c = 0.2777, a2 = 0.3774,
+    a3 = 1.0019).
+
+    Parameters
+    ----------
+    H_T : array_like
+        Mean gap over the composite RMS roughness, h_T/σ [-].
+
+    Returns
+    -------
+    tuple of ndarray
+        (φ_x H_T³, its derivative with respect to the argument) [-].
+    """
     x = np.maximum(np.asarray(H_T, dtype=float) - WM_HC, 0.0)
     return WM_A2 * x**2 + WM_A3 * x**3, 2 * WM_A2 * x + 3 * WM_A3 * x**2
 
 
 def wm_shear_flow_factor(H_T, gamma: float = 1.0):
-    """Wilson & Marsault (1998) shear flow factor Φ_s(H_T) for γ ≥ 1 (polynomial fit of their Fig. 4, continued by
-    Patir & Cheng's A2 e^{−H_T/4} above H_T = 5 with A2 matching the polynomial there), without the cap Φ_s ≤ H_T
-    (applied by the caller), and its derivative."""
+    """Wilson & Marsault (1998) shear flow factor Φ_s(H_T) for γ ≥ 1 and its derivative.
+
+    A polynomial fit of their Fig. 4, continued by Patir & Cheng's A2 e^{−H_T/4} above H_T = 5 with A2 matching the
+    polynomial there; without the cap Φ_s ≤ H_T (applied by the caller).
+
+    Parameters
+    ----------
+    H_T : array_like
+        Mean gap over the composite RMS roughness, h_T/σ [-].
+    gamma : float
+        Peklenik surface pattern parameter γ, ≥ 1 [-].
+
+    Returns
+    -------
+    tuple of ndarray
+        (Φ_s, its derivative with respect to the argument) [-].
+    """
     if gamma < 1.0:
         raise InputError("gamma", gamma, ">= 1 (the fit's γ ≥ 1 branch)")
     H = np.asarray(H_T, dtype=float)
@@ -157,15 +242,38 @@ def wm_shear_flow_factor(H_T, gamma: float = 1.0):
 
 
 def gaussian_mean_gap_ratio(H):
-    """Mean gap of rigid Gaussian surfaces at nominal separation ratio H (Patir & Cheng 1978):
-    H_T = (H/2)(1 + erf(H/√2)) + e^{−H²/2}/√(2π), and dH_T/dH = (1 + erf(H/√2))/2."""
+    """Mean gap of rigid Gaussian surfaces at nominal separation ratio H (Patir & Cheng 1978).
+
+    H_T = (H/2)(1 + erf(H/√2)) + e^{−H²/2}/√(2π), and dH_T/dH = (1 + erf(H/√2))/2.
+
+    Parameters
+    ----------
+    H : array_like
+        Nominal separation over the composite RMS roughness, h/σ [-].
+
+    Returns
+    -------
+    tuple of ndarray
+        (H_T, its derivative with respect to the argument) [-].
+    """
     H = np.asarray(H, dtype=float)
     return 0.5 * H * (1 + erf(H / math.sqrt(2))) + np.exp(-0.5 * H * H) / math.sqrt(2 * math.pi), \
         0.5 * (1 + erf(H / math.sqrt(2)))
 
 
 def nominal_ratio_from_mean_gap(H_T):
-    """Inverse of :func:`gaussian_mean_gap_ratio` (Newton, H_T > 0) and dH/dH_T."""
+    """Inverse of :func:`gaussian_mean_gap_ratio` (Newton, H_T > 0) and dH/dH_T.
+
+    Parameters
+    ----------
+    H_T : array_like
+        Mean gap over the composite RMS roughness, h_T/σ [-].
+
+    Returns
+    -------
+    tuple of ndarray
+        (H, its derivative with respect to the argument) [-].
+    """
     H_T = np.asarray(H_T, dtype=float)
     if np.any(H_T <= 0):
         raise InputError("H_T", "array" if H_T.ndim else float(H_T), "mean-gap ratios > 0")
@@ -199,14 +307,38 @@ def _smooth_min(a, da, b, db, width):
 # ---------------------------------------------------------------------------------------------------------------
 @dataclass(frozen=True)
 class FlowFactors:
-    """Averaged-Reynolds coefficients at separations d [m] (arrays of d's shape), with derivatives w.r.t. d.
+    """Averaged-Reynolds coefficients at separations d (arrays of d's shape), with derivatives with respect to d.
 
-    ``mean_gap`` h_T [m] (lubricant volume per area), ``conductance`` C_p [m³], ``shear_flow`` S_φ = σφ_s [m]
-    (transport weight included) — the flux is q̄ = −C_p/(12η) ∂p̄/∂x + u_m h_T + ((u1 − u2)/2) S_φ;
-    ``d_*`` their d-derivatives. Shear-stress factors referred to h_T (mean shear stress on surface 1 and 2,
-    Newtonian): τ̄₁ = (η(u2 − u1)/h_T)(φ_f − φ_fs) − φ_fp (h_T/2) ∂p̄/∂x and
-    τ̄₂ = −(η(u2 − u1)/h_T)(φ_f + φ_fs) − φ_fp (h_T/2) ∂p̄/∂x; ``lubricated_fraction`` 1 − contact fraction;
-    ``sigma`` σ [m]; ``model`` the closure's name.
+    The flux is q̄ = −C_p/(12η) ∂p̄/∂x + u_m h_T + ((u1 − u2)/2) S_φ. Shear-stress factors are referred to h_T (mean
+    shear stress on surface 1 and 2, Newtonian): τ̄₁ = (η(u2 − u1)/h_T)(φ_f − φ_fs) − φ_fp (h_T/2) ∂p̄/∂x and
+    τ̄₂ = −(η(u2 − u1)/h_T)(φ_f + φ_fs) − φ_fp (h_T/2) ∂p̄/∂x.
+
+    Parameters
+    ----------
+    mean_gap : ndarray
+        Mean gap h_T, the lubricant volume per area [m].
+    d_mean_gap : ndarray
+        dh_T/dd [-].
+    conductance : ndarray
+        Pressure-flow conductance C_p [m³].
+    d_conductance : ndarray
+        dC_p/dd [m²].
+    shear_flow : ndarray
+        Shear flow S_φ = σφ_s, transport weight included [m].
+    d_shear_flow : ndarray
+        dS_φ/dd [-].
+    phi_f : ndarray
+        Couette stress factor φ_f [-].
+    phi_fs : ndarray
+        Shear stress factor φ_fs [-].
+    phi_fp : ndarray
+        Pressure stress factor φ_fp [-].
+    lubricated_fraction : ndarray
+        1 − contact fraction [-].
+    sigma : float
+        Composite RMS roughness σ [m].
+    model : str
+        Name of the closure [-].
     """
 
     mean_gap: np.ndarray
@@ -233,12 +365,46 @@ class FlowFactors:
         return self.shear_flow / self.sigma
 
     def flux(self, dpdx, eta, u1: float, u2: float):
-        """Averaged flux q̄ [m²/s] for the mean pressure gradient ``dpdx`` [Pa/m] and viscosity ``eta`` [Pa s]."""
+        """Averaged flux q̄ for a mean pressure gradient.
+
+        Parameters
+        ----------
+        dpdx : array_like
+            Mean pressure gradient [Pa/m].
+        eta : array_like
+            Viscosity [Pa s].
+        u1 : float
+            Velocity of surface 1 [m/s].
+        u2 : float
+            Velocity of surface 2 [m/s].
+
+        Returns
+        -------
+        ndarray
+            q̄ [m²/s].
+        """
         return -self.conductance * np.asarray(dpdx) / (12.0 * np.asarray(eta)) + 0.5 * (u1 + u2) * self.mean_gap \
             + 0.5 * (u1 - u2) * self.shear_flow
 
     def shear_stresses(self, dpdx, eta, u1: float, u2: float):
-        """Newtonian mean shear stresses (τ̄₁ on surface 1, τ̄₂ on surface 2) [Pa] over the whole cell."""
+        """Newtonian mean shear stresses on surfaces 1 and 2 over the whole cell.
+
+        Parameters
+        ----------
+        dpdx : array_like
+            Mean pressure gradient [Pa/m].
+        eta : array_like
+            Viscosity [Pa s].
+        u1 : float
+            Velocity of surface 1 [m/s].
+        u2 : float
+            Velocity of surface 2 [m/s].
+
+        Returns
+        -------
+        tuple of ndarray
+            (τ̄₁, τ̄₂) [Pa].
+        """
         couette = np.asarray(eta) * (u2 - u1) / self.mean_gap
         poiseuille = self.phi_fp * 0.5 * self.mean_gap * np.asarray(dpdx)
         return couette * (self.phi_f - self.phi_fs) - poiseuille, -couette * (self.phi_f + self.phi_fs) - poiseuille
@@ -260,13 +426,28 @@ def transport_weight(transport, rq1: float, rq2: float) -> float:
 
 
 def transverse_flow_factors(table, d, h_b: float = 1e-9, transport="variance") -> FlowFactors:
-    """The exact 1-D (transverse roughness, no side leakage) closure from the dry-contact ``table`` at separations
-    ``d`` [m], with the film-breakdown floor ``h_b`` [m] (the cell's gap is max(g, h_b); needed because any contact
-    blocks a 1-D cell: ⟨g⁻³⟩ = ∞ for h_b = 0), and the roughness ``transport`` (module doc).
+    """The exact 1-D closure (transverse roughness, no side leakage) from a dry-contact table.
 
     C_p = 1/M₋₃, h_T = M₁, S_φ = (2w − 1)(M₁ − M₋₂/M₋₃) with M_k = ⟨max(g, h_b)^k⟩; shear-stress factors
     φ_f = h_T ⟨g⁻¹⟩_lub (open gaps only: contact spots carry μ_d p instead), φ_fp = M₋₂/(h_T M₋₃),
     φ_fs = 3(2w − 1) h_T (M₋₁ − M₋₂²/M₋₃).
+
+    Parameters
+    ----------
+    table : DryContactTable
+        Dry-contact table of the roughness pair [-].
+    d : array_like
+        Separations [m].
+    h_b : float
+        Film-breakdown floor: the cell's gap is max(g, h_b), needed because any contact blocks a 1-D cell
+        (⟨g⁻³⟩ = ∞ for h_b = 0) [m].
+    transport : str
+        Roughness transport weight (module docstring): ``variance``, ``mean``, ``surface1`` or ``surface2`` [-].
+
+    Returns
+    -------
+    FlowFactors
+        The coefficients at ``d``.
     """
     check_range("h_b", h_b, 0.0, 1e-3, low_inclusive=False, unit="m")
     w = transport_weight(transport, table.meta["rq1_m"], table.meta["rq2_m"])
@@ -290,11 +471,29 @@ def transverse_flow_factors(table, d, h_b: float = 1e-9, transport="variance") -
 
 
 def isotropic_flow_factors(table, d, transport="variance", blend=DEFAULT_BLEND) -> FlowFactors:
-    """Isotropic (γ = 1) closure with side leakage at separations ``d`` [m]: Patir & Cheng above H_T = blend[1],
-    Wilson & Marsault below blend[0], cubic-smoothstep blend of C_p and S_φ in between (module doc). H_T = h_T/σ
-    with h_T = ⟨g⟩ from the dry-contact ``table`` (elastic–plastic asperities); the Patir–Cheng factors are taken
-    at the nominal H of rigid Gaussian surfaces with the same mean gap. Below the percolation threshold
-    H_T < H_c = 0.278 the pressure flow vanishes (C_p = 0, no Poiseuille flow through the cell)."""
+    """Isotropic (γ = 1) closure with side leakage at separations ``d``.
+
+    Patir & Cheng above H_T = blend[1], Wilson & Marsault below blend[0], cubic-smoothstep blend of C_p and S_φ in
+    between (module docstring). H_T = h_T/σ with h_T = ⟨g⟩ from the dry-contact table (elastic–plastic asperities);
+    the Patir–Cheng factors are taken at the nominal H of rigid Gaussian surfaces with the same mean gap. Below the
+    percolation threshold H_T < H_c = 0.278 the pressure flow vanishes (C_p = 0).
+
+    Parameters
+    ----------
+    table : DryContactTable
+        Dry-contact table of the roughness pair [-].
+    d : array_like
+        Separations [m].
+    transport : str
+        Roughness transport weight (module docstring) [-].
+    blend : tuple of float
+        H_T range of the blend between the two closures [-].
+
+    Returns
+    -------
+    FlowFactors
+        The coefficients at ``d``.
+    """
     lo, hi = (float(v) for v in blend)
     if not 0.5 <= lo < hi <= 10.0:
         raise InputError("blend", blend, "two mean-gap ratios 0.5 <= lo < hi <= 10")
@@ -337,10 +536,31 @@ def isotropic_flow_factors(table, d, transport="variance", blend=DEFAULT_BLEND) 
 # Traction
 # ---------------------------------------------------------------------------------------------------------------
 def lubricated_shear_stress(table, d, eta, u_s: float, tau0: float, h_b: float = 1e-9):
-    """Mean Couette (Eyring) shear stress over the nominal area carried by the lubricant [Pa]: the cell average
-    of τ0 asinh(η u_s/(τ0 g)) over the open gaps (g > 0, floored at h_b), i.e. already weighted by the lubricated
-    fraction (:meth:`DryContactTable.open_gap_expectation`). ``d`` [m], ``eta`` [Pa s] scalar or one per d,
-    ``u_s`` = u1 − u2 [m/s], ``tau0`` Eyring stress [Pa] (``math.inf``: Newtonian η u_s/g)."""
+    """Mean Couette (Eyring) shear stress over the nominal area carried by the lubricant.
+
+    The cell average of τ0 asinh(η u_s/(τ0 g)) over the open gaps (g > 0, floored at h_b), i.e. already weighted by
+    the lubricated fraction (:meth:`DryContactTable.open_gap_expectation`).
+
+    Parameters
+    ----------
+    table : DryContactTable
+        Dry-contact table [-].
+    d : array_like
+        Separations [m].
+    eta : float or array_like
+        Viscosity, scalar or one per d [Pa s].
+    u_s : float
+        Sliding velocity u1 − u2 [m/s].
+    tau0 : float
+        Eyring stress; ``math.inf``: Newtonian η u_s/g [Pa].
+    h_b : float
+        Gap floor [m].
+
+    Returns
+    -------
+    ndarray
+        Mean shear stress [Pa].
+    """
     d_arr = np.asarray(d, dtype=float)
     eta_rows = np.broadcast_to(np.asarray(eta, dtype=float), d_arr.shape).reshape(-1)[:, None]
     out = np.asarray(table.open_gap_expectation(d_arr.reshape(-1),
@@ -349,17 +569,57 @@ def lubricated_shear_stress(table, d, eta, u_s: float, tau0: float, h_b: float =
 
 
 def eyring_shear(g, eta, u_s: float, tau0: float):
-    """Couette shear stress at gap g [m]: τ0 asinh(η u_s/(τ0 g)) (Eyring, the project's ehl_dataset/traction.py
-    form), or η u_s/g for τ0 = ∞ [Pa]."""
+    """Couette shear stress at gap g: τ0 asinh(η u_s/(τ0 g)) (Eyring), or η u_s/g for τ0 = ∞.
+
+    Parameters
+    ----------
+    g : array_like
+        Gap [m].
+    eta : array_like
+        Viscosity [Pa s].
+    u_s : float
+        Sliding velocity [m/s].
+    tau0 : float
+        Eyring stress [Pa].
+
+    Returns
+    -------
+    ndarray
+        τ [Pa].
+    """
     if math.isinf(tau0):
         return np.asarray(eta) * u_s / g
     return tau0 * np.arcsinh(np.asarray(eta) * u_s / (tau0 * g))
 
 
 def traction(table, d, eta, u_s: float, tau0: float, mu_dry: float, h_b: float = 1e-9):
-    """Mean surface traction [Pa] of the homogenised model: Eyring shear over the lubricated fraction
-    (:func:`lubricated_shear_stress`) + sign(u_s) μ_d p_a(d) (the asperity friction opposes sliding, the project's
-    convention in ehl_dataset/traction.py; the rolling (Poiseuille) part is the macro solver's ±(h/2)∂p/∂x)."""
+    """Mean surface traction of the homogenised model: Eyring shear over the lubricated fraction plus asperity friction.
+
+    (:func:`lubricated_shear_stress`) + sign(u_s) μ_d p_a(d): the asperity friction opposes sliding; the rolling
+    (Poiseuille) part is the macro solver's ±(h/2)∂p/∂x.
+
+    Parameters
+    ----------
+    table : DryContactTable
+        Dry-contact table [-].
+    d : array_like
+        Separations [m].
+    eta : float or array_like
+        Viscosity [Pa s].
+    u_s : float
+        Sliding velocity u1 − u2 [m/s].
+    tau0 : float
+        Eyring stress [Pa].
+    mu_dry : float
+        Boundary friction coefficient μ_d [-].
+    h_b : float
+        Gap floor [m].
+
+    Returns
+    -------
+    ndarray
+        Mean traction [Pa].
+    """
     check_range("mu_dry", mu_dry, 0.0, 2.0)
     shear = lubricated_shear_stress(table, d, eta, u_s, tau0, h_b)
     return shear + math.copysign(1.0, u_s) * (u_s != 0) * mu_dry * np.asarray(table.asperity_pressure(d))

@@ -36,8 +36,10 @@ MICRO_PRESSURE_INLET_SCALE = 2.99
 
 
 def micro_pressure_coefficient(inlet_over_beta: float) -> float:
-    """c of σ_p = c·E'Δq/4 [-] at the inlet length L_in/β [-] of the contact (L_in the film law's inlet length,
-    :func:`ehl_dataset.solvers.wide_contact.inlet_length`; β the correlation length):
+    """Coefficient c of the pressure-fluctuation closure σ_p = c·E'Δq/4 at the contact's inlet length.
+
+    L_in is the film law's inlet length (:func:`ehl_dataset.solvers.wide_contact.inlet_length`), β the correlation
+    length:
 
         c = c0 / (1 + (L_in/(β·L0))²)   (:data:`MICRO_PRESSURE_C0`, :data:`MICRO_PRESSURE_INLET_SCALE`).
 
@@ -47,7 +49,18 @@ def micro_pressure_coefficient(inlet_over_beta: float) -> float:
     Hertz zone (c → 0: the deterministic windows agree with the film law without fluctuations at L_in/β 6–12), and
     where it is a few β, each asperity carries its own pressure peak through the contact (c ≈ 0.2 at L_in/β 2–3).
     The spread is not the deterministic run's own σ_p (0.76 GPa at the centre of case A, β/16, about twice c·E'Δq/4)
-    because the closure pairs it with the smooth pressure and gaps independent of the pressure."""
+    because the closure pairs it with the smooth pressure and gaps independent of the pressure.
+
+    Parameters
+    ----------
+    inlet_over_beta : float
+        L_in/β [-].
+
+    Returns
+    -------
+    float
+        c [-].
+    """
     if not inlet_over_beta >= 0.0:
         raise ValueError(f"inlet_over_beta = {inlet_over_beta!r}: accepted range [0, inf)")
     return MICRO_PRESSURE_C0 / (1.0 + (inlet_over_beta / MICRO_PRESSURE_INLET_SCALE) ** 2)
@@ -60,9 +73,25 @@ _SLOPE_CACHE: dict[tuple[str, float, float], float] = {}
 
 
 def composite_slope_rms(profile: RoughnessProfile, rq1: float, rq2: float) -> float:
-    """Δq [-]: r.m.s. slope of the composite roughness z = R1 + R2 of the pair (``profile`` scaled to Rq1, Rq2 [m]),
-    pooled over the dry-contact tables' periodic windows (:func:`ehl_dataset.model.dry_contact.composite_windows`),
-    by the exact derivative of their Fourier series (cached per profile and Rq pair)."""
+    """R.m.s. slope Δq of the composite roughness z = R1 + R2 of a pair.
+
+    Pooled over the dry-contact tables' periodic windows (:func:`ehl_dataset.model.dry_contact.composite_windows`), by
+    the exact derivative of their Fourier series (cached per profile and Rq pair).
+
+    Parameters
+    ----------
+    profile : RoughnessProfile
+        Shape of both surfaces [-].
+    rq1 : float
+        RMS roughness of surface 1 [m].
+    rq2 : float
+        RMS roughness of surface 2 [m].
+
+    Returns
+    -------
+    float
+        Δq [-].
+    """
     key = (profile_hash(profile), float(rq1), float(rq2))
     if key not in _SLOPE_CACHE:
         z, spacing = composite_windows(profile, rq1, rq2, windows_that_fit(profile))
@@ -73,16 +102,44 @@ def composite_slope_rms(profile: RoughnessProfile, rq1: float, rq2: float) -> fl
 
 
 def flattening_pressure_rms(e_reduced: float, slope_rms: float) -> float:
-    """E'·Δq/4 [Pa]: r.m.s. of the pressure that flattens a composite roughness of r.m.s. slope Δq [-] between two
-    elastic half-spaces of reduced modulus E' [Pa] (plane strain; module docstring)."""
+    """R.m.s. E'·Δq/4 of the pressure that flattens a composite roughness of r.m.s. slope Δq between two elastic
+    half-spaces (plane strain; module docstring).
+
+    Parameters
+    ----------
+    e_reduced : float
+        Reduced modulus E' [Pa].
+    slope_rms : float
+        Δq [-].
+
+    Returns
+    -------
+    float
+        E'·Δq/4 [Pa].
+    """
     return 0.25 * e_reduced * slope_rms
 
 
 def gamma_pressure_quantiles(mean_pa, std_pa, count: int = PRESSURE_QUANTILES) -> np.ndarray:
-    """Pressures [Pa], shape (len(mean_pa), count): the equal-probability levels (i + ½)/count of a gamma
-    distribution with mean p̄ (each entry of ``mean_pa``) and standard deviation σ_p (``std_pa``, a scalar or one per
-    entry), rescaled so that their mean is p̄ exactly (the quadrature conserves the load; it truncates the tail, so
-    its standard deviation is below σ_p where σ_p > p̄). p̄ ≤ 0 gives zeros; σ_p = 0 gives p̄."""
+    """Equal-probability levels (i + ½)/count of a gamma distribution of pressure (mean p̄, standard deviation σ_p).
+
+    Rescaled so that their mean is p̄ exactly (the quadrature conserves the load; it truncates the tail, so its
+    standard deviation is below σ_p where σ_p > p̄). p̄ ≤ 0 gives zeros; σ_p = 0 gives p̄.
+
+    Parameters
+    ----------
+    mean_pa : array_like
+        Mean pressures p̄ [Pa].
+    std_pa : float or array_like
+        Standard deviation σ_p, a scalar or one per entry of ``mean_pa`` [Pa].
+    count : int
+        Number of levels [-].
+
+    Returns
+    -------
+    ndarray
+        Shape (len(mean_pa), count) [Pa].
+    """
     mean = np.maximum(np.asarray(mean_pa, dtype=float).ravel(), 0.0)
     std = np.broadcast_to(np.asarray(std_pa, dtype=float), mean.shape)
     levels = (np.arange(count) + 0.5) / count

@@ -108,10 +108,26 @@ NEWTON_STEPS = 100
 
 @dataclass(frozen=True)
 class ThermalProperties:
-    """Thermal properties of a lubricated contact (SI). ``oil_conductivity`` k [W/(m·K)], ``oil_heat_capacity``
-    [J/(kg·K)]; ``solid_conductivity`` [W/(m·K)], ``solid_density`` [kg/m³], ``solid_heat_capacity`` [J/(kg·K)] of
-    both bodies; ``beta_override`` a constant temperature–viscosity coefficient [1/K] replacing the one derived from
-    the lubricant's viscosity data (None: derived); ``source`` where the values come from."""
+    """Thermal properties of a lubricated contact (SI).
+
+    Parameters
+    ----------
+    oil_conductivity : float
+        Thermal conductivity k of the oil [W/(m K)].
+    oil_heat_capacity : float
+        Specific heat capacity of the oil [J/(kg K)].
+    solid_conductivity : float
+        Thermal conductivity of both bodies [W/(m K)].
+    solid_density : float
+        Density of both bodies [kg/m³].
+    solid_heat_capacity : float
+        Specific heat capacity of both bodies [J/(kg K)].
+    beta_override : float, optional
+        Constant temperature–viscosity coefficient replacing the one derived from the lubricant's viscosity data;
+        None: derived [1/K].
+    source : str
+        Where the values come from [-].
+    """
 
     oil_conductivity: float = OIL_CONDUCTIVITY_W_MK
     oil_heat_capacity: float = OIL_HEAT_CAPACITY_J_KGK
@@ -142,6 +158,13 @@ class ThermalProperties:
         return self.solid_conductivity / (self.solid_density * self.solid_heat_capacity)
 
     def to_dict(self) -> dict[str, Any]:
+        """The properties as a plain dict.
+
+        Returns
+        -------
+        dict
+            Field name to value, SI.
+        """
         return asdict(self)
 
 
@@ -179,8 +202,17 @@ def thermal_properties_from_table(table: dict | None, source: str | None, origin
 
 @dataclass(frozen=True)
 class TemperatureTable:
-    """ln η(p_i, T0 + ΔT_j) [ln Pa·s] on the rises ``rises`` ΔT_j [K] (increasing from 0; rows) for the pressures of
-    one contact (columns). Built by :meth:`ehl_dataset.model.lubricant.LubricantState.temperature_table`."""
+    """ln η(p_i, T0 + ΔT_j) on the temperature rises ΔT_j (rows) for the pressures of one contact (columns).
+
+    Built by :meth:`ehl_dataset.model.lubricant.LubricantState.temperature_table`.
+
+    Parameters
+    ----------
+    rises : ndarray
+        Temperature rises ΔT_j, increasing from 0 [K].
+    log_eta : ndarray
+        ln η (η in Pa·s), shape (len(rises), number of pressures) [-].
+    """
 
     rises: np.ndarray
     log_eta: np.ndarray
@@ -192,8 +224,21 @@ class TemperatureTable:
             raise InputError("log_eta", self.log_eta.shape, f"({self.rises.size}, N) rows per rise")
 
     def at(self, rise) -> tuple[np.ndarray, np.ndarray]:
-        """(η, β) at the rises ``rise`` [K] per column: η interpolated linearly in ln η, β = −∂ln η/∂T of the
-        bracketing interval (the last one beyond the table; the first one at ΔT = 0)."""
+        """Viscosity and its temperature coefficient at given rises, per column.
+
+        η is interpolated linearly in ln η; β = −∂ln η/∂T is that of the bracketing interval (the last one beyond the
+        table; the first one at ΔT = 0).
+
+        Parameters
+        ----------
+        rise : array_like
+            Temperature rise per column [K].
+
+        Returns
+        -------
+        tuple of ndarray
+            (η [Pa·s], β [1/K]).
+        """
         rise = np.broadcast_to(np.asarray(rise, dtype=float), self.log_eta.shape[1:])
         j = np.clip(np.searchsorted(self.rises, rise, side="right") - 1, 0, self.rises.size - 2)
         cols = np.arange(self.log_eta.shape[1]) if self.log_eta.ndim > 1 else None
@@ -203,6 +248,18 @@ class TemperatureTable:
         return np.exp(lo + slope * (rise - self.rises[j])), -slope
 
     def column(self, index: int) -> "TemperatureTable":
+        """The table of one pressure (column).
+
+        Parameters
+        ----------
+        index : int
+            Column index [-].
+
+        Returns
+        -------
+        TemperatureTable
+            A one-column table.
+        """
         return TemperatureTable(self.rises, self.log_eta[:, index:index + 1])
 
 
@@ -222,10 +279,29 @@ def _g(x):
 def film_parameter(eta_wall, u_s: float, h, tau0: float, beta, conductivity: float) -> np.ndarray:
     """The root X ≥ 0 of φ(X) = X tanh X − A asinh(S g(X)) = 0 (module docstring, item 2), vectorised.
 
-    ``eta_wall`` η(p, T_s) [Pa·s], ``u_s`` sliding velocity [m/s], ``h`` film [m], ``tau0`` Eyring stress [Pa],
-    ``beta`` [1/K], ``conductivity`` of the oil [W/(m·K)]. φ increases with X from φ(0) = −A asinh S: Newton steps
-    kept inside a bracket [lo, hi] that shrinks with the sign of φ (a bisection step where Newton leaves it), until
-    the step is below 1e-13 (1 + X)."""
+    φ increases with X from φ(0) = −A asinh S: Newton steps kept inside a bracket that shrinks with the sign of φ (a
+    bisection step where Newton leaves it), until the step is below 1e-13 (1 + X).
+
+    Parameters
+    ----------
+    eta_wall : array_like
+        Viscosity at the wall temperature, η(p, T_s) [Pa s].
+    u_s : float
+        Sliding velocity [m/s].
+    h : array_like
+        Film thickness [m].
+    tau0 : float
+        Eyring stress [Pa].
+    beta : array_like
+        Temperature–viscosity coefficient [1/K].
+    conductivity : float
+        Thermal conductivity of the oil [W/(m K)].
+
+    Returns
+    -------
+    ndarray
+        X [-].
+    """
     eta_wall, h, beta = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (eta_wall, h, beta)))
     shape = eta_wall.shape
     x = _film_parameter_kernel(np.array(eta_wall).ravel(), float(u_s), np.array(h).ravel(), float(tau0),
@@ -345,15 +421,58 @@ def _secant_film_kernel(rises, log_eta, rise, u_s, h, tau0, conductivity, secant
 
 
 def film_shear_stress(eta_wall, u_s: float, h, tau0: float, beta, conductivity: float):
-    """Thermal Couette shear stress τ [Pa] (sign of u_s) and the film parameter X of a film whose walls are at the
-    temperature where η = ``eta_wall`` (module docstring, item 2)."""
+    """Thermal Couette shear stress (sign of u_s) and film parameter X of a film.
+
+    The walls are at the temperature where η = ``eta_wall`` (module docstring, item 2).
+
+    Parameters
+    ----------
+    eta_wall : array_like
+        Viscosity at the wall temperature [Pa s].
+    u_s : float
+        Sliding velocity [m/s].
+    h : array_like
+        Film thickness [m].
+    tau0 : float
+        Eyring stress [Pa].
+    beta : array_like
+        Temperature–viscosity coefficient [1/K].
+    conductivity : float
+        Thermal conductivity of the oil [W/(m K)].
+
+    Returns
+    -------
+    tuple of ndarray
+        (τ [Pa], X [-]).
+    """
     x = film_parameter(eta_wall, u_s, h, tau0, beta, conductivity)
     s = np.asarray(eta_wall, dtype=float) * abs(u_s) / (tau0 * np.asarray(h, dtype=float))
     return math.copysign(1.0, u_s) * tau0 * np.arcsinh(s * _g(x)), x
 
 
 def film_centre_rise(x, beta, tau, u_s: float, h, conductivity: float) -> np.ndarray:
-    """Temperature rise of the film centre above the walls [K]: 2 ln cosh X / β; Crook's τ u_s h/(8k) where β = 0."""
+    """Temperature rise of the film centre above the walls: 2 ln cosh X / β; Crook's τ u_s h/(8k) where β = 0.
+
+    Parameters
+    ----------
+    x : array_like
+        Film parameter X [-].
+    beta : array_like
+        Temperature–viscosity coefficient [1/K].
+    tau : array_like
+        Shear stress [Pa].
+    u_s : float
+        Sliding velocity [m/s].
+    h : array_like
+        Film thickness [m].
+    conductivity : float
+        Thermal conductivity of the oil [W/(m K)].
+
+    Returns
+    -------
+    ndarray
+        The rise [K].
+    """
     x, beta, tau, h = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (x, beta, tau, h)))
     with np.errstate(divide="ignore", invalid="ignore"):
         log_cosh = x + np.log1p(np.exp(-2.0 * x)) - math.log(2.0)
@@ -431,8 +550,28 @@ def blok_denominator(u1: float, u2: float, properties: ThermalProperties) -> flo
 
 def surface_temperature_rise(x, heat_flux, u1: float, u2: float, properties: ThermalProperties,
                              operator: np.ndarray | None = None) -> np.ndarray:
-    """Flash temperature rise ΔT_s(x) [K] of both surfaces (Blok's partition) for the heat flux ``heat_flux`` q(x)
-    [W/m²] generated on nodes ``x`` [m]; ``u1``, ``u2`` surface velocities [m/s] (≥ 0, not both 0)."""
+    """Flash temperature rise ΔT_s(x) of both surfaces (Blok's partition) for a heat flux generated on the nodes.
+
+    Parameters
+    ----------
+    x : ndarray
+        Nodes, increasing [m].
+    heat_flux : ndarray
+        Heat flux q(x) generated at the nodes [W/m²].
+    u1 : float
+        Velocity of surface 1, ≥ 0 [m/s].
+    u2 : float
+        Velocity of surface 2, ≥ 0, not both 0 [m/s].
+    properties : ThermalProperties
+        Thermal properties of the solids [SI].
+    operator : ndarray, optional
+        Precomputed Jaeger operator of ``x`` (:func:`jaeger_operator`) [-].
+
+    Returns
+    -------
+    ndarray
+        ΔT_s at the nodes [K].
+    """
     if not (u1 >= 0.0 and u2 >= 0.0 and u1 + u2 > 0.0):
         raise InputError("surface velocities", (u1, u2), "u1, u2 >= 0 with u1 + u2 > 0 (|SR| <= 2)")
     op = jaeger_operator(x) if operator is None else operator
@@ -444,9 +583,23 @@ def surface_temperature_rise(x, heat_flux, u1: float, u2: float, properties: The
 # ---------------------------------------------------------------------------------------------------------------
 @dataclass
 class ThermalTraction:
-    """Outcome of :func:`thermal_couette_traction` on the nodes of a solve (SI): ``shear_stress`` τ [Pa] (0 outside
-    the liquid nodes), ``surface_rise`` ΔT_s [K], ``film_centre_rise`` [K] above the surfaces, ``iterations``,
-    ``converged`` and ``change`` the final max |G| / (1 + max ΔT_s) of the flash-temperature equation."""
+    """Outcome of :func:`thermal_couette_traction` on the nodes of a solve (SI).
+
+    Parameters
+    ----------
+    shear_stress : ndarray
+        Shear stress τ, 0 outside the liquid nodes [Pa].
+    surface_rise : ndarray
+        Flash temperature rise ΔT_s of the surfaces [K].
+    film_centre_rise : ndarray
+        Temperature rise of the film centre above the surfaces [K].
+    iterations : int
+        Newton iterations [-].
+    converged : bool
+        Whether the flash-temperature equation converged [-].
+    change : float
+        Final max |G| / (1 + max ΔT_s) of the flash-temperature equation [-].
+    """
 
     shear_stress: np.ndarray
     surface_rise: np.ndarray
@@ -456,6 +609,14 @@ class ThermalTraction:
     change: float
 
     def summary(self) -> dict[str, Any]:
+        """The scalar outcome, as recorded with a result.
+
+        Returns
+        -------
+        dict
+            ``max_surface_rise_k``, ``max_film_centre_rise_k``, ``max_film_temperature_rise_k`` [K], ``iterations``,
+            ``converged``, ``relative_change``.
+        """
         total = self.surface_rise + self.film_centre_rise
         return {"max_surface_rise_k": float(np.max(self.surface_rise, initial=0.0)),
                 "max_film_centre_rise_k": float(np.max(self.film_centre_rise, initial=0.0)),
@@ -466,14 +627,37 @@ class ThermalTraction:
 
 def thermal_couette_traction(x, film, table: TemperatureTable, liquid, u1: float, u2: float, tau0: float,
                              properties: ThermalProperties) -> ThermalTraction:
-    """Couette shear stress with shear heating and flash temperature (module docstring) on the nodes of an
-    isothermal solve: ``x`` [m] increasing, ``film`` h [m], ``table`` ln η(p, T0 + ΔT) of the nodes' pressures,
-    ``liquid`` the nodes that carry a sheared liquid film (the heat sources), ``u1``, ``u2`` surface velocities
-    [m/s], ``tau0`` [Pa].
+    """Couette shear stress with shear heating and flash temperature (module docstring) on the nodes of an isothermal
+    solve.
 
     Newton's method on G(ΔT_s) = ΔT_s − J q(ΔT_s) = 0 with J the (lower-triangular) flash-temperature operator and
     q = |u_s τ(ΔT_s)|: the Jacobian I − J diag(dq/dΔT_s) is lower triangular (dq/dΔT_s by a forward difference of
-    0.01 K), steps halved until |G| falls. Stops at max |G| ≤ 1e-9 (1 + max ΔT_s) K."""
+    0.01 K), steps halved until |G| falls. Stops at max |G| ≤ 1e-9 (1 + max ΔT_s) K.
+
+    Parameters
+    ----------
+    x : ndarray
+        Nodes, increasing [m].
+    film : ndarray
+        Film thickness h at the nodes [m].
+    table : TemperatureTable
+        ln η(p, T0 + ΔT) of the nodes' pressures [-].
+    liquid : ndarray of bool
+        Nodes that carry a sheared liquid film (the heat sources) [-].
+    u1 : float
+        Velocity of surface 1 [m/s].
+    u2 : float
+        Velocity of surface 2 [m/s].
+    tau0 : float
+        Eyring stress [Pa].
+    properties : ThermalProperties
+        Thermal properties of oil and solids [SI].
+
+    Returns
+    -------
+    ThermalTraction
+        Shear stress, surface and film-centre temperature rises and the convergence record.
+    """
     x = np.asarray(x, dtype=float)
     h = np.asarray(film, dtype=float)
     liquid = np.asarray(liquid, dtype=bool)
@@ -526,11 +710,36 @@ def thermal_couette_traction(x, film, table: TemperatureTable, liquid, u1: float
 
 def centre_estimate(table: TemperatureTable, h_central: float, half_width: float, u1: float, u2: float,
                     tau0: float, properties: ThermalProperties) -> dict[str, float]:
-    """The planner's a-priori estimate at the Hertz centre (SI): ``table`` ln η(p_h, T0 + ΔT) (one column), Moes'
-    central film ``h_central``; the Couette stress with and without the thermal correction, with the flash
-    temperature of a Hertzian (semi-elliptic) heat flux q0 √(1 − x²/a²), q0 = τ_c |u_s|, taken at its maximum
-    (:data:`BLOK_MAX_COEFFICIENT`; conservative: it is the downstream peak), the film centre rise, and the Nahme
-    number Na = β τ |u_s| h/k of the film at the inlet temperature. ``thermal_change`` = 1 − τ_thermal/τ_isothermal."""
+    """The planner's a-priori thermal estimate at the Hertz centre.
+
+    The Couette stress with and without the thermal correction, with the flash temperature of a Hertzian
+    (semi-elliptic) heat flux q0 √(1 − x²/a²), q0 = τ_c |u_s|, taken at its maximum (:data:`BLOK_MAX_COEFFICIENT`;
+    conservative: it is the downstream peak), the film centre rise, and the Nahme number Na = β τ |u_s| h/k of the film
+    at the inlet temperature.
+
+    Parameters
+    ----------
+    table : TemperatureTable
+        ln η(p_h, T0 + ΔT), one column [-].
+    h_central : float
+        Moes' central film thickness [m].
+    half_width : float
+        Hertz half width a [m].
+    u1 : float
+        Velocity of surface 1 [m/s].
+    u2 : float
+        Velocity of surface 2 [m/s].
+    tau0 : float
+        Eyring stress [Pa].
+    properties : ThermalProperties
+        Thermal properties [SI].
+
+    Returns
+    -------
+    dict of str to float
+        ``tau_isothermal_pa``, ``tau_thermal_pa`` [Pa], ``thermal_change`` = 1 − τ_thermal/τ_isothermal [-],
+        ``flash_rise_k``, ``film_centre_rise_k`` [K], ``nahme_number`` [-].
+    """
     u_s = u1 - u2
     eta_h, beta_h = (float(v[0]) for v in table.at(np.zeros(1)))
     tau_iso = tau0 * math.asinh(eta_h * abs(u_s) / (tau0 * h_central))
