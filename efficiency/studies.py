@@ -15,7 +15,9 @@ unit in each column name:
                                                    Ψ, Λ_wd; angles in degrees as in the paper's tables)
 ``normal_module_m``, ``tip_diameter_m`` (d_o), ``root_diameter_m``, ``thickness_allowance_m``   geometry
 ``eps_alpha``, ``eps_beta``, ``eps_gamma``          transverse (profile, ε_p), overlap (face, ε_f), total contact ratio
-``power_loss_w`` (P), ``efficiency`` (η = 1 − P/(T ω)), ``te_pp_m`` (peak-to-peak loaded TE), ``sigma_c_pa`` (max
+``power_loss_w`` (P), ``power_loss_low_w`` and ``power_loss_high_w`` (the 90 % band of P from a friction surrogate's
+prediction intervals, every contact point at the same end of its interval: :mod:`efficiency.power_loss`; NaN for a
+model without intervals), ``efficiency`` (η = 1 − P/(T ω)), ``te_pp_m`` (peak-to-peak loaded TE), ``sigma_c_pa`` (max
 Hertz pressure), ``sigma_b_pa`` (max root stress), ``mu_mean`` (load-weighted mean μ), ``converged``, ``error``
 (empty unless the evaluation of this design raised), ``warning`` (the warnings the evaluation emitted, joined by " | ", e.g. a
 friction surrogate extrapolating outside its fitted ranges; empty if none), ``wall_time_s``.
@@ -48,8 +50,8 @@ from .power_loss import mesh_power_loss
 DESIGN_COLUMNS = ("teeth", "normal_pressure_angle_deg", "helix_angle_deg", "working_depth")
 GEOMETRY_COLUMNS = ("normal_module_m", "tip_diameter_m", "root_diameter_m", "thickness_allowance_m", "eps_alpha",
                     "eps_beta", "eps_gamma")
-OUTPUT_COLUMNS = ("power_loss_w", "efficiency", "te_pp_m", "sigma_c_pa", "sigma_b_pa", "mu_mean", "converged",
-                  "valid", "not_valid_because", "error", "warning", "wall_time_s")
+OUTPUT_COLUMNS = ("power_loss_w", "power_loss_low_w", "power_loss_high_w", "efficiency", "te_pp_m", "sigma_c_pa",
+                  "sigma_b_pa", "mu_mean", "converged", "valid", "not_valid_because", "error", "warning", "wall_time_s")
 
 SEARCH_CRITERIA = {
     "max_power_loss_w": "power_loss_w",
@@ -245,6 +247,8 @@ def evaluate_design(pair: GearPair, friction: Callable, point: StudyPoint,
     summary = mesh.to_dict()
     return {
         "power_loss_w": loss.power_loss, "efficiency": loss.efficiency,
+        "power_loss_low_w": loss.power_loss_band[0] if loss.power_loss_band else math.nan,
+        "power_loss_high_w": loss.power_loss_band[1] if loss.power_loss_band else math.nan,
         **{key: summary[key] for key in ("te_pp_m", "sigma_c_pa", "sigma_b_pa")}, "mu_mean": mu_mean,
         "converged": bool(mesh.converged), "valid": valid, "not_valid_because": " | ".join(reasons), "error": "",
         "warning": "", "wall_time_s": time.perf_counter() - started,
