@@ -13,8 +13,8 @@ script only (so the same script works whatever the package layout):
 and writes them to one JSON file. ``compare`` reports every difference between two such files, ignoring wall
 times, timestamps, hosts and paths (and the file:line locations in warning texts, and the scratch directory
 the commands ran in); keys that exist only in the
-newer file are listed as additions, not as differences. Numbers must be equal bit for bit unless ``--rtol`` says
-otherwise.
+newer file are listed as additions, not as differences; ``--rename OLD=NEW`` compares a renamed key under its new
+name. Numbers must be equal bit for bit unless ``--rtol`` says otherwise.
 
     python benchmarks/behaviour_snapshot.py record --out benchmarks/results/behaviour_before.json
     python benchmarks/behaviour_snapshot.py compare benchmarks/results/behaviour_before.json \
@@ -50,8 +50,11 @@ PREDICT = ["atf_quick", "--p-h-gpa", "1", "--r-eq-mm", "10", "--u-r", "5", "--sr
            "--rq1-um", "0.2", "--rq2-um", "0.2"]
 
 VOLATILE_KEYS = {"created", "git_revision", "sessions", "package_version", "finished_at", "worker", "worker_time",
-                 "wall_time", "path", "coefficients", "file", "points_per_s", "store_time_per_point_s"}
-"""Keys whose values depend on when, where or how fast a command ran (also every key ending in ``time_s``)."""
+                 "wall_time", "path", "coefficients", "file", "points_per_s", "store_time_per_point_s",
+                 "created_utc", "content_sha256", "sha256"}
+"""Keys whose values depend on when, where or how fast a command ran (also every key ending in ``time_s``); the
+hashes of a coefficient file and of the dataset file it was fitted from cover their creation times (their
+contents are compared field by field)."""
 _LOCATION = re.compile(r"\(([^()]*?\.py):\d+( in [^()]*)?\)")
 _SCRATCH = re.compile(re.escape(tempfile.gettempdir()) + r"/tmp\w+")
 """The scratch directory a record ran in (it appears in output paths and resume commands)."""
@@ -169,6 +172,15 @@ def differences(before, after, where: str = "", rtol: float = 0.0) -> tuple[list
     return diffs, added
 
 
+def renamed(tree, names: dict[str, str]):
+    """``tree`` with every key named in ``names`` (old -> new) renamed, at any depth."""
+    if isinstance(tree, dict):
+        return {names.get(k, k): renamed(v, names) for k, v in tree.items()}
+    if isinstance(tree, list):
+        return [renamed(v, names) for v in tree]
+    return tree
+
+
 def partial(out: Path, pending: list[int]) -> None:
     """A smoke-factorial file with every row computed except ``pending``, as an interrupted run leaves it."""
     from ehl_dataset.dataset.factorial import load_factorial
@@ -210,6 +222,8 @@ def main(argv=None) -> int:
     cmp_.add_argument("before", type=Path)
     cmp_.add_argument("after", type=Path)
     cmp_.add_argument("--rtol", type=float, default=0.0, help="relative tolerance of numbers (default 0: exact)")
+    cmp_.add_argument("--rename", nargs="*", default=[], metavar="OLD=NEW",
+                      help="keys renamed between the two records (the changelog lists them): compared under NEW")
     part = sub.add_parser("partial", help="write a partially computed smoke dataset file")
     part.add_argument("--out", required=True, type=Path)
     part.add_argument("--pending", default="6,7,8,12",
@@ -223,7 +237,7 @@ def main(argv=None) -> int:
         partial(args.out, [int(i) for i in args.pending.split(",") if i.strip()])
         print(f"{args.out}: {args.out.stat().st_size} bytes")
         return 0
-    before = json.loads(args.before.read_text())
+    before = renamed(json.loads(args.before.read_text()), dict(r.split("=", 1) for r in args.rename))
     after = json.loads(args.after.read_text())
     diffs, added = differences(before, after, rtol=args.rtol)
     for line in added:
