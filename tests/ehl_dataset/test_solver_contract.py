@@ -101,3 +101,23 @@ def test_a_requested_model_is_recorded_as_it_ran_with_the_planners_choice_kept()
     assert "smooth surfaces, steady smooth solve" in forced.effects["reasons"]["decisions"]["model"]
     # the smooth limit: the smooth solver's μ within 0.5 %
     assert forced.mu == pytest.approx(solve_contact(smooth, "atf", "fast", model="smooth").mu, rel=5e-3)
+
+
+def test_to_dict_is_the_contact_schema_and_resolving_once_gives_the_same_result():
+    """``ContactResult.to_dict``: SI values under unit-named keys, λ̄ = ∞ of smooth surfaces as None (JSON has no
+    infinity), the plan and its reasons as recorded; ``solve_problem(resolve_contact(...))`` is ``solve_contact``
+    (same μ bit for bit), and a resolved problem records the route the plan chose (the steady smooth solver here)."""
+    import json
+
+    from ehl_dataset.solver import solve_problem
+    from ehl_dataset.solvers.problem import resolve_contact
+
+    problem = resolve_contact(CASE, "atf", "fast", "auto")
+    assert problem.route == "steady" and problem.state.temperature == CASE.temperature
+    res = solve_problem(problem)
+    assert res.mu == solve_contact(CASE, load_lubricant("atf"), "fast").mu
+    d = res.to_dict()
+    assert (d["mu"], d["h_min_m"], d["h_central_m"], d["p_max_pa"]) == (res.mu, res.h_min, res.h_central, res.p_max)
+    assert d["lambda_bar"] is None and d["model"] == "smooth" and d["level"] == "fast"
+    assert d["effects"]["mode"] == "auto" and d["wall_time_s"] == res.wall_time
+    json.loads(json.dumps(d, default=float))
