@@ -90,9 +90,25 @@ def elastic_multiplier(n: int, length: float, e_reduced: float) -> np.ndarray:
 
 
 def periodic_deflection(p, spacing: float, e_reduced: float) -> np.ndarray:
-    """Zero-mean elastic deflection u_e [m] of the periodic pressure ``p`` [Pa] (last axis: uniform nodes of
-    ``spacing`` [m]), û(k) = 4 p̂(k)/(E'|k|): the project's V(x) = −4/(πE') ∫ ln|x − x'| p(x') dx' for a periodic p,
-    up to the constant (k = 0) term, which is set to zero."""
+    """Zero-mean elastic deflection of a periodic pressure, û(k) = 4 p̂(k)/(E'|k|).
+
+    The project's V(x) = −4/(πE') ∫ ln|x − x'| p(x') dx' for a periodic p, up to the constant (k = 0) term, which is
+    set to zero.
+
+    Parameters
+    ----------
+    p : array_like
+        Pressure on uniform nodes (last axis) [Pa].
+    spacing : float
+        Node spacing [m].
+    e_reduced : float
+        Reduced modulus E' [Pa].
+
+    Returns
+    -------
+    ndarray
+        u_e [m].
+    """
     p = np.asarray(p, dtype=float)
     n = p.shape[-1]
     mult = elastic_multiplier(n, n * spacing, e_reduced)
@@ -103,10 +119,25 @@ def periodic_deflection(p, spacing: float, e_reduced: float) -> np.ndarray:
 class ContactSolution:
     """Solution of :func:`solve_contact` for R windows (arrays (R, N) or (R,)); SI units.
 
-    ``pressure`` p, ``separation`` d of each window, ``gap`` g ≥ 0 (0 on contact nodes), ``plastic`` u_p ≥ 0,
-    ``deflection`` u_e (zero mean), ``iterations`` outer (active-set) iterations, ``inner_iterations`` PCG
-    iterations in all, ``residual`` the largest violation of the contact conditions (|r| on free nodes, −r on open
-    ones, r on yielded ones) over all windows [m].
+    Parameters
+    ----------
+    pressure : ndarray
+        Contact pressure p [Pa].
+    separation : ndarray
+        Separation d of each window [m].
+    gap : ndarray
+        Gap g ≥ 0, 0 on contact nodes [m].
+    plastic : ndarray
+        Plastic displacement u_p ≥ 0 [m].
+    deflection : ndarray
+        Elastic deflection u_e, zero mean [m].
+    iterations : int
+        Outer (active-set) iterations [-].
+    inner_iterations : int
+        PCG iterations in all [-].
+    residual : float
+        Largest violation of the contact conditions (|r| on free nodes, −r on open ones, r on yielded ones) over all
+        windows [m].
     """
 
     pressure: np.ndarray
@@ -329,12 +360,40 @@ def solve_contact(z, spacing: float, e_reduced: float, separation=None, *, mean_
                   max_iterations: int = 200) -> ContactSolution:
     """Elastic–perfectly-plastic contact of periodic rough windows against a rigid flat.
 
-    ``z`` heights [m], shape (N,) or (R, N) (R independent periodic windows of uniform ``spacing`` [m]);
-    ``e_reduced`` E' [Pa]; ``hardness`` H [Pa] (``math.inf``: purely elastic). Give either ``separation`` d [m]
-    (scalar or one per window; displacement control, the primary mode) or ``mean_pressure`` p̄ [Pa] (load control:
-    d is found per window by a safeguarded secant iteration on ln p̄(d), for tests and one-off use; it fails at a
-    full elastic contact, where p̄(d) is vertical). ``p0`` optional start (warm start). Converged when the
-    contact conditions hold to ``tol`` × rms(z) in every window; raises SolverError otherwise.
+    Give either ``separation`` (displacement control, the primary mode) or ``mean_pressure`` (load control: d is found
+    per window by a safeguarded secant iteration on ln p̄(d), for tests and one-off use; it fails at a full elastic
+    contact, where p̄(d) is vertical). Converged when the contact conditions hold to ``tol`` × rms(z) in every window.
+
+    Parameters
+    ----------
+    z : array_like
+        Heights, shape (N,) or (R, N): R independent periodic windows [m].
+    spacing : float
+        Uniform node spacing [m].
+    e_reduced : float
+        Reduced modulus E' [Pa].
+    separation : float or array_like, optional
+        Separation d, scalar or one per window [m].
+    mean_pressure : float, optional
+        Mean pressure p̄ (load control) [Pa].
+    hardness : float
+        Hardness H (``math.inf``: purely elastic) [Pa].
+    p0 : array_like, optional
+        Starting pressure (warm start) [Pa].
+    tol : float
+        Tolerance on the contact conditions, relative to rms(z) [-].
+    max_iterations : int
+        Largest number of active-set iterations [-].
+
+    Returns
+    -------
+    ContactSolution
+        Pressure, gap, plastic displacement and deflection per window.
+
+    Raises
+    ------
+    SolverError
+        When the contact conditions are not met within ``max_iterations``.
     """
     z = np.atleast_2d(np.asarray(z, dtype=float))
     rows, n = z.shape
@@ -434,15 +493,38 @@ def _solve_load(ops, z, mean_pressure, hardness, p, tol_gap, max_iterations):
 class DryContactSettings:
     """Numerical settings of a dry-contact table (all part of the cache key).
 
-    ``window_correlation_lengths`` window length L/β; ``n_windows`` independent windows averaged (each uses two
-    disjoint stretches of the profile, one per surface); ``points_per_correlation_length`` β/Δ (resolution);
-    ``blend_correlation_lengths`` length/β of the variance-preserving cross-fade that makes a stretch periodic;
-    ``steps_per_decade`` target number of separation steps per decade of p_a (adaptive step in d, between
-    ``min_step``·σ and ``max_step``·σ, and at most ``max_contact_step`` change of the contact fraction);
-    the ladder starts at the highest summit and stops when p_a ≥ ``max_pressure_pa`` or the contact fraction
-    ≥ ``full_contact_fraction``; rows of the table start once ``min_contact_nodes`` nodes touch;
-    ``tol`` solver tolerance on the contact conditions (× rms height); ``floor_points_per_decade`` density of the
-    floor grid h/σ = 10^-5 … 10^1 of the stored gap moments.
+    The separation ladder starts at the highest summit and steps down adaptively (between ``min_step``·σ and
+    ``max_step``·σ, at most ``max_contact_step`` change of the contact fraction) until p_a ≥ ``max_pressure_pa`` or
+    the contact fraction ≥ ``full_contact_fraction``.
+
+    Parameters
+    ----------
+    window_correlation_lengths : float
+        Window length L/β [-].
+    n_windows : int
+        Independent windows averaged, each using two disjoint stretches of the profile, one per surface [-].
+    points_per_correlation_length : float
+        Resolution β/Δ [-].
+    blend_correlation_lengths : float
+        Length/β of the variance-preserving cross-fade that makes a stretch periodic [-].
+    steps_per_decade : float
+        Target number of separation steps per decade of p_a [-].
+    min_step : float
+        Smallest separation step, in units of σ [-].
+    max_step : float
+        Largest separation step, in units of σ [-].
+    max_contact_step : float
+        Largest change of the contact fraction per step [-].
+    max_pressure_pa : float
+        Highest mean asperity pressure of the table [Pa].
+    full_contact_fraction : float
+        Contact fraction at which the ladder stops [-].
+    min_contact_nodes : int
+        Rows start once this many nodes touch [-].
+    tol : float
+        Solver tolerance on the contact conditions, in units of the rms height [-].
+    floor_points_per_decade : int
+        Density of the floor grid h/σ = 10^-5 … 10^1 of the stored gap moments [-].
     """
 
     window_correlation_lengths: float = 512.0
@@ -635,12 +717,34 @@ def _gap_statistics(gap: np.ndarray, floors: np.ndarray, levels: np.ndarray) -> 
 def compute_dry_contact_table(profile: RoughnessProfile, rq1: float, rq2: float,
                               e_reduced: float = STEEL_E_REDUCED_PA, hardness: float = DEFAULT_HARDNESS_PA,
                               settings: DryContactSettings | None = None, *, progress=None) -> "DryContactTable":
-    """Compute the dry-contact table of the roughness pair (``profile`` scaled to Rq1, Rq2 [m]) for E' and H [Pa].
+    """Compute the dry-contact table of a roughness pair.
 
     The separation d steps down from the highest summit of the composite windows (:func:`composite_windows`),
-    warm-started, with an adaptive step (:class:`DryContactSettings`); at every d the contact problem of all
-    windows is solved (:func:`solve_contact`) and the statistics are pooled over all nodes (equal-d averaging:
-    the macro film sees one d for all the roughness under it). ``progress`` optional callable(d/σ, p_a).
+    warm-started, with an adaptive step (:class:`DryContactSettings`); at every d the contact problem of all windows is
+    solved (:func:`solve_contact`) and the statistics are pooled over all nodes (equal-d averaging: the macro film sees
+    one d for all the roughness under it).
+
+    Parameters
+    ----------
+    profile : RoughnessProfile
+        Shape of both surfaces [-].
+    rq1 : float
+        RMS roughness of surface 1 [m].
+    rq2 : float
+        RMS roughness of surface 2 [m].
+    e_reduced : float
+        Reduced modulus E' [Pa].
+    hardness : float
+        Hardness H [Pa].
+    settings : DryContactSettings, optional
+        Numerical settings; None: the defaults [-].
+    progress : callable, optional
+        Called with (d/σ, p_a in Pa) after every step [-].
+
+    Returns
+    -------
+    DryContactTable
+        The table.
     """
     settings = settings or DryContactSettings()
     check_range("e_reduced", e_reduced, 1e6, 1e13, unit="Pa")
@@ -890,21 +994,43 @@ class _ShiftedAbove:
 class DryContactTable:
     """Dry-contact table of one roughness pair (one row per separation d), with C¹ interpolation in d.
 
-    Stored rows (``tab_*`` arrays of length n, SI units, d descending as computed): ``tab_separation`` d [m],
-    ``tab_pressure`` p_a [Pa] (mean asperity pressure), ``tab_contact_fraction``, ``tab_plastic_fraction``,
-    ``tab_mean_gap`` ⟨g⟩ [m] (lubricant volume per area), ``tab_mean_plastic`` ⟨u_p⟩ [m], ``tab_pressure_se`` /
-    ``tab_contact_fraction_se`` sampling standard errors (spread of the independent windows' means / √windows),
-    ``tab_cdf`` (n, n_h) = P(g ≤ h) on the floor grid ``floors`` [m], ``tab_moments`` (n, 4, n_h) = the open-gap
-    moments ⟨max(g, h)^k·1[g > 0]⟩ for k in :data:`MOMENT_ORDERS` (the full moment adds contact fraction × h^k),
-    ``tab_quantiles`` (n, n_q) of the open gaps at the ``levels`` of :func:`quantile_rule`; ``meta`` provenance
-    (Rq1, Rq2, σ, E', H, settings, profile hash, key, cost).
+    Every method takes d as a scalar or array and returns the same shape; methods named ``d_*`` are derivatives with
+    respect to d. Outside the table: above it (large d) p_a and the contact fraction decay like a Gaussian tail,
+    y0·exp(s t − t²/2σ²) with the end slope s (C¹), the plastic fraction exponentially, ⟨g⟩ continues linearly, the
+    open-gap moments follow the top row's open gaps shifted by d − d_max; below it (small d) p_a continues linearly
+    with the end slope, the fractions tend to 1, ⟨g⟩ → 0 and ⟨max(g, h_b)^k⟩ → h_b^k exponentially (C¹). Never NaN.
+    Build it with :func:`dry_contact_table` or :meth:`load`.
 
-    Every method takes d [m] as a scalar or array and returns the same shape; methods named ``d_*`` are
-    derivatives with respect to d. Outside the table: above it (large d) p_a and the contact fraction decay like a
-    Gaussian tail, y0·exp(s t − t²/2σ²) with the end slope s (C¹), the plastic fraction exponentially, ⟨g⟩
-    continues linearly, the open-gap moments follow the top row's open gaps shifted by d − d_max
-    (:class:`_ShiftedAbove`); below it (small d) p_a continues linearly with the end slope, the fractions tend to
-    1, ⟨g⟩ → 0 and ⟨max(g, h_b)^k⟩ → h_b^k exponentially (C¹). Never NaN.
+    Parameters
+    ----------
+    meta : dict
+        Provenance: Rq1, Rq2, σ, E', H, settings, profile hash, key, cost [-].
+    floors : ndarray
+        Floor grid h of the stored gap moments [m].
+    levels : ndarray
+        Quantile levels of :func:`quantile_rule` [-].
+    tab_separation : ndarray
+        (n,) separations d, descending as computed [m].
+    tab_pressure : ndarray
+        (n,) mean asperity pressure p_a [Pa].
+    tab_contact_fraction : ndarray
+        (n,) contact fraction [-].
+    tab_plastic_fraction : ndarray
+        (n,) plastic (yielded) fraction [-].
+    tab_mean_gap : ndarray
+        (n,) mean gap ⟨g⟩, the lubricant volume per area [m].
+    tab_mean_plastic : ndarray
+        (n,) mean plastic displacement ⟨u_p⟩ [m].
+    tab_pressure_se : ndarray
+        (n,) sampling standard error of p_a (spread of the independent windows' means / √windows) [Pa].
+    tab_contact_fraction_se : ndarray
+        (n,) sampling standard error of the contact fraction [-].
+    tab_cdf : ndarray
+        (n, n_h) P(g ≤ h) on ``floors`` [-].
+    tab_moments : ndarray
+        (n, 4, n_h) open-gap moments ⟨max(g, h)^k·1[g > 0]⟩ for k in :data:`MOMENT_ORDERS`, in m^k [-].
+    tab_quantiles : ndarray
+        (n, n_q) quantiles of the open gaps at ``levels`` [m].
     """
 
     meta: dict
@@ -973,50 +1099,176 @@ class DryContactTable:
         return PchipInterpolator(self._x, self._ascending(self.tab_quantiles), axis=0, extrapolate=False)
 
     def asperity_pressure(self, d):
-        """Mean asperity (dry-contact) pressure p_a(d) [Pa], ≥ 0, decreasing in d."""
+        """Mean asperity (dry-contact) pressure p_a(d), ≥ 0, decreasing in d.
+
+        Parameters
+        ----------
+        d : float or array_like
+            Separation of the mean planes [m].
+
+        Returns
+        -------
+        ndarray
+            p_a [Pa].
+        """
         return self._pressure_curve(d)
 
     def d_asperity_pressure(self, d):
-        """dp_a/dd [Pa/m] (≤ 0)."""
+        """dp_a/dd, ≤ 0.
+
+        Parameters
+        ----------
+        d : float or array_like
+            Separation of the mean planes [m].
+
+        Returns
+        -------
+        ndarray
+            dp_a/dd [Pa/m].
+        """
         return self._pressure_curve(d, derivative=True)
 
     def contact_fraction(self, d):
-        """Fraction of the nominal area in dry contact (p > 0), in [0, 1]."""
+        """Fraction of the nominal area in dry contact (p > 0).
+
+        Parameters
+        ----------
+        d : float or array_like
+            Separation of the mean planes [m].
+
+        Returns
+        -------
+        ndarray
+            Between 0 and 1 [-].
+        """
         return self._contact_curve(d)
 
     def d_contact_fraction(self, d):
-        """d(contact fraction)/dd [1/m]."""
+        """Derivative of the contact fraction with respect to d.
+
+        Parameters
+        ----------
+        d : float or array_like
+            Separation of the mean planes [m].
+
+        Returns
+        -------
+        ndarray
+            d(contact fraction)/dd [1/m].
+        """
         return self._contact_curve(d, derivative=True)
 
     def lubricated_fraction(self, d):
-        """1 − contact fraction: the fraction of the area covered by lubricant."""
+        """1 − contact fraction: the fraction of the area covered by lubricant.
+
+        Parameters
+        ----------
+        d : float or array_like
+            Separation of the mean planes [m].
+
+        Returns
+        -------
+        ndarray
+            Between 0 and 1 [-].
+        """
         return 1.0 - self._contact_curve(d)
 
     def plastic_fraction(self, d):
-        """Fraction of the nominal area at the hardness (yielded), in [0, contact fraction]."""
+        """Fraction of the nominal area at the hardness (yielded), at most the contact fraction.
+
+        Parameters
+        ----------
+        d : float or array_like
+            Separation of the mean planes [m].
+
+        Returns
+        -------
+        ndarray
+            Between 0 and 1 [-].
+        """
         return np.minimum(np.maximum(self._plastic_curve(d), 0.0), self._contact_curve(d))
 
     def mean_gap(self, d, h_b: float = 0.0):
-        """Mean gap ⟨max(g, h_b)⟩ [m] (h_b = 0: the lubricant volume per area, ⟨g⟩ = d + ⟨u_p⟩)."""
+        """Mean gap ⟨max(g, h_b)⟩ (h_b = 0: the lubricant volume per area, ⟨g⟩ = d + ⟨u_p⟩).
+
+        Parameters
+        ----------
+        d : float or array_like
+            Separation of the mean planes [m].
+        h_b : float
+            Film-breakdown floor of the gaps [m].
+
+        Returns
+        -------
+        ndarray
+            Mean gap [m].
+        """
         if h_b == 0.0:
             return self._gap_curve(d)
         return self.gap_moment(d, 1, h_b)
 
     def d_mean_gap(self, d, h_b: float = 0.0):
-        """d⟨max(g, h_b)⟩/dd [-]."""
+        """d⟨max(g, h_b)⟩/dd.
+
+        Parameters
+        ----------
+        d : float or array_like
+            Separation of the mean planes [m].
+        h_b : float
+            Film-breakdown floor of the gaps [m].
+
+        Returns
+        -------
+        ndarray
+            Derivative [-].
+        """
         if h_b == 0.0:
             return self._gap_curve(d, derivative=True)
         return self.d_gap_moment(d, 1, h_b)
 
     def gap_moment(self, d, k: int, h_b: float, part: str = "all"):
-        """Floored gap moment ⟨max(g, h_b)^k⟩ [m^k] over the whole area (``part="all"``: contact spots count as
-        gaps h_b) or over the open gaps only (``part="open"``: ⟨max(g, h_b)^k·1[g > 0]⟩), k in
-        :data:`MOMENT_ORDERS` (1, −1, −2, −3), h_b > 0 [m] the film-breakdown floor (≤ 10σ; below 10⁻⁵σ the open
-        part is held at its value at 10⁻⁵σ)."""
+        """Floored gap moment ⟨max(g, h_b)^k⟩ over the whole area or over the open gaps only.
+
+        ``part="all"``: contact spots count as gaps h_b; ``part="open"``: ⟨max(g, h_b)^k·1[g > 0]⟩. Below 10⁻⁵σ the open
+        part is held at its value at 10⁻⁵σ.
+
+        Parameters
+        ----------
+        d : float or array_like
+            Separation of the mean planes [m].
+        k : int
+            Order, in :data:`MOMENT_ORDERS` (1, −1, −2, −3) [-].
+        h_b : float
+            Film-breakdown floor, > 0 and ≤ 10σ [m].
+        part : str
+            ``all`` or ``open`` [-].
+
+        Returns
+        -------
+        ndarray
+            The moment, in m^k [-].
+        """
         return self._moment_curve(k, h_b, part)(d)
 
     def d_gap_moment(self, d, k: int, h_b: float, part: str = "all"):
-        """d/dd of :meth:`gap_moment` [m^(k−1)]."""
+        """d/dd of :meth:`gap_moment`.
+
+        Parameters
+        ----------
+        d : float or array_like
+            Separation of the mean planes [m].
+        k : int
+            Order, in :data:`MOMENT_ORDERS` [-].
+        h_b : float
+            Film-breakdown floor [m].
+        part : str
+            ``all`` or ``open`` [-].
+
+        Returns
+        -------
+        ndarray
+            The derivative, in m^(k−1) [-].
+        """
         return self._moment_curve(k, h_b, part)(d, derivative=True)
 
     def _moment_curve(self, k: int, h_b: float, part: str):
@@ -1074,13 +1326,28 @@ class DryContactTable:
         return np.where(ok, hermite, linear)
 
     def open_gap_expectation(self, d, func, h_b: float = 0.0):
-        """⟨f(max(g, h_b))·1[g > 0]⟩: the average over the nominal area of f on the open (lubricated) gaps, i.e.
-        (1 − contact fraction) × the mean of f over the open gaps. ``func`` is called once with an array of shape
-        (number of d values, 24) of floored gaps [m] (row i belongs to the i-th d, so per-d parameters can be
-        broadcast as ``param[:, None]``). 24-point quadrature of the open gaps' quantile function
-        (:func:`quantile_rule`), typically within 1 % of the exact pooled average for smooth f (a few % for the
-        strongly singular g⁻³). Outside the table the quantiles are shifted by d − d_max above it and scaled with
-        the mean gap below it."""
+        """⟨f(max(g, h_b))·1[g > 0]⟩: the average over the nominal area of f on the open (lubricated) gaps.
+
+        That is (1 − contact fraction) × the mean of f over the open gaps, by a 24-point quadrature of the open gaps'
+        quantile function (:func:`quantile_rule`), typically within 1 % of the exact pooled average for smooth f (a few %
+        for the strongly singular g⁻³). Outside the table the quantiles are shifted by d − d_max above it and scaled with
+        the mean gap below it.
+
+        Parameters
+        ----------
+        d : float or array_like
+            Separation of the mean planes [m].
+        func : callable
+            f, called once with an array of floored gaps in m of shape (number of d values, 24); row i belongs to the
+            i-th d, so per-d parameters can be broadcast as ``param[:, None]`` [-].
+        h_b : float
+            Film-breakdown floor of the gaps [m].
+
+        Returns
+        -------
+        ndarray
+            The expectation, in the unit of f, shaped like ``d`` [-].
+        """
         d = np.asarray(d, dtype=float)
         flat = d.reshape(-1)
         lo, hi = self._x[0], self._x[-1]
@@ -1100,9 +1367,25 @@ class DryContactTable:
         return out.reshape(d.shape) if d.ndim else float(out[0])
 
     def gap_expectation(self, d, func, h_b: float = 0.0):
-        """⟨f(max(g, h_b))⟩ over the whole nominal area: the contact spots (g = 0) contribute f(h_b) (``func`` is
-        then called with an array (number of d values, 1) filled with h_b), the open gaps as in
-        :meth:`open_gap_expectation`."""
+        """⟨f(max(g, h_b))⟩ over the whole nominal area.
+
+        The contact spots (g = 0) contribute f(h_b) (``func`` is then called with an array of shape (number of d values,
+        1) filled with h_b), the open gaps as in :meth:`open_gap_expectation`.
+
+        Parameters
+        ----------
+        d : float or array_like
+            Separation of the mean planes [m].
+        func : callable
+            f of an array of floored gaps in m [-].
+        h_b : float
+            Film-breakdown floor of the gaps [m].
+
+        Returns
+        -------
+        ndarray
+            The expectation, in the unit of f [-].
+        """
         d = np.asarray(d, dtype=float)
         flat = d.reshape(-1)
         cf = np.clip(np.asarray(self.contact_fraction(flat), dtype=float).reshape(-1), 0.0, 1.0)
@@ -1111,8 +1394,20 @@ class DryContactTable:
         return out.reshape(d.shape) if d.ndim else float(out[0])
 
     def separation_at_pressure(self, p_a):
-        """Inverse of :meth:`asperity_pressure`: the separation d [m] at which the mean asperity pressure is
-        ``p_a`` [Pa] (> 0). Newton iterations on ln p_a(d) from a PCHIP guess; exact inverse also outside the table."""
+        """Inverse of :meth:`asperity_pressure`: the separation at which the mean asperity pressure is ``p_a``.
+
+        Newton iterations on ln p_a(d) from a PCHIP guess; exact inverse also outside the table.
+
+        Parameters
+        ----------
+        p_a : float or array_like
+            Mean asperity pressure, > 0 [Pa].
+
+        Returns
+        -------
+        ndarray
+            d [m].
+        """
         p_a = np.asarray(p_a, dtype=float)
         if np.any(~(p_a > 0)) or not np.all(np.isfinite(p_a)):
             raise InputError("p_a", "array" if p_a.ndim else float(p_a), "finite pressures > 0 [Pa]")
@@ -1133,7 +1428,13 @@ class DryContactTable:
         return d if d.ndim else float(d)
 
     def summary(self) -> dict:
-        """Short description: Rq pair, σ, E', H, d range in σ, p_a range, rows, cost."""
+        """Short description of the table.
+
+        Returns
+        -------
+        dict
+            Rq pair, σ, E', H [SI, units in the keys], d range in σ, p_a range, rows, cost.
+        """
         return {"rq1_m": self.meta["rq1_m"], "rq2_m": self.meta["rq2_m"], "sigma_m": self.sigma,
                 "e_reduced_pa": self.meta["e_reduced_pa"], "hardness_pa": self.meta["hardness_pa"],
                 "rows": int(self.tab_separation.size), "d_over_sigma": [float(v / self.sigma) for v in self.d_range],
@@ -1143,7 +1444,18 @@ class DryContactTable:
 
     # -- storage --------------------------------------------------------------------------------------------------
     def save(self, path: str | Path) -> Path:
-        """Write the table as a compressed .npz (CDF and quantiles in float32, ~50 kB) with its metadata as JSON."""
+        """Write the table as a compressed .npz (CDF and quantiles in float32, ~50 kB) with its metadata as JSON.
+
+        Parameters
+        ----------
+        path : str or Path
+            The file [-].
+
+        Returns
+        -------
+        Path
+            The file written.
+        """
         path = Path(path)
         path.parent.mkdir(parents=True, exist_ok=True)
         arrays = {}
@@ -1157,7 +1469,18 @@ class DryContactTable:
 
     @classmethod
     def load(cls, path: str | Path) -> "DryContactTable":
-        """Read a table written by :meth:`save`."""
+        """Read a table written by :meth:`save`.
+
+        Parameters
+        ----------
+        path : str or Path
+            The file [-].
+
+        Returns
+        -------
+        DryContactTable
+            The table.
+        """
         with np.load(Path(path), allow_pickle=False) as data:
             meta = json.loads(str(data["meta"]))
             if meta.get("format") != TABLE_FORMAT:
@@ -1189,12 +1512,35 @@ def dry_contact_table(profile: RoughnessProfile | None = None, rq1: float = 0.4e
                       e_reduced: float = STEEL_E_REDUCED_PA, hardness: float = DEFAULT_HARDNESS_PA,
                       settings: DryContactSettings | None = None, *, cache: bool = True,
                       cache_dir: str | Path | None = None) -> DryContactTable:
-    """The dry-contact table of ``profile`` (default: the shipped baseline) scaled to ``rq1``, ``rq2`` [m], for the
-    reduced modulus ``e_reduced`` and hardness ``hardness`` [Pa].
+    """The dry-contact table of ``profile`` scaled to ``rq1``, ``rq2``, for the reduced modulus and hardness given.
 
-    Looked up by its content key (:func:`table_key`) among the shipped tables (data/roughness/dry_contact/), then
-    in the cache directory (``cache_dir`` or :func:`cache_directory`); otherwise computed
-    (:func:`compute_dry_contact_table`, seconds to a minute) and, with ``cache``, written to the cache.
+    Looked up by its content key (:func:`table_key`) among the shipped tables (data/roughness/dry_contact/), then in
+    the cache directory; otherwise computed (:func:`compute_dry_contact_table`, seconds to a minute) and, with
+    ``cache``, written to the cache.
+
+    Parameters
+    ----------
+    profile : RoughnessProfile, optional
+        Shape of both surfaces; None: the shipped baseline [-].
+    rq1 : float
+        RMS roughness of surface 1 [m].
+    rq2 : float
+        RMS roughness of surface 2 [m].
+    e_reduced : float
+        Reduced modulus E' [Pa].
+    hardness : float
+        Hardness H of the softer surface (``math.inf``: purely elastic) [Pa].
+    settings : DryContactSettings, optional
+        Numerical settings; None: the defaults [-].
+    cache : bool
+        Write a computed table to the cache [-].
+    cache_dir : str or Path, optional
+        Cache directory; None: :func:`cache_directory` [-].
+
+    Returns
+    -------
+    DryContactTable
+        The table.
     """
     profile = profile if profile is not None else baseline_profile()
     settings = settings or DryContactSettings()
