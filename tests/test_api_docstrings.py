@@ -35,7 +35,6 @@ PACKAGES = ("ehl_dataset", "surrogate", "efficiency", "workflows")
 
 # Modules rendered in the API reference whose docstrings are still to be converted to numpydoc with units.
 PENDING: set[str] = {
-    "ehl_dataset.model.dry_contact",
 }
 
 # Unit vocabulary: SI symbols (the numerics' units) and the engineering units of input files and reports.
