@@ -50,7 +50,7 @@ def branch_prediction_se(terms: tuple[Term, ...], covariance: np.ndarray, resid_
     Parameters
     ----------
     terms : tuple of Term
-        The branch's regressors (:mod:`surrogate.forms`).
+        The branch's regressors (:mod:`surrogate.forms`) [-].
     covariance : numpy.ndarray
         (k, k) covariance Σ of the branch's coefficients [-].
     resid_variance : float
@@ -84,7 +84,7 @@ def prediction_half_width(formula: Formula, covariance: dict[str, np.ndarray], r
     Parameters
     ----------
     formula : Formula
-        The two-branch formula.
+        The two-branch formula [-].
     covariance : dict of numpy.ndarray
         Coefficient covariance per branch [-].
     resid_variance : dict of float

@@ -24,7 +24,33 @@ LAMBDA_THRESHOLD = 1.0
 
 @dataclass
 class LearnedFit:
-    """Result of :func:`fit_learned`: the ensemble and everything its coefficient file records."""
+    """Result of :func:`fit_learned`: the ensemble and everything its coefficient file records.
+
+    Parameters
+    ----------
+    result : MlpFitResult
+        The ensemble, its out-of-fold predictions and the fit's statistics [-].
+    exclusions : dict of str to int
+        Rows excluded from the fit, per reason [-].
+    n_input_rows : int
+        Rows of the input table [-].
+    n_used : int
+        Rows used by the fit [-].
+    input_ranges : dict of str to list
+        Fitted (low, high) of each input, keyed with the unit in the name [-].
+    sr_floor : float
+        Smallest |SR| of the fitted rows [-].
+    cv : dict
+        Out-of-fold errors, overall and per λ̄ branch (:func:`surrogate.fit.error_metrics`) [-].
+    e_reduced : float
+        Reduced modulus E' of the dataset [Pa].
+    lubricant : dict
+        The lubricant's definition (provenance) [-].
+    fit_time_s : float
+        Wall time of the fit [s].
+    prepared : PreparedTable, optional
+        The prepared table the fit used [-].
+    """
 
     result: MlpFitResult
     exclusions: dict[str, int]
@@ -44,7 +70,18 @@ class LearnedFit:
 
 
 def fitted_ranges(prepared: PreparedTable) -> dict[str, list[float]]:
-    """``input_ranges`` of a coefficient file: [min, max] of each input over the rows used (|SR| for SR, λ̄)."""
+    """``input_ranges`` of a coefficient file: the range of each input over the rows used (|SR| for SR, λ̄).
+
+    Parameters
+    ----------
+    prepared : PreparedTable
+        The rows used by a fit [-].
+
+    Returns
+    -------
+    dict of str to list
+        (min, max) per input, keyed with the unit in the name (``p_h_pa``, ...).
+    """
     used = prepared.table
     ranges = {}
     for column, key in RANGE_KEYS.items():
@@ -63,7 +100,7 @@ def fit_learned(table: pd.DataFrame, lubricant, e_reduced: float, *, members: in
     table : pandas.DataFrame
         Dataset rows (inputs, ``mu``, ``status``, ``converged``) [SI].
     lubricant : Lubricant
-        The lubricant the dataset was computed with.
+        The lubricant the dataset was computed with [-].
     e_reduced : float
         Reduced modulus E' [Pa].
     members : int
@@ -95,7 +132,18 @@ def fit_learned(table: pd.DataFrame, lubricant, e_reduced: float, *, members: in
 
 
 def learned_summary_text(fit: LearnedFit) -> str:
-    """A plain-text summary of a learned fit (written beside its coefficient file)."""
+    """A plain-text summary of a learned fit (written beside its coefficient file).
+
+    Parameters
+    ----------
+    fit : LearnedFit
+        The fit [-].
+
+    Returns
+    -------
+    str
+        The summary.
+    """
     s = fit.result.settings
     lines = [f"learned friction surrogate: ensemble of {s['members']} ReLU perceptrons {tuple(s['hidden'])}, "
              f"L-BFGS, L2 {s['l2']:g}, seed {s['seed']}",

@@ -63,9 +63,24 @@ def feature_matrix(features: dict[str, np.ndarray]) -> np.ndarray:
 class MlpEnsemble:
     """Weights of an ensemble of ReLU perceptrons with identical architecture, and their input/output scaling.
 
-    ``weights[l]`` has shape (K, n_in, n_out) and ``biases[l]`` (K, n_out) for layer l; the last layer has one
-    output. ``x_mean``, ``x_scale``: standardisation of :data:`MLP_FEATURES`; ``y_mean``, ``y_scale``: of ln μ.
-    ``s0``: the floor added to the disagreement; ``score_quantiles``: {coverage: q} (module docstring).
+    Parameters
+    ----------
+    weights : tuple of ndarray
+        ``weights[l]`` of shape (K, n_in, n_out) for layer l; the last layer has one output [-].
+    biases : tuple of ndarray
+        ``biases[l]`` of shape (K, n_out) [-].
+    x_mean : ndarray
+        Mean of each feature of :data:`MLP_FEATURES`, for standardisation [-].
+    x_scale : ndarray
+        Scale of each feature [-].
+    y_mean : float
+        Mean of ln μ [-].
+    y_scale : float
+        Scale of ln μ [-].
+    s0 : float
+        Floor added to the members' disagreement [-].
+    score_quantiles : dict of float to float
+        {coverage: q} of the calibrated interval (module docstring) [-].
     """
 
     weights: tuple[np.ndarray, ...]
@@ -157,7 +172,13 @@ class MlpEnsemble:
         return q * (np.asarray(spread, dtype=float) + self.s0)
 
     def to_dict(self) -> dict:
-        """The JSON form stored under ``learned`` in a coefficient file (plain lists of numbers)."""
+        """The JSON form stored under ``learned`` in a coefficient file (plain lists of numbers).
+
+        Returns
+        -------
+        dict
+            Layers, scaling and score quantiles.
+        """
         return {
             "features": list(MLP_FEATURES),
             "activation": ACTIVATION,
@@ -171,7 +192,25 @@ class MlpEnsemble:
 
 
 def quantile_for(quantiles: dict[float, float], coverage: float) -> float:
-    """The stored score quantile of ``coverage`` (an :class:`InputError` names the stored ones otherwise)."""
+    """The stored score quantile of ``coverage``.
+
+    Parameters
+    ----------
+    quantiles : dict of float to float
+        {coverage: q} as stored [-].
+    coverage : float
+        Nominal coverage of the interval [-].
+
+    Returns
+    -------
+    float
+        q [-].
+
+    Raises
+    ------
+    InputError
+        Naming the stored coverages when ``coverage`` is not one of them.
+    """
     for c, q in quantiles.items():
         if abs(c - coverage) < 1e-9:
             return q
@@ -200,7 +239,21 @@ def conformal_quantile(scores: np.ndarray, coverage: float) -> float:
 
 @dataclass
 class MlpFitResult:
-    """An ensemble, its out-of-fold predictions and the fit's statistics."""
+    """An ensemble, its out-of-fold predictions and the fit's statistics.
+
+    Parameters
+    ----------
+    ensemble : MlpEnsemble
+        The fitted ensemble [-].
+    oof_ln_mu : ndarray
+        Out-of-fold ln μ prediction of every row [-].
+    spread : ndarray
+        Members' disagreement s at every row [-].
+    fit_time_s : float
+        Wall time of the fit [s].
+    settings : dict
+        Architecture, penalty, folds and seed [-].
+    """
 
     ensemble: MlpEnsemble
     oof_ln_mu: np.ndarray
@@ -283,8 +336,25 @@ def fit_mlp_ensemble(features: dict[str, np.ndarray], ln_mu: np.ndarray, *, memb
 
 
 def ensemble_from_dict(doc: dict, where: str = "learned") -> MlpEnsemble:
-    """Validate the ``learned`` table of a coefficient file and build the ensemble; :class:`InputError` names the
-    first bad field (``learned.layers[1].weights``, ...) and what is accepted."""
+    """Validate the ``learned`` table of a coefficient file and build the ensemble.
+
+    Parameters
+    ----------
+    doc : dict
+        The ``learned`` table [-].
+    where : str
+        Its name in error messages [-].
+
+    Returns
+    -------
+    MlpEnsemble
+        The ensemble.
+
+    Raises
+    ------
+    InputError
+        Naming the first bad field (``learned.layers[1].weights``, ...) and what is accepted.
+    """
 
     def number_array(value, name, shape=None):
         try:

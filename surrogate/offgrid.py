@@ -52,7 +52,7 @@ def offgrid_errors(surrogate, table: pd.DataFrame, *, coverage: float = COVERAGE
     Parameters
     ----------
     surrogate : FrictionSurrogate
-        The surrogate to judge (evaluated on the raw inputs; the sample lies inside the factorial's ranges).
+        The surrogate to judge (evaluated on the raw inputs; the sample lies inside the factorial's ranges) [-].
     table : pandas.DataFrame
         Solved sample (columns of the dataset store) [SI].
     coverage : float
@@ -88,7 +88,7 @@ def offgrid_report(errors: dict[str, Any], sample: dict[str, Any]) -> dict[str, 
     Parameters
     ----------
     errors : dict
-        Result of :func:`offgrid_errors`.
+        Result of :func:`offgrid_errors` [-].
     sample : dict
         Description of the sample (name, kind, seed, n_points, route, solver version, dataset sha256) [-].
 
@@ -101,7 +101,18 @@ def offgrid_report(errors: dict[str, Any], sample: dict[str, Any]) -> dict[str, 
 
 
 def offgrid_lines(offgrid: dict[str, Any] | None) -> list[str]:
-    """Human-readable lines of a file's off-grid validation (``surrogate predict``, ``gear evaluate``)."""
+    """Human-readable lines of a file's off-grid validation (``surrogate predict``, ``gear evaluate``).
+
+    Parameters
+    ----------
+    offgrid : dict, optional
+        The ``offgrid`` table of a coefficient file; None: none recorded [-].
+
+    Returns
+    -------
+    list of str
+        The lines.
+    """
     if not offgrid:
         return ["off-grid validation: none recorded in the coefficient file"]
     sample = offgrid.get("sample", {})

@@ -33,14 +33,33 @@ SAMPLE_KINDS = ("random", "sobol", "lhs")
 
 @dataclass(frozen=True)
 class SampleBox:
-    """The box of contact conditions a sample fills: ``low`` and ``high`` per input of :data:`POINT_FIELDS` (SI)."""
+    """The box of contact conditions a sample fills, per input of :data:`POINT_FIELDS` (SI).
+
+    Parameters
+    ----------
+    low : dict of str to float
+        Lower end per input [SI].
+    high : dict of str to float
+        Upper end per input [SI].
+    """
 
     low: dict[str, float]
     high: dict[str, float]
 
     @classmethod
     def of_factorial(cls, factorial: Factorial) -> "SampleBox":
-        """The ranges of ``factorial``'s axes (see the module docstring) in SI units."""
+        """The ranges of ``factorial``'s axes (module docstring) in SI units.
+
+        Parameters
+        ----------
+        factorial : Factorial
+            The factorial [-].
+
+        Returns
+        -------
+        SampleBox
+            The box.
+        """
         sr = [abs(v) for v in factorial.sr if v != 0.0]
         if not sr:
             raise InputError("factorial.sr", list(factorial.sr), "at least one non-zero slide-to-roll level")
@@ -57,7 +76,13 @@ class SampleBox:
         return cls(low, high)
 
     def to_dict(self) -> dict[str, list[float]]:
-        """``{input: [low, high]}`` (SI)."""
+        """The box as ``{input: [low, high]}`` (SI).
+
+        Returns
+        -------
+        dict of str to list
+            Per input, its range.
+        """
         return {name: [float(self.low[name]), float(self.high[name])] for name in POINT_FIELDS}
 
     def from_unit(self, unit: np.ndarray) -> np.ndarray:
@@ -66,7 +91,7 @@ class SampleBox:
         Parameters
         ----------
         unit : numpy.ndarray
-            Coordinates in [0, 1] [-].
+            Coordinates in the unit cube, between 0 and 1 [-].
 
         Returns
         -------
@@ -86,7 +111,18 @@ class SampleBox:
         return out
 
     def to_unit(self, points: np.ndarray) -> np.ndarray:
-        """Inverse of :meth:`from_unit`: (n, 7) coordinates in the unit cube [-] of structured SI points."""
+        """Inverse of :meth:`from_unit`: (n, 7) coordinates in the unit cube of structured SI points.
+
+        Parameters
+        ----------
+        points : ndarray
+            Structured array of dtype :data:`POINT_DTYPE` [SI].
+
+        Returns
+        -------
+        ndarray
+            Shape (n, 7), between 0 and 1 [-].
+        """
         cols = []
         for name in POINT_FIELDS:
             lo, hi = self.low[name], self.high[name]
@@ -143,7 +179,7 @@ def sample_points(factorial: Factorial, n: int, *, kind: str = "random", seed: i
     Parameters
     ----------
     factorial : Factorial
-        The factorial whose axis ranges bound the sample.
+        The factorial whose axis ranges bound the sample [-].
     n : int
         Number of points [-].
     kind : str
@@ -160,7 +196,18 @@ def sample_points(factorial: Factorial, n: int, *, kind: str = "random", seed: i
 
 
 def points_sha256(points: np.ndarray) -> str:
-    """SHA-256 (hex) of a structured point array's bytes (the ``points_sha256`` a store records)."""
+    """SHA-256 of a structured point array's bytes (the ``points_sha256`` a store records).
+
+    Parameters
+    ----------
+    points : ndarray
+        Structured array of dtype :data:`POINT_DTYPE` [SI].
+
+    Returns
+    -------
+    str
+        Hex digest.
+    """
     return hashlib.sha256(np.ascontiguousarray(points).tobytes()).hexdigest()
 
 
@@ -171,7 +218,7 @@ def sample_description(factorial: Factorial, points: np.ndarray, *, name: str, k
     Parameters
     ----------
     factorial : Factorial
-        The factorial whose ranges the sample fills.
+        The factorial whose ranges the sample fills [-].
     points : numpy.ndarray
         The sample (dtype :data:`POINT_DTYPE`) [SI].
     name : str
