@@ -30,7 +30,10 @@ Run the queue in the background on one core:
     nohup nice -n 5 env OMP_NUM_THREADS=1 NUMBA_NUM_THREADS=1 \\
         python validation/flank_reference/run_sweeps.py --estimate --run > <log outside the tree> 2>&1 &
 
-The same command resumes it: finished segments are skipped, an interrupted run continues from its checkpoint.
+The same command resumes it: finished segments are skipped, an interrupted run continues from its checkpoint. A run
+that raises writes <run>.error.json (the error) and is tried again on the next start; a run that does not converge
+writes its segment with converged false and the solver's message. Checkpoints are pickles of the solver state (not
+committed: they exceed the size limit of tracked result files); a change of machine loses only the run in progress.
 """
 
 from __future__ import annotations
@@ -203,7 +206,16 @@ def run(record: dict) -> None:
         checkpoint = FileCheckpoint(CHECKPOINTS / f"{name}.pkl")
         print(f"run {name} (estimate {cost:.0f} s) started {time.strftime('%H:%M:%S')}", flush=True)
         start = time.perf_counter()
-        result = solve_deterministic(case, state, Effects.full(), options, roughness=profile, checkpoint=checkpoint)
+        try:
+            result = solve_deterministic(case, state, Effects.full(), options, roughness=profile,
+                                         checkpoint=checkpoint)
+        except Exception as error:  # one run's error must not stop the queue; its record says why
+            message = f"{type(error).__name__}: {error}"
+            (RESULTS / f"{name}.error.json").write_text(json.dumps(
+                {"run": name, "error": message, "model_version": MODEL_VERSION,
+                 "wall_time_s": time.perf_counter() - start}, indent=1))
+            print(f"error {name}: {message} (retried on the next start)", flush=True)
+            continue
         wall = time.perf_counter() - start
         seg = segment(point, n, result, wall, case)
         path.write_text(json.dumps(seg, indent=1))
