@@ -149,3 +149,14 @@ def test_tracked_result_files_are_small():
     too_large = {name: size for name, size in sizes.items() if size > MAX_RESULT_FILE_BYTES}
     assert too_large == {}
     assert sum(sizes.values()) <= MAX_RESULT_TOTAL_BYTES, f"{sum(sizes.values()):,} bytes in {len(sizes)} files"
+
+
+@pytest.mark.parametrize("folder", ["benchmarks", "validation"])
+def test_every_script_has_its_line_in_the_folders_readme(folder):
+    """benchmarks/README.md and validation/README.md name every tracked script of their folder (sub-folders included,
+    by their path relative to it), so each one has a documented command."""
+    readme = (ROOT / folder / "README.md").read_text(encoding="utf-8")
+    scripts = [p.relative_to(ROOT / folder).as_posix() for p in tracked_files(folder)
+               if p.suffix == ".py" and "results" not in p.relative_to(ROOT / folder).parts]
+    assert scripts
+    assert [name for name in scripts if f"`{name}`" not in readme] == []
