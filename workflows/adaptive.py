@@ -41,7 +41,23 @@ POOL_FACTOR = 40
 
 @dataclass
 class AdaptiveResult:
-    """The solves of an adaptive run, the rounds and why it stopped."""
+    """The solves of an adaptive run, the rounds and why it stopped.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        Every training solve (columns of the dataset store, SI) [-].
+    rounds : list of dict
+        One entry per round: points solved and the model's errors [-].
+    stopped : str
+        Why the run stopped (budget reached or targets met) [-].
+    solves : int
+        Training solves in all [-].
+    wall_time_s : float
+        Wall time of the run [s].
+    batch_files : list of str
+        The store of each batch [-].
+    """
 
     table: pd.DataFrame
     rounds: list[dict[str, Any]] = field(default_factory=list)
@@ -51,7 +67,13 @@ class AdaptiveResult:
     batch_files: list[str] = field(default_factory=list)
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready summary (without the table)."""
+        """JSON-ready summary (without the table).
+
+        Returns
+        -------
+        dict
+            ``solves``, ``stopped``, ``rounds``, ``wall_time_s`` [s], ``batch_files``.
+        """
         return {"solves": self.solves, "stopped": self.stopped, "rounds": self.rounds,
                 "wall_time_s": self.wall_time_s, "batch_files": self.batch_files}
 
@@ -63,9 +85,9 @@ def choose_batch(ensemble, box, *, batch: int, pool: int, seed: int, lubricant, 
     Parameters
     ----------
     ensemble : MlpEnsemble
-        The current learned model.
+        The current learned model [-].
     box : SampleBox
-        The box candidates are drawn from.
+        The box candidates are drawn from [-].
     batch : int
         Points to choose [-].
     pool : int
@@ -73,7 +95,7 @@ def choose_batch(ensemble, box, *, batch: int, pool: int, seed: int, lubricant, 
     seed : int
         Seed of the pool [-].
     lubricant : Lubricant
-        The lubricant (features need η0(T), α1(T)).
+        The lubricant (features need η0(T), α1(T)) [-].
     e_reduced : float
         Reduced modulus [Pa].
     sr_floor : float
@@ -116,9 +138,9 @@ def run_adaptive(out_dir: str | Path, factorial, lubricant, *, level: str, effec
     out_dir : str or Path
         Run directory; batches go to ``out_dir/adaptive/`` [-].
     factorial : Factorial
-        The factorial whose box and route (level, effects, model) are used.
+        The factorial whose box and route (level, effects, model) are used [-].
     lubricant : Lubricant
-        The lubricant.
+        The lubricant [-].
     level, effects, model : str
         The route of stage 1 [-].
     budget : int

@@ -23,8 +23,24 @@ OFFGRID_SEED = 2009
 
 
 def offgrid_points(factorial, n: int = OFFGRID_POINTS, seed: int = OFFGRID_SEED):
-    """The off-grid validation sample of ``factorial``: ``n`` independent uniform points of its box
-    (:func:`surrogate.sampling.sample_points`, kind ``random``), and the description its store records."""
+    """The off-grid validation sample of ``factorial``: ``n`` independent uniform points of its box.
+
+    Drawn by :func:`surrogate.sampling.sample_points` (kind ``random``).
+
+    Parameters
+    ----------
+    factorial : Factorial
+        The factorial whose box the sample fills [-].
+    n : int
+        Number of points [-].
+    seed : int
+        Seed [-].
+
+    Returns
+    -------
+    tuple
+        (points, a structured array of dtype ``POINT_DTYPE`` in SI; the description its store records).
+    """
     from surrogate.sampling import sample_description, sample_points
 
     points = sample_points(factorial, n, kind="random", seed=seed)
@@ -36,11 +52,40 @@ def offgrid_points(factorial, n: int = OFFGRID_POINTS, seed: int = OFFGRID_SEED)
 def run_sample(path: str | Path, points: np.ndarray, description: dict, *, lubricant, level: str, effects: str,
                model: str, workers: int = 1, scheduler: str | None = None, progress: str = "auto",
                time_limit_s: float | None = None, **options):
-    """Compute ``points`` into the store ``path`` (created, or continued when it records the same points, solver
-    and lubricant; anything else is refused with :class:`InputError`). Returns the runner's ``RunSummary``.
+    """Compute ``points`` into the store ``path``: created, or continued when it records the same points, solver and
+    lubricant; anything else is refused with :class:`InputError`.
 
-    ``lubricant`` a :class:`~ehl_dataset.model.lubricant.Lubricant`; ``level``, ``effects``, ``model`` the route of
-    the factorial whose ranges the sample fills; ``options`` go to :func:`ehl_dataset.dataset.runner.execute`.
+    Parameters
+    ----------
+    path : str or Path
+        The HDF5 store [-].
+    points : ndarray
+        Structured array of dtype :data:`ehl_dataset.dataset.factorial.POINT_DTYPE` [SI].
+    description : dict
+        The plan the store records (:func:`surrogate.sampling.sample_description`) [-].
+    lubricant : Lubricant
+        The lubricant [-].
+    level : str
+        Accuracy level of the route of the factorial whose ranges the sample fills [-].
+    effects : str
+        Effect plan of that route [-].
+    model : str
+        Contact model of that route [-].
+    workers : int
+        Worker processes [-].
+    scheduler : str, optional
+        Address of a Dask scheduler; None: local processes [-].
+    progress : str
+        Progress display: ``auto``, ``bar``, ``log`` or ``none`` [-].
+    time_limit_s : float, optional
+        Wall-time budget per point [s].
+    **options
+        Execution options of :func:`ehl_dataset.dataset.runner.execute` [-].
+
+    Returns
+    -------
+    RunSummary
+        The runner's summary.
     """
     from ehl_dataset.dataset.factorial import canonical_json
     from ehl_dataset.dataset.runner import DEFAULT_SOLVER, check_time_limit, execute, solver_config

@@ -36,7 +36,22 @@ def check_form(form: str) -> str:
 
 
 def coefficients_path(base: Path, form: str, adaptive: bool = False) -> Path:
-    """The coefficient file of a run: ``<lubricant>_<factorial>[_adaptive][_learned].json`` beside ``base``."""
+    """The coefficient file of a run: ``<lubricant>_<factorial>[_adaptive][_learned].json`` beside ``base``.
+
+    Parameters
+    ----------
+    base : Path
+        The run's coefficient file of the default form (``<lubricant>_<factorial>.json``) [-].
+    form : str
+        Surrogate form, ``eq9`` or ``learned`` [-].
+    adaptive : bool
+        Whether the training design was adaptive [-].
+
+    Returns
+    -------
+    Path
+        The file.
+    """
     stem = base.stem + ("_adaptive" if adaptive else "") + ("_learned" if form == "learned" else "")
     return base.with_name(stem + ".json")
 
@@ -51,9 +66,9 @@ def offgrid_stage(out_dir: str | Path, factorial, lubricant, *, level: str, effe
     out_dir : str or Path
         Run directory [-].
     factorial : Factorial
-        The factorial whose ranges the sample fills.
+        The factorial whose ranges the sample fills [-].
     lubricant : Lubricant
-        The lubricant.
+        The lubricant [-].
     level, effects, model : str
         The route of the factorial [-].
     n : int
@@ -96,9 +111,9 @@ def adaptive_stage(out_dir: str | Path, factorial, lubricant, *, level: str, eff
     out_dir : str or Path
         Run directory [-].
     factorial : Factorial
-        Box and route.
+        Box and route [-].
     lubricant : Lubricant
-        The lubricant.
+        The lubricant [-].
     level, effects, model : str
         The route [-].
     budget : int
