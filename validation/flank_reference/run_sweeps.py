@@ -226,8 +226,28 @@ def run(record: dict) -> None:
               f"({seg['message']}), {wall:.0f} s", flush=True)
 
 
+def paired_step(coarse: dict, fine: dict) -> tuple[float, float, int]:
+    """(mean, standard error, windows) of μ_fine − μ_coarse over the time windows both runs averaged (the runs read
+    the same roughness at the same times: LAYOUT_PASSES is shared), the error autocorrelation-corrected."""
+    a = {w[0]: w[1] for w in coarse["mu_windows"]}
+    b = {w[0]: w[1] for w in fine["mu_windows"]}
+    common = sorted(set(a) & set(b))
+    if len(common) < 2:
+        return math.nan, math.nan, len(common)
+    diff = time_mean(np.array([b[t] - a[t] for t in common]))
+    return diff.mean, diff.standard_error, len(common)
+
+
 def summary() -> None:
     rows = [json.loads(p.read_text()) for p in sorted(RESULTS.glob("*_ls*.json"))]
+    by_point = {}
+    for r in rows:
+        by_point.setdefault(r["point"], {})[r["spacing_divisor"]] = r
+    for name, runs in sorted(by_point.items()):
+        spacings = sorted(runs)
+        for coarse, fine in zip(spacings, spacings[1:]):
+            mean, sem, count = paired_step(runs[coarse], runs[fine])
+            print(f"{name}: lambda_s/{coarse} -> /{fine}: paired step {mean:+.5f} +- {sem:.5f} over {count} windows")
     print(f"{'point':48s} {'n':>3s} {'lambda':>7s} {'mu':>8s} {'sem':>8s} {'share':>6s} {'smooth':>8s} {'conv':>5s} "
           f"{'wall_s':>7s}")
     for r in sorted(rows, key=lambda r: (r["sweep"], r["point"], r["spacing_divisor"])):
