@@ -450,7 +450,7 @@ def generate_self_affine_profile(n_points: int, spacing_m: float, hurst: float, 
     seed : int
         Seed of the legacy NumPy generator [-].
     skewness, kurtosis : float, optional
-        Height distribution moments Rsk, Rku [-] (both or neither; None: Gaussian heights).
+        Height distribution moments Rsk, Rku (both or neither; None: Gaussian heights) [-].
 
     Returns
     -------
@@ -689,7 +689,20 @@ def _read_two_columns(path: Path) -> np.ndarray:
 
 
 def detrend(x, z) -> np.ndarray:
-    """z minus its least-squares straight line in x (removes a + b·x exactly)."""
+    """z minus its least-squares straight line in x (removes a + b·x exactly).
+
+    Parameters
+    ----------
+    x : array_like
+        Positions [m].
+    z : array_like
+        Heights [m].
+
+    Returns
+    -------
+    ndarray
+        Detrended heights [m].
+    """
     x = np.asarray(x, dtype=float)
     z = np.asarray(z, dtype=float)
     design = np.column_stack([np.ones_like(x), x - x.mean()])
@@ -698,8 +711,24 @@ def detrend(x, z) -> np.ndarray:
 
 
 def resample_uniform(x, z, spacing: float) -> tuple[np.ndarray, np.ndarray]:
-    """Linear interpolation of (x, z) onto a uniform grid of ``spacing`` from x[0]; box-averaged first when the
-    new spacing is coarser than the data (anti-aliasing)."""
+    """Linear interpolation of (x, z) onto a uniform grid of ``spacing`` from x[0].
+
+    Box-averaged first when the new spacing is coarser than the data (anti-aliasing).
+
+    Parameters
+    ----------
+    x : array_like
+        Increasing positions [m].
+    z : array_like
+        Heights [m].
+    spacing : float
+        Spacing of the uniform grid [m].
+
+    Returns
+    -------
+    tuple of ndarray
+        (grid [m], heights [m]).
+    """
     x = np.asarray(x, dtype=float)
     z = np.asarray(z, dtype=float)
     data_spacing = float(np.median(np.diff(x)))
@@ -962,8 +991,19 @@ def surface_pair(case, x_m, t_s, t_end_s: float, profile: RoughnessProfile | Non
 
 
 def profile_record(profile: RoughnessProfile) -> dict:
-    """What a rough result records of the profile both surfaces took: its source, correlation length [m], and for a
-    named profile (:func:`named_profile`) its registry name and file sha256."""
+    """What a rough result records of the profile both surfaces took.
+
+    Parameters
+    ----------
+    profile : RoughnessProfile
+        The profile [-].
+
+    Returns
+    -------
+    dict
+        ``roughness_profile`` (its source), ``roughness_correlation_length_m`` [m], and for a named profile
+        (:func:`named_profile`) ``roughness_name`` and ``roughness_sha256``.
+    """
     record = {"roughness_profile": profile.source,
               "roughness_correlation_length_m": float(profile.correlation_length)}
     if profile.name:
