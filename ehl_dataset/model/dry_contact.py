@@ -1328,10 +1328,10 @@ class DryContactTable:
     def open_gap_expectation(self, d, func, h_b: float = 0.0):
         """⟨f(max(g, h_b))·1[g > 0]⟩: the average over the nominal area of f on the open (lubricated) gaps.
 
-        That is (1 − contact fraction) × the mean of f over the open gaps, by a 24-point quadrature of the open gaps'
-        quantile function (:func:`quantile_rule`), typically within 1 % of the exact pooled average for smooth f (a few %
-        for the strongly singular g⁻³). Outside the table the quantiles are shifted by d − d_max above it and scaled with
-        the mean gap below it.
+        That is (1 − contact fraction) × the mean of f over the open gaps, by a 24-point quadrature of the open
+        gaps' quantile function (:func:`quantile_rule`), typically within 1 % of the exact pooled average for smooth f
+        (a few % for the strongly singular g⁻³). Outside the table the quantiles are shifted by d − d_max above it and
+        scaled with the mean gap below it.
 
         Parameters
         ----------
