@@ -34,7 +34,7 @@ exponential kernel κ(d) = exp(−|d|/ℓ)/(2ℓ) (the Green's function of (1 �
 face-width coupling in thin-slice models), reflected at the free faces z = 0 and z = b (images), so a uniform
 line load gives exactly the uniform slice deflection and a load at a face end deflects twice as much as the same
 load at mid-face. The length ℓ is a model parameter: default one whole tooth depth (a concentrated load is carried
-by an effective face width 2ℓ), a representative value (see docs/gear_load_distribution.md for the sensitivity).
+by an effective face width 2ℓ), a representative value (see docs/explanation/gear-model.md for the sensitivity).
 """
 
 from __future__ import annotations

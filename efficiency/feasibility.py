@@ -1,6 +1,6 @@
 """Feasibility of a helical gear pair design (limits of Li & Kahraman 2009, §3).
 
-Definitions (all evaluated per gear where they differ; see docs/gear_geometry.md):
+Definitions (all evaluated per gear where they differ; see docs/explanation/gear-model.md):
 
 ``backlash``        normal backlash along the line of action j_bn = j_wt cos α_wt cos β_b ≥ ``min_backlash``
                     (0.04 mm in the paper). ``backlash_kind="circumferential"`` checks j_wt on the operating

@@ -13,7 +13,7 @@ once per mesh cycle. The models, cheapest first:
   of the last evaluation, per input);
 * :class:`EhlFriction` — the EHL solver at every loaded point (slow; the reference of the accuracy checks);
 * :class:`EhlGridFriction` — the EHL solver on a small grid per side of the pitch point, interpolated along the path
-  of contact (docs/gear_friction_accuracy.md).
+  of contact (docs/validation/gear.md).
 
 :func:`friction_from_spec` builds any of them from the short string of the ``--friction`` options
 (``gear evaluate``, ``gear sweep``, ``gear modifications``), the pipeline and the studies; :func:`describe_friction`
@@ -246,7 +246,7 @@ class EhlGridFriction:
     ``load_nodes`` nodes in p_h over the loaded range of p_h; points with SR < SR_FLOOR interpolate linearly in SR
     between the pitch point (SR = 0, a column of ``load_nodes`` extra solves) and the grid's first column.
     Cost: 2·roll_nodes·load_nodes (+ load_nodes) EHL solves per mesh, whatever its resolution. Measured on
-    design D (docs/gear_friction_accuracy.md): 5 × 9 nodes, error in P ≈ 0.1 %.
+    design D (docs/validation/gear.md): 5 × 9 nodes, error in P ≈ 0.1 %.
 
     It needs the mesh (it works in roll distance): :func:`efficiency.power_loss.mesh_power_loss` binds it through
     :meth:`for_mesh`. Oil temperature and roughness must be the same at every point (they are in a gear mesh).

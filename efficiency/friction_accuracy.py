@@ -1,4 +1,4 @@
-"""What the friction model costs in accuracy and time inside the gear loss (docs/gear_friction_accuracy.md).
+"""What the friction model costs in accuracy and time inside the gear loss (docs/validation/gear.md).
 
 The mesh power loss P = mean_m Σ_q μ_q W_q |u_s,q| (Li & Kahraman 2009, Eq. 11) needs μ at every loaded contact
 point of a mesh cycle; the friction models are in :mod:`efficiency.friction`. This module

@@ -233,7 +233,7 @@ class GearPair:
         """The paper's identical-gear 1:1 design at the standard centre distance (Li & Kahraman 2009 §3).
 
         m_n = a cos Ψ / N; addendum (Λ_wd − 0.25)/2 · m_n; dedendum = addendum + 0.25 m_n. The paper does not state how
-        its backlash arises (docs/gear_geometry.md).
+        its backlash arises (docs/explanation/gear-model.md).
 
         Parameters
         ----------

@@ -260,7 +260,7 @@ def choose_positions(pair, slices: int, minimum: int = 24, maximum: int = 48, to
     """Number of mesh positions M: the smallest M in [minimum, maximum] whose :func:`sampling_error_estimate` is within
     ``tolerance``, else the M with the smallest estimate.
 
-    Measured effect (docs/gear_validation.md): spur FZG C gets M = 32, where its rigid-uniform loss factor is
+    Measured effect (docs/validation/gear.md): spur FZG C gets M = 32, where its rigid-uniform loss factor is
     within 0.02 % of Ohlendorf's exact H_V (24 positions: +1.6 %); helical FZG pairs keep M = 24 (within 0.1 % of
     400 positions).
 

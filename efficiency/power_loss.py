@@ -1,10 +1,10 @@
 """Mechanical (sliding friction) power loss of a gear mesh over one cycle (Li & Kahraman 2009, Eq. 10–11).
 
-Given a loaded mesh cycle (:func:`efficiency.mesh_cycle.evaluate_mesh`), every loaded contact point q at mesh
-position φ_m is a line contact with normal load W_q [N], load per unit length w'_q [N/m], normal equivalent radius
-r_eq,q [m], rolling velocity u_r,q and sliding velocity u_s,q [m/s]. Its Hertz pressure is
-p_h = √(w' E'/(2π r_eq)) (the inverse of W' = 2π r_eq p_h²/E', docs/ehl_solver.md) and its slide-to-roll ratio
-SR = |u_s|/u_r. A friction model gives μ_q; then
+Given a loaded mesh cycle (:func:`efficiency.mesh_cycle.evaluate_mesh`), every loaded contact point q at mesh position
+φ_m is a line contact with normal load W_q [N], load per unit length w'_q [N/m], normal equivalent radius r_eq,q [m],
+rolling velocity u_r,q and sliding velocity u_s,q [m/s]. Its Hertz pressure is p_h = √(w' E'/(2π r_eq)) (the inverse of
+W' = 2π r_eq p_h²/E', docs/explanation/ehl-model.md) and its slide-to-roll ratio SR = |u_s|/u_r. A friction model gives
+μ_q; then
 
     F_f = μ W                                   (Eq. 10)
     P(φ_m) = Σ_q μ_q W_q |u_s,q|,  η(φ_m) = 1 − P(φ_m)/(T_in ω_in)      (Eq. 11a,b)

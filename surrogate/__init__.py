@@ -7,7 +7,7 @@ Main entry points (imported lazily so that ``import surrogate.published`` stays 
   :func:`surrogate.coefficients.load_coefficients`
 * :mod:`surrogate.published` — Xu et al. 2007, Benedict & Kelley 1961, ISO/TR 14179-2
 
-See docs/surrogate.md.
+See docs/explanation/surrogate.md.
 """
 
 from ehl_dataset.lazy import lazy_exports

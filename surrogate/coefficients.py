@@ -1,4 +1,4 @@
-"""Coefficient files: the portable result of a surrogate fit (JSON, no pickles; docs/surrogate.md).
+"""Coefficient files: the portable result of a surrogate fit (JSON, no pickles; docs/explanation/surrogate.md).
 
 Layout (``format = "gearloss.friction_coefficients"``, ``format_version = 2``), all quantities SI:
 

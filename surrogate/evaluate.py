@@ -1,6 +1,6 @@
 """The vectorised friction surrogate μ(p_h, r_eq, u_r, SR, T, Rq1, Rq2) from a coefficient file.
 
-Input policy (documented in docs/surrogate.md):
+Input policy (documented in docs/explanation/surrogate.md):
 
 * NaN/inf anywhere, p_h ≤ 0, r_eq ≤ 0, u_r ≤ 0, Rq1 ≤ 0 or Rq2 ≤ 0 (Eq. 9 needs rough surfaces: ln S̄c, ln λ̄),
   |SR| > 2, or a temperature outside the lubricant's range → :class:`InputError` naming the input, the first bad

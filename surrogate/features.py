@@ -1,4 +1,5 @@
-"""Dimensionless features of the paper's friction regression (Li & Kahraman 2009, Sect. 2.1; docs/surrogate.md).
+"""Dimensionless features of the paper's friction regression (Li & Kahraman 2009, Sect. 2.1;
+docs/explanation/surrogate.md).
 
 All inputs are SI arrays (broadcast together); the lubricant supplies η0(T) and α1(T) at the *inlet* temperature.
 With the Hertz line-contact load per unit length W' = 2π r_eq p_h²/E':
@@ -9,7 +10,8 @@ feature     formula                                remark
 ``W``       W̄ = −log10(p_h/E')                     load
 ``alpha``   ᾱ = log10(α1 E')                       pressure–viscosity (α1 at T)
 ``r``       r̄ = log10(r_eq E'/W')                  = 2 W̄ − log10(2π) exactly under Hertz loading: r̄ carries
-                                                    no information beyond W̄ (collinear; see docs/surrogate.md)
+                                                    no information beyond W̄ (collinear; see
+                                                    docs/explanation/surrogate.md)
 ``V``       V̄ = −log10(u_r η0/W')                  speed × viscosity over load (η0 at T)
 ``lam``     λ̄ = h_min,DH/S_c                       Dowson–Higginson minimum film over composite roughness
 ``SR``      SR = |u1 − u2|/u_r                     slide-to-roll ratio (magnitude)

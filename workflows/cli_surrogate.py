@@ -1,4 +1,5 @@
-"""``gearloss surrogate fit|predict|compare``: lubricant friction surrogates (stage 2, docs/surrogate.md)."""
+"""``gearloss surrogate fit|predict|compare``: lubricant friction surrogates (stage 2,
+docs/explanation/surrogate.md)."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""Discrete equations of the deterministic mixed-EHL line contact (paper Eq. 1–3, 6; docs/deterministic_solver.md).
+"""Discrete equations of the deterministic mixed-EHL line contact (paper Eq. 1–3, 6; docs/explanation/mixed-regime.md).
 
 Dimensionless variables as in :mod:`ehl_dataset.discretisation.reynolds`: X = x/a, P = p/p_h, H = h r_eq/a²,
 T = t u_r/a. The grid is uniform (spacing Δ), node-centred finite volumes of width w_i (Δ, Δ/2 at the ends).
@@ -82,7 +82,7 @@ def logarithmic_mean(a, b):
     ``(a − b)/log(a/b)`` they lose ≈ eps/|t| relative accuracy (the rounding of a/b is an absolute error of eps in a
     logarithm near 0), and the partials eps/t²: on the flooded inlet of the deterministic solver, where the fluid
     factor changes by 1e-4–1e-6 from node to node, the Poiseuille flux then carries a noise of 1e-12–1e-10 of the
-    inlet flux, which set a floor of 2–5e-10 under the global mass balance (docs/deterministic_solver.md, "Mass
+    inlet flux, which set a floor of 2–5e-10 under the global mass balance (docs/explanation/mixed-regime.md, "Mass
     balance"). Here a − b is exact (Sterbenz) for b/2 ≤ a ≤ 2b, t = log1p((a − b)/b) is accurate to a few ulp, and
     the partials come from their Taylor series where |t| < :data:`LOG_MEAN_SERIES`. Far from a = b (|a − b| > b/2)
     t = ln a − ln b: log1p(d/b) would read d/b = −1 + 1e-18 as −1 when a < 1e-16·b (a micro-EHL pressure peak of a

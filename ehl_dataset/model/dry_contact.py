@@ -22,7 +22,7 @@ kernel from the total (fluid + asperity) pressure. Consequence, exact for every 
 
 so in the elastic range the mean gap (lubricant volume per area) *is* d, d ≥ 0, and p_a(d) rises to the
 full-contact pressure as d → 0⁺. Below d = 0 only plastic flow makes room; for a mostly elastic pair (small Rq)
-p_a(d) is therefore very steep at d ≈ 0 (vertical in the purely elastic limit). See docs/homogenised_closures.md.
+p_a(d) is therefore very steep at d ≈ 0 (vertical in the purely elastic limit). See docs/explanation/mixed-regime.md.
 
 Solver
 ------

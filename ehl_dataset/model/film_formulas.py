@@ -82,9 +82,9 @@ def moes_central_film(eta0, u_r, alpha, e_reduced, r_eq, load_per_length):
         H_c = [ (H_RI^7/3 + H_EI^7/3)^(3s/7) + (H_RP^−7/2 + H_EP^−7/2)^(−2s/7) ]^(1/s).
 
     A fit to incompressible Newtonian (Barus) numerical solutions covering the rigid/elastic, isoviscous/piezoviscous
-    regimes (a compressible solution lies 13–19 % below it: docs/ehl_solver.md, "Validation"). At the point U = 1e−11,
-    G = 5000, W = 1e−4 it agrees with Dowson–Toyoda to 2 % (60 % apart with the sum-velocity convention), which
-    pins the velocity convention (mean velocity).
+    regimes (a compressible solution lies 13–19 % below it: docs/explanation/ehl-model.md, "Validation"). At the
+    point U = 1e−11, G = 5000, W = 1e−4 it agrees with Dowson–Toyoda to 2 % (60 % apart with the sum-velocity
+    convention), which pins the velocity convention (mean velocity).
 
     Parameters
     ----------

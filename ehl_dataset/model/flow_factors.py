@@ -13,7 +13,7 @@ Closures
 --------
 * :func:`transverse_flow_factors` — the paper's 1-D model (transverse roughness, no side leakage), exact for a
   periodic cell in which the gap is steady in the frame of the roughness (derivation in
-  docs/homogenised_closures.md):
+  docs/explanation/mixed-regime.md):
 
       C_p = 1/⟨g⁻³⟩,    h_T = ⟨g⟩,    S_φ = (2w − 1)(⟨g⟩ − ⟨g⁻²⟩/⟨g⁻³⟩),
 

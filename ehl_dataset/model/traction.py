@@ -1,4 +1,4 @@
-"""Surface traction and friction coefficient of a line contact (paper Eq. 7–8; docs/ehl_solver.md).
+"""Surface traction and friction coefficient of a line contact (paper Eq. 7–8; docs/explanation/ehl-model.md).
 
 Sign convention: ``mu`` is the friction force that resists the motion of surface 1 relative to surface 2, per unit
 load. It is ≥ 0 for u1 > u2 (SR > 0). In the paper's notation the traction on surface 1 is

@@ -1,5 +1,5 @@
 """Deterministic transient mixed-EHL line contact: the accuracy reference of the rough regime (paper Eq. 1–8;
-docs/deterministic_solver.md).
+docs/explanation/mixed-regime.md).
 
 Physics: the paper's unified Reynolds equation with the Eyring flow factor, the film of Eq. 3 with both roughness
 profiles moving with their surfaces, the log-kernel deflection (Eq. 4), two-slope viscosity, Dowson–Higginson
@@ -12,7 +12,7 @@ density, μ_d·p where asperities touch and the time-averaged μ (Eq. 8). What m
   through contacts as everywhere else;
 * the grid resolves the roughness and the micro-EHL length ℓ = √(2 R_asp h_b) (:func:`grid_spacing`), the time
   integrator is second order (variable-step BDF2) at Courant 0.25 (:data:`COURANT`; Courant 0.5 and 1 put μ high
-  where asperities touch, docs/deterministic_solver.md section "Roughness sweep");
+  where asperities touch, docs/explanation/mixed-regime.md section "Roughness sweep");
 * each time step is a semismooth Newton solve whose linear systems are solved by GMRES with FFT products of the
   deflection and a banded preconditioner (:mod:`ehl_dataset.solvers.krylov`): O(N log N) per iteration.
 
@@ -446,9 +446,9 @@ class MixedProblem:
 
     def rebase_film_offset(self, z) -> np.ndarray:
         """``z`` with its film offset moved into :attr:`film_reference` (det-2026.11-20): the unknown becomes the
-        offset's change δH0, small through a run, so one unit in its last place moves every node's film by far less
-        than one of H0 ≈ −0.6 did (which moved the global lubricant balance by up to 0.8 of its 1e-10 target on fine
-        grids of heavily loaded contacts; docs/deterministic_solver.md, "Mass balance"). The same film to round-off."""
+        offset's change δH0, small through a run, so one unit in its last place moves every node's film by far less than
+        one of H0 ≈ −0.6 did (which moved the global lubricant balance by up to 0.8 of its 1e-10 target on fine grids of
+        heavily loaded contacts; docs/explanation/mixed-regime.md, "Mass balance"). The same film to round-off."""
         moved = np.array(z, dtype=float)
         self.film_reference += float(moved[-1])
         moved[-1] = 0.0

@@ -1,5 +1,5 @@
 """Film-law homogenised model of a wide rough contact: the deterministic wide route with its periodic windows
-replaced by the ensemble average over the roughness pair's dry-contact table (docs/homogenised_model.md,
+replaced by the ensemble average over the roughness pair's dry-contact table (docs/explanation/mixed-regime.md,
 "Film-law closure").
 
 The deterministic model of a contact many correlation lengths wide (:mod:`ehl_dataset.solvers.wide_contact`) takes
@@ -25,12 +25,12 @@ pressures and gaps, taken independent:
 
     τ̄(x) = ⟨τ0 asinh(η(p) u_s/(τ0 max(h̄ + z, h_b)))⟩_{z, p ~ Γ(p̄(x), σ_p)}.
 
-Where the traction is not Eyring-saturated the deterministic model's μ is 1.5–2.2× the film law's without it (the
-mean of a convex τ(p) over the fluctuations), and with it within the leave-one-out error of the calibration
-(docs/narrow_contacts.md). With ``plan.thermal`` the Couette stresses carry the thermal correction of the smooth solver (shear
-heating and flash temperature, :mod:`ehl_dataset.model.thermal`) computed for a smooth film of the model's mean
-film: outside the zone as is, inside as the node-wise ratio thermal/isothermal that scales the gap average (the
-heat source is the mean film's shear, not the gap-averaged one: an approximation).
+Where the traction is not Eyring-saturated the deterministic model's μ is 1.5–2.2× the film law's without it (the mean
+of a convex τ(p) over the fluctuations), and with it within the leave-one-out error of the calibration
+(docs/explanation/mixed-regime.md). With ``plan.thermal`` the Couette stresses carry the thermal correction of the
+smooth solver (shear heating and flash temperature, :mod:`ehl_dataset.model.thermal`) computed for a smooth film of the
+model's mean film: outside the zone as is, inside as the node-wise ratio thermal/isothermal that scales the gap average
+(the heat source is the mean film's shear, not the gap-averaged one: an approximation).
 
 Measured against the windows on the factorial's widest corners this holds within a few per cent where the
 viscosity is saturated in the Eyring sense (validation/film_law_model.py, docs page above). The result says when a

@@ -1,4 +1,5 @@
-"""Homogenised (two-scale) mixed-EHL line contact: the production model of the rough regime (docs/homogenised_model.md).
+"""Homogenised (two-scale) mixed-EHL line contact: the production model of the rough regime
+(docs/explanation/mixed-regime.md).
 
 Where a contact is many roughness correlation lengths wide, the roughness is a statistically homogeneous micro-scale
 inside a smooth macro-contact (Patir & Cheng 1978; Johnson, Greenwood & Poon 1972; Gelinck & Schipper 2000; Masjedi &

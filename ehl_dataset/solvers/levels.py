@@ -9,9 +9,9 @@ what each level costs. Grid spacings of the steady grid are in units of the Hert
 name is an error (:class:`~ehl_dataset.validation.InputError`); nothing falls back to another level.
 
 Steady smooth grid: nodes are clustered (spacing ``dx_fine``) in two bands around the Hertz inlet (x ≈ −a) and the
-outlet constriction/pressure spike (x ≈ +a), growing linearly over ``transition`` to ``dx_coarse`` elsewhere
-(see :func:`ehl_dataset.discretisation.grid.clustered_grid`). A uniform grid would need 1,600–3,200 nodes at
-M > 100; the clustered grids reach the same film accuracy with a few hundred (docs/ehl_solver.md, "Numerics").
+outlet constriction/pressure spike (x ≈ +a), growing linearly over ``transition`` to ``dx_coarse`` elsewhere (see
+:func:`ehl_dataset.discretisation.grid.clustered_grid`). A uniform grid would need 1,600–3,200 nodes at M > 100; the
+clustered grids reach the same film accuracy with a few hundred (docs/explanation/ehl-model.md, "Numerics").
 """
 
 from __future__ import annotations

@@ -1,34 +1,32 @@
-"""The effect planner (docs/planner.md): which physical effects one EHL contact solve needs, and why.
+"""The effect planner (docs/explanation/planner.md): which physical effects one EHL contact solve needs, and why.
 
 :func:`plan_effects` computes the case's dimensionless numbers and switches an effect off only where a measured
 threshold says it does not change the result beyond the level's tolerance (the calibration is in
-``docs/planner.md`` and ``tests/ehl_dataset/test_planner.py``):
+``docs/explanation/planner.md`` and ``tests/ehl_dataset/test_planner.py``):
 
 * **roughness and transient** — film parameter λ̄ = h_min,DH/S_c (Dowson–Higginson minimum film over the
-  composite roughness S_c = √(Rq1² + Rq2²), as in the paper). At λ̄ ≥ ``lambda_smooth`` the surfaces no longer
-  touch and μ of the rough solve equals that of the steady smooth solve within the level's tolerance:
-  solve the steady smooth problem (the saving: one steady solve instead of hundreds of time steps). Moving
-  roughness is what makes a line contact transient, so both flags go together. S_c = 0 gives λ̄ = ∞.
-  The ``model`` decision says which solver that means: steady smooth; for a rough contact at least
-  ``a_over_beta_homogenised`` roughness correlation lengths wide (a/β, β of the roughness profile), the steady
-  homogenised model with the film-law closure (the roughness is a homogeneous micro-scale there: measured against the
-  deterministic model in docs/homogenised_model.md, "Film-law closure"), so ``transient`` is off; so is a narrower
-  rough contact above λ̄ = 1, with an Eyring-saturated traction (X_h ≥ 150, see below), or within the range where
-  the film law's micro-EHL pressure-fluctuation closure was calibrated (λ̄ ≥ 0.1 and Greenwood–Tripp roughness
-  parameter α = S_c·r_eq/a² ≤ 2.5), where the film law is measured within 10 % in median (docs/narrow_contacts.md);
-  the other narrow rough contacts go to the level's ``rough_model``:
-  the same film-law model at ``fast`` and ``standard``, recorded as outside its validated range (no cheap model is
-  within those levels' tolerance there), the deterministic solver (the package's transient rough solver) at
-  ``reference``.
+  composite roughness S_c = √(Rq1² + Rq2²), as in the paper). At λ̄ ≥ ``lambda_smooth`` the surfaces no longer touch and
+  μ of the rough solve equals that of the steady smooth solve within the level's tolerance: solve the steady smooth
+  problem (the saving: one steady solve instead of hundreds of time steps). Moving roughness is what makes a line
+  contact transient, so both flags go together. S_c = 0 gives λ̄ = ∞. The ``model`` decision says which solver that
+  means: steady smooth; for a rough contact at least ``a_over_beta_homogenised`` roughness correlation lengths wide
+  (a/β, β of the roughness profile), the steady homogenised model with the film-law closure (the roughness is a
+  homogeneous micro-scale there: measured against the deterministic model in docs/explanation/mixed-regime.md, "Film-law
+  closure"), so ``transient`` is off; so is a narrower rough contact above λ̄ = 1, with an Eyring-saturated traction
+  (X_h ≥ 150, see below), or within the range where the film law's micro-EHL pressure-fluctuation closure was calibrated
+  (λ̄ ≥ 0.1 and Greenwood–Tripp roughness parameter α = S_c·r_eq/a² ≤ 2.5), where the film law is measured within 10 %
+  in median (docs/explanation/mixed-regime.md); the other narrow rough contacts go to the level's ``rough_model``: the
+  same film-law model at ``fast`` and ``standard``, recorded as outside its validated range (no cheap model is within
+  those levels' tolerance there), the deterministic solver (the package's transient rough solver) at ``reference``.
 * **shear thinning** — inlet Eyring number X_in = η0·|u_s|/(τ0·h_min,DH): sinh(τ_m/τ0) of the Couette shear where
-  the film is formed (the inlet, at ambient viscosity). The Eyring flow factor is √(1 + X²), and only the inlet
-  flow shapes the film: in the Hertz zone the Poiseuille flow is negligible whatever its factor. The Eyring number
-  at the Hertz pressure, X_h = η(p_h)·|u_s|/(τ0·h_min,DH), does not predict the effect (docs/planner.md measures
-  both); X_h is recorded (it says how deep in the Eyring plateau the traction is), X_in decides.
-  SR = 0 gives X = 0 (exact).
+  the film is formed (the inlet, at ambient viscosity). The Eyring flow factor is √(1 + X²), and only the inlet flow
+  shapes the film: in the Hertz zone the Poiseuille flow is negligible whatever its factor. The Eyring number at the
+  Hertz pressure, X_h = η(p_h)·|u_s|/(τ0·h_min,DH), does not predict the effect (docs/explanation/planner.md measures
+  both); X_h is recorded (it says how deep in the Eyring plateau the traction is), X_in decides. SR = 0 gives X = 0
+  (exact).
 * **compressibility** — Dowson–Higginson density change ρ(p_h)/ρ0 − 1 (paper Eq. 6) is recorded; compressibility
-  costs nothing to simulate and moves h_c by 13–19 % at the factorial's loads (docs/ehl_solver.md), so the planner always
-  keeps it (a lubricant file may declare itself incompressible; the solver then uses ρ = ρ0).
+  costs nothing to simulate and moves h_c by 13–19 % at the factorial's loads (docs/explanation/ehl-model.md), so the
+  planner always keeps it (a lubricant file may declare itself incompressible; the solver then uses ρ = ρ0).
 * **thermal** — the predicted relative reduction of the Couette traction at the Hertz centre by shear heating of
   the film and the flash temperature of the surfaces (:func:`ehl_dataset.model.thermal.centre_estimate`: η(p_h) and
   β(p_h) of the lubricant, Moes' central film, Blok's maximum flash temperature of a Hertzian heat flux, the
@@ -69,7 +67,7 @@ def thresholds_for(level) -> PlannerThresholds:
     Returns
     -------
     PlannerThresholds
-        The level's thresholds (docs/planner.md). An unknown level raises :class:`InputError`.
+        The level's thresholds (docs/explanation/planner.md). An unknown level raises :class:`InputError`.
     """
     return level_settings(level).planner
 

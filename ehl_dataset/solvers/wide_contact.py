@@ -1,5 +1,5 @@
 """Wide rough contacts in the deterministic model: periodic windows across the Hertzian zone, fed by the measured
-film law (docs/deterministic_solver.md, "Wide contacts").
+film law (docs/explanation/mixed-regime.md, "Wide contacts").
 
 A contact many correlation lengths β wide cannot be resolved for the thousands of time steps a time average needs
 (a/β up to ≈ 250 in the paper's factorial). Its Hertzian zone is a statistically homogeneous micro-scale inside a
@@ -8,7 +8,7 @@ smooth macro-contact, so the local mean state at a point x of the zone is that o
 Two macro quantities feed the windows:
 
 * p̄(x): the steady smooth solve's pressure (the roughness leaves the mean pressure of the Hertzian zone Hertzian;
-  measured on the resolved case V1, docs/deterministic_solver.md);
+  measured on the resolved case V1, docs/explanation/mixed-regime.md);
 * the lubricant content: at the centre the measured film law of resolved rough contacts,
 
       h̄_c = h_s + σ·c·(L_in/β)^k/(h_s/σ + d),      c, d, k = FILM_LAW_C, FILM_LAW_D, FILM_LAW_K,
