@@ -183,16 +183,14 @@ def _predict(args) -> int:
     from .cli_validity import finish
 
     start = time.perf_counter()
-    check_range("p_h_gpa", args.p_h_gpa, 0.0, 10.0, low_inclusive=False, unit="GPa")
-    check_range("r_eq_mm", args.r_eq_mm, 0.0, 1e4, low_inclusive=False, unit="mm")
-    check_range("u_r", args.u_r, 0.0, 200.0, low_inclusive=False, unit="m/s")
-    check_range("sr", args.sr, -2.0, 2.0)
-    check_range("temp_c", args.temp_c, -273.15, 726.0, low_inclusive=False, unit="C")
-    check_range("rq1_um", args.rq1_um, 0.0, 100.0, low_inclusive=False, unit="um")
-    check_range("rq2_um", args.rq2_um, 0.0, 100.0, low_inclusive=False, unit="um")
+    # the contact's inputs checked once, against the contact's table of limits; Eq. 9 needs rough surfaces
+    case = ContactCase.from_engineering(args.p_h_gpa, args.r_eq_mm, args.u_r, args.sr, args.temp_c, args.rq1_um,
+                                        args.rq2_um)
+    for option, rq in (("rq1_um", case.rq1), ("rq2_um", case.rq2)):
+        if rq == 0.0:
+            raise InputError(option, getattr(args, option), "(0, 100] um: the surrogate is fitted to rough surfaces")
     surrogate = FrictionSurrogate.load(args.coefficients, clip_to_fitted_ranges=not args.no_clip)
-    inputs = (args.p_h_gpa * 1e9, args.r_eq_mm * 1e-3, args.u_r, args.sr, args.temp_c + 273.15,
-              args.rq1_um * 1e-6, args.rq2_um * 1e-6)
+    inputs = (case.p_h, case.r_eq, case.u_r, case.sr, case.temperature, case.rq1, case.rq2)
     check_range("coverage", args.coverage, 0.0, 1.0, low_inclusive=False, high_inclusive=False)
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
