@@ -78,6 +78,8 @@ class PreparedTable:
         Rows of the input table [-].
     lambda_column_max_rel_diff : float, optional
         Largest relative difference between the recomputed and the stored λ̄ column [-].
+    kept_rows : ndarray, optional
+        Positions (0 … n_input_rows − 1) of the usable rows in the input table, in order [-].
     """
 
     table: pd.DataFrame
@@ -86,6 +88,7 @@ class PreparedTable:
     exclusions: dict[str, int]
     n_input_rows: int
     lambda_column_max_rel_diff: float | None = None
+    kept_rows: np.ndarray | None = None
 
 
 def prepare_table(table: pd.DataFrame, lubricant, e_reduced: float) -> PreparedTable:
@@ -150,7 +153,8 @@ def prepare_table(table: pd.DataFrame, lubricant, e_reduced: float) -> PreparedT
         ok = np.isfinite(stored) & (stored > 0)
         if ok.any():
             lam_diff = float(np.max(np.abs(feats["lam"][ok] / stored[ok] - 1.0)))
-    return PreparedTable(used, feats, np.log(used["mu"].to_numpy(dtype=float)), exclusions, n, lam_diff)
+    return PreparedTable(used, feats, np.log(used["mu"].to_numpy(dtype=float)), exclusions, n, lam_diff,
+                         np.flatnonzero(keep))
 
 
 # ---------------------------------------------------------------------------------------------------------------

@@ -92,7 +92,8 @@ def fitted_ranges(prepared: PreparedTable) -> dict[str, list[float]]:
 
 
 def fit_learned(table: pd.DataFrame, lubricant, e_reduced: float, *, members: int = 5,
-                hidden: tuple[int, ...] = (16, 16), l2: float = 1e-3, seed: int = 0) -> LearnedFit:
+                hidden: tuple[int, ...] = (16, 16), l2: float = 1e-3, seed: int = 0,
+                calibration: np.ndarray | None = None) -> LearnedFit:
     """Fit the learned surrogate on a dataset table (columns of the HDF5 store, SI units).
 
     Parameters
@@ -111,6 +112,9 @@ def fit_learned(table: pd.DataFrame, lubricant, e_reduced: float, *, members: in
         L2 penalty on standardised data [-].
     seed : int
         Seed [-].
+    calibration : numpy.ndarray, optional
+        Boolean mask over the rows of ``table``: the rows whose out-of-fold scores set the interval (default: every
+        usable row; :func:`surrogate.mlp.fit_mlp_ensemble`) [-].
 
     Returns
     -------
@@ -119,7 +123,12 @@ def fit_learned(table: pd.DataFrame, lubricant, e_reduced: float, *, members: in
     """
     started = time.perf_counter()
     prepared = prepare_table(table, lubricant, e_reduced)
-    result = fit_mlp_ensemble(prepared.features, prepared.ln_mu, members=members, hidden=hidden, l2=l2, seed=seed)
+    mask = None
+    if calibration is not None:
+        kept = prepared.kept_rows if prepared.kept_rows is not None else np.arange(len(table))
+        mask = np.asarray(calibration, dtype=bool)[kept]
+    result = fit_mlp_ensemble(prepared.features, prepared.ln_mu, members=members, hidden=hidden, l2=l2, seed=seed,
+                              calibration=mask)
     cv: dict[str, Any] = {"k": members, "seed": seed, "method": "out-of-fold predictions of the ensemble members",
                           "overall": error_metrics(prepared.ln_mu, result.oof_ln_mu)}
     for branch, mask in branch_masks(prepared.features["lam"], LAMBDA_THRESHOLD).items():

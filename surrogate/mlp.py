@@ -264,7 +264,7 @@ class MlpFitResult:
 
 def fit_mlp_ensemble(features: dict[str, np.ndarray], ln_mu: np.ndarray, *, members: int = 5,
                      hidden: tuple[int, ...] = (16, 16), l2: float = 1e-3, max_iter: int = 2000,
-                     seed: int = 0) -> MlpFitResult:
+                     seed: int = 0, calibration: np.ndarray | None = None) -> MlpFitResult:
     """Fit the ensemble of :class:`MlpEnsemble` by K-fold cross-validation+ (module docstring).
 
     Parameters
@@ -283,6 +283,10 @@ def fit_mlp_ensemble(features: dict[str, np.ndarray], ln_mu: np.ndarray, *, memb
         L-BFGS iterations per member [-].
     seed : int
         Seed of the fold split and of the initial weights [-].
+    calibration : numpy.ndarray, optional
+        Boolean mask of the rows whose scores set the interval (default: all). Conformal calibration needs rows
+        drawn like the points to be predicted: of an adaptive design, only its space-filling start is; the rows
+        chosen where the ensemble disagreed are harder than a random point and would widen the interval [-].
 
     Returns
     -------
@@ -326,12 +330,17 @@ def fit_mlp_ensemble(features: dict[str, np.ndarray], ln_mu: np.ndarray, *, memb
         biases=tuple(np.stack([b[l] for b in biases]) for l in range(layers)),
         x_mean=x_mean, x_scale=x_scale, y_mean=y_mean, y_scale=y_scale, s0=0.0, score_quantiles={})
     _, spread = ensemble.predict(x)
-    s0 = float(np.median(spread))
-    scores = np.abs(y - oof) / (spread + s0)
+    mask = np.ones(n, dtype=bool) if calibration is None else np.asarray(calibration, dtype=bool).ravel()
+    if mask.shape != (n,) or not mask.any():
+        raise InputError("calibration", f"mask of {mask.size} rows, {int(mask.sum())} set",
+                         f"a boolean mask of the {n} rows with at least one set")
+    s0 = float(np.median(spread[mask]))
+    scores = np.abs(y - oof)[mask] / (spread[mask] + s0)
     quantiles = {c: q for c in COVERAGES if math.isfinite(q := conformal_quantile(scores, c))}  # too few rows: none
     ensemble = MlpEnsemble(ensemble.weights, ensemble.biases, x_mean, x_scale, y_mean, y_scale, s0, quantiles)
     return MlpFitResult(ensemble, oof, spread, time.perf_counter() - started,
                         {"members": members, "hidden": list(hidden), "l2": l2, "max_iter": max_iter, "seed": seed,
+                         "calibration_rows": int(mask.sum()),
                          "solver": "lbfgs", "activation": ACTIVATION})
 
 

@@ -225,7 +225,8 @@ def run_adaptive(out_dir: str | Path, factorial, lubricant, *, level: str, effec
         solves = len(table)
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
-            fit = fit_learned(table, lubricant, e_reduced, seed=seed)
+            calibration = np.arange(solves) < len(tables[0])  # the space-filling start (surrogate.mlp)
+            fit = fit_learned(table, lubricant, e_reduced, seed=seed, calibration=calibration)
         entry: dict[str, Any] = {"round": index, "solves": solves,
                                  "oof_median_rel_err_mu": fit.cv["overall"]["median_rel_err_mu"],
                                  "wall_time_s": time.perf_counter() - started}

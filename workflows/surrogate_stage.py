@@ -154,32 +154,49 @@ def adaptive_stage(out_dir: str | Path, factorial, lubricant, *, level: str, eff
             "details": result.to_dict()}
 
 
-def load_rows(paths) -> tuple[pd.DataFrame, Any]:
-    """Every row of one or more dataset files (same lubricant and E'), and the first file's :class:`Dataset`."""
+SPACE_FILLING_KINDS = ("sample:sobol", "sample:random", "sample:lhs")
+"""Sample kinds (recorded in a sample's store) drawn uniformly over the box, like the off-grid sample."""
+
+
+def load_rows(paths) -> tuple[pd.DataFrame, Any, Any]:
+    """Every row of one or more dataset files (same lubricant and E'), the first file's :class:`Dataset` (its table
+    replaced by all rows), and the calibration mask of the learned form's interval: None for one file; for several
+    (an adaptive design) the rows of the space-filling files (:data:`SPACE_FILLING_KINDS`), not those chosen where
+    the ensemble disagreed (:func:`surrogate.mlp.fit_mlp_ensemble`)."""
+    import numpy as np
+
+    from ehl_dataset.dataset.store import read_metadata
     from surrogate.dataset_io import load_dataset
 
     paths = [paths] if isinstance(paths, (str, Path)) else list(paths)
     datasets = [load_dataset(p) for p in paths]
+    calibration = None
+    if len(paths) > 1:
+        kinds = [(read_metadata(p).get("factorial") or {}).get("kind") for p in paths]
+        calibration = np.concatenate([np.full(len(d.table), k in SPACE_FILLING_KINDS) for d, k in zip(datasets, kinds)])
+        if not calibration.any():
+            calibration = None
     first = datasets[0]
     for other, path in zip(datasets[1:], paths[1:]):
         if other.lubricant.to_json_dict() != first.lubricant.to_json_dict() or other.e_reduced != first.e_reduced:
             raise InputError("dataset", str(path), f"a dataset of the lubricant and E' of {paths[0]}")
     table = pd.concat([d.table for d in datasets], ignore_index=True) if len(datasets) > 1 else first.table
     if len(datasets) > 1:
-        first.table = table
         first.source["files"] = [{"path": Path(p).name, "sha256": d.source["sha256"], "n_points": len(d.table)}
                                  for p, d in zip(paths, datasets)]
+        first.table = table
         first.source["n_points"] = int(len(table))
-    return table, first
+    return table, first, calibration
 
 
-def fit_form(form: str, table: pd.DataFrame, data, *, allow_unstable: bool = False, blend_half_width: float = 0.1):
+def fit_form(form: str, table: pd.DataFrame, data, *, allow_unstable: bool = False, blend_half_width: float = 0.1,
+             calibration=None):
     """The fit of ``form`` on ``table`` (``eq9``: :func:`surrogate.fit.fit_surrogate`; ``learned``:
-    :func:`surrogate.learned_fit.fit_learned`)."""
+    :func:`surrogate.learned_fit.fit_learned`, its interval calibrated on the rows of ``calibration``)."""
     if check_form(form) == "learned":
         from surrogate.learned_fit import fit_learned
 
-        return fit_learned(table, data.lubricant, data.e_reduced)
+        return fit_learned(table, data.lubricant, data.e_reduced, calibration=calibration)
     from surrogate.fit import fit_surrogate
 
     return fit_surrogate(table, data.lubricant, data.e_reduced, allow_unstable=allow_unstable,
@@ -256,10 +273,11 @@ def fit_and_write(dataset_paths, coefficients_file: str | Path, *, form: str = "
     """
     from surrogate.coefficients import summary_path, write_coefficients
 
-    table, data = load_rows(dataset_paths)
+    table, data, calibration = load_rows(dataset_paths)
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        fit = fit_form(form, table, data, allow_unstable=allow_unstable, blend_half_width=blend_half_width)
+        fit = fit_form(form, table, data, allow_unstable=allow_unstable, blend_half_width=blend_half_width,
+                       calibration=calibration)
         offgrid = offgrid_table_for(fit, offgrid_path)
     path = write_coefficients(fit, coefficients_file, source=data.source, offgrid=offgrid)
     details = fit_details(fit) | {"lubricant": data.lubricant.name, "summary": str(summary_path(path))}
