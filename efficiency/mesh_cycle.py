@@ -43,7 +43,7 @@ OUTPUTS = frozenset({"te", "stresses"})
 LOAD_SHARING = ("elastic", "rigid-uniform", "independent-slices")
 DEFAULT_COUPLING_LENGTH_FACTOR = 0.6
 """Face-coupling length ℓ of the tooth (bending, shear, compression) in whole tooth depths. From a 3-D linear-elastic
-FE of the FZG H501 teeth (validation/fe_tooth_coupling.py, docs/gear_load_distribution.md): the FE influence of a
+FE of the FZG H501 teeth (validation/fe_tooth_coupling.py, docs/explanation/gear-model.md): the FE influence of a
 concentrated flank load has an effective width of 1.1–1.4 tooth depths at mid-face, and the slice model with
 ℓ = 0.6 depth reproduces the FE's loss factor (0.1863 against 0.1864) and its load profile along the path of
 contact within 0.02 of the mean. The earlier default, 1 depth, made the ends of partly loaded contact lines too

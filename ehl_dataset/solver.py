@@ -62,7 +62,7 @@ surfaces the steady homogenised model with the film-law closure where the contac
 effects with ``transient`` on run the deterministic solver at the level's grid rule too), ``smooth``
 (steady smooth surfaces whatever the roughness), ``homogenised``
 (the steady two-scale mixed model, :mod:`ehl_dataset.solvers.homogenised`, with the closure of ``homogenised``;
-errors against the reference in docs/homogenised_model.md), ``deterministic`` (the deterministic mixed reference
+errors against the reference in docs/explanation/mixed-regime.md), ``deterministic`` (the deterministic mixed reference
 solver, :mod:`ehl_dataset.solvers.deterministic`, for rough surfaces).
 
 Version history of what can change a solved value: ehl-2026.11-8 added the thermal correction of the traction;
@@ -70,12 +70,14 @@ ehl-2026.11-9 makes ``auto`` solve wide rough contacts (a/β ≥ 15 at ``fast`` 
 homogenised model instead of the transient solver; ehl-2026.11-10 makes ``auto`` at ``reference`` solve rough
 contacts by the deterministic solver (the accuracy reference) instead of the transient solver; ehl-2026.11-11 makes
 ``auto`` at ``fast`` and ``standard`` solve narrow rough contacts (a/β < 15) by the film-law homogenised model too,
-instead of the transient solver (docs/narrow_contacts.md); ehl-2026.11-12 keeps the film law for narrow contacts
+instead of the transient solver (docs/explanation/mixed-regime.md); ehl-2026.11-12 keeps the film law for narrow
+contacts
 within its measured range (λ̄ > 1 or X_h ≥ 150) whatever the level's rough model, and its deterministic model
 det-2026.11-10 accepts a Newton solve stalled at the round-off floor instead of splitting the step; ehl-2026.11-13
 gives the film law on narrow contacts a micro-EHL pressure-fluctuation closure (film-law-2026.11-2,
 :mod:`ehl_dataset.model.micro_pressure`) and widens its measured range to the unsaturated narrow contacts with
-λ̄ ≥ 0.1 and roughness parameter α ≤ 2.5 (docs/narrow_contacts.md); ehl-2026.11-14 makes the closure's c a function
+λ̄ ≥ 0.1 and roughness parameter α ≤ 2.5 (docs/explanation/mixed-regime.md); ehl-2026.11-14 makes the closure's c a
+function
 of the inlet length in correlation lengths on every contact, narrow and wide, instead of a constant below a/β 15 and
 none above (film-law-2026.11-3; the wide unsaturated contacts resolved whole were 40 % above the film law without
 it), and extends the closure's measured range to wide contacts; ehl-2026.11-15 deletes the transient mixed solver

@@ -52,7 +52,7 @@ the face value the logarithmic mean of A times the harmonic mean of H³. Between
 flux of a conductance that varies exponentially with pressure is the Kirchhoff integral (1/Δ)∫ε dP, which the
 logarithmic mean of A gives exactly and which grows monotonically with the pressure difference; the harmonic mean
 of such a conductance gives a flux 2ε_a ΔP e^{−kΔP}/(1 + e^{−kΔP}) that falls again beyond kΔP ≈ 1.28, a spurious
-maximum at which the Newton matrix is singular (docs/deterministic_solver.md, "Robustness")."""
+maximum at which the Newton matrix is singular (docs/validation/deterministic-reference.md, "Robustness and cost")."""
 
 
 @numba.njit(cache=True)

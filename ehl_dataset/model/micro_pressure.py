@@ -1,5 +1,5 @@
 """Micro-EHL pressure fluctuations of a rough contact as a distribution, for the film-law closure
-(docs/explanation/mixed-regime.md, "Pressure-fluctuation closure").
+(docs/explanation/mixed-regime.md, "The film-law model (production)").
 
 In the deterministic model of a narrow rough contact (a few correlation lengths wide) the local fluid pressure
 fluctuates about its time mean by about one Hertz pressure (standard deviation 0.58–2.0 p_h over |x| < 0.8a on the
@@ -44,7 +44,7 @@ def micro_pressure_coefficient(inlet_over_beta: float) -> float:
         c = c0 / (1 + (L_in/(β·L0))²)   (:data:`MICRO_PRESSURE_C0`, :data:`MICRO_PRESSURE_INLET_SCALE`).
 
     An effective closure calibrated against the deterministic model on every unsaturated contact below λ̄ 1 within the
-    planner's closure range, narrow and wide (docs/explanation/mixed-regime.md, "Pressure-fluctuation closure").
+    planner's closure range, narrow and wide (docs/explanation/mixed-regime.md, "The film-law model (production)").
     Physically: where the inlet is long against β, the fluid smooths the micro-EHL pressure before the asperities reach
     the Hertz zone (c → 0: the deterministic windows agree with the film law without fluctuations at L_in/β 6–12), and
     where it is a few β, each asperity carries its own pressure peak through the contact (c ≈ 0.2 at L_in/β 2–3). The

@@ -45,7 +45,7 @@ def eyring_shear_stress(eta, u_s: float, h, tau0: float):
 CAVITATED_FRACTION = 1e-9
 """A node counts as cavitated when its pressure is at most this fraction of the maximum: the complementarity
 solver leaves cavitated nodes at round-off level (±1e-14 p_h), where an exact ``p <= 0`` test would let such a
-node extend the full-film region over a cavitated stretch (docs/ehl_solver.md, "Sign convention of μ")."""
+node extend the full-film region over a cavitated stretch (docs/explanation/ehl-model.md)."""
 
 
 def full_film_mask(pressure) -> np.ndarray:

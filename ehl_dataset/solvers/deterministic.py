@@ -43,7 +43,7 @@ COUETTE_FLUXES = {"linear": 1.0, "first-order": 0.0, "minmod": 2.0}
 """Couette (shear) flux of the mass rows: minmod-limited linear upwind (the default since det-2026.11-3: second order
 where the content is smooth; at a content jump, such as a film closing on a contact, it never carries lubricant
 against the flow), linear upwind (unlimited; the scheme of det-2026.11-2, which can drive the film fraction
-negative at such jumps), or first-order upwind; docs/deterministic_solver.md."""
+negative at such jumps), or first-order upwind; docs/explanation/mixed-regime.md."""
 from ..model.contact import ContactCase
 from ..model.effects import Effects
 from ..model.lubricant import LubricantState
@@ -64,7 +64,8 @@ which removes the 2–5e-10 floor of the global mass balance on contact-dominate
 of the grid rule depends on the level (:data:`ehl_dataset.solvers.levels.REGISTRY`); a run with a given ``dx_m`` is unchanged.
 det-2026.11-13: the logarithmic face mean takes t = ln a − ln b far from a = b; det-11's log1p form read fluid factors
 more than 1e16 apart as t = −∞ (face conductance 0, NaN partials), which failed every Newton solve from such a state
-(case E at ``fast``, 25 °C, at step 1,134; case G at step 426; docs/deterministic_solver.md, "Robustness").
+(case E at ``fast``, 25 °C, at step 1,134; case G at step 426; docs/validation/deterministic-reference.md, "Robustness
+and cost").
 det-2026.11-14: a linear solve that took :data:`REFACTOR_ITERATIONS` GMRES iterations makes the next one refactor the
 preconditioner first (the converged states are the same to the Newton tolerance; μ moves within a run's round-off
 sensitivity, checked by validation/deterministic_rerun_check.py). det-2026.11-15: the round-off stop on a small
@@ -74,11 +75,12 @@ in μ on short windows and ≤ 5.7e-5 on long ones; validation/results/determini
 det-2026.11-16: on grids of at most :data:`DENSE_KERNEL_NODES` nodes the deflection is a dense matrix–vector product
 instead of the FFT pair (the same operator; other round-off), and the periodic preconditioner's wrap-around
 convolution is a padded ``np.convolve``: the per-call overhead of the FFT dispatch and of ``scipy.ndimage`` dominated
-small grids (docs/deterministic_solver.md, "Cost").
+small grids (docs/validation/deterministic-reference.md, "Robustness and cost").
 det-2026.11-17: a Newton solve stalled above ROUND_OFF_MARGIN × the tolerance also stops where its norm is within the
 round-off floor it measures (:meth:`MixedProblem.round_off_floor`): B at β/256 (3,020 nodes) failed at step 22,017
 with its Newton stalled at a scaled residual of 1.0e-9 at every split, where moving the state by one unit in the last
-place moves the rows by 3e-9 (docs/deterministic_solver.md, "Robustness" item 9). det-16 split such a step or failed
+place moves the rows by 3e-9 (docs/validation/deterministic-reference.md, "Robustness and cost"). det-16 split such a
+step or failed
 it; steps whose solves converge within the margin are unchanged. det-2026.11-18: a time step that fails at every
 split is tried again, split as before, with Newton allowed :data:`WATCHDOG_STEPS` damped steps that the line search
 rejected (a non-monotone "watchdog" globalisation): B at β/256 failed at step 24,653 under det-13 and det-17 where a
@@ -131,17 +133,18 @@ BOUNDARY_FILM_M = 5e-9
 their adsorbed/reacted boundary films, which carry load and friction μ_d·p_c. Representative value: adsorbed
 friction-modifier layers are a few nm thick, and deterministic mixed-EHL becomes mesh-dependent once films fall
 below ~10–20 nm (Liu, Wang, Wang, Hu & Zhu, J. Tribol. 128 (2006) 641); its effect on μ is reported as a
-sensitivity (h_b × 0.5, × 2) in docs/deterministic_solver.md."""
+sensitivity (h_b × 0.5, × 2) in docs/explanation/mixed-regime.md."""
 FILM_FLOOR = 1e-3
 """The conductance ε reads films below FILM_FLOOR·H_b (interfering asperities) as that floor: a regularisation that
 keeps ε > 0 where plastically flattened tips close the gap (``DeterministicOptions.film_floor``; its 10× sensitivity
-in docs/deterministic_solver.md, "Sensitivity")."""
+in docs/validation/deterministic-reference.md, "Time step, thresholds and the boundary film")."""
 COURANT = 0.25
 """Default u_r Δt/Δx (det-2026.11-9; 0.5 in det-8, 1.0 before). Measured where asperities carry load, case A's
 conditions with Rq 0.5 µm (λ̄ 0.2) at β/16 over 11 paired passes: Courant 0.5 → 0.25 moves μ by −8.9 % ± 6.2 % and
 the asperity share from 0.035 to 0.004; 0.25 → 0.125 by −0.20 % ± 0.05 % (share 0.0039). On case A (Rq 0.3 µm) at
 β/32 over 40 passes: 1 → 0.5 −3.8 % ± 1.1 %, 0.5 → 0.25 −0.13 % ± 0.03 %. The colliding-asperity events of a longer
-step are partly numerical (docs/deterministic_solver.md, "Sensitivity")."""
+step are partly numerical (docs/validation/deterministic-reference.md, "Time step, thresholds and the boundary
+film")."""
 YIELD_PRESSURE_PA = 6.8e9
 """Hardness of case-hardened gear steel, 60 HRC ≈ 697 HV ≈ 6.8 GPa (ASTM E140): the cap of the solid contact
 pressure (elastic–perfectly-plastic asperities; Johnson 1985, §6)."""
@@ -149,7 +152,7 @@ pressure (elastic–perfectly-plastic asperities; Johnson 1985, §6)."""
 INLET_RESOLUTION = 0.1
 """Default largest spacing relative to the inlet length scale a·H_c^(2/3) of the smooth EHL solution (H_c =
 h_c r/a², Moes' central film): the heavy-load inlet and outlet zones shrink like H_c^(2/3) (the steady solver's rule,
-docs/ehl_solver.md). The ``reference`` level's; ``fast`` and ``standard`` take 0.3 and 0.2
+docs/explanation/ehl-model.md). The ``reference`` level's; ``fast`` and ``standard`` take 0.3 and 0.2
 (:data:`ehl_dataset.solvers.levels.REGISTRY`)."""
 
 WIDE_ROUTES = ("auto", "resolve", "windows")
@@ -342,7 +345,7 @@ REFACTOR_ITERATIONS = 20
 """GMRES iterations of a linear solve at which the stored preconditioner counts as aged: the next solve refactors it
 from its own Jacobian first (det-2026.11-14; until det-13 the aged solve itself was repeated with a fresh LU, and its
 first iterations were lost). On three 2-pass `fast` runs that saves 6–19 % of the GMRES iterations
-(benchmarks/deterministic_linear_cost.py; docs/deterministic_solver.md, "Cost")."""
+(benchmarks/deterministic_linear_cost.py; docs/validation/deterministic-reference.md, "Robustness and cost")."""
 
 
 def grid_spacing(profile: RoughnessProfile, rq1: float, rq2: float, h_b: float, options: DeterministicOptions,
@@ -448,7 +451,8 @@ class MixedProblem:
         """``z`` with its film offset moved into :attr:`film_reference` (det-2026.11-20): the unknown becomes the
         offset's change δH0, small through a run, so one unit in its last place moves every node's film by far less than
         one of H0 ≈ −0.6 did (which moved the global lubricant balance by up to 0.8 of its 1e-10 target on fine grids of
-        heavily loaded contacts; docs/explanation/mixed-regime.md, "Mass balance"). The same film to round-off."""
+        heavily loaded contacts; docs/validation/deterministic-reference.md, "Conservation"). The same film to
+        round-off."""
         moved = np.array(z, dtype=float)
         self.film_reference += float(moved[-1])
         moved[-1] = 0.0
@@ -916,7 +920,7 @@ MAX_STEP_RATIO = 2.0
 """Largest ratio ΔT_n/ΔT_{n−1} of consecutive BDF2 steps. Variable-step BDF2 is zero-stable only for ratios below
 1 + √2 ≈ 2.41 (Grigorieff 1983); at a ratio of 16, as after a time step split into sub-steps, its history term
 amplifies the content differences of the sub-steps sixteen-fold and Newton cannot converge
-(docs/deterministic_solver.md, "Robustness")."""
+(docs/validation/deterministic-reference.md, "Robustness and cost")."""
 
 
 def substep_sizes(d_t: float, parts: int, dt_prev: float | None, growth: float = MAX_STEP_RATIO) -> list[float]:

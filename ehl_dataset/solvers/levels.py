@@ -11,7 +11,8 @@ name is an error (:class:`~ehl_dataset.validation.InputError`); nothing falls ba
 Steady smooth grid: nodes are clustered (spacing ``dx_fine``) in two bands around the Hertz inlet (x ≈ −a) and the
 outlet constriction/pressure spike (x ≈ +a), growing linearly over ``transition`` to ``dx_coarse`` elsewhere (see
 :func:`ehl_dataset.discretisation.grid.clustered_grid`). A uniform grid would need 1,600–3,200 nodes at M > 100; the
-clustered grids reach the same film accuracy with a few hundred (docs/explanation/ehl-model.md, "Numerics").
+clustered grids reach the same film accuracy with a few hundred (docs/explanation/ehl-model.md, "Discretisation and
+solver").
 """
 
 from __future__ import annotations
@@ -107,7 +108,7 @@ NARROW_FILM_LAW_EYRING = 150.0
 """X_h from which the film law holds on narrow contacts below λ̄ 1 (ehl-2026.11-12). Against the deterministic
 model, narrow rough contacts below λ̄ 1: at X_h ≥ 194 the film law is within 10 % on every point (4 factorial points
 at fast; the reference cases I and J, −6.0 % and +6.6 %), at X_h ≤ 111 it is 16–80 % low on 10 of 11 points and on the
-reference cases A, C and G (docs/narrow_contacts.md); 150 is the geometric middle of the gap."""
+reference cases A, C and G (docs/explanation/mixed-regime.md); 150 is the geometric middle of the gap."""
 
 NARROW_CLOSURE_LAMBDA = 0.1
 """λ̄ from which the film law with its pressure-fluctuation closure holds on contacts with an unsaturated traction
@@ -115,7 +116,7 @@ NARROW_CLOSURE_LAMBDA = 0.1
 model, which the film law, whose fluid carries the whole load, does not model: reference case B (λ̄ 0.054, asperity
 share 0.66 at β/128) is −78 % with the closure, the narrow factorial corner at λ̄ 0.027 (share 0.18) −43 %, and the wide corner
 at λ̄ 0.062 +162 % (−44 % without). Within the range the lowest λ̄ is 0.14 (+0.5 %); one factorial point at λ̄ 0.085 is
-+4 %: validation/results/micro_pressure_closure.json, docs/narrow_contacts.md."""
++4 %: validation/results/micro_pressure_closure.json, docs/explanation/mixed-regime.md."""
 
 NARROW_CLOSURE_ROUGHNESS = 2.5
 """Greenwood–Tripp roughness parameter α = S_c·r_eq/a² up to which the closure holds (ehl-2026.11-13). The film law
@@ -229,13 +230,13 @@ REGISTRY: dict[str, Level] = {
         MappingProxyType(dict(max_passes=40.0))),
 }
 """The accuracy levels, keyed by :data:`ehl_dataset.names.LEVELS` (in that order). ``standard`` is the default of
-:func:`ehl_dataset.solver.solve_contact`. Planner thresholds: justification and measurements in docs/planner.md.
-Deterministic grid rule (the level names an error budget; what each costs and gives is measured in
-docs/deterministic_solver.md): the inlet term (det-2026.11-12; 0.1, the reference level's, at every level before): on
-the smooth solution of the uniform grid against the steady solver's reference, over the validation cases and six
-slow, hot, heavily loaded factorial corners, 0.3 L_in moves μ by ≤ 0.6 % and h_c by ≤ 3.2 %, 0.2 L_in by ≤ 0.6 % and
-≤ 1.5 % (validation/results/deterministic_inlet_resolution.json), within the ``fast`` and ``standard`` budgets, where
-0.1 L_in made ``fast`` on case H (1.5 GPa, 1 m/s) a β/23 grid and a 1,830 s run."""
+:func:`ehl_dataset.solver.solve_contact`. Planner thresholds: justification and measurements in
+docs/explanation/planner.md. Deterministic grid rule (the level names an error budget; what each costs and gives is
+measured in docs/explanation/mixed-regime.md): the inlet term (det-2026.11-12; 0.1, the reference level's, at every
+level before): on the smooth solution of the uniform grid against the steady solver's reference, over the validation
+cases and six slow, hot, heavily loaded factorial corners, 0.3 L_in moves μ by ≤ 0.6 % and h_c by ≤ 3.2 %, 0.2 L_in by ≤
+0.6 % and ≤ 1.5 % (validation/results/deterministic_inlet_resolution.json), within the ``fast`` and ``standard``
+budgets, where 0.1 L_in made ``fast`` on case H (1.5 GPa, 1 m/s) a β/23 grid and a 1,830 s run."""
 
 if tuple(REGISTRY) != LEVEL_NAMES:  # pragma: no cover - a definition error caught at import
     raise ImportError(f"level registry {tuple(REGISTRY)} differs from ehl_dataset.names.LEVELS {LEVEL_NAMES}")
