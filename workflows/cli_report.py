@@ -114,24 +114,21 @@ def _setup(args):
     specs = [args.friction] + [c for c in args.compare if c != args.friction]
     frictions = {spec: friction_from_spec(spec, lubricant) for spec in specs}
     point = StudyPoint.from_operating_point(study.operating_point)
+    # the options' values in SI; the operating point (StudyPoint, Modifications) checks each once when it is built
     changes = {}
     if getattr(args, "oil_temp_c", None) is not None:
-        changes["oil_temperature"] = check_range("oil-temp-c", args.oil_temp_c, -50.0, 350.0, unit="°C") + 273.15
+        changes["oil_temperature"] = args.oil_temp_c + 273.15
     if getattr(args, "rq_um", None) is not None:
-        rq = check_range("rq-um", args.rq_um, 0.0, 100.0, unit="µm") * 1e-6
-        changes.update(rq1=rq, rq2=rq)
+        changes.update(rq1=args.rq_um * 1e-6, rq2=args.rq_um * 1e-6)
     mp, ml = getattr(args, "profile_crown_um", None), getattr(args, "lead_crown_um", None)
     if mp is not None or ml is not None:
         mods = point.modifications
-        changes["modifications"] = Modifications(
-            profile_crown=mods.profile_crown if mp is None else check_range("profile-crown-um", mp, 0, 1000) * 1e-6,
-            lead_crown=mods.lead_crown if ml is None else check_range("lead-crown-um", ml, 0, 1000) * 1e-6)
+        changes["modifications"] = Modifications(profile_crown=mods.profile_crown if mp is None else mp * 1e-6,
+                                                 lead_crown=mods.lead_crown if ml is None else ml * 1e-6)
     if getattr(args, "torque_nm", None) is not None:
-        changes["input_torque"] = check_range("torque-nm", args.torque_nm, 0.0, 1e7, low_inclusive=False,
-                                              unit="N·m")
+        changes["input_torque"] = args.torque_nm
     if getattr(args, "speed_rpm", None) is not None:
-        changes["input_speed"] = check_range("speed-rpm", args.speed_rpm, 0.0, 1e6, low_inclusive=False,
-                                             unit="rpm") * math.pi / 30.0
+        changes["input_speed"] = args.speed_rpm * math.pi / 30.0
     point = dataclasses.replace(point, **changes)
     options = MeshOptions(positions=args.positions, slices=args.slices)
     return study, frictions, point, options
