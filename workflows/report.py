@@ -294,7 +294,8 @@ class MeshCycleLoss:
     contact_end_m : float
         End of the active path of contact [m].
     models : dict of str to dict
-        Per model: ``power_loss_w`` [W], ``efficiency``, ``power_loss_instant_w`` [W], ``loss_per_length_w_per_m``
+        Per model: ``power_loss_w`` [W], ``power_loss_band_w`` (the 90 % band of P of a surrogate with prediction
+        intervals, else None) [W], ``efficiency``, ``power_loss_instant_w`` [W], ``loss_per_length_w_per_m``
         [W/m], ``mu_load_weighted`` and ``sr_load_weighted`` per bin [-].
     torque_nm : float
         Input torque [N·m].
@@ -375,6 +376,7 @@ def mesh_cycle_loss(pair, frictions: dict[str, Any], point, options, *, design: 
         sr_bin = np.bincount(which[loaded], weights=(loss.sr * mesh.loads)[loaded], minlength=bins)
         with np.errstate(invalid="ignore", divide="ignore"):
             models[name] = {"power_loss_w": loss.power_loss, "efficiency": loss.efficiency,
+                            "power_loss_band_w": loss.power_loss_band,
                             "power_loss_instant_w": loss.power_loss_instant,
                             "loss_per_length_w_per_m": per_bin / width,
                             "mu_load_weighted": mu_bin / load_bin, "sr_load_weighted": sr_bin / load_bin}
@@ -414,7 +416,9 @@ def mesh_cycle_figure(result: MeshCycleLoss, path, command: str, note: str = "")
     for k, (name, model) in enumerate(result.models.items()):
         style = STYLES[k % len(STYLES)]
         axes[0].plot(phi, model["power_loss_instant_w"] / 1e3, style, color=f"C{k}", marker="o", ms=3,
-                     label=f"{name}: mean P {model['power_loss_w'] / 1e3:.3f} kW")
+                     label=f"{name}: mean P {model['power_loss_w'] / 1e3:.3f} kW"
+                     + (" (90 % band {:.3f}-{:.3f})".format(*(v / 1e3 for v in model["power_loss_band_w"]))
+                        if model.get("power_loss_band_w") else ""))
         axes[0].axhline(model["power_loss_w"] / 1e3, color=f"C{k}", lw=0.8, ls=":")
         axes[1].plot(x_mm, model["loss_per_length_w_per_m"] * 1e-3, style, color=f"C{k}", label=name)
         axes[2].plot(x_mm, model["mu_load_weighted"], style, color=f"C{k}", label=f"μ {name}")
