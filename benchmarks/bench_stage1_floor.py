@@ -22,6 +22,7 @@ In one run, on contacts drawn (seeded) from the axes of ``data/factorials/paper2
   in the full run), computed by the dataset runner's worker function (``compute_point``) on a local process pool of
   ``--workers`` processes with the runner's window of 4 tasks per worker, without the HDF5 store; the wall time is
   extrapolated linearly to the 42,000 points (labelled as such). ``full``: every point of the factorial the same way.
+  ``--warm-start``: with the runner's neighbour warm starts (``execute(..., warm_start=True)``).
 
 The machine is described (CPU model, cores, load averages at the start, between the parts and at the end): on a shared
 machine the load changes the wall times, the CPU times less.
@@ -191,12 +192,12 @@ def factorial_indices(mode: str, conditions: int, seed: int) -> tuple[np.ndarray
     return (picks[:, None] * pairs + np.arange(pairs)[None, :]).ravel(), factorial.size
 
 
-def run_factorial_sample(indices: np.ndarray, workers: int, lub) -> dict:
+def run_factorial_sample(indices: np.ndarray, workers: int, lub, warm_start: bool = False) -> dict:
     factorial = load_factorial("paper2009")
     points = factorial.points()
     lubricant_json = canonical_json(lub.to_json_dict())
     tasks = deque(PointTask(int(i), tuple(float(v) for v in points[i]), lubricant_json, factorial.level,
-                            factorial.effects, model=factorial.model) for i in indices)
+                            factorial.effects, model=factorial.model, warm_start=warm_start) for i in indices)
     executor = make_executor(workers, None)
     window = 4 * executor.n_workers
     in_flight, results = {}, []
@@ -214,7 +215,7 @@ def run_factorial_sample(indices: np.ndarray, workers: int, lub) -> dict:
         executor.shutdown(cancel=True)
     wall = time.perf_counter() - start
     records = [r["record"] or {} for r in results]
-    return {"points": len(results), "workers": workers, "wall_s": wall,
+    return {"points": len(results), "workers": workers, "warm_start": warm_start, "wall_s": wall,
             "ok": int(sum(r["status"] == OK for r in results)),
             "converged": int(sum(bool(rec.get("converged")) for rec in records)),
             "worker_time_s": stats([r["worker_time"] for r in results])}
@@ -230,6 +231,7 @@ def main(argv=None) -> int:
     parser.add_argument("--factorial", choices=("sample", "full", "none"), default="sample")
     parser.add_argument("--conditions", type=int, default=200, help="conditions x 10 roughness pairs (sample)")
     parser.add_argument("--workers", type=int, default=2)
+    parser.add_argument("--warm-start", action="store_true", help="factorial with neighbour warm starts")
     parser.add_argument("--out", default=str(Path(__file__).parent / "results" / "stage1_floor.json"))
     args = parser.parse_args(argv)
     report = {"benchmark": "stage1_floor", "solver_version": SOLVER_VERSION,
@@ -266,7 +268,7 @@ def main(argv=None) -> int:
     if args.factorial != "none":
         indices, total = factorial_indices(args.factorial, args.conditions, args.seed)
         load_start = load_average()
-        run = run_factorial_sample(indices, args.workers, lub)
+        run = run_factorial_sample(indices, args.workers, lub, args.warm_start)
         run.update({"mode": args.factorial, "load_average_start": load_start, "load_average_end": load_average(),
                     "factorial_points": total})
         if args.factorial == "sample":

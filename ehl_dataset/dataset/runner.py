@@ -56,6 +56,7 @@ from ..solvers.deterministic import MODEL_VERSION as DETERMINISTIC_MODEL_VERSION
 from ..solvers.wide_contact import WIDE_MODEL_VERSION
 from ..solvers.levels import get_level
 from ..solvers.planner import plan_effects
+from ..solvers.steady import neighbour_warm_starts
 from ..solvers.threads import one_blas_thread
 from ..validation import InputError, check_time_limit as check_positive_seconds
 from .executors import make_executor
@@ -78,7 +79,8 @@ class PointTask:
     top-level function), the wall-time budget of the solve ``time_limit_s`` [s] (None: no limit; passed to the
     solver only when set, so solvers without that keyword work without a budget) and the contact ``model`` (a name
     of :data:`ehl_dataset.solver.MODELS`; passed to every solver that accepts a ``model`` keyword, and a solver
-    without it is accepted only for ``"auto"``, :func:`check_model`)."""
+    without it is accepted only for ``"auto"``, :func:`check_model`); ``warm_start``: steady solves may start from
+    the worker's kept solution of a neighbouring point (:func:`ehl_dataset.solvers.steady.neighbour_warm_starts`)."""
 
     index: int
     point: tuple[float, ...]
@@ -88,6 +90,7 @@ class PointTask:
     solver: str | Callable = DEFAULT_SOLVER
     time_limit_s: float | None = None
     model: str = DEFAULT_MODEL
+    warm_start: bool = False
 
 
 _SOLVER_CACHE: dict[str, Callable] = {}
@@ -183,7 +186,9 @@ def compute_point(task: PointTask) -> dict[str, Any]:
             warnings.simplefilter("always")
             warnings.showwarning = lambda message, category, filename, lineno, *rest: caught.update(
                 [(category.__name__, os.path.basename(filename), lineno)])
-            result = solve(case, _lubricant(task.lubricant_json), level=task.level, effects=task.effects, **budget)
+            with neighbour_warm_starts(task.warm_start):
+                result = solve(case, _lubricant(task.lubricant_json), level=task.level, effects=task.effects,
+                               **budget)
         record = result.to_record()
         status, error = judge_record(record, getattr(result, "message", ""))
     except Exception as err:  # noqa: BLE001 - any solver failure is recorded, the run goes on
@@ -698,6 +703,8 @@ def _check_options(workers: int, options: dict) -> None:
         raise InputError("window", window, "an integer >= 1")
     if options.get("progress", "auto") not in ("auto", "bar", "log", "none"):
         raise InputError("progress", options["progress"], "'auto', 'bar', 'log' or 'none'")
+    if not isinstance(options.get("warm_start", False), bool):
+        raise InputError("warm_start", options["warm_start"], "True or False")
     interval = options.get("flush_interval_s", 5.0)
     if not (isinstance(interval, (int, float)) and math.isfinite(interval) and interval >= 0):
         raise InputError("flush_interval_s", interval, "a finite number of seconds >= 0")
@@ -707,7 +714,8 @@ def execute(store: DatasetStore, *, solver: str | Callable = DEFAULT_SOLVER, wor
             scheduler: str | None = None, kind: str = "run", window: int | None = None, max_attempts: int = 3,
             flush_interval_s: float = 5.0, flush_rows: int = 2000, progress: str = "auto",
             warm_up: bool = True, stream: TextIO | None = None, log_every_s: float = 30.0,
-            time_limit_s: float | None = None, retry_not_converged: bool = False) -> RunSummary:
+            time_limit_s: float | None = None, retry_not_converged: bool = False,
+            warm_start: bool = False) -> RunSummary:
     """Compute every row of an open (writable) store that is not ``ok``, with the configuration it records
     (``retry_not_converged``: also the ``ok`` rows whose solve did not converge; their earlier result is
     overwritten by the new one, and their ``attempts`` count goes on).
@@ -723,9 +731,14 @@ def execute(store: DatasetStore, *, solver: str | Callable = DEFAULT_SOLVER, wor
     message; later resumes recompute it only with ``retry_not_converged``. The budget is an
     execution option: it is recorded in this run's entry of the ``sessions`` attribute, not in the solver
     configuration, so runs with different budgets (or none) continue each other.
+    ``warm_start``: the steady solves of a worker start from its kept solution of a neighbouring point where there is
+    one (the points go out in the factorial's order, so a worker's previous points differ from the next in the fast
+    axes: temperature, slide-to-roll ratio; :func:`ehl_dataset.solvers.steady.neighbour_warm_starts`); the results
+    agree with cold starts within the level's Newton tolerances, but their last digits then depend on which points a
+    worker solved before. An execution option, recorded in the session entry like ``time_limit_s``.
     """
     _check_options(workers, {"max_attempts": max_attempts, "window": window, "progress": progress,
-                             "flush_interval_s": flush_interval_s})
+                             "flush_interval_s": flush_interval_s, "warm_start": warm_start})
     time_limit_s = check_time_limit(time_limit_s, solver)
     recorded = store.solver
     points = store.points()
@@ -737,7 +750,7 @@ def execute(store: DatasetStore, *, solver: str | Callable = DEFAULT_SOLVER, wor
 
     def task(index: int) -> PointTask:
         return PointTask(int(index), tuple(float(v) for v in points[index]), lubricant_json, level, effects, solver,
-                         time_limit_s, model)
+                         time_limit_s, model, warm_start)
 
     if not isinstance(retry_not_converged, bool):
         raise InputError("retry_not_converged", retry_not_converged, "True or False")
@@ -766,7 +779,7 @@ def execute(store: DatasetStore, *, solver: str | Callable = DEFAULT_SOLVER, wor
     executor = None
     session = store.begin_session(kind=kind, workers=workers, scheduler=scheduler or "",
                                   solver=solver_reference(solver), time_limit_s=time_limit_s,
-                                  retry_not_converged=retry_not_converged)
+                                  retry_not_converged=retry_not_converged, warm_start=warm_start)
     last_flush = time.monotonic()
 
     def record(result: dict, extra_attempts: int = 0) -> None:

@@ -12,7 +12,9 @@ import math
 import threading
 import time
 from collections import OrderedDict
+from contextlib import contextmanager
 from dataclasses import dataclass, replace
+from typing import NamedTuple
 
 import numpy as np
 
@@ -47,9 +49,49 @@ roughness, and a factorial solves each load, speed and temperature once per roug
 from the smooth solution): the pairs after the first reuse it."""
 _STEADY_CACHE: OrderedDict = OrderedDict()
 _STEADY_CACHE_LOCK = threading.Lock()
+WARM_START_MAX_LOG_LAMBDA = math.log(10.0)
+"""Largest |ln(λ̄/λ̄_n)| between a contact and a kept solution that may start its Newton iteration
+(:func:`neighbour_warm_starts`)."""
+_WARM_STARTS = {"enabled": False}
+
+
+class _Kept(NamedTuple):
+    """A converged steady solution kept per process: grid, Newton outcome, iterations and record of its solve, λ̄
+    and Moes' H_c of its contact, and its cache key."""
+
+    x: np.ndarray
+    outcome: NewtonOutcome
+    iterations: int
+    record: dict
+    lam: float
+    h_c: float
+    key: tuple
+
+
+@contextmanager
+def neighbour_warm_starts(enabled: bool = True):
+    """Within this context, :func:`solve_steady` starts the Newton iteration of a contact on the level's grid from the
+    kept solution of a neighbouring contact (the same grid, level, materials and Newton effects, λ̄ within a factor
+    exp(:data:`WARM_START_MAX_LOG_LAMBDA`), the closest in ln λ̄), its film constant shifted by the change of Moes'
+    central film, instead of from the continuation on the coarse grid; if that Newton iteration does not converge the
+    contact is solved as without the context. The converged solution is the same discrete solution within the level's
+    Newton tolerances (``tests/ehl_dataset/test_stage1_speed.py``), but which neighbour starts a contact depends on
+    what the process solved before: the last digits of a result then depend on the order of the solves.
+
+    Parameters
+    ----------
+    enabled : bool
+        Whether neighbour starts are used inside the context [-].
+    """
+    previous = _WARM_STARTS["enabled"]
+    _WARM_STARTS["enabled"] = bool(enabled)
+    try:
+        yield
+    finally:
+        _WARM_STARTS["enabled"] = previous
 
 __all__ = ["ContactScales", "dowson_higginson_lambda", "moes_h_c", "steady_grid", "solve_steady",
-           "solve_steady_problem"]
+           "solve_steady_problem", "neighbour_warm_starts"]
 
 
 @dataclass(frozen=True)
@@ -209,7 +251,7 @@ def solve_steady(case: ContactCase, state: LubricantState, lvl: AccuracyLevel, p
         if cached is not None:
             _STEADY_CACHE.move_to_end(key)
     if cached is not None:
-        x, outcome, iterations, record = cached
+        x, outcome, iterations, record = cached[:4]
         result = _result_from_steady(case, state, lvl, plan, scales, x, outcome, iterations)
         result.extra["continuation"] = {**record, "reused": True}
         result.wall_time = time.perf_counter() - start
@@ -220,8 +262,18 @@ def solve_steady(case: ContactCase, state: LubricantState, lvl: AccuracyLevel, p
     record: dict = {}
     iterations = 0
     outcome = None
+    neighbour = _neighbour(x, key, scales.lam) if _WARM_STARTS["enabled"] else None
+    if neighbour is not None:
+        outcome = newton_solve(problem, neighbour.outcome.p, neighbour.outcome.h0 + (h_c - neighbour.h_c),
+                               pseudo_dt=FINE_PSEUDO_DT, tol_residual=lvl.tol_residual, tol_load=lvl.tol_load,
+                               tol_step=lvl.tol_step, max_iterations=lvl.max_iterations)
+        iterations += outcome.iterations
+        record["warm_start"] = {"nodes": int(x.size), "iterations": outcome.iterations,
+                                "converged": outcome.converged, "from_lambda": neighbour.lam}
+        if not outcome.converged:
+            outcome = None
     x_coarse = steady_grid(lvl, COARSENING, h_c=h_c)
-    if x_coarse.size < 0.6 * x.size:
+    if outcome is None and x_coarse.size < 0.6 * x.size:
         coarse = _problem_on(x_coarse, case, state, plan, scales)
         p0, h00 = _initial_guess(x_coarse, coarse, case, state, scales)
         coarse_out, its, stages = solve_steady_problem(coarse, p0, h00, lvl)
@@ -243,13 +295,31 @@ def solve_steady(case: ContactCase, state: LubricantState, lvl: AccuracyLevel, p
         for array in (x, outcome.p, outcome.h):
             array.flags.writeable = False
         with _STEADY_CACHE_LOCK:
-            _STEADY_CACHE[key] = (x, outcome, iterations, record)
+            _STEADY_CACHE[key] = _Kept(x, outcome, iterations, record, float(scales.lam), float(h_c), key)
             while len(_STEADY_CACHE) > STEADY_CACHE_SIZE:
                 _STEADY_CACHE.popitem(last=False)
     result = _result_from_steady(case, state, lvl, plan, scales, x, outcome, iterations)
     result.extra["continuation"] = record
     result.wall_time = time.perf_counter() - start
     return result
+
+
+def _neighbour(x: np.ndarray, key: tuple, lam: float) -> _Kept | None:
+    """The kept solution on the grid ``x`` with the same level, materials and Newton effects as ``key`` whose λ̄ is
+    closest to ``lam`` in ln λ̄ (within :data:`WARM_START_MAX_LOG_LAMBDA`); None if there is none."""
+    case = key[0]
+    with _STEADY_CACHE_LOCK:
+        kept = list(_STEADY_CACHE.values())
+    best, distance = None, WARM_START_MAX_LOG_LAMBDA
+    for entry in reversed(kept):
+        other = entry.key[0]
+        if (entry.key[2:] != key[2:] or (other.material1, other.material2) != (case.material1, case.material2)
+                or entry.x.size != x.size or not np.array_equal(entry.x, x)):
+            continue
+        gap = abs(math.log(lam / entry.lam))
+        if gap <= distance:
+            best, distance = entry, gap
+    return best
 
 
 def _cache_key(case: ContactCase, state: LubricantState, lvl: AccuracyLevel, plan: Effects) -> tuple:

@@ -86,3 +86,26 @@ def test_reused_steady_solution_equals_a_solve_from_scratch():
     second = solve_contact(smooth, lub, "fast")
     assert second.extra["continuation"]["reused"] and "reused" not in first.extra["continuation"]
     assert second.mu == first.mu and np.array_equal(second.pressure, first.pressure)
+
+
+def test_neighbour_warm_start_converges_to_the_cold_solution():
+    """Temperatures of one contact solved in a row (a factorial's fast axis) with neighbour warm starts: each after
+    the first starts from its predecessor and reaches the cold-start solution within the level's Newton tolerances
+    (relative 10 × tol_step on the outputs, as tests/ehl_dataset/test_stage1_reference.py)."""
+    lub = load_lubricant("atf")
+    lvl = get_level("standard")
+    cases = [ContactCase.from_engineering(1.0, 10, 20, 0.1, t) for t in (50, 75, 100)]
+    cold = []
+    for case in cases:
+        steady._STEADY_CACHE.clear()
+        cold.append(solve_contact(case, lub, "standard", model="smooth"))
+    steady._STEADY_CACHE.clear()
+    with steady.neighbour_warm_starts():
+        warm = [solve_contact(case, lub, "standard", model="smooth") for case in cases]
+    started = [w.extra["continuation"].get("warm_start") for w in warm]
+    assert started[0] is None and all(s is not None and s["converged"] for s in started[1:])
+    for w, c in zip(warm, cold):
+        assert w.converged and c.converged
+        for key in ("mu", "h_min", "h_central", "p_max"):
+            assert getattr(w, key) == pytest.approx(getattr(c, key), rel=10 * lvl.tol_step), key
+    assert sum(w.iterations for w in warm[1:]) < sum(c.iterations for c in cold[1:])
