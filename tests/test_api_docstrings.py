@@ -11,7 +11,8 @@ library mkdocstrings renders with) and must have
 * a unit in square brackets at the end of every parameter description, from the unit vocabulary below (``[-]`` for
   dimensionless and non-physical parameters: names, flags, paths, counts, options objects; ``[SI]`` for a record
   of physical quantities each in its SI unit, such as a contact case);
-* a ``Returns`` (or ``Yields``) section when the function returns a value.
+* a ``Returns`` (or ``Yields``) section when the function returns a value;
+* no ``] [`` outside code (Markdown reads it as a reference link, which fails ``mkdocs build --strict``).
 
 Modules whose docstrings are not converted yet are listed in ``PENDING``: their failing objects are reported as
 xfail (with the problems found) instead of silently skipped, and a module leaves the list once all its objects
@@ -34,8 +35,7 @@ API_DOCS = REPO / "docs" / "reference" / "api"
 PACKAGES = ("ehl_dataset", "surrogate", "efficiency", "workflows")
 
 # Modules rendered in the API reference whose docstrings are still to be converted to numpydoc with units.
-PENDING: set[str] = {
-}
+PENDING: set[str] = set()
 
 # Unit vocabulary: SI symbols (the numerics' units) and the engineering units of input files and reports.
 _SYMBOLS = {
