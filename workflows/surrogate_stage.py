@@ -189,6 +189,35 @@ def load_rows(paths) -> tuple[pd.DataFrame, Any, Any]:
     return table, first, calibration
 
 
+BOX_KEYS = {"p_h": "p_h_pa", "r_eq": "r_eq_m", "u_r": "u_r_m_s", "sr": "sr_abs", "temperature": "temperature_k",
+            "rq1": "rq1_m", "rq2": "rq2_m"}
+"""Inputs of a sample's box → the fitted-range entries of a coefficient file."""
+
+
+def sample_box(paths) -> dict[str, list[float]] | None:
+    """The box a sampled training design fills (the union of its files' boxes), or None when any file is not a
+    sample (a factorial: its fitted ranges are its levels' ranges already)."""
+    from ehl_dataset.dataset.store import read_metadata
+
+    paths = [paths] if isinstance(paths, (str, Path)) else list(paths)
+    boxes = [(read_metadata(p).get("factorial") or {}).get("box") for p in paths]
+    if not boxes or any(not isinstance(b, dict) for b in boxes):
+        return None
+    return {key: [min(b[name][0] for b in boxes), max(b[name][1] for b in boxes)] for name, key in BOX_KEYS.items()}
+
+
+def widen_to_box(fit, box: dict[str, list[float]] | None):
+    """Set the fitted ranges of ``fit`` to the box of its sampled design: a random or adaptive design covers its box,
+    but its extreme points lie strictly inside it, and clipping gear contacts to the points' hull would throw away
+    the design's edges (the fitted λ̄ range stays that of the rows)."""
+    if box is None:
+        return fit
+    for key, pair in box.items():
+        fit.input_ranges[key] = [float(pair[0]), float(pair[1])]
+    fit.sr_floor = float(box["sr_abs"][0])
+    return fit
+
+
 def fit_form(form: str, table: pd.DataFrame, data, *, allow_unstable: bool = False, blend_half_width: float = 0.1,
              calibration=None):
     """The fit of ``form`` on ``table`` (``eq9``: :func:`surrogate.fit.fit_surrogate`; ``learned``:
@@ -276,8 +305,9 @@ def fit_and_write(dataset_paths, coefficients_file: str | Path, *, form: str = "
     table, data, calibration = load_rows(dataset_paths)
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        fit = fit_form(form, table, data, allow_unstable=allow_unstable, blend_half_width=blend_half_width,
-                       calibration=calibration)
+        fit = widen_to_box(fit_form(form, table, data, allow_unstable=allow_unstable,
+                                    blend_half_width=blend_half_width, calibration=calibration),
+                           sample_box(dataset_paths))
         offgrid = offgrid_table_for(fit, offgrid_path)
     path = write_coefficients(fit, coefficients_file, source=data.source, offgrid=offgrid)
     details = fit_details(fit) | {"lubricant": data.lubricant.name, "summary": str(summary_path(path))}
