@@ -57,8 +57,17 @@ def table_markdown() -> str:
 
 
 class Interrupted(Exception):
-    """A command stopped by SIGINT or SIGTERM after keeping what it finished. ``resume_command`` is the command
-    that continues it (printed with the error); ``exit_code`` 130 or 143."""
+    """A command stopped by SIGINT or SIGTERM after keeping what it finished; ``exit_code`` 130 or 143.
+
+    Parameters
+    ----------
+    signal_name : str
+        ``SIGINT`` or ``SIGTERM`` [-].
+    what : str
+        What was interrupted, for the message [-].
+    resume_command : str, optional
+        The command that continues it, printed with the error [-].
+    """
 
     def __init__(self, signal_name: str, what: str, resume_command: str | None = None):
         self.signal_name = signal_name

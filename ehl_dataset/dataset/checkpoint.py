@@ -22,9 +22,16 @@ well under a second)."""
 class FileCheckpoint:
     """The saved state of one run in the file ``path``, written every ``every_s`` seconds of wall time.
 
-    Protocol used by :func:`ehl_dataset.solvers.deterministic.solve_deterministic`: ``every_s``, ``load()`` (the
-    saved state, or None when there is none) and ``save(state)``; optionally ``save_failure(state)`` (the state
-    before a step that failed, returning where it is kept).
+    Protocol used by :func:`ehl_dataset.solvers.deterministic.solve_deterministic`: ``every_s``, ``load()`` (the saved
+    state, or None when there is none) and ``save(state)``; optionally ``save_failure(state)`` (the state before a step
+    that failed, returning where it is kept).
+
+    Parameters
+    ----------
+    path : str or Path
+        The checkpoint file [-].
+    every_s : float
+        Wall time between saves [s].
     """
 
     def __init__(self, path: str | os.PathLike, every_s: float = DEFAULT_EVERY_S):
@@ -32,6 +39,13 @@ class FileCheckpoint:
         self.every_s = float(every_s)
 
     def load(self) -> dict | None:
+        """The saved state.
+
+        Returns
+        -------
+        dict or None
+            The state, or None when there is none.
+        """
         if not self.path.exists():
             return None
         try:
@@ -46,8 +60,15 @@ class FileCheckpoint:
         return state
 
     def save(self, state: dict) -> None:
-        """Write ``state`` to a temporary file next to ``path`` and move it into place (a stop mid-write leaves the
-        previous state intact)."""
+        """Write ``state`` to a temporary file next to ``path`` and move it into place.
+
+        A stop mid-write leaves the previous state intact.
+
+        Parameters
+        ----------
+        state : dict
+            The solver's state [-].
+        """
         self.path.parent.mkdir(parents=True, exist_ok=True)
         partial = self.path.with_name(self.path.name + ".partial")
         with partial.open("wb") as handle:
@@ -62,8 +83,20 @@ class FileCheckpoint:
         return self.path.with_name(self.path.name + ".failed")
 
     def save_failure(self, state: dict) -> Path:
-        """Keep the state before a step the solver could not pass in :attr:`failure_path`, which :meth:`remove`
-        leaves in place: ``FileCheckpoint(checkpoint.failure_path)`` handed to the same run replays that step."""
+        """Keep the state before a step the solver could not pass in :attr:`failure_path`, which :meth:`remove` leaves.
+
+        ``FileCheckpoint(checkpoint.failure_path)`` handed to the same run replays that step.
+
+        Parameters
+        ----------
+        state : dict
+            The solver's state before the failed step [-].
+
+        Returns
+        -------
+        Path
+            Where it is kept.
+        """
         FileCheckpoint(self.failure_path).save(state)
         return self.failure_path
 

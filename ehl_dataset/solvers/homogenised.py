@@ -57,12 +57,23 @@ default, :data:`ehl_dataset.solvers.deterministic.BOUNDARY_FILM_M`)."""
 
 @dataclass(frozen=True)
 class HomogenisedOptions:
-    """Closure choices of a homogenised solve: ``closure`` (:data:`CLOSURES`), ``boundary_film_m`` h_b [m] (the
-    floor of the micro gaps in the traction), ``flow_floor_sigma`` the floor of the micro gaps in the transverse
-    flow factors in units of σ (None: h_b), ``transport`` the roughness transport weight
-    (:func:`ehl_dataset.model.flow_factors.transport_weight`), ``micro_pressure_coefficient`` c of the film-law
-    closure's pressure fluctuations σ_p = c·E'Δq/4 (None: the calibrated function of the inlet length,
-    :func:`ehl_dataset.model.micro_pressure.micro_pressure_coefficient`; 0: off)."""
+    """Closure choices of a homogenised solve.
+
+    Parameters
+    ----------
+    closure : str
+        Flow-factor closure (:data:`ehl_dataset.names.CLOSURES`) [-].
+    boundary_film_m : float
+        Floor h_b of the micro gaps in the traction [m].
+    flow_floor_sigma : float, optional
+        Floor of the micro gaps in the transverse flow factors, in units of σ; None: h_b [-].
+    transport : str or float
+        Roughness transport weight (:func:`ehl_dataset.model.flow_factors.transport_weight`): a name or the weight of
+        surface 1 [-].
+    micro_pressure_coefficient : float, optional
+        c of the film-law closure's pressure fluctuations σ_p = c·E'Δq/4; None: the calibrated function of the inlet
+        length (:func:`ehl_dataset.model.micro_pressure.micro_pressure_coefficient`); 0: off [-].
+    """
 
     closure: str = names.DEFAULT_CLOSURE
     boundary_film_m: float = BOUNDARY_FILM_M
@@ -160,8 +171,30 @@ def solve_homogenised(case: ContactCase, state: LubricantState, lvl: AccuracyLev
                       **closure_options) -> ContactResult:
     """Steady homogenised mixed solve of a rough contact (module docstring) on the level's steady grid.
 
-    ``options`` or, as keywords, the fields of :class:`HomogenisedOptions` (``closure=...``). Smooth surfaces
-    (S_c = 0) return the steady smooth solution with the reason recorded (no roughness to homogenise)."""
+    Smooth surfaces (S_c = 0) return the steady smooth solution with the reason recorded (no roughness to homogenise).
+
+    Parameters
+    ----------
+    case : ContactCase
+        Operating conditions [SI].
+    state : LubricantState
+        The lubricant at the case's temperature [SI].
+    lvl : AccuracyLevel
+        Steady grid and tolerances [-].
+    plan : Effects
+        The effect plan [-].
+    roughness : RoughnessProfile, optional
+        Shape of both surfaces; None: the shipped baseline [-].
+    options : HomogenisedOptions, optional
+        Closure choices; None: the defaults or ``closure_options`` [-].
+    **closure_options
+        Fields of :class:`HomogenisedOptions` as keywords (``closure=...``) [-].
+
+    Returns
+    -------
+    ContactResult
+        The result; it says whether the solve converged.
+    """
     options = options or HomogenisedOptions(**closure_options)
     closure, h_b_m, transport = options.closure, options.boundary_film_m, options.transport
     start = time.perf_counter()
