@@ -176,7 +176,8 @@ def _predict(args) -> int:
 
     import numpy as np
 
-    from ehl_dataset.validation import check_range
+    from ehl_dataset.model.contact import ContactCase
+    from ehl_dataset.validation import InputError, check_range
     from surrogate.evaluate import FrictionSurrogate
     from surrogate.validity import clipping_note, judge
 
