@@ -11,7 +11,7 @@
 
 Smooth cases (no roughness effect, or S_c = 0) go to the steady solver (:mod:`ehl_dataset.solvers.steady`: a smooth
 contact under constant load and speed has a steady solution, which is what a transient run would settle to, so the
-````transient`` flag changes nothing for smooth surfaces); rough surfaces with the ``roughness`` effect go where the
+``transient`` flag changes nothing for smooth surfaces); rough surfaces with the ``roughness`` effect go where the
 plan's ``model`` decision sends them (:data:`MODELS`): the steady film-law homogenised model
 (:mod:`ehl_dataset.solvers.homogenised`) at ``fast`` and ``standard``, and the deterministic mixed reference
 (:mod:`ehl_dataset.solvers.deterministic`) at ``reference`` and wherever the effects are forced with ``transient``
