@@ -32,11 +32,11 @@ its options with their defaults."""
 
 
 def version_text() -> str:
-    """``gearloss --version``: the package version and the EHL solver version (the one datasets record)."""
-    from ehl_dataset.dataset.store import package_version
-    from ehl_dataset.solver import MODELS, SOLVER_VERSION
+    """``gearloss --version``: the package version and the EHL solver version (the one datasets record), read
+    without importing the solver (:mod:`workflows.cli_version`)."""
+    from .cli_version import version_text as text
 
-    return f"gearloss {package_version()} (EHL solver {SOLVER_VERSION}; contact models {', '.join(MODELS)})"
+    return text()
 
 
 class _VersionAction(argparse.Action):
