@@ -130,7 +130,7 @@ def run_adaptive(out_dir: str | Path, factorial, lubricant, *, level: str, effec
                  offgrid_table: pd.DataFrame | None = None, target_median: float | None = None,
                  target_p90: float | None = None, workers: int = 1, scheduler: str | None = None,
                  progress: str = "auto", time_limit_s: float | None = None, e_reduced: float | None = None,
-                 log=None) -> AdaptiveResult:
+                 log=None, solver=None) -> AdaptiveResult:
     """Adaptive sampling of ``factorial``'s box (module docstring); returns every solve and the rounds.
 
     Parameters
@@ -167,6 +167,8 @@ def run_adaptive(out_dir: str | Path, factorial, lubricant, *, level: str, effec
         Reduced modulus (default steel on steel) [Pa].
     log : callable, optional
         Called with one line per round [-].
+    solver : str or callable, optional
+        Solve function (``"module:function"`` or a callable); None: the EHL solver [-].
 
     Returns
     -------
@@ -193,7 +195,7 @@ def run_adaptive(out_dir: str | Path, factorial, lubricant, *, level: str, effec
     folder = Path(out_dir) / ADAPTIVE_DIR
     folder.mkdir(parents=True, exist_ok=True)
     route = {"lubricant": lubricant, "level": level, "effects": effects, "model": model, "workers": workers,
-             "scheduler": scheduler, "progress": progress, "time_limit_s": time_limit_s}
+             "scheduler": scheduler, "progress": progress, "time_limit_s": time_limit_s, "solver": solver}
     result = AdaptiveResult(table=pd.DataFrame())
     tables: list[pd.DataFrame] = []
     say = log or (lambda line: None)

@@ -51,7 +51,7 @@ def offgrid_points(factorial, n: int = OFFGRID_POINTS, seed: int = OFFGRID_SEED)
 
 def run_sample(path: str | Path, points: np.ndarray, description: dict, *, lubricant, level: str, effects: str,
                model: str, workers: int = 1, scheduler: str | None = None, progress: str = "auto",
-               time_limit_s: float | None = None, **options):
+               time_limit_s: float | None = None, solver=None, **options):
     """Compute ``points`` into the store ``path``: created, or continued when it records the same points, solver and
     lubricant; anything else is refused with :class:`InputError`.
 
@@ -79,6 +79,8 @@ def run_sample(path: str | Path, points: np.ndarray, description: dict, *, lubri
         Progress display: ``auto``, ``bar``, ``log`` or ``none`` [-].
     time_limit_s : float, optional
         Wall-time budget per point [s].
+    solver : str or callable, optional
+        The solve function (``"module:function"`` or a callable); None: the EHL solver [-].
     **options
         Execution options of :func:`ehl_dataset.dataset.runner.execute` [-].
 
@@ -91,8 +93,9 @@ def run_sample(path: str | Path, points: np.ndarray, description: dict, *, lubri
     from ehl_dataset.dataset.runner import DEFAULT_SOLVER, check_time_limit, execute, solver_config
     from ehl_dataset.dataset.store import DatasetStore
 
-    time_limit_s = check_time_limit(time_limit_s, DEFAULT_SOLVER)
-    config = solver_config(DEFAULT_SOLVER, level, effects, model)
+    solver = DEFAULT_SOLVER if solver is None else solver
+    time_limit_s = check_time_limit(time_limit_s, solver)
+    config = solver_config(solver, level, effects, model)
     lubricant_dict = json.loads(canonical_json(lubricant.to_json_dict()))
     t_lo, t_hi = lubricant.t_min, lubricant.t_max
     bad = (points["temperature"] < t_lo) | (points["temperature"] > t_hi)
@@ -113,5 +116,5 @@ def run_sample(path: str | Path, points: np.ndarray, description: dict, *, lubri
         store = DatasetStore.create(path, points, factorial=description, solver=config, lubricant=lubricant_dict)
         kind = "run"
     with store:
-        return execute(store, workers=workers, scheduler=scheduler, kind=kind, progress=progress,
+        return execute(store, solver=solver, workers=workers, scheduler=scheduler, kind=kind, progress=progress,
                        time_limit_s=time_limit_s, **options)
