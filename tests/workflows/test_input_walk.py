@@ -113,9 +113,8 @@ def returns(stops: list[tuple[str, str]]) -> int:
 
 @pytest.mark.parametrize("extra", [[], ROUGH], ids=["smooth", "rough"])
 def test_contact_solve_reaches_the_solver_with_few_returns(extra):
-    """Acceptance: at most 10 returns to a file already left (the inputs checked 3-5 times over the layers made 17
-    and 19 on these two cases, the rough one 95 stops in 12 files); the walk reaches the solver; the range checks of
-    the case and the lubricant's temperature check are done once each."""
+    """Acceptance: at most 10 returns to a file already left; the walk reaches the solver; the case is converted and
+    range-checked once, the lubricant's temperature checked once, the inputs resolved once and the plan made once."""
     stops = walk(CONTACT + extra + ["--json"])
     assert stops and stops[0][1] == "_solve"
     assert returns(stops) <= MAX_RETURNS, stops
