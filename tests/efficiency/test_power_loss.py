@@ -165,3 +165,28 @@ def test_power_loss_band_is_the_fully_correlated_sum_of_the_mu_intervals():
     assert eta_low == pytest.approx(1 - high / result.input_power, rel=1e-14) and eta_low < result.efficiency < eta_high
     assert friction.alpha == pytest.approx(0.10) and result.band_coverage == pytest.approx(0.90)
     assert plain.power_loss_band is None and plain.efficiency_band is None
+
+
+@pytest.mark.parametrize("name", ["atf_quick", "atf_quick_learned"])
+def test_band_of_a_shipped_coefficient_file_is_a_weighted_mean_of_its_mu_intervals(name):
+    """P_high/P = Σ μ_high W|u_s| / Σ μ W|u_s| is a weighted mean of μ_high/μ over the loaded points (weights
+    μ W|u_s| ≥ 0), so it lies between their smallest and largest ratio; likewise for P_low. Both shipped quick files
+    (Eq. 9 format 2 and the learned form) give a band around P."""
+    from efficiency.friction import friction_from_spec
+
+    friction = friction_from_spec(name)
+    mesh = evaluate_mesh(fzg("H501"), 300.0, 100.0,
+                         options=MeshOptions(positions=12, slices=20, outputs=frozenset()))
+    with pytest.warns(UserWarning):  # the lightly loaded ends of the contact lines lie below the fitted p_h
+        result = mesh_power_loss(mesh, friction, 353.15, 0.4e-6, 0.4e-6)
+    cond = contact_conditions(mesh)
+    loaded = cond["loaded"]
+    n = int(loaded.sum())
+    mu, low, high = friction.mu_interval(cond["p_h"][loaded], cond["r_eq"][loaded], cond["u_r"][loaded],
+                                         cond["sr"][loaded], np.full(n, 353.15), np.full(n, 0.4e-6),
+                                         np.full(n, 0.4e-6), warn=False)
+    p_low, p_high = result.power_loss_band
+    assert p_low < result.power_loss < p_high
+    for bound, p_bound in ((low, p_low), (high, p_high)):
+        ratio = bound / mu
+        assert ratio.min() * (1 - 1e-12) <= p_bound / result.power_loss <= ratio.max() * (1 + 1e-12)
