@@ -1,5 +1,5 @@
-"""The argument parser of every ``gearloss`` command: defaults shown in ``--help``, help texts computed when shown,
-and usage errors as one line (no 9-line usage block).
+"""The argument parser of every ``gearloss`` command: defaults shown in ``--help`` and usage errors as one line (no
+9-line usage block).
 
 :class:`GearlossParser` is the parser class of the top level; ``add_subparsers`` creates every sub-command parser
 of the same class, so each gets :class:`HelpFormatter` and the one-line :meth:`GearlossParser.error`.
@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import argparse
 import re
-from typing import Callable
 
 from ehl_dataset.names import EFFECT_PLANS, MODELS
 
@@ -23,19 +22,9 @@ class UsageError(Exception):
         super().__init__(message)
 
 
-class LazyHelp:
-    """A help text computed when ``--help`` is shown (e.g. a list read from a module that is slow to import)."""
-
-    def __init__(self, make: Callable[[], str]):
-        self.make = make
-
-    def __str__(self) -> str:
-        return self.make()
-
-
 class HelpFormatter(argparse.RawDescriptionHelpFormatter):
     """Descriptions as written (line breaks kept); every option's default appended unless its help already names
-    one; :class:`LazyHelp` texts resolved."""
+    one."""
 
     def _get_help_string(self, action):
         text = str(action.help) if action.help is not None else ""
@@ -45,11 +34,6 @@ class HelpFormatter(argparse.RawDescriptionHelpFormatter):
             shown = ",".join(str(v) for v in default) if isinstance(default, (list, tuple)) else default
             text += f" (default: {str(shown).replace('%', '%%')})"
         return text
-
-    def _format_action(self, action):
-        if isinstance(action.help, LazyHelp):
-            action.help = str(action.help).replace("%", "%%")
-        return super()._format_action(action)
 
 
 _UNIT = re.compile(r"\[([^\]\[]+)\]")
