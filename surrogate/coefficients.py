@@ -244,15 +244,17 @@ def write_coefficients(fit, path: str | Path, *, source: dict[str, Any] | None =
     return path
 
 
-def record_offgrid(path: str | Path, offgrid: dict[str, Any]) -> Path:
+def record_offgrid(path: str | Path, offgrid: dict[str, Any], *, learned_interval: dict | None = None) -> Path:
     """Add (or replace) the ``offgrid`` table of an existing coefficient file, re-hashing its content.
 
     Parameters
     ----------
     path : str or Path
-        The coefficient file (validated before it is rewritten) [-].
+        The coefficient file (validated before and after it is rewritten) [-].
     offgrid : dict
         The off-grid validation (:func:`surrogate.offgrid.offgrid_report`) [-].
+    learned_interval : dict, optional
+        A learned file's recalibrated ``learned.interval`` table (``workflows.surrogate_stage``) [-].
 
     Returns
     -------
@@ -261,7 +263,11 @@ def record_offgrid(path: str | Path, offgrid: dict[str, Any]) -> Path:
     """
     path = Path(path)
     doc = load_coefficients(path).document
-    doc = _finish({**{k: v for k, v in doc.items() if k != "content_sha256"}, "offgrid": offgrid})
+    body = {k: v for k, v in doc.items() if k != "content_sha256"}
+    if learned_interval is not None:
+        body["learned"] = {**body["learned"], "interval": learned_interval}
+    doc = _finish({**body, "offgrid": offgrid})
+    validate_coefficients(doc, str(path))
     tmp = path.with_name(path.name + ".tmp")
     tmp.write_text(json.dumps(doc, indent=1, sort_keys=True, allow_nan=False) + "\n", encoding="utf-8")
     tmp.replace(path)

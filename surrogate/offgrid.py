@@ -46,7 +46,25 @@ def error_summary(rel_err: np.ndarray, inside: np.ndarray | None) -> dict[str, A
             "coverage": None if inside is None else float(np.mean(inside))}
 
 
-def offgrid_errors(surrogate, table: pd.DataFrame, *, coverage: float = COVERAGE) -> dict[str, Any]:
+def calibration_rows(n: int) -> np.ndarray:
+    """The rows of an off-grid sample that calibrate a learned interval: the even positions (the odd ones measure
+    its coverage). The sample is an independent uniform draw, so both halves are alike.
+
+    Parameters
+    ----------
+    n : int
+        Rows of the sample [-].
+
+    Returns
+    -------
+    numpy.ndarray
+        Boolean mask [-].
+    """
+    return np.arange(n) % 2 == 0
+
+
+def offgrid_errors(surrogate, table: pd.DataFrame, *, coverage: float = COVERAGE,
+                   coverage_rows: np.ndarray | None = None) -> dict[str, Any]:
     """Errors of ``surrogate`` on the solved rows of ``table`` (module docstring).
 
     Parameters
@@ -57,12 +75,16 @@ def offgrid_errors(surrogate, table: pd.DataFrame, *, coverage: float = COVERAGE
         Solved sample (columns of the dataset store) [SI].
     coverage : float
         Nominal coverage of the interval [-].
+    coverage_rows : numpy.ndarray, optional
+        Boolean mask over the rows of ``table``: the coverage counts only these (the rows not used to calibrate
+        the interval); None: all [-].
 
     Returns
     -------
     dict
-        ``overall``, ``mixed``, ``full_film`` (:func:`error_summary`), ``exclusions``, ``n_rows``, ``coverage_nominal``
-        and ``per_point`` (arrays: λ̄, solved and predicted μ, interval bounds) for figures.
+        ``overall``, ``mixed``, ``full_film`` (:func:`error_summary`; errors over all usable rows, coverage over the
+        usable ``coverage_rows``), ``exclusions``, ``n_rows``, ``coverage_nominal``, ``coverage_rows`` and
+        ``per_point`` (arrays: λ̄, solved and predicted μ, interval bounds) for figures.
     """
     prepared = prepare_table(table, surrogate.lubricant, surrogate.e_reduced)
     used = prepared.table
@@ -73,12 +95,24 @@ def offgrid_errors(surrogate, table: pd.DataFrame, *, coverage: float = COVERAGE
     solved = used["mu"].to_numpy(dtype=float)
     rel = np.abs(mu / solved - 1.0)
     inside = None if low is None else (solved >= low) & (solved <= high)
+    counted = (np.ones(len(used), dtype=bool) if coverage_rows is None
+               else np.asarray(coverage_rows, dtype=bool)[prepared.kept_rows])
     out: dict[str, Any] = {"n_rows": int(len(table)), "exclusions": prepared.exclusions,
-                           "coverage_nominal": coverage, "overall": error_summary(rel, inside)}
+                           "coverage_nominal": coverage,
+                           "coverage_rows": "all" if coverage_rows is None else
+                           "the odd rows of the sample, not used to calibrate the interval",
+                           "overall": _summary(rel, inside, counted)}
     for branch, mask in branch_masks(prepared.features["lam"], 1.0).items():
-        out[branch] = error_summary(rel[mask], None if inside is None else inside[mask])
+        out[branch] = _summary(rel[mask], None if inside is None else inside[mask], counted[mask])
     out["per_point"] = {"lambda_bar": prepared.features["lam"], "mu_solved": solved, "mu_predicted": mu,
                         "mu_low": low, "mu_high": high}
+    return out
+
+
+def _summary(rel, inside, counted) -> dict[str, Any]:
+    out = error_summary(rel, None if inside is None else inside[counted])
+    if inside is not None and out.get("n"):
+        out["n_coverage"] = int(counted.sum())
     return out
 
 

@@ -241,7 +241,7 @@ def run_adaptive(out_dir: str | Path, factorial, lubricant, *, level: str, effec
             surrogate = FrictionSurrogate(validate_coefficients(coefficients_payload(fit)))
             overall = offgrid_errors(surrogate, offgrid_table)["overall"]
             entry.update(offgrid_median_rel_err_mu=overall["median_rel_err_mu"],
-                         offgrid_p90_rel_err_mu=overall["p90_rel_err_mu"], offgrid_coverage=overall["coverage"])
+                         offgrid_p90_rel_err_mu=overall["p90_rel_err_mu"])
             targets = [(target_median, overall["median_rel_err_mu"]), (target_p90, overall["p90_rel_err_mu"])]
             met = any(t is not None for t, _ in targets) and all(t is None or v <= t for t, v in targets)
         result.rounds.append(entry)

@@ -74,7 +74,7 @@ def _fit(args) -> int:
     from surrogate.fit import fit_surrogate
     from workflows.cli_output import emit
 
-    from workflows.surrogate_stage import offgrid_table_for
+    from workflows.surrogate_stage import validate_offgrid
 
     _check_folds(args.k_folds)
     data = load_dataset(args.dataset, args.lubricant)
@@ -87,8 +87,8 @@ def _fit(args) -> int:
         else:
             fit = fit_surrogate(data.table, data.lubricant, data.e_reduced, k_folds=args.k_folds, seed=args.seed,
                                 blend_half_width=args.blend, allow_unstable=args.allow_unstable)
-        offgrid = offgrid_table_for(fit, args.offgrid)
-    path = write_coefficients(fit, args.out, source=data.source, offgrid=offgrid)
+    path = write_coefficients(fit, args.out, source=data.source)
+    offgrid = validate_offgrid(path, args.offgrid) if args.offgrid else None
     if args.form == "learned":
         return _fit_learned_output(args, fit, path, offgrid, caught)
     figures = []

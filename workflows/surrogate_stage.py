@@ -232,24 +232,14 @@ def fit_form(form: str, table: pd.DataFrame, data, *, allow_unstable: bool = Fal
                          blend_half_width=blend_half_width)
 
 
-def offgrid_table_for(fit, offgrid_path: str | Path | None) -> dict[str, Any] | None:
-    """The ``offgrid`` table of the coefficient file of ``fit`` from the solved sample at ``offgrid_path``."""
-    if offgrid_path is None:
-        return None
-    from surrogate.coefficients import coefficients_payload, validate_coefficients
-    from surrogate.evaluate import FrictionSurrogate
-
-    return offgrid_of(FrictionSurrogate(validate_coefficients(coefficients_payload(fit))), offgrid_path)
-
-
-def offgrid_of(surrogate, offgrid_path: str | Path) -> dict[str, Any]:
+def offgrid_of(surrogate, offgrid_path: str | Path, coverage_rows=None) -> dict[str, Any]:
     """The ``offgrid`` table of ``surrogate`` (a :class:`~surrogate.evaluate.FrictionSurrogate`) on the solved sample
-    at ``offgrid_path``."""
+    at ``offgrid_path``; the coverage counts the rows of ``coverage_rows`` (None: all)."""
     from surrogate.dataset_io import load_dataset
     from surrogate.offgrid import offgrid_errors, offgrid_report
 
     sample = load_dataset(offgrid_path)
-    errors = offgrid_errors(surrogate, sample.table)
+    errors = offgrid_errors(surrogate, sample.table, coverage_rows=coverage_rows)
     described = {"file": Path(offgrid_path).name, "sha256": sample.source["sha256"],
                  "n_points": sample.source.get("n_points"), "level": sample.source.get("accuracy_level"),
                  "effects": sample.source.get("effects"), "solver_version": sample.source.get("solver_version")}
@@ -258,6 +248,30 @@ def offgrid_of(surrogate, offgrid_path: str | Path) -> dict[str, Any]:
     plan = read_metadata(offgrid_path).get("factorial") or {}
     described.update({k: plan.get(k) for k in ("kind", "seed", "within_factorial", "box")})
     return offgrid_report(errors, described)
+
+
+def calibrated_interval(surrogate, offgrid_path: str | Path) -> tuple[dict[str, Any], Any]:
+    """A learned file's interval recalibrated on the even rows of the off-grid sample
+    (:func:`surrogate.mlp.recalibrate`; :func:`surrogate.offgrid.calibration_rows`): the new ``learned.interval``
+    table and the mask of the rows left to measure its coverage."""
+    from surrogate.dataset_io import load_dataset
+    from surrogate.fit import prepare_table
+    from surrogate.mlp import feature_matrix, recalibrate
+    from surrogate.offgrid import calibration_rows
+
+    table = load_dataset(offgrid_path).table
+    calibrate = calibration_rows(len(table))
+    prepared = prepare_table(table, surrogate.lubricant, surrogate.e_reduced)
+    rows = calibrate[prepared.kept_rows]
+    features = {k: v[rows] for k, v in prepared.features.items()}
+    ensemble = recalibrate(surrogate.coefficients.learned, feature_matrix(features), prepared.ln_mu[rows])
+    interval = dict(surrogate.coefficients.document["learned"]["interval"])
+    interval.update(ensemble.to_dict()["interval"])
+    interval["method"] = ("split conformal with normalised score |r|/(s + s0) on the even rows of the off-grid "
+                          "sample (cross-validation+ quantiles of the training rows in cv_plus_score_quantiles)")
+    interval["calibration_rows"] = int(rows.sum())
+    interval["cv_plus_score_quantiles"] = surrogate.coefficients.document["learned"]["interval"]["score_quantiles"]
+    return interval, ~calibrate
 
 
 def fit_details(fit) -> dict[str, Any]:
@@ -308,16 +322,19 @@ def fit_and_write(dataset_paths, coefficients_file: str | Path, *, form: str = "
         fit = widen_to_box(fit_form(form, table, data, allow_unstable=allow_unstable,
                                     blend_half_width=blend_half_width, calibration=calibration),
                            sample_box(dataset_paths))
-        offgrid = offgrid_table_for(fit, offgrid_path)
-    path = write_coefficients(fit, coefficients_file, source=data.source, offgrid=offgrid)
+    path = write_coefficients(fit, coefficients_file, source=data.source)
     details = fit_details(fit) | {"lubricant": data.lubricant.name, "summary": str(summary_path(path))}
-    if offgrid is not None:
-        details["offgrid"] = offgrid
+    if offgrid_path is not None:
+        details["offgrid"] = validate_offgrid(path, offgrid_path)
     return str(path), details, [str(w.message) for w in caught]
 
 
 def validate_offgrid(coefficients_file: str | Path, offgrid_path: str | Path) -> dict[str, Any]:
     """Measure a written coefficient file on the solved off-grid sample and record the result in the file.
+
+    A learned file's interval is first recalibrated on the even rows of the sample (:func:`calibrated_interval`);
+    its coverage is then counted on the odd rows only. Its errors of μ, and everything of an Eq. 9 file, are
+    measured on all rows (the sample takes no part in the fit).
 
     Parameters
     ----------
@@ -331,11 +348,25 @@ def validate_offgrid(coefficients_file: str | Path, offgrid_path: str | Path) ->
     dict
         The ``offgrid`` table recorded.
     """
-    from surrogate.coefficients import record_offgrid
+    from surrogate.coefficients import record_offgrid, validate_coefficients
     from surrogate.evaluate import FrictionSurrogate
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        offgrid = offgrid_of(FrictionSurrogate.load(coefficients_file), offgrid_path)
-    record_offgrid(coefficients_file, offgrid)
+        surrogate = FrictionSurrogate.load(coefficients_file)
+        interval, coverage_rows = None, None
+        if surrogate.form == "learned":
+            interval, coverage_rows = calibrated_interval(surrogate, offgrid_path)
+            doc = dict(surrogate.coefficients.document)
+            doc["learned"] = {**doc["learned"], "interval": interval}
+            surrogate = FrictionSurrogate(validate_coefficients(
+                {**doc, "content_sha256": _rehash(doc)}, str(coefficients_file)))
+        offgrid = offgrid_of(surrogate, offgrid_path, coverage_rows)
+    record_offgrid(coefficients_file, offgrid, learned_interval=interval)
     return offgrid
+
+
+def _rehash(doc: dict) -> str:
+    from surrogate.coefficients import content_hash
+
+    return content_hash(doc)
