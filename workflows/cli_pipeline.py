@@ -164,6 +164,9 @@ def _human(p: dict) -> str:
                  f"TE p-p = {design['te_pp_m'] * 1e6:.3f} µm, σ_c = {design['sigma_c_pa'] / 1e9:.3f} GPa, "
                  f"σ_b = {design['sigma_b_pa'] / 1e6:.0f} MPa, mean μ = {design['mu_mean']:.4f}, "
                  f"converged {design['converged']}, valid {design['valid']}")
+    if design.get("power_loss_low_w") == design.get("power_loss_low_w"):  # not NaN: the surrogate has intervals
+        lines.append(f"  90 % band of P from the surrogate's μ intervals (fully correlated): "
+                     f"{design['power_loss_low_w'] / 1e3:.3f} to {design['power_loss_high_w'] / 1e3:.3f} kW")
     clipped = design.get("clipped_to_fitted_range")
     if clipped:
         moved = ", ".join(f"{k} {v}" for k, v in clipped.items() if k != "contact_points" and v)
