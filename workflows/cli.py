@@ -164,6 +164,9 @@ def main(argv: list[str] | None = None) -> int:
     from .cli_output import fail
 
     argv = list(sys.argv[1:] if argv is None else argv)
+    if argv == ["--version"]:  # before the parser: building it imports every command group's options
+        print(version_text())
+        return 0
     as_json = "--json" in argv
     parser = build_parser()
     try:
