@@ -24,6 +24,8 @@ segment is written.
     python validation/flank_reference/run_sweeps.py --estimate      # cost of every run from a short coarse run
     python validation/flank_reference/run_sweeps.py --run           # the queue, cheapest first (resumable)
     python validation/flank_reference/run_sweeps.py --summary       # table of the segments written so far
+    python validation/flank_reference/run_sweeps.py --queue         # remaining runs, estimated cost, cheapest first
+    python validation/flank_reference/run_sweeps.py --run --spacings 16 --only rqA   # a part of the queue
 
 Run the queue in the background on one core:
 
@@ -76,8 +78,10 @@ u_r 1, 2, 5, 10 m/s at Rq 0.5 µm (uA; λ̄ ≈ 0.06–0.32)."""
 
 SPACINGS = (4, 8, 16)
 """Grid spacings Δx = λ_s/n."""
-PASSES = {4: 8.0, 8: 4.0, 16: 3.0}
-"""Run length [passes] per spacing: ramp 0.5 + start-up 1 + averaging; the coarse run carries the long window."""
+PASSES = {4: 8.0, 8: 3.0, 16: 2.5}
+"""Run length [passes] per spacing: ramp 0.5 + start-up 1 + averaging. The coarse run carries the long window (6.5
+passes); the finer runs enter through their paired difference to it over their 1.5 and 1 pass (the multilevel
+estimator of validation/deterministic_validation.py)."""
 LAYOUT_PASSES = 8.0
 """Run length the roughness is laid out for, the same at every spacing (paired runs)."""
 WINDOW_PASSES = 0.25
@@ -177,31 +181,51 @@ def estimate(points=POINTS) -> dict:
                 k = n / SPACINGS[0]
                 runs[str(n)] = per * (nodes * k) * (steps_per_pass * k) * PASSES[n]
             record["points"][name] = {"s_per_node_step": per, "n_nodes_coarse": nodes, "steps_done": steps,
-                                      "estimate_s": runs, "lambda_bar": result.lambda_bar,
-                                      "short_run_message": result.message}
+                                      "estimate_s": runs, "passes": {str(n): PASSES[n] for n in SPACINGS},
+                                      "lambda_bar": result.lambda_bar, "short_run_message": result.message}
         RESULTS.mkdir(parents=True, exist_ok=True)
         ESTIMATES.write_text(json.dumps(record, indent=1))
         print(f"estimate {name}: {record['points'][name]}", flush=True)
     return record
 
 
-def queue(record: dict) -> list:
-    """(estimated s, point, n) of every run, cheapest first; points whose estimate failed go last."""
-    items = []
-    for point in POINTS:
-        info = record["points"].get(point_name(point), {})
-        for n in SPACINGS:
-            cost = info.get("estimate_s", {}).get(str(n), math.inf)
-            items.append((cost, point, n))
+COST_SOURCE_FACTOR = 3.0
+"""Factor on the 60 s estimate of a run whose point has no finished run yet: the short run measures the roughness
+ramp, where asperities have not yet met (on the first two points the finished λ_s/4 runs took 0.34× and ≈ 3× the
+estimate: light and contact-dominated)."""
+
+
+def run_cost(point: dict, n: int, record: dict) -> float:
+    """Estimated wall time [s] of a run: from the finished run of the same point at the coarsest spacing done
+    (× (n/n0)² for nodes and steps per pass, × the passes ratio), else COST_SOURCE_FACTOR × the 60 s estimate."""
+    for n0 in SPACINGS:
+        path = RESULTS / f"{run_name(point, n0)}.json"
+        if n0 < n and path.exists():
+            done = json.loads(path.read_text())
+            return done["wall_time_s"] * (n / n0) ** 2 * PASSES[n] / PASSES[n0]
+    info = record["points"].get(point_name(point), {})
+    base = info.get("estimate_s", {}).get(str(n), math.inf)
+    return COST_SOURCE_FACTOR * base * PASSES[n] / info.get("passes", {}).get(str(n), PASSES[n])
+
+
+def queue(record: dict, spacings=SPACINGS, only: str | None = None) -> list:
+    """(estimated s, point, n) of every run not yet written (of ``spacings``, of the points whose name contains
+    ``only``), cheapest first; points whose estimate failed go last."""
+    items = [(run_cost(point, n, record), point, n) for point in POINTS for n in spacings
+             if not (RESULTS / f"{run_name(point, n)}.json").exists() and (only is None or only in point_name(point))]
     return sorted(items, key=lambda item: item[0])
 
 
-def run(record: dict) -> None:
-    for cost, point, n in queue(record):
+def run(record: dict, spacings=SPACINGS, only: str | None = None) -> None:
+    tried = set()
+    while True:  # the queue is re-ordered after every run: a finished coarse run prices the finer ones
+        pending = [item for item in queue(record, spacings, only) if run_name(item[1], item[2]) not in tried]
+        if not pending:
+            return
+        cost, point, n = pending[0]
         name = run_name(point, n)
+        tried.add(name)
         path = RESULTS / f"{name}.json"
-        if path.exists():
-            continue
         case, state, options, profile = setup(point, n)
         checkpoint = FileCheckpoint(CHECKPOINTS / f"{name}.pkl")
         print(f"run {name} (estimate {cost:.0f} s) started {time.strftime('%H:%M:%S')}", flush=True)
@@ -261,12 +285,21 @@ def main(argv=None) -> int:
     parser.add_argument("--estimate", action="store_true", help="measure the cost of each point (cached)")
     parser.add_argument("--run", action="store_true", help="run the queue, cheapest first (resumable)")
     parser.add_argument("--summary", action="store_true", help="print the segments written so far")
+    parser.add_argument("--queue", action="store_true", help="print the remaining runs with their estimated cost")
+    parser.add_argument("--spacings", type=int, nargs="+", choices=SPACINGS, default=list(SPACINGS),
+                        help="run only these spacings λ_s/n (e.g. to split the queue across processes)")
+    parser.add_argument("--only", default=None, help="run only the points whose name contains this text")
     args = parser.parse_args(argv)
-    if not (args.estimate or args.run or args.summary):
-        parser.error("give --estimate, --run and/or --summary")
-    record = estimate() if args.estimate or args.run else None
+    if not (args.estimate or args.run or args.summary or args.queue):
+        parser.error("give --estimate, --run, --queue and/or --summary")
+    record = estimate() if args.estimate or args.run or args.queue else None
+    if args.queue:
+        total = 0.0
+        for cost, point, n in queue(record, args.spacings, args.only):
+            total += cost
+            print(f"{run_name(point, n):52s} {cost / 3600:6.2f} h   cumulative {total / 3600:7.1f} h")
     if args.run:
-        run(record)
+        run(record, args.spacings, args.only)
     if args.summary:
         summary()
     return 0
