@@ -126,7 +126,7 @@ def evaluate_case(name, case, positions, slices, rough_per_point, rough_position
         for spec in ("xu2007", "benedict_kelley", "iso14179"):
             add(spec, rq, "published")
         for path in coefficient_files:
-            add(str(path), rq, "surrogate", label=f"surrogate {path.name}")
+            add(path.stem, rq, "surrogate", label=f"surrogate {path.name}")  # the shipped name: no machine path
     for spec in rough_models:
         add(spec, rq, "rough EHL grid")
     if rough_per_point:
@@ -169,7 +169,7 @@ def evaluate_case(name, case, positions, slices, rough_per_point, rough_position
         "case": name, "source": case["source"], "torque_nm": case["torque_nm"], "speed_rpm": case["speed_rpm"],
         "lubricant": lub, "oil_temperature_k": temperature, "rq_m": rq, "positions": positions, "slices": slices,
         "loaded_points": int((mesh.loads > 0).sum()), "input_power_w": case["torque_nm"] * speed,
-        "mesh_time_s": mesh.wall_time_s, "coefficient_files": [str(p) for p in coefficient_files],
+        "mesh_time_s": mesh.wall_time_s, "coefficient_files": [p.name for p in coefficient_files],
         "rows": rows,
     }
 
