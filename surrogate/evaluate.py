@@ -263,15 +263,16 @@ class FrictionSurrogate:
         """The off-grid validation recorded in the file (None if it records none)."""
         return self.coefficients.document.get("offgrid")
 
-    def _ln_mu_features(self, feats: dict[str, np.ndarray]) -> tuple[np.ndarray, np.ndarray | None]:
+    def _ln_mu_features(self, feats: dict[str, np.ndarray],
+                        spread: bool = True) -> tuple[np.ndarray, np.ndarray | None]:
         """(ln μ, spread) on features; spread is the members' disagreement of a learned file, else None."""
         with np.errstate(invalid="ignore", over="ignore", divide="ignore"):
             if self.form == "learned":
                 from .mlp import feature_matrix
 
-                mean, spread = self.coefficients.learned.predict(feature_matrix(feats))
+                mean, disagreement = self.coefficients.learned.predict(feature_matrix(feats), spread=spread)
                 shape = np.shape(feats["lam"])
-                return mean.reshape(shape), spread.reshape(shape)
+                return mean.reshape(shape), None if disagreement is None else disagreement.reshape(shape)
             return predict_ln_mu(self.formula, self.coefficients.params, feats,
                                  self.coefficients.blend_half_width), None
 
@@ -394,7 +395,7 @@ class FrictionSurrogate:
             For bad inputs, or where the regression terms are not finite.
         """
         feats = self.features(p_h, r_eq, u_r, sr, temperature, rq1, rq2, warn=warn)
-        out, _ = self._ln_mu_features(feats)
+        out, _ = self._ln_mu_features(feats, spread=False)
         bad = ~np.isfinite(out)
         if bad.any():
             index = int(np.flatnonzero(bad.ravel())[0])

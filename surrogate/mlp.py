@@ -113,6 +113,10 @@ class MlpEnsemble:
         numpy.ndarray
             (K, n) ln μ [-].
         """
+        return self._standardised_members(x) * self.y_scale + self.y_mean
+
+    def _standardised_members(self, x: np.ndarray) -> np.ndarray:
+        """(K, n) outputs of the members before the target scaling (ln μ = output·y_scale + y_mean)."""
         x = np.asarray(x, dtype=float)
         n = x.shape[0]
         k = self.members
@@ -136,23 +140,26 @@ class MlpEnsemble:
                         if layer < len(deep) - 1:
                             np.maximum(z, 0.0, out=z)
                     out[member, start:stop] = z[:, 0]
-        return out * self.y_scale + self.y_mean
+        return out
 
-    def predict(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    def predict(self, x: np.ndarray, spread: bool = True) -> tuple[np.ndarray, np.ndarray | None]:
         """Ensemble mean of ln μ and the members' standard deviation s(x) at the rows of ``x``.
 
         Parameters
         ----------
         x : numpy.ndarray
             (n, 7) features [-].
+        spread : bool
+            Also compute s(x) (None otherwise) [-].
 
         Returns
         -------
         tuple of numpy.ndarray
-            (mean ln μ, disagreement), each (n,) [-].
+            (mean ln μ, disagreement or None), each (n,) [-].
         """
-        members = self.member_predictions(x)
-        return members.mean(axis=0), members.std(axis=0)
+        members = self._standardised_members(x)
+        mean = members.mean(axis=0) * self.y_scale + self.y_mean
+        return mean, (members.std(axis=0) * self.y_scale if spread else None)
 
     def half_width(self, spread: np.ndarray, coverage: float) -> np.ndarray:
         """Half width of the calibrated interval of ln μ, q(coverage)·(s + s₀).
