@@ -8,9 +8,11 @@ once per mesh cycle. The models, cheapest first:
 * :class:`ConstantFriction` — one μ everywhere;
 * :class:`PublishedFriction` — the published formulas of :mod:`surrogate.published` (Xu et al. 2007, Benedict &
   Kelley 1961, ISO/TR 14179-2);
-* a coefficient file — :class:`surrogate.evaluate.FrictionSurrogate`, the fitted Eq. 9 of Li & Kahraman 2009, with
-  its inputs clipped to the ranges of its fitted data (its own clipping; ``last_stats()`` counts the clipped inputs
-  of the last evaluation, per input);
+* a coefficient file — :class:`surrogate.evaluate.FrictionSurrogate`, the fitted Eq. 9 of Li & Kahraman 2009 or the
+  learned ensemble of the same inputs (``form`` of the file), with its inputs clipped to the ranges of its fitted data
+  (its own clipping; ``last_stats()`` counts the clipped inputs of the last evaluation, per input) and, in a file of
+  format 2, a prediction interval (``mu_interval``) from which :func:`efficiency.power_loss.mesh_power_loss` gives
+  the band of P;
 * :class:`EhlFriction` — the EHL solver at every loaded point (slow; the reference of the accuracy checks);
 * :class:`EhlGridFriction` — the EHL solver on a small grid per side of the pitch point, interpolated along the path
   of contact (docs/validation/gear.md).
@@ -535,7 +537,8 @@ def friction_from_spec(spec: str, lubricant="atf", *, clip_to_fitted_ranges: boo
       X_L from OIL_TYPE, else ``oil_type``, else the lubricant file's ``oil_type``, else mineral;
     * ``ehl:LEVEL[:EFFECTS]`` → :class:`EhlFriction` (the EHL solver at every point; EFFECTS ``auto`` or ``full``);
     * ``ehl-grid:LEVEL[:EFFECTS][:NSxNP]`` → :class:`EhlGridFriction` (NS roll × NP load nodes per side);
-    * anything else is a coefficient file path or shipped coefficient name →
+    * anything else is a coefficient file path or shipped coefficient name (``atf``, ``atf_quick``,
+      ``atf_quick_learned``; Eq. 9 or learned form) →
       :class:`surrogate.evaluate.FrictionSurrogate` (with its own lubricant), its inputs clipped to the fitted
       ranges unless ``clip_to_fitted_ranges`` is False (gear contacts leave the factorial's ranges; Eq. 9 must not
       extrapolate).
