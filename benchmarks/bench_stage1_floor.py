@@ -241,22 +241,24 @@ def main(argv=None) -> int:
               "note": "wall times on a machine shared with other runs: see the load averages; CPU times are the "
                       "process's own"}
     lub = load_lubricant("atf")
-    rows = sample_rows(args.n, args.seed)
+    rows = sample_rows(max(args.n, 1), args.seed)
     first = rows[0].copy()
     first[5:] = 0.0
     solve_contact(ContactCase(*first), lub, "standard", "auto", model="smooth")  # numba code loaded
     solve_contact(ContactCase(*rows[0]), lub, "standard", "isothermal")
-    t0 = time.perf_counter()
-    report["warm_smooth"], results = warm_smooth(rows, lub)
-    report["warm_smooth"]["load_average_end"] = load_average()
-    print(f"warm smooth: median {report['warm_smooth']['wall_s']['median'] * 1e3:.1f} ms wall, "
-          f"{report['warm_smooth']['cpu_s']['median'] * 1e3:.1f} ms CPU ({time.perf_counter() - t0:.0f} s)",
-          file=sys.stderr)
-    if args.baseline_n:
+    results = []
+    if args.n:
+        t0 = time.perf_counter()
+        report["warm_smooth"], results = warm_smooth(rows, lub)
+        report["warm_smooth"]["load_average_end"] = load_average()
+        print(f"warm smooth: median {report['warm_smooth']['wall_s']['median'] * 1e3:.1f} ms wall, "
+              f"{report['warm_smooth']['cpu_s']['median'] * 1e3:.1f} ms CPU ({time.perf_counter() - t0:.0f} s)",
+              file=sys.stderr)
+    if args.n and args.baseline_n:
         report["dense_baseline"] = dense_baseline(rows[:args.baseline_n], lub, results[:args.baseline_n])
         report["dense_baseline"]["load_average_end"] = load_average()
         print(f"dense baseline: median {report['dense_baseline']['cpu_s']['median'] * 1e3:.1f} ms CPU", file=sys.stderr)
-    if args.default_n:
+    if args.n and args.default_n:
         report["default_model"] = default_model(rows[:args.default_n], lub)
         report["default_model"]["load_average_end"] = load_average()
         print(f"default model: median CPU ratio {report['default_model']['cpu_ratio_default_over_smooth']['median']:.2f}",
