@@ -27,9 +27,11 @@ MODELS: tuple[str, ...] = ("auto", "smooth", "homogenised", "deterministic")
 ROUGH_MODELS: tuple[str, ...] = ("homogenised", "deterministic")
 """Models a level may send the rough contacts outside the film law's measured range to."""
 
-CLOSURES: tuple[str, ...] = ("transverse", "isotropic", "film_law")
+CLOSURES: tuple[str, ...] = ("transverse", "isotropic", "film_law", "asperity")
 """Closures of the homogenised model: the flow factors ``transverse`` (1-D roughness, no side leakage) and
-``isotropic`` (side leakage), or ``film_law`` (smooth pressure, the measured film law, the dry-contact traction)."""
+``isotropic`` (side leakage), ``film_law`` (smooth pressure, the measured film law, the dry-contact traction), or
+``asperity`` (the film law with the load the surviving roughness carries: amplitude reduction, dry-contact table,
+load balance)."""
 
 DEFAULT_CLOSURE = "transverse"
 """The closure of ``model="homogenised"`` when none is given."""

@@ -54,12 +54,15 @@ MIXED_MODELS: dict[str, dict[str, Any]] = {
     "homogenised-isotropic-standard": {"model": "homogenised", "level": "standard", "closure": "isotropic"},
     "homogenised-film_law-standard": {"model": "homogenised", "level": "standard", "closure": "film_law",
                                       "effects": "isothermal"},
+    "homogenised-asperity-standard": {"model": "homogenised", "level": "standard", "closure": "asperity",
+                                      "effects": "isothermal"},
     "deterministic-fast": {"model": "deterministic", "level": "fast"},
     "deterministic-standard": {"model": "deterministic", "level": "standard"},
 }
 """The models measured, each a :func:`~ehl_dataset.solver.solve_contact` call: the steady smooth solve (what the
 mixed regime costs if roughness is ignored), the homogenised model with each closure (the film-law one isothermal,
-like the reference and the other rough models) and the deterministic solver at its ``fast`` and ``standard`` grid
+like the reference and the other rough models; ``asperity`` is the film law with the load of the surviving
+roughness, :mod:`ehl_dataset.solvers.asperity_model`) and the deterministic solver at its ``fast`` and ``standard`` grid
 rules (the reference itself is its three-spacing extrapolation)."""
 CHEAP_MODELS = ("smooth-standard", "homogenised-transverse-standard", "homogenised-isotropic-standard")
 

@@ -39,6 +39,7 @@ from ..model.lubricant import LubricantState
 from ..model.roughness import RoughnessProfile
 from ..model.traction import full_film_mask
 from ..validation import InputError, check_range
+from .asperity_model import solve_asperity
 from .film_law_model import solve_film_law
 from .levels import AccuracyLevel
 from .newton import ReynoldsProblem, newton_solve
@@ -205,6 +206,9 @@ def solve_homogenised(case: ContactCase, state: LubricantState, lvl: AccuracyLev
         return smooth
     if closure == "film_law":
         return solve_film_law(case, state, lvl, plan, roughness, h_b_m,
+                              micro_pressure_coefficient=options.micro_pressure_coefficient)
+    if closure == "asperity":
+        return solve_asperity(case, state, lvl, plan, roughness, h_b_m,
                               micro_pressure_coefficient=options.micro_pressure_coefficient)
     table = dry_contact_table(roughness, case.rq1, case.rq2, case.e_reduced)
     scales = ContactScales.of(case, state, plan.shear_thinning)

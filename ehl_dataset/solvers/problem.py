@@ -182,8 +182,9 @@ def resolve_contact(case: ContactCase, lubricant: Lubricant | str, level: str | 
     options_h = options_d = None
     if route == "homogenised":
         options_h = homogenised or HomogenisedOptions()
-        # the film-law closure has the smooth solver's thermal correction; the flow-factor closures have none
-        if options_h.closure != "film_law":
+        # the film-law closure (and the asperity closure built on it) has the smooth solver's thermal correction;
+        # the flow-factor closures have none
+        if options_h.closure not in ("film_law", "asperity"):
             plan = _isothermal(plan, "homogenised")
     elif route == "film_law":
         options_h = HomogenisedOptions(closure="film_law")
