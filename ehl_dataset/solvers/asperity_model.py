@@ -301,13 +301,23 @@ def asperity_closure(film_law: ContactResult, case: ContactCase, state: Lubrican
                                                 boundary_film_m)
         return _integral(x, weight * tau)
 
-    dry = couette(p_bar, film0, 1.0)
     # where the asperities carry nearly the whole local load the gamma quadrature of the fluctuations underflows
     # (shape (p/σ_p)² ≲ 1e-4): the fluid pressure in the traction is floored at 0.05 σ_p (and 1e-4 of the mean
     # contact pressure), the shear of a nearly unloaded film
     p_floor = max(0.05 * pressure_std, 1e-4 * load / (x[-1] - x[0]))
-    wet = couette(np.maximum(p_fluid, p_floor), film, open_fraction) if share > 0.0 else dry
-    mu_couette = extra["mu_couette"] * (wet / dry if dry != 0.0 else 1.0)
+    # isothermal: the film law's Couette part is ∫τ̄(p̄, h̄)dx/w on the same nodes, so the fluid's replaces it; with
+    # the thermal correction, the film law's part is scaled by the isothermal ratio fluid/film law
+    if share == 0.0:
+        ratio, mu_couette = 1.0, extra["mu_couette"]
+    else:
+        wet = couette(np.maximum(p_fluid, p_floor), film, open_fraction)
+        if "thermal" in extra:
+            dry = couette(p_bar, film0, 1.0)
+            ratio = wet / dry if dry != 0.0 else 1.0
+            mu_couette = extra["mu_couette"] * ratio
+        else:
+            mu_couette = wet / load
+            ratio = mu_couette / extra["mu_couette"] if extra["mu_couette"] != 0.0 else 1.0
     mu_poiseuille = extra["mu_poiseuille"] + (_integral(x, 0.5 * film * np.gradient(p_fluid, x))
                                               - _integral(x, 0.5 * film0 * np.gradient(p_bar, x))) / load
     mu_asperity = math.copysign(1.0, case.u_s) * (case.u_s != 0.0) * state.mu_d * _integral(x, p_a) / load
@@ -317,7 +327,7 @@ def asperity_closure(film_law: ContactResult, case: ContactCase, state: Lubrican
     converged = bool(np.isfinite(mu)) and residual < 1e-6
     message = film_law.message if converged else f"not converged: load balance residual {residual:.3g}"
     record.update(share_residual=residual, fluid_film_ratio=float(film[0] / film0[0]),
-                  contact_fraction_max=float(np.max(1.0 - open_fraction)), fluid_couette_ratio=wet / dry if dry else 1.0)
+                  contact_fraction_max=float(np.max(1.0 - open_fraction)), fluid_couette_ratio=ratio)
     extra.update(parts, closure="asperity", asperity=record)
     effects = dict(film_law.effects)
     effects["reasons"] = {**dict(effects.get("reasons") or {}),
