@@ -7,7 +7,7 @@ repeats and the machine noted:
   loads (no TE/stresses) requested;
 - the same over a sample of designs from the paper's design space (feasible ones only);
 - scaling with the number of slices S (at M = 24) and positions M (at S = 30), and the change of TE, σ_c, σ_b
-  against a fine 90 × 72 reference (accuracy versus time, docs/performance.md).
+  against a fine 90 × 72 reference (accuracy versus time, docs/validation/speed.md).
 
 Run: ``python benchmarks/bench_gear.py [--repeats 7] [--out benchmarks/results/gear.json]``
 """
@@ -34,7 +34,7 @@ def main(argv=None) -> int:
     parser.add_argument("--repeats", type=int, default=7)
     parser.add_argument("--designs", type=int, default=40, help="sampled designs of the paper's space")
     parser.add_argument("--out", default=str(Path(__file__).parent / "results" / "gear.json"))
-    parser.add_argument("--figure", help="also draw the design-D figure of docs/gear_load_distribution.md here")
+    parser.add_argument("--figure", help="also draw the design-D figure of docs/explanation/gear-model.md here")
     args = parser.parse_args(argv)
     if args.figure:
         draw_figure(args.figure)

@@ -1,4 +1,4 @@
-"""What the friction model costs in accuracy and time inside the gear power loss (docs/gear_friction_accuracy.md).
+"""What the friction model costs in accuracy and time inside the gear power loss (docs/validation/gear.md).
 
 For the paper's design D at its study point and an FZG test-gear case, the mean mechanical power loss P (Li &
 Kahraman 2009, Eq. 11) of one loaded mesh cycle (default 24 positions × 30 slices) with
@@ -19,7 +19,7 @@ with the wall time of each (friction evaluation included, mesh excluded). Writes
 
 Run: ``python benchmarks/bench_gear_friction.py [--cases design_D,fzg_C] [--rough-per-point]``; rough rows only, added
 to the existing file: ``--rough-only --rough-models ehl-grid:standard:auto:3x3``; the figure of
-docs/gear_friction_accuracy.md from the file: ``--figure docs/figures/gear_friction_accuracy.png``.
+docs/validation/gear.md from the file: ``--figure docs/figures/gear_friction_accuracy.png``.
 """
 
 from __future__ import annotations

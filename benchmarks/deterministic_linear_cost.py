@@ -1,5 +1,5 @@
 """Benchmark: the operation counts and CPU time of the deterministic solver's Newton–Krylov solves on short `fast`
-runs, one row per point and installed model version (docs/deterministic_solver.md, "Cost").
+runs, one row per point and installed model version (docs/explanation/mixed-regime.md, "Cost").
 
     python benchmarks/deterministic_linear_cost.py
     python benchmarks/deterministic_linear_cost.py --band 8 2.0GPa-5mm-5ms-SR0.4-100C-Rq0.3   # another band, one point

@@ -1,4 +1,4 @@
-"""Which variable should the pressure-fluctuation closure's c depend on? (docs/narrow_contacts.md, "Why c depends on
+"""Which variable should the pressure-fluctuation closure's c depend on? (docs/explanation/mixed-regime.md, "Why c depends on
 the inlet length")
 
     python validation/closure_forms.py

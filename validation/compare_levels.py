@@ -1,7 +1,7 @@
 """Compare two runs of bench_ehl_mixed.py on the same points (e.g. `fast` against `standard`): μ error and time.
 
     python validation/compare_levels.py benchmarks/results/ehl_mixed_random20_fast.json \\
-        benchmarks/results/ehl_mixed_random20_standard.json --out docs/accuracy_random_levels.md \\
+        benchmarks/results/ehl_mixed_random20_standard.json --out docs/validation/accuracy_random_levels.md \\
         --png docs/figures/accuracy_random_levels.png --note "..."   # the committed report's note: see its header
     python validation/compare_levels.py OLD.json NEW.json --labels standard-v5 standard-v6 --out /tmp/versions.md
 

@@ -1,5 +1,5 @@
 """How far double precision lets the global lubricant balance of a deterministic run go below its 1e-10 target
-(docs/deterministic_solver.md, "Mass balance").
+(docs/explanation/mixed-regime.md, "Mass balance").
 
 Runs the start of a validation run (its own options, layout and roughness) and, at every Newton solve that ends
 converged with the global balance |Σ mass rows|/(ρ̄H)_ref above the target, moves each group of unknowns (the fluid

@@ -1,7 +1,7 @@
 """How much thicker is the film of a rough contact than the smooth one? The feeding law of the periodic window.
 
 A periodic window of the Hertzian centre (ehl_dataset.solvers.periodic_window) needs the mean lubricant content the
-inlet delivers, which it cannot compute itself (docs/deterministic_solver.md, "Periodic window"). This script
+inlet delivers, which it cannot compute itself (docs/explanation/mixed-regime.md, "Periodic window"). This script
 measures it on resolved deterministic runs: the time-averaged content film θ·max(h, h_b) over the centre |x| < 0.2 a
 against the steady smooth solver's film over the same band, as the excess Δ = h̄_rough − h_smooth in units of the
 composite roughness σ = √(Rq1² + Rq2²), against H = h_smooth/σ and the length of the smooth inlet build-up zone in correlation lengths,

@@ -1,6 +1,6 @@
 """μ of the deterministic solver over a roughness sweep at fixed load, speed, sliding and temperature: the limit
 "μ falls monotonically with λ̄ (within 2 standard errors), steeply below λ̄ ≈ 1 and gently above" of
-docs/deterministic_solver.md (the trend of the paper's Fig. 2).
+docs/explanation/mixed-regime.md (the trend of the paper's Fig. 2).
 
     python validation/deterministic_lambda_sweep.py --spacing 16 --passes 11
 

@@ -1,5 +1,5 @@
 """Per-step global lubricant balance of the deterministic solver on one validation case, and its dependence on the
-round-off stop margin of the Newton solve (docs/deterministic_solver.md, "Mass balance").
+round-off stop margin of the Newton solve (docs/explanation/mixed-regime.md, "Mass balance").
 
     python validation/deterministic_mass_balance.py --case A --spacing 32 --passes 4 [--margin 100]
 

@@ -16,7 +16,7 @@ Var μ̂_L ≤ ε², ε = 1.5 %·μ_L, takes
     N_l = √(V_l / c_l) · Σ_k √(V_k c_k) / ε²,     cost = (Σ_k √(V_k c_k))² / ε²   (+ each run's start-up).
 
 The variances of the short runs come from 1.5-pass windows, whose own standard errors are too small where contact
-episodes drive the differences (docs/deterministic_solver.md, "Standard error of the short runs"); with ``--scaled``
+episodes drive the differences (docs/explanation/mixed-regime.md, "Standard error of the short runs"); with ``--scaled``
 they are multiplied by the case's measured factor (``short_window_factor`` of the validation script), as the
 validation's scaled figures are. A plan is an estimate to be checked by the runs it asks for. The base run's passes are checked against what the case's profile holds (``plan_surfaces``: two disjoint
 stretches of 2·(domain) + 2·u_r·t each, the gap between them).

@@ -1,4 +1,4 @@
-"""Does the standard error of a 1.5-pass paired difference tell the truth? (docs/deterministic_solver.md, "Standard
+"""Does the standard error of a 1.5-pass paired difference tell the truth? (docs/explanation/mixed-regime.md, "Standard
 error of the short runs").
 
 The validation estimator (validation/deterministic_validation.py) takes each spacing other than the long run's from a

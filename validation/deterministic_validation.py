@@ -79,13 +79,13 @@ step +1.0 % at β/8/16/32), so it takes the default spacings."""
 EXTRA_SPACINGS = {"B": (128, 256), "C": (128,)}
 """Finer short runs beyond a case's three spacings (``python validation/deterministic_extra_spacing.py CASE N``),
 chained onto them by paired differences: the extrapolation then takes the three finest spacings. B and C were not
-grid-converged at β/64 (docs/deterministic_solver.md)."""
+grid-converged at β/64 (docs/explanation/mixed-regime.md)."""
 MAX_PASSES = 40.0
 LAYOUT_PASSES = 100.0
 """Run length [passes] every run's roughness is laid out for, whatever its own cap: the paired differences need
 the same roughness at the same times at every spacing (DeterministicOptions.layout_passes). Case G's short runs
 were once laid out for their default cap of 40 passes against 100 for the long run, and their paired differences
-were −17 %/−18 % where a shared layout gives +0.1 % (docs/deterministic_solver.md)."""
+were −17 %/−18 % where a shared layout gives +0.1 % (docs/explanation/mixed-regime.md)."""
 LONG_RUNS = {"A": 200.0, "C": 120.0, "D": 100.0, "G": 300.0}
 """Cases whose long run needs more than :data:`MAX_PASSES` passes for the standard-error target: the cap of the
 long run [passes] and the layout of all their runs (a layout of at least the cap, so that no surface reads its own
@@ -128,7 +128,7 @@ run :data:`SHORT_AVERAGE_PASSES`), per case and spacing, for two reasons:
 
 A's long run would need ≈ 346 passes for the second reason, more than its 200-pass layout, so all its runs would
 have to be redone (≈ 2.4 h); B needs a longer profile and ≈ 12 passes at every spacing up to β/256 for the first
-(≈ 15 h, docs/deterministic_solver.md "Open"). Both are left at their windows."""
+(≈ 15 h, docs/explanation/mixed-regime.md "Open"). Both are left at their windows."""
 SHORT_AVERAGE_PASSES = 1.5
 LONG_TARGET = 0.015
 SAFETY = 1.25
@@ -160,7 +160,7 @@ validation/results/deterministic_rerun_check_det-2026.11-14.json). det-2026.11-1
 on a small correction (below 1e-15 p_h instead of 1e-12: a step iterates on until its global balance meets the
 tolerance); rerun under it with ``--replace`` (the reruns are the records now), the runs listed in
 validation/results/deterministic_rerun_check_det-2026.11-15.json reproduce their recorded μ within the figures given
-there and in docs/deterministic_solver.md, "Mass balance". det-2026.11-16 computes the deflection of grids of at most
+there and in docs/explanation/mixed-regime.md, "Mass balance". det-2026.11-16 computes the deflection of grids of at most
 320 nodes by a dense product instead of the FFT pair (the same operator) and the periodic preconditioner's
 convolution by ``np.convolve``: rerun under it, B β/16, E β/8, G β/8 and I β/8 reproduce their recorded μ within
 7e-13 (relative) and D β/8 within 1.1e-6, every step balanced to 1e-10 (`python

@@ -1,6 +1,6 @@
 """The deterministic model's wide-contact route (ehl_dataset.solvers.wide_contact) on one contact: five periodic
 windows across the Hertzian zone fed the smooth pressure and the film law, against the contact's resolved run when
-there is one (docs/deterministic_solver.md, "Wide contacts").
+there is one (docs/explanation/mixed-regime.md, "Wide contacts").
 
     python validation/deterministic_wide.py --inputs 1.0 10 5 0.2 75 0.4 0.4 --tag V1
     python validation/deterministic_wide.py --inputs 1.0 10 5 0.2 75 0.4 0.4 --tag V1 --offset-sigma -0.05

@@ -1,5 +1,5 @@
 """The film-law homogenised model (ehl_dataset.solvers.film_law_model) against the deterministic model, and what it
-costs (docs/homogenised_model.md, "Film-law closure").
+costs (docs/explanation/mixed-regime.md, "Film-law closure").
 
     python validation/film_law_model.py            # writes validation/results/film_law_model.json and a table
 
@@ -7,7 +7,7 @@ Three comparisons, all with the ATF:
 * the deterministic model's wide route (periodic windows) on the factorial corners with r_eq 80 mm
   (benchmarks/results/ehl_mixed_corners_fast_deterministic.json, level fast) — the film law and the smooth pressure
   are the same in both, so this isolates the closure of the traction;
-* resolved deterministic contacts: V1 and W1 (docs/deterministic_solver.md, "Wide contacts"), the validation set
+* resolved deterministic contacts: V1 and W1 (docs/explanation/mixed-regime.md, "Wide contacts"), the validation set
   (data/reference/deterministic_validation.json) and the roughness sweep (benchmarks/results/
   deterministic_lambda_sweep.json): narrow contacts, a/β 1.5–12, outside the closure's validated range, reported to
   show where it fails;
@@ -45,7 +45,7 @@ CORNERS = ROOT / "benchmarks" / "results" / "ehl_mixed_corners_fast_deterministi
 REFERENCE = ROOT / "data" / "reference" / "deterministic_validation.json"
 SWEEP = ROOT / "validation" / "results" / "deterministic_lambda_sweep.json"
 OUT = ROOT / "validation" / "results" / "film_law_model.json"
-RESOLVED_WIDE = {  # docs/deterministic_solver.md, "Wide contacts": resolved at β/8, Courant 1
+RESOLVED_WIDE = {  # docs/explanation/mixed-regime.md, "Wide contacts": resolved at β/8, Courant 1
     "V1": ([1.0, 10, 5, 0.2, 75, 0.4, 0.4], 0.0233, 0.0009, "det-2026.11-7"),
     "W1": ([1.0, 20, 5, 0.2, 75, 0.4, 0.4], 0.0226, 0.0006, "det-2026.11-6"),
 }

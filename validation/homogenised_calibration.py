@@ -1,7 +1,7 @@
 """Can one constant calibrate the homogenised model's 1-D transverse closure against the deterministic reference?
 
 The transverse closure's pressure conductance 1/⟨max(g, h_f)⁻³⟩ is dominated by the contact spots of the dry-contact
-table, floored at h_f (docs/homogenised_model.md). With h_f = h_b = 5 nm the model entrains a film of several σ and
+table, floored at h_f (docs/explanation/mixed-regime.md). With h_f = h_b = 5 nm the model entrains a film of several σ and
 μ falls below the smooth value; raising the floor h_f (``HomogenisedOptions.flow_floor_sigma``, in units of σ)
 weakens the blocking. This script scans h_f/σ on the deterministic cases whose finest two spacings agree within
 the grid targets (validation/results/deterministic_convergence_<case>.json, model det-2026.11-6: the finest run's μ

@@ -1,5 +1,5 @@
 """Why the film law is low on narrow contacts with an unsaturated traction: the micro-EHL pressure fluctuations of
-the deterministic model and what they do to the Eyring shear stress (docs/narrow_contacts.md).
+the deterministic model and what they do to the Eyring shear stress (docs/explanation/mixed-regime.md).
 
     python validation/micro_ehl_fluctuations.py A:16 G:8 I:8 C:16
 

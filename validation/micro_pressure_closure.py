@@ -1,5 +1,5 @@
 """Calibration and check of the film law's micro-EHL pressure-fluctuation closure
-(ehl_dataset.model.micro_pressure; docs/narrow_contacts.md, "Pressure-fluctuation closure").
+(ehl_dataset.model.micro_pressure; docs/explanation/mixed-regime.md, "Pressure-fluctuation closure").
 
     python validation/micro_pressure_closure.py
 

@@ -1,4 +1,4 @@
-"""Calibration of the planner's thermal switch (docs/planner.md): on random smooth points of the paper's factorial
+"""Calibration of the planner's thermal switch (docs/explanation/planner.md): on random smooth points of the paper's factorial
 (data/factorials/paper2009.toml axes, ATF), the thermal estimate at the Hertz centre that the planner decides from
 (``thermal_change``) against the measured change of μ when the steady solver applies the thermal correction,
 (μ_isothermal − μ_thermal)/μ_isothermal, at the fast and standard levels.

@@ -6,7 +6,7 @@ mean conditions.
 
 ``--inputs`` the case (p_h [GPa], r_eq [mm], u_r [m/s], SR, T [°C], Rq1, Rq2 [µm]: speeds, roughness, lubricant
 temperature); ``--pressure-gpa`` and ``--film-nm`` the window's mean pressure and the smooth film whose lubricant it
-holds (W1: the Hertzian peak pressure and the central mean film of its resolved run, docs/homogenised_model.md).
+holds (W1: the Hertzian peak pressure and the central mean film of its resolved run, docs/explanation/mixed-regime.md).
 Windows at every spacing read the same roughness at the same times, so their differences are paired (mean and
 standard error of μ_local(t) differences over the averaging window). Writes
 validation/results/window_convergence_<tag>.json.

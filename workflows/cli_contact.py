@@ -35,19 +35,19 @@ def register(subparsers) -> None:
     solve.add_argument("--model", default="auto", choices=MODELS,
                        help="contact model: auto (the effect plan decides), smooth (steady smooth surfaces), "
                             "homogenised (steady two-scale mixed model; a prototype, see "
-                            "docs/homogenised_model.md), deterministic (the deterministic mixed reference solver; "
+                            "docs/explanation/mixed-regime.md), deterministic (the deterministic mixed reference solver; "
                             "slow: minutes per case)")
     solve.add_argument("--closure", default=DEFAULT_CLOSURE, choices=CLOSURES,
                        help="closure of the homogenised model: the flow factors transverse (1-D roughness, no side "
                             "leakage, as the paper's model) or isotropic (side leakage), or film_law (smooth "
                             "pressure, the measured film law of resolved rough contacts and the dry-contact table's "
-                            "traction; for wide contacts, docs/homogenised_model.md); default transverse")
+                            "traction; for wide contacts, docs/explanation/mixed-regime.md); default transverse")
     solve.add_argument("--dx-um", type=float, default=None,
                        help="grid spacing of the deterministic model [µm] (default: the level's grid rule)")
     solve.add_argument("--wide", default="auto", choices=["auto", "resolve", "windows"],
                        help="how the deterministic model covers the contact: auto (periodic windows across the "
                             "Hertzian zone fed by the film law when a/β > 15 and no --dx-um is given, else the whole "
-                            "contact resolved), resolve, windows (docs/deterministic_solver.md, \"Wide contacts\")")
+                            "contact resolved), resolve, windows (docs/explanation/mixed-regime.md, \"Wide contacts\")")
     solve.add_argument("--time-limit-s", type=float, default=None,
                        help="wall-time budget of a deterministic (rough, transient) solve [s]; when spent the result is marked "
                             "not converged (default: none)")

@@ -72,9 +72,9 @@ def usage_error(parser: argparse.ArgumentParser, message: str) -> UsageError:
 
 ACCURACY_EPILOG = """\
 accuracy: at fast and standard every rough contact is solved by the steady film-law model (the two levels agree
-within 0.1 % in median, docs/accuracy_random_levels.md); below λ̄ 1, with its pressure-fluctuation closure where the
+within 0.1 % in median, docs/validation/accuracy_random_levels.md); below λ̄ 1, with its pressure-fluctuation closure where the
 traction is unsaturated, it is within a median 5.3 % of the deterministic model, except below λ̄ 0.1 or at a roughness parameter above
-2.5, where it is 23-78 % low: --level reference runs the deterministic model (docs/narrow_contacts.md)"""
+2.5, where it is 23-78 % low: --level reference runs the deterministic model (docs/explanation/mixed-regime.md)"""
 """The accuracy paragraph of the epilogs of the commands that run a factorial (pipeline, lubricant fit)."""
 
 EFFECTS_CHOICES = EFFECT_PLANS

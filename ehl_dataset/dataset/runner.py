@@ -231,7 +231,7 @@ def solver_config(solver: str | Callable, level: str, effects: str, model: str =
         "model": check_model(model, solver),
     }
     if config["model"] == "deterministic" or level == "reference":
-        # its numerics are versioned on their own (docs/deterministic_solver.md); the reference level's planner sends
+        # its numerics are versioned on their own (docs/explanation/mixed-regime.md); the reference level's planner sends
         # every rough contact to it
         config["model_version"] = DETERMINISTIC_MODEL_VERSION
         config["wide_model_version"] = WIDE_MODEL_VERSION

@@ -331,12 +331,12 @@ ROUND_OFF_STEP_MARGIN × the tolerance when its correction is below ROUND_OFF_ST
 in the last place of a pressure of order p_h, which the state cannot take in double precision (MixedProblem.newton).
 The attainable balance of a mass row is ≈ (ε/Δ)·1e-16·max P_f, ≈ 1e-10 at the flooded inlet of a heavily loaded
 contact (thick film, low viscosity, large conductance ε, reference flux ρ̄H of the thin central film), and grows as
-the grid is refined (docs/deterministic_solver.md, "Robustness"). det-2026.11-10 to -14 took ROUND_OFF_STEP = 1e-12
+the grid is refined (docs/explanation/mixed-regime.md, "Robustness"). det-2026.11-10 to -14 took ROUND_OFF_STEP = 1e-12
 p_h, which is 4,500 units in the last place: a correction of 1e-13 p_h still moves the mass rows (through the
 deflection and the storage term, ≈ K·w/(ΔT·ρ̄H)) by more than the tolerance, and the stop accepted steps whose global
 balance a further iteration would have met. det-2026.11-15's 1e-15 takes that iteration: over whole short
 validation runs (B β/16, D, H, I, L β/8; C β/64) no step exceeds 1e-10 where 1 to 96 did, B β/64 12 of 9,051 steps
-where 1,851 did (largest 4.2e-10, was 1.4e-9), at no extra cost (docs/deterministic_solver.md, "Mass balance")."""
+where 1,851 did (largest 4.2e-10, was 1.4e-9), at no extra cost (docs/explanation/mixed-regime.md, "Mass balance")."""
 STRICT_ROUND_OFF_SINCE = "det-2026.11-15"
 """The first model version whose round-off stop takes ROUND_OFF_STEP = 1e-15 p_h (results record their version: runs
 made before it may hold steps that a further iteration would have balanced)."""
@@ -785,7 +785,7 @@ def solve_deterministic(case: ContactCase, state: LubricantState, plan: Effects,
     check_every = max(int(0.25 * steps_per_pass), 1)
     time_scale = a / case.u_r
     # laid out for a length in passes, whatever the spacing: runs at different spacings with the same layout read the
-    # same roughness at the same times (paired comparisons, docs/deterministic_solver.md)
+    # same roughness at the same times (paired comparisons, docs/explanation/mixed-regime.md)
     surfaces = plan_surfaces(case, x * a, options.roughness_layout_passes * passes_dt * time_scale, profile)
 
     def gap_at(t):

@@ -193,7 +193,7 @@ def solve_film_law(case: ContactCase, state: LubricantState, lvl: AccuracyLevel,
     if a_over_beta < WIDE_A_OVER_BETA:
         warnings.append(f"narrow contact (a/β = {a_over_beta:.1f} < {WIDE_A_OVER_BETA:g}): micro-EHL pressure-"
                         f"fluctuation closure c = {coefficient:.3g} (L_in/β = {inlet_over_beta:.3g}), sigma_p = "
-                        f"{pressure_std / 1e9:.3g} GPa; its measured range is the planner's (docs/narrow_contacts.md)")
+                        f"{pressure_std / 1e9:.3g} GPa; its measured range is the planner's (docs/explanation/mixed-regime.md)")
     extrapolated = film_law_extrapolation(h_smooth_centre, sigma, inlet_over_beta)
     if extrapolated:
         warnings.append(f"film law extrapolated ({extrapolated})")

@@ -221,14 +221,14 @@ def plan_effects(case, lubricant, level="standard", correlation_length_m: float 
                       "moving roughness makes the contact transient" if rough else
                       "smooth surfaces under constant load: steady"),
         "model": (f"homogenised model, film-law closure ({a_b} >= {limits.a_over_beta_homogenised:g}; against the "
-                  "deterministic model's windows on the wide factorial corners: docs/homogenised_model.md)"
+                  "deterministic model's windows on the wide factorial corners: docs/explanation/mixed-regime.md)"
                   + ("" if narrow_within else
                      f"; outside the measured range of its pressure-fluctuation closure (X_h={x_h:.3g} < "
                      f"{limits.narrow_film_law_eyring:g}, "
                      + (f"lambda_bar={lam:.3g} < {limits.narrow_closure_lambda:g}: asperities carry load"
                         if narrow_limit == "below_closure_lambda" else
                         f"roughness parameter alpha={alpha:.3g} > {limits.narrow_closure_roughness:g}")
-                     + "; docs/narrow_contacts.md)")
+                     + "; docs/explanation/mixed-regime.md)")
                   if homogenised and wide else
                   f"homogenised model, film-law closure, on a narrow contact within its measured range ({a_b} < "
                   f"{limits.a_over_beta_homogenised:g}, but "
@@ -240,7 +240,7 @@ def plan_effects(case, lubricant, level="standard", correlation_length_m: float 
                      f"lambda_bar={lam:.3g} >= {limits.narrow_closure_lambda:g} and roughness parameter "
                      f"alpha={alpha:.3g} <= {limits.narrow_closure_roughness:g}: the unsaturated traction with the "
                      "calibrated micro-EHL pressure-fluctuation closure")
-                  + ": docs/narrow_contacts.md)"
+                  + ": docs/explanation/mixed-regime.md)"
                   if homogenised and narrow_valid else
                   f"homogenised model, film-law closure, outside its validated range ({a_b} < "
                   f"{limits.a_over_beta_homogenised:g}, X_h={x_h:.3g} < {limits.narrow_film_law_eyring:g}, "
@@ -249,9 +249,9 @@ def plan_effects(case, lubricant, level="standard", correlation_length_m: float 
                      if narrow_limit == "below_closure_lambda" else
                      f"roughness parameter alpha={alpha:.3g} > {limits.narrow_closure_roughness:g}: the mean pressure "
                      "is not the Hertzian one the film law takes")
-                  + "; docs/narrow_contacts.md); the reference: level reference or model=deterministic"
+                  + "; docs/explanation/mixed-regime.md); the reference: level reference or model=deterministic"
                   if homogenised else
-                  "deterministic mixed solver: the accuracy reference of rough contacts (docs/deterministic_solver.md);"
+                  "deterministic mixed solver: the accuracy reference of rough contacts (docs/explanation/mixed-regime.md);"
                   " no thermal model"
                   if rough else "steady smooth solver"),
         "shear_thinning": (f"inlet Eyring number X_in={x_in:.3g} <= {limits.eyring_newtonian:g}: Newtonian "

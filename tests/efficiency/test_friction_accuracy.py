@@ -100,7 +100,7 @@ def test_ehl_power_is_the_sum_of_mu_w_us_and_identical_points_are_solved_once(fz
 @pytest.mark.slow
 def test_ehl_grid_agrees_with_per_point_ehl(atf):
     """The interpolated-EHL option against the EHL solver at every loaded point of design D (smooth, fast level):
-    P within 1 % (measured 0.1–0.3 % on the full 24 × 30 mesh, docs/gear_friction_accuracy.md), μ within 2 % on
+    P within 1 % (measured 0.1–0.3 % on the full 24 × 30 mesh, docs/validation/gear.md), μ within 2 % on
     average weighted by the dissipated power, with fewer solves than loaded points."""
     pair = load_study("paper2009").design("D")
     mesh = evaluate_mesh(pair, 250.0, 4000 * math.pi / 30, Modifications(profile_crown=15e-6, lead_crown=12e-6),

@@ -155,7 +155,7 @@ def test_design_d_at_250_nm_is_loaded_beyond_the_iso_nominal_values():
 
 @pytest.mark.xfail(strict=True, reason="known deviation: with M_P, M_L applied per gear this model gives "
                    "σ_c = 1.27 GPa, σ_b = 281 MPa, TE = 3.47 µm for design D (with the face coupling); see "
-                   "docs/gear_load_distribution.md")
+                   "docs/explanation/gear-model.md")
 def test_design_d_meets_the_papers_limits():
     """Li & Kahraman 2009 §3: design D satisfies σ_b < 235 MPa, σ_c < 1.175 GPa and TE < 0.25 µm at 250 N·m."""
     result = evaluate_mesh(design_d(), 250.0, modifications=Modifications.paper())

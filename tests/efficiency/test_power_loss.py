@@ -90,7 +90,7 @@ def test_helical_stiffness_weighted_sharing_lies_below_wimmer():
 
 @pytest.mark.xfail(strict=True, reason="acceptance 'helical elastic H <= H_VL' not met: with the face "
                    "coupling of tooth and gear body (0.6 tooth depth) H501 gives +2.2 % over H_VL; a 3-D FE of the "
-                   "teeth on their gear body gives +1.6 % (docs/gear_validation.md §3)")
+                   "teeth on their gear body gives +1.6 % (docs/validation/gear.md §3)")
 def test_helical_elastic_loss_factor_at_most_wimmer():
     pair = fzg("H501")
     _, h_v = loss_factor(pair, positions=None)
@@ -111,7 +111,7 @@ def test_constant_mu_efficiency_is_speed_independent_and_loss_linear_in_mu():
 
 
 def test_contact_conditions_recover_the_load_per_length():
-    """p_h from each point inverts the Hertz relation W' = 2π r_eq p_h²/E' (docs/ehl_solver.md)."""
+    """p_h from each point inverts the Hertz relation W' = 2π r_eq p_h²/E' (docs/explanation/ehl-model.md)."""
     pair = fzg("H501")
     mesh = evaluate_mesh(pair, 300.0, 100.0, options=MeshOptions(positions=12, slices=20, outputs=frozenset()))
     cond = contact_conditions(mesh)

@@ -1,4 +1,4 @@
-"""The global lubricant balance of the deterministic model's discrete equations (docs/deterministic_solver.md,
+"""The global lubricant balance of the deterministic model's discrete equations (docs/explanation/mixed-regime.md,
 "Mass balance"): every interior face flux enters two mass rows with opposite signs, so the sum of the mass rows is
 the inlet flux minus the outflow minus the time terms, for any state (a conservation law of the finite-volume
 scheme, not a property of the solution). validation/deterministic_balance_floor.py measures the balance's

@@ -1,7 +1,7 @@
 """The deterministic mixed-EHL reference solver: discrete equations, Newton–Krylov, conservation, limits.
 
 Long measurements (grid convergence, time step, h_b sensitivity, the validation set) are in
-docs/deterministic_solver.md with the commands that make them; the tests here check the machinery on short runs.
+docs/explanation/mixed-regime.md with the commands that make them; the tests here check the machinery on short runs.
 """
 
 import math
@@ -136,7 +136,7 @@ def test_plastically_interfering_asperities_hold_the_boundary_film_not_a_negativ
     """Where asperities interfere beyond the boundary film (H < H_b at the hardness) their tips are flattened: the
     cell holds ρ̄θH_b of lubricant, so neither its content nor the Couette flux it passes on can turn negative (a
     negative content at a plastic outlet node drove the film fraction to θ = −0.63 and stopped Newton in model
-    det-2026.11-1; docs/deterministic_solver.md, "Sensitivity")."""
+    det-2026.11-1; docs/explanation/mixed-regime.md, "Sensitivity")."""
     problem, x = _problem()
     z = _mixed_state(problem, x)
     gap = 0.5 * x**2
@@ -276,7 +276,7 @@ def test_runs_of_different_length_read_the_same_roughness_when_they_share_the_la
     for, so two runs with different ``max_passes`` but the same ``layout_passes`` give the same series step for
     step, and without it they do not (case G's short runs were laid out for 40 passes against 100 for its long run:
     their paired differences were −18 % and −17 % where the same layout gives +0.1 % and +0.2 %,
-    docs/deterministic_solver.md)."""
+    docs/explanation/mixed-regime.md)."""
     shorter = _short_rough_run(mu_sem_target=1.0, max_passes=0.6, layout_passes=0.9)
     longer = _short_rough_run(mu_sem_target=1.0, max_passes=0.9)
     own_layout = _short_rough_run(mu_sem_target=1.0, max_passes=0.6)
@@ -485,7 +485,7 @@ def test_the_film_offset_carried_relative_to_a_reference_keeps_the_equations():
     """Rebasing H0 into the film reference (det-2026.11-20) changes the film and the residual only by round-off; the
     reference holds the old offset and the unknown starts from zero. (What it gains, the balance's floor, is measured
     by validation/deterministic_balance_floor.py: one ulp of the offset moved L β/16's balance by 8e-11 before, 8e-14
-    after; docs/deterministic_solver.md, "Mass balance".)"""
+    after; docs/explanation/mixed-regime.md, "Mass balance".)"""
     problem, x = _problem()
     z = _mixed_state(problem, x)
     gap = 0.5 * x**2 + 0.3 + 1e-3 * np.cos(40 * x)

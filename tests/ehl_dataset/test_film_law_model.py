@@ -1,5 +1,5 @@
 """The film-law closure of the homogenised model (ehl_dataset.solvers.film_law_model): its gap average, its limits,
-and its agreement with the deterministic model on wide contacts (docs/homogenised_model.md, "Film-law closure")."""
+and its agreement with the deterministic model on wide contacts (docs/explanation/mixed-regime.md, "Film-law closure")."""
 
 import json
 import math
@@ -98,7 +98,7 @@ def test_central_film_is_the_film_law(atf):
     ("W1", [1.0, 20, 5, 0.2, 75, 0.4, 0.4], 0.0226, 0.0006),
 ])
 def test_reproduces_the_resolved_deterministic_wide_contacts(atf, tag, inputs, mu, sem):
-    """The two wide contacts resolved by the deterministic model (docs/deterministic_solver.md, "Wide contacts":
+    """The two wide contacts resolved by the deterministic model (docs/explanation/mixed-regime.md, "Wide contacts":
     β/8, 4 passes; V1 det-2026.11-7, W1 det-2026.11-6): the film-law closure within two of their standard errors."""
     result = solve(inputs, atf)
     assert result.converged
@@ -112,7 +112,7 @@ def test_meets_issue_15_accuracy_against_the_deterministic_wide_route_on_the_rec
     pressure and film law, so this measures the gap-averaged traction against the windows' micro-EHL. The
     acceptance for the homogenised model: median |Δμ| ≤ 10 %, 90th percentile ≤ 25 %. (The worst corner, λ̄ 0.06 at
     0.5 GPa and 100 °C, outside the closure's range and flagged so, is +162 % with the closure since ehl-2026.11-14,
-    −44 % without: docs/homogenised_model.md.)"""
+    −44 % without: docs/explanation/mixed-regime.md.)"""
     rows = [r for r in json.loads(CORNERS.read_text())["rows"]
             if r.get("route") == "wide" and r["converged"] and r["case"][3] > 0.0]
     assert len(rows) >= 12
@@ -133,7 +133,7 @@ def test_narrow_contacts_are_flagged(atf):
        temp=st.floats(25, 100), rq1=st.floats(0.05, 1.0), rq2=st.floats(0.05, 1.0))
 def test_random_points_of_the_paper_ranges_converge_bounded_or_are_marked(atf, p_h, r_eq, u_r, sr, temp, rq1, rq2):
     """Acceptance (property; the 64 corners and 1,000 random points are the benchmark runs of
-    docs/homogenised_model.md and docs/performance.md): the default model (``model="auto"`` at ``standard``, with the
+    docs/explanation/mixed-regime.md and docs/validation/speed.md): the default model (``model="auto"`` at ``standard``, with the
     planner's effects: thermal correction where it matters) solves a point of the paper's ranges steady, by the smooth
     solver or (rough, any a/β since ehl-2026.11-11) the film-law model, and converges with finite, bounded outputs —
     μ in [0, μ_d] when sliding, |μ| ≤ 0.01 in pure rolling, a positive film — or comes back not converged with its
@@ -158,7 +158,7 @@ def test_the_command_line_says_which_model_the_planner_chose(capsys):
     closure, the decision with its a/β) and in the text output's ``model`` line; a narrow one takes the same model,
     recorded as within its measured range where its traction is Eyring-saturated (X_h 449 ≥ 150) or where the
     pressure-fluctuation closure was calibrated (reference case A: X_h 3.6, λ̄ 0.33, α 1.1), and as outside its
-    validated range where neither holds (reference case C: X_h 96, α 3.6 > 2.5; docs/narrow_contacts.md)."""
+    validated range where neither holds (reference case C: X_h 96, α 3.6 > 2.5; docs/explanation/mixed-regime.md)."""
     from workflows.cli import main
 
     wide = ["contact", "solve", "--p-h-gpa", "1.2", "--r-eq-mm", "20", "--u-r", "5", "--sr", "0.3", "--temp-c", "90",
@@ -201,9 +201,9 @@ def test_the_planners_model_meets_issue_15_accuracy_on_every_reference_case_it_c
     the homogenised model: the default model (auto, `standard`, isothermal like the reference) on every case of the
     deterministic validation set (data/reference/deterministic_validation.json, μ extrapolated from three grid
     spacings). The planner counts A, E, F, G, H, I, J, K, L within the film law's measured range and B, C, D (λ̄ 0.054
-    and 0.073 < 0.1 with X_h < 150; α 3.6 > 2.5) outside it (docs/planner.md); within it every case is within 10 %
+    and 0.073 < 0.1 with X_h < 150; α 3.6 > 2.5) outside it (docs/explanation/planner.md); within it every case is within 10 %
     (measured under ehl-2026.11-14 against the references recorded then: −5.5 % (I) to +5.9 % (G), median |Δμ|
-    2.9 %, docs/accuracy_mixed.md; H, λ̄ 0.051 at X_h 3,470, −1.8 %, the range's claim for saturated contacts below
+    2.9 %, docs/validation/accuracy_mixed.md; H, λ̄ 0.051 at X_h 3,470, −1.8 %, the range's claim for saturated contacts below
     λ̄ 0.1 checked at reference grids; L, 2.5 GPa and λ̄ 0.14, +2.1 %), outside it B and C are 78 % and 39 % low,
     which is why they are flagged. D (λ̄ 0.073, X_h 93,
     asperity share 0.009 at β/32) is flagged by the λ̄ limit although its asperities carry little load: the film law
@@ -229,7 +229,7 @@ def test_the_planners_model_meets_issue_15_accuracy_on_every_reference_case_it_c
 def test_central_film_is_within_10_percent_of_the_reference_where_the_planner_keeps_the_film_law(atf):
     """Acceptance, "h_min within 10 %" (the central film: a rough film's minimum is a contact spot): on the
     reference cases where the planner keeps the film law within its measured range (E, F, K above λ̄ 1; I, J, H, L at
-    X_h ≥ 150; A, G within the pressure-fluctuation closure's range, docs/narrow_contacts.md) the film law's central
+    X_h ≥ 150; A, G within the pressure-fluctuation closure's range, docs/explanation/mixed-regime.md) the film law's central
     film is within 10 % of the reference's, the time mean of the deterministic film at x = 0 over its longest
     averaging window (data/reference/deterministic_validation.json, ``h_central_source``; measured 0.4–7.9 %; L
     +7.6 % against 392 nm over 5.3 passes; H +5.8 % against 344 ± 34 nm over 9 passes, where its 2.2-pass
@@ -251,7 +251,7 @@ def test_follows_the_deterministic_roughness_sweep_where_the_traction_is_eyring_
     *falls* as the roughness grows, at every paired step by 3–13 standard errors (0.0351 → 0.0310 from λ̄ 2.6 to
     0.16, det-2026.11-10 at β/8: `python validation/deterministic_lambda_sweep.py --spacing 8 --passes 6
     --conditions 1.0 10 2 0.4 50 --tag J`), because the rough inlet feeds a thicker film and a saturated traction
-    gains little from the pressure fluctuations (docs/deterministic_solver.md, "Roughness sweep"). Asserted: the
+    gains little from the pressure fluctuations (docs/explanation/mixed-regime.md, "Roughness sweep"). Asserted: the
     film law is within 10 % of every point (the film law's accuracy target; measured +1.1 % to +6.5 % under
     ehl-2026.11-14) and is lower at λ̄ 0.16 than at 0.64, like the reference (measured 0.0354 → 0.0328)."""
     sweep = json.loads((ROOT / "validation" / "results" / "deterministic_lambda_sweep_J.json").read_text())

@@ -1,5 +1,5 @@
 """The homogenised mixed-EHL model (prototype): limits against the smooth solver and conservation of the
-load. Its validation against the deterministic reference is in docs/homogenised_model.md (not yet reached)."""
+load. Its validation against the deterministic reference is in docs/explanation/mixed-regime.md (not yet reached)."""
 
 import numpy as np
 import pytest
@@ -72,7 +72,7 @@ def test_solve_contact_routes_the_homogenised_model():
 def test_a_higher_flow_floor_conducts_more_and_entrains_less():
     """The transverse closure's conductance 1/⟨max(g, h_f)⁻³⟩ grows with the floor h_f; more pressure flow against
     the inlet wedge entrains less lubricant (Patir & Cheng 1978: φ_x ↑ → film ↓), so the mean film falls and the
-    asperities carry more (case A, λ̄ = 0.33; scan in docs/homogenised_model.md)."""
+    asperities carry more (case A, λ̄ = 0.33; scan in docs/explanation/mixed-regime.md)."""
     from ehl_dataset.solvers.homogenised import HomogenisedOptions
 
     case = ContactCase.from_engineering(0.5, 5, 5, 0.3, 90, 0.3, 0.3)
@@ -92,7 +92,7 @@ def test_a_higher_flow_floor_conducts_more_and_entrains_less():
        closure=st.sampled_from(["transverse", "isotropic"]))
 def test_random_factorial_points_converge_bounded_or_are_marked(p_h, r_eq, u_r, sr, temp, rq, closure):
     """Acceptance (property; the 64 corners and 500 random points are the benchmark run of
-    docs/homogenised_model.md): a point of the paper's ranges converges with finite, bounded outputs — μ in
+    docs/explanation/mixed-regime.md): a point of the paper's ranges converges with finite, bounded outputs — μ in
     [0, μ_d] when sliding (|μ| ≤ 0.01 in pure rolling), a positive film, an asperity share in [0, 1], the load
     balanced — or comes back not converged with a message; never NaN reported as converged."""
     case = ContactCase.from_engineering(p_h, r_eq, u_r, sr, temp, rq, rq)
@@ -115,7 +115,7 @@ def test_as_the_film_vanishes_side_leakage_takes_mu_to_mu_d_and_the_1d_closure_d
     leakage (the isotropic closure) the lubricant escapes the contact spots, the asperities take the load and μ tends
     to the dry value μ_d (Greenwood–Tripp limit of a vanishing film); without it (the transverse, 1-D closure, as
     the paper's model) the lubricant trapped in the valleys keeps carrying the load and μ does not rise towards μ_d
-    (docs/homogenised_model.md, "the no-side-leakage limit"). Measured: isotropic μ 0.0995 → 0.1000 (μ_d 0.1),
+    (docs/explanation/mixed-regime.md, "the no-side-leakage limit"). Measured: isotropic μ 0.0995 → 0.1000 (μ_d 0.1),
     asperity share 0.994 → 1.000; transverse μ 0.0024 → 0.0011, share 0.001 → 0.007."""
     state = ATF.state(373.15)
     runs = {}

@@ -1,5 +1,5 @@
 """The micro-EHL pressure-fluctuation closure of the film law (ehl_dataset.model.micro_pressure,
-docs/narrow_contacts.md, "Pressure-fluctuation closure"): its distribution, its scale, its limits, and its agreement
+docs/explanation/mixed-regime.md, "Pressure-fluctuation closure"): its distribution, its scale, its limits, and its agreement
 with the deterministic model."""
 
 import json

@@ -108,7 +108,7 @@ def test_wide_rough_contacts_take_the_homogenised_model_from_a_over_beta_15(leve
 
 def test_the_reference_level_sends_rough_contacts_to_the_deterministic_solver(monkeypatch):
     """At ``reference`` the planner's rough model is the deterministic solver (the accuracy reference:
-    docs/deterministic_validation.md); at ``fast`` and ``standard`` narrow rough contacts outside the film law's
+    docs/validation/deterministic_validation.md); at ``fast`` and ``standard`` narrow rough contacts outside the film law's
     measured range (here validation case C, roughness parameter α 3.6 > 2.5) go to the same film-law homogenised
     model, recorded as outside that range. Forced effects (``effects="full"``) on a rough contact run the package's
     one transient rough solver, the deterministic model, at every level; smooth surfaces the steady solve. The
@@ -154,7 +154,7 @@ def test_the_rough_model_of_a_level_is_one_of_the_two_and_an_unknown_one_is_refu
 
 def test_narrow_contacts_keep_the_film_law_where_it_was_measured(monkeypatch):
     """Narrow contacts below λ̄ 1 against the deterministic model (validation/results/micro_pressure_closure.json,
-    docs/narrow_contacts.md): the film law is within 10 % where the traction is Eyring-saturated (X_h ≥ 150; reference
+    docs/explanation/mixed-regime.md): the film law is within 10 % where the traction is Eyring-saturated (X_h ≥ 150; reference
     case I, X_h 6,100, −6.0 %), and with its pressure-fluctuation closure where λ̄ ≥ 0.1 and the roughness parameter
     α = S_c r_eq/a² ≤ 2.5 (reference case A, −2 %; leave-one-out median 5.3 %, 90th percentile 15 % on 33 contacts);
     outside (reference case C, α 3.6: −43 %; case B, λ̄ 0.054, asperity share 0.66: −78 %) a level whose narrow-contact
@@ -293,7 +293,7 @@ def test_bad_input():
 @pytest.mark.parametrize("level", ["fast", "standard"])
 def test_shear_thinning_skip_agrees_with_full_model(level):
     """Heavy, fast, cold smooth contact (2.5 GPa, 5 mm, 15 m/s, 25 °C: the most sensitive corner of the sweep in
-    docs/planner.md). SR is set for X_in = 0.5, 0.9, 1.1 and 2 × the level's threshold. Where the planner skips
+    docs/explanation/planner.md). SR is set for X_in = 0.5, 0.9, 1.1 and 2 × the level's threshold. Where the planner skips
     shear thinning (X_in ≤ threshold), μ and h_min of the planned solve agree with the solve that keeps it within
     the level's tolerance; the change grows with X_in (that is what the threshold is about)."""
     limits = thresholds_for(level)
@@ -401,7 +401,7 @@ def test_thermal_skip_agrees_with_full_model(level):
     thermal change of 0.5, 0.9, 1.1 and 2 × the level's threshold: the planner corrects exactly above the threshold,
     and where it skips, μ of the isothermal (planned) solve agrees with the thermally corrected one within the
     level's tolerance; the difference grows with the prediction. The calibration over random points of the paper's
-    factorial is in docs/planner.md."""
+    factorial is in docs/explanation/planner.md."""
     limits = thresholds_for(level)
     for base in (case(1.0, 20, 2, 0.1, 90, 0, 0), case(2.0, 10, 10, 0.1, 50, 0, 0)):
         changes = []

@@ -1,4 +1,4 @@
-"""The standard error of short averaging windows (validation/deterministic_short_windows.py; docs/deterministic_solver.md,
+"""The standard error of short averaging windows (validation/deterministic_short_windows.py; docs/explanation/mixed-regime.md,
 "Standard error of the short runs"): what the estimator of ehl_dataset.solvers.time_average can and cannot see."""
 
 import json

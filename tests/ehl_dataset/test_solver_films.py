@@ -1,6 +1,6 @@
 """Smooth steady EHL films against the classic line-contact formulas.
 
-Like is compared with like (docs/ehl_solver.md, "Validation"): Moes and Dowson–Toyoda are fits to incompressible Newtonian Barus
+Like is compared with like (docs/explanation/ehl-model.md, "Validation"): Moes and Dowson–Toyoda are fits to incompressible Newtonian Barus
 solutions → incompressible Barus fluid; Dowson–Higginson's minimum film comes from compressible Barus solutions →
 Barus with Dowson–Higginson density; Pan–Hamrock fitted compressible Roelands solutions → Roelands fluid with DH
 density. Seven points span p_h 0.3–2.5 GPa, r_eq 5–80 mm, u_r 1–20 m/s (Moes M = 11…730, L = 4.6…20).
@@ -61,7 +61,7 @@ def test_minimum_film_roelands_vs_pan_hamrock(point):
 
 
 def test_compressibility_thins_the_central_film():
-    """Measured with an independent dense-Newton solver (docs/ehl_solver.md): with DH density h_c lies 10–20 % below the incompressible film at
+    """Measured with an independent dense-Newton solver (docs/explanation/ehl-model.md): with DH density h_c lies 10–20 % below the incompressible film at
     M = 7–260 while h_min changes little. Checked at M = 26 and M = 231."""
     for point in [(1.0, 20, 5), (2.5, 40, 5)]:
         inc, _ = _solve("validation_barus_incompressible", point, compressible=False)

@@ -18,7 +18,7 @@ NEWTONIAN = Effects(roughness=False, transient=False, shear_thinning=False, comp
 
 
 def _huang_case():
-    """Huang textbook line contact (Huang 2013, Ch. 3; docs/ehl_solver.md): E' = 2.21e11 Pa, w' = 5e4 N/m, R = 20 mm, u_m = 1.5 m/s."""
+    """Huang textbook line contact (Huang 2013, Ch. 3; docs/explanation/ehl-model.md): E' = 2.21e11 Pa, w' = 5e4 N/m, R = 20 mm, u_m = 1.5 m/s."""
     e_red, load, radius = 2.21e11, 5e4, 0.02
     material = Material(e_red * (1 - 0.3**2), 0.3)
     p_h = math.sqrt(load * e_red / (2 * math.pi * radius))
@@ -33,7 +33,7 @@ def _dimensionless(result, case):
 
 
 def test_huang_case_on_long_inlet_matches_fine_grid_newton():
-    """On −3b…1.5b a fine-grid Newton solution of the Huang case gives H_min = 0.512, H(0) = 0.613 (docs/ehl_solver.md).
+    """On −3b…1.5b a fine-grid Newton solution of the Huang case gives H_min = 0.512, H(0) = 0.613 (docs/explanation/ehl-model.md).
     Measured: 0.5119, 0.6131 (standard level); 1 % tolerance = grid error at this level (< 0.2 % from standard to
     reference) plus the 3-digit rounding of the reference values."""
     case = _huang_case()
@@ -47,7 +47,7 @@ def test_huang_case_on_long_inlet_matches_fine_grid_newton():
 
 @pytest.mark.xfail(strict=True, reason="converged solutions on Huang's domain −2b…1.5b give H_min = 0.443, "
                    "H(0) = 0.515 (grid-independent to 0.1 %), 14 % and 12 % below the book's 101-node values; "
-                   "see docs/ehl_solver.md")
+                   "see docs/explanation/ehl-model.md")
 def test_huang_case_on_published_domain():
     """Huang (2013) on −2b…1.5b with 101 nodes: H_min ≈ 0.514, H(0) ≈ 0.584 (Huang 2013), 3 % tolerance."""
     case = _huang_case()
@@ -78,7 +78,7 @@ def _hertz_deviation(point):
 
 
 def test_pressure_tends_to_hertz_at_high_load_and_load_balances():
-    """Hertz limit (docs/ehl_solver.md, "Validation"): as the Moes load parameter grows (M = 26 → 231 → 729) the pressure over
+    """Hertz limit (docs/explanation/ehl-model.md, "Validation"): as the Moes load parameter grows (M = 26 → 231 → 729) the pressure over
     |x| ≤ 0.7a approaches the Hertz ellipse monotonically (max deviation 1.7 % → 0.10 % → 0.011 % of p_h measured),
     and ∫p dx = W' to 1e−4 relative or better."""
     deviations = []

@@ -7,7 +7,7 @@ level's tolerances (``standard``: 1e-6, :mod:`ehl_dataset.solvers.levels`); two 
 that take different linear-algebra paths to it may stop at iterates that differ by that much. The outputs are
 compared at a relative 10 × tol_step: a bound the amplification of a 1e-6 pressure step into μ and the film stays
 below on these contacts, and far below any change of the discretisation (the ``fast`` level differs from
-``standard`` by percents, docs/accuracy_smooth.md).
+``standard`` by percents, docs/validation/accuracy_smooth.md).
 """
 
 from __future__ import annotations

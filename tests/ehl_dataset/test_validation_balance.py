@@ -1,5 +1,5 @@
 """Conservation over the deterministic validation set (data/reference/deterministic_validation.json, written by
-``python validation/deterministic_validation.py --summarise`` from every run's per-step series; docs/deterministic_solver.md,
+``python validation/deterministic_validation.py --summarise`` from every run's per-step series; docs/explanation/mixed-regime.md,
 "Mass balance"): what the recorded runs balanced, against the conservation laws and the solver's own stop rule."""
 
 import json
@@ -37,7 +37,7 @@ def test_no_validation_step_was_accepted_beyond_the_solvers_round_off_bound(case
     """The mass balance of a step exceeds the Newton tolerance only at a round-off stop, which accepts at most
     ROUND_OFF_STEP_MARGIN × the tolerance (the correction below ROUND_OFF_STEP p_h: 1e-12 until det-2026.11-14,
     1e-15 since det-2026.11-15). A larger error would be a step accepted unconverged. Where it exceeds the issue's
-    1e-10 is reported, not asserted away (docs/deterministic_validation.md counts the steps)."""
+    1e-10 is reported, not asserted away (docs/validation/deterministic_validation.md counts the steps)."""
     bound = ROUND_OFF_STEP_MARGIN * DeterministicOptions().newton_tolerance
     for case in cases:
         for spacing, error in case["mass_error_max"].items():
@@ -51,7 +51,7 @@ def test_runs_under_the_strict_round_off_stop_stay_within_its_stall_margin(cases
     ROUND_OFF_MARGIN (10×) the tolerance, or with a correction below 1e-15 p_h (a few units in the last place).
     Measured on the validation runs made under it (run_versions in the data): every step within the 10× margin; at
     the floor of double precision B at β/64 reaches 4.2e-10 on 12 of 9,051 steps and G's long run 8.3e-10 on 9 of
-    263,900 (docs/deterministic_solver.md, "Robustness" item 8, "Mass balance"). The runs made before it accepted up
+    263,900 (docs/explanation/mixed-regime.md, "Robustness" item 8, "Mass balance"). The runs made before it accepted up
     to 1000× (5.3e-8)."""
     bound = ROUND_OFF_MARGIN * DeterministicOptions().newton_tolerance
     checked = 0

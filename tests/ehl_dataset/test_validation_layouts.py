@@ -1,6 +1,6 @@
 """The roughness layouts of the deterministic validation set (validation/deterministic_validation.py): every run of a
 case reads the two surfaces from disjoint stretches of its profile, so μ's standard error counts independent
-roughness (docs/deterministic_solver.md, "Standard error of the long run")."""
+roughness (docs/explanation/mixed-regime.md, "Standard error of the long run")."""
 
 
 import numpy as np

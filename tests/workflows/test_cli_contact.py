@@ -25,7 +25,7 @@ def test_json_output_keys_and_units(capsys):
 
 
 def test_thermal_correction_reported_and_switchable(capsys):
-    """Smooth, 5 m/s, SR 0.3: the planner corrects the traction for shear heating (docs/planner.md); the JSON
+    """Smooth, 5 m/s, SR 0.3: the planner corrects the traction for shear heating (docs/explanation/planner.md); the JSON
     carries the isothermal μ and the temperature rises; --effects isothermal gives that μ without the correction."""
     assert main(BASE + ["--json"]) == 0
     hot = json.loads(capsys.readouterr().out)

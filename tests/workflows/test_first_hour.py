@@ -129,8 +129,8 @@ def test_6_help_shows_the_level_defaults_and_the_fast_standard_difference(capsys
     assert "(default: standard)" in " ".join(capsys.readouterr().out.split())
     assert main(["pipeline", "quick", "--help"]) == 0
     text = " ".join(capsys.readouterr().out.split())
-    # the measured fast/standard difference (docs/accuracy_random_levels.md) and the narrow-contact caveat
-    # (docs/narrow_contacts.md) are in the help
+    # the measured fast/standard difference (docs/validation/accuracy_random_levels.md) and the narrow-contact caveat
+    # (docs/explanation/mixed-regime.md) are in the help
     assert "fast for quick and smoke" in text and "agree within 0.1 % in median" in text
     assert "within a median 5.3 % of the deterministic model" in text and "23-78 % low" in text
 

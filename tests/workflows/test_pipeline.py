@@ -217,7 +217,7 @@ def test_pipeline_end_to_end_with_the_ehl_solver(tmp_path, capsys):
 def test_stage1_runs_isothermal_on_request_and_a_run_keeps_its_effect_plan(tmp_path, tiny):
     """``effects="isothermal"`` (the data the paper's Eq. 9 was fitted to): the planner's plan without the thermal
     correction. Rows whose automatic plan corrects the traction get a higher μ (shear heating only lowers the
-    viscosity, docs/ehl_solver.md), the others the same μ; the file records the plan, the default directory names it,
+    viscosity, docs/explanation/ehl-model.md), the others the same μ; the file records the plan, the default directory names it,
     and a run directory is not resumed under the other plan."""
     from ehl_dataset.dataset.store import read_metadata
     from ehl_dataset.validation import InputError
