@@ -63,7 +63,7 @@ import numpy as np
 from scipy.optimize import brentq
 
 from ..model.contact import ContactCase
-from ..model.dry_contact import dry_contact_table, profile_hash
+from ..model.dry_contact import dry_contact_table, profile_hash, windows_that_fit
 from ..model.effects import Effects
 from ..model.film_formulas import moes_central_film, moes_parameters
 from ..model.lubricant import LubricantState
@@ -271,7 +271,9 @@ def asperity_closure(film_law: ContactResult, case: ContactCase, state: Lubrican
     if r <= 0.0 or not film_law.converged:
         extra.update(closure="asperity", asperity=record | {"share_residual": 0.0})
         return replace(film_law, extra=extra, wall_time=film_law.wall_time + time.perf_counter() - start)
-    table = SurvivingTable(dry_contact_table(profile, case.rq1, case.rq2, case.e_reduced), r)
+    # the windows the profile is long enough for (the defaults, and the shipped tables, for the baseline)
+    table = SurvivingTable(dry_contact_table(profile, case.rq1, case.rq2, case.e_reduced,
+                                             settings=windows_that_fit(profile)), r)
 
     def asperity_pressure(s):
         film = film0 * float(fluid_film_ratio(case, state, 1.0 - s))

@@ -155,3 +155,22 @@ def test_leave_one_out_file_matches_the_reference_and_the_shipped_constants():
     median = float(np.median(np.abs([r["loo_mu_error"] for r in data["cases"]])))
     assert median == pytest.approx(data["summary"]["loo_mu_error_median_abs"], rel=1e-12)
     assert median <= 0.07
+
+
+@pytest.mark.slow
+def test_any_registered_profile_runs_through_the_closure(lub):
+    """The flank-like profile (``flank_ground``: its own spectrum and a dry-contact table of the windows it is long
+    enough for, computed on first use, about a minute) at case C's conditions: converged, more of its roughness
+    survives than of the baseline's, and a share between the baseline's and 1."""
+    from ehl_dataset.model.effects import Effects
+    from ehl_dataset.solvers.homogenised import solve_homogenised
+    from ehl_dataset.solvers.levels import get_level
+
+    case = ContactCase.from_engineering(0.5, 5, 2, 0.7, 25, 1.0, 1.0)
+    state = lub.state(case.temperature)
+    plan = Effects.smooth_steady(model="isothermal homogenised")
+    base = solve_homogenised(case, state, get_level("fast"), plan, baseline_profile(), closure="asperity")
+    flank = solve_homogenised(case, state, get_level("fast"), plan, named_profile("flank_ground"), closure="asperity")
+    assert base.converged and flank.converged
+    assert flank.extra["asperity"]["surviving_fraction_1"] > base.extra["asperity"]["surviving_fraction_1"]
+    assert base.asperity_load_share < flank.asperity_load_share < 1.0
