@@ -15,6 +15,10 @@ Layout (``format = "gearloss.friction_coefficients"``, ``format_version = 2``), 
   (:mod:`surrogate.intervals`);
 * ``offgrid`` (optional): the errors of μ on a seeded random sample of contacts inside the fitted ranges, solved by
   the route of the dataset (:mod:`surrogate.offgrid`), and the coverage of the 90 % intervals there;
+* ``interval_calibration`` (optional, Eq. 9 only): ``method``, ``calibration_rows`` and ``score_quantiles``
+  ({branch: {coverage: q}}): split-conformal factors that replace Student's t in the statsmodels interval
+  (:mod:`surrogate.intervals`), computed on the even rows of the off-grid sample; without it the interval is the
+  plain statsmodels one;
 * ``evaluation``: ``blend_half_width`` (δ of the λ̄ blend band), ``sr_floor`` (|SR| below it is evaluated at it);
 * ``cross_validation`` (k-fold errors of ln μ and μ), ``jump_at_threshold``, ``exclusions``, ``n_input_rows``,
   ``n_used``, ``input_ranges`` ({name: [min, max]} seen in the fitted data), ``stable``;
@@ -244,7 +248,8 @@ def write_coefficients(fit, path: str | Path, *, source: dict[str, Any] | None =
     return path
 
 
-def record_offgrid(path: str | Path, offgrid: dict[str, Any], *, learned_interval: dict | None = None) -> Path:
+def record_offgrid(path: str | Path, offgrid: dict[str, Any], *, learned_interval: dict | None = None,
+                   interval_calibration: dict | None = None) -> Path:
     """Add (or replace) the ``offgrid`` table of an existing coefficient file, re-hashing its content.
 
     Parameters
@@ -255,6 +260,8 @@ def record_offgrid(path: str | Path, offgrid: dict[str, Any], *, learned_interva
         The off-grid validation (:func:`surrogate.offgrid.offgrid_report`) [-].
     learned_interval : dict, optional
         A learned file's recalibrated ``learned.interval`` table (``workflows.surrogate_stage``) [-].
+    interval_calibration : dict, optional
+        An Eq. 9 file's ``interval_calibration`` table (:func:`surrogate.offgrid.eq9_interval_calibration`) [-].
 
     Returns
     -------
@@ -266,6 +273,8 @@ def record_offgrid(path: str | Path, offgrid: dict[str, Any], *, learned_interva
     body = {k: v for k, v in doc.items() if k != "content_sha256"}
     if learned_interval is not None:
         body["learned"] = {**body["learned"], "interval": learned_interval}
+    if interval_calibration is not None:
+        body["interval_calibration"] = interval_calibration
     doc = _finish({**body, "offgrid": offgrid})
     validate_coefficients(doc, str(path))
     tmp = path.with_name(path.name + ".tmp")
@@ -314,6 +323,9 @@ class CoefficientSet:
         Residual degrees of freedom per branch [-].
     learned : object, optional
         The learned model of a ``learned`` file [-].
+    score_quantiles : dict, optional
+        Calibrated interval factors {branch: {coverage: q}} of an Eq. 9 file (``interval_calibration``); None: the
+        plain statsmodels interval [-].
     """
 
     formula: Formula
@@ -333,11 +345,24 @@ class CoefficientSet:
     df_resid: dict[str, float] | None = None
     learned: Any = None
     """The :class:`surrogate.mlp.MlpEnsemble` of a learned file."""
+    score_quantiles: dict[str, dict[float, float]] | None = None
+    """Split-conformal factors of an Eq. 9 interval (None: plain statsmodels interval)."""
 
     @property
     def has_interval(self) -> bool:
         """True when the file carries what a prediction interval needs."""
         return self.learned is not None or self.covariance is not None
+
+    @property
+    def interval_method(self) -> str:
+        """How the file's prediction interval is made, in words (for reports)."""
+        if self.learned is not None:
+            return "learned ensemble, split-conformal interval"
+        if self.covariance is None:
+            return "none (format-1 file)"
+        if self.score_quantiles is None:
+            return "statsmodels OLS prediction interval, not calibrated off the training design"
+        return "statsmodels OLS prediction interval, split-conformal factors calibrated off the training design"
 
 
 def _require(doc: dict, dotted: str, kind: type | tuple[type, ...], accepted: str):
@@ -447,10 +472,40 @@ def validate_coefficients(doc: Any, origin: str = "<dict>") -> CoefficientSet:
             if df < 1:
                 raise InputError(f"branches.{branch}.df_resid", df, "a positive integer")
             covariances[branch], variances[branch], dfs[branch] = covariance, float(variance), float(df)
+    quantiles = _interval_calibration(doc) if "interval_calibration" in doc else None
+    if quantiles is not None and not covariances:
+        raise InputError("interval_calibration", "present", "only in a file with covariances (format 2)")
     blend, sr_floor, ranges, e_reduced, lubricant = _common_fields(doc, origin)
     return CoefficientSet(formula, params, errors, float(blend), float(sr_floor), ranges, lubricant,
                           float(e_reduced), doc, origin, form="eq9",
-                          covariance=covariances or None, resid_variance=variances or None, df_resid=dfs or None)
+                          covariance=covariances or None, resid_variance=variances or None, df_resid=dfs or None,
+                          score_quantiles=quantiles)
+
+
+def _interval_calibration(doc: dict) -> dict[str, dict[float, float]]:
+    """The validated ``interval_calibration.score_quantiles`` of an Eq. 9 file as {branch: {coverage: q}}."""
+    _require(doc, "interval_calibration", dict, "the interval calibration table")
+    _require(doc, "interval_calibration.method", str, "a description of the calibration")
+    out = {}
+    for branch in BRANCHES:
+        name = f"interval_calibration.score_quantiles.{branch}"
+        table = _require(doc, name, dict, "{coverage: positive factor} including '0.9'")
+        quantiles = {}
+        for key, value in table.items():
+            try:
+                coverage = float(key)
+            except ValueError:
+                raise InputError(name, key, "coverages in (0, 1) as keys") from None
+            if not 0.0 < coverage < 1.0:
+                raise InputError(name, key, "coverages in (0, 1) as keys")
+            if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) \
+                    or value <= 0:
+                raise InputError(f"{name}.{key}", value, "a positive finite factor")
+            quantiles[coverage] = float(value)
+        if 0.9 not in quantiles:
+            raise InputError(name, sorted(table), "{coverage: positive factor} including '0.9'")
+        out[branch] = quantiles
+    return out
 
 
 def _row(values: Any, name: str, length: int) -> np.ndarray:

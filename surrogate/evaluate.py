@@ -316,7 +316,7 @@ class FrictionSurrogate:
             return out, None
         with np.errstate(invalid="ignore", over="ignore", divide="ignore"):
             half = prediction_half_width(self.formula, c.covariance, c.resid_variance, c.df_resid, feats,
-                                         c.blend_half_width, alpha)
+                                         c.blend_half_width, alpha, score_quantiles=c.score_quantiles)
         return out, half
 
     def mu_interval(self, p_h, r_eq, u_r, sr, temperature, rq1, rq2, *, alpha: float = DEFAULT_ALPHA,

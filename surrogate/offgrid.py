@@ -7,6 +7,10 @@ surfaces, SR ≠ 0 — the exclusions of the fit, :func:`surrogate.fit.prepare_t
 |μ_surrogate/μ_solved − 1| is summarised per branch (λ̄ ≤ 1 ``mixed``, λ̄ > 1 ``full_film``, by the λ̄ of the
 contact) and overall: median, 90th percentile, maximum; and the share of solved μ inside the surrogate's 90 %
 prediction interval (its coverage; None when the file has no interval).
+
+The sample also calibrates the intervals: its even rows set the learned form's conformal quantiles and an Eq. 9
+file's split-conformal factors (:func:`eq9_interval_calibration`, :mod:`surrogate.intervals`); the coverage is then
+counted on the odd rows only.
 """
 
 from __future__ import annotations
@@ -63,6 +67,72 @@ def calibration_rows(n: int) -> np.ndarray:
     return np.arange(n) % 2 == 0
 
 
+def eq9_interval_calibration(surrogate, table: pd.DataFrame) -> tuple[dict[str, Any], np.ndarray]:
+    """Split-conformal factors of an Eq. 9 file's interval from the even rows of a solved off-grid sample.
+
+    Parameters
+    ----------
+    surrogate : FrictionSurrogate
+        An Eq. 9 surrogate with covariances (format 2) [-].
+    table : pandas.DataFrame
+        The solved off-grid sample (columns of the dataset store) [SI].
+
+    Returns
+    -------
+    tuple
+        (the ``interval_calibration`` table of the file, boolean mask over the rows of ``table`` left to measure
+        the coverage: the odd ones).
+
+    Raises
+    ------
+    InputError
+        For a surrogate without covariances, or too few usable even rows on a branch.
+    """
+    from ehl_dataset.validation import InputError
+
+    from .intervals import CALIBRATION_METHOD, calibrate_scores, prediction_se
+
+    c = surrogate.coefficients
+    if c.form != "eq9" or c.covariance is None:
+        raise InputError("coefficient file", c.path or "<dict>", "an Eq. 9 file of format 2 (with covariances)")
+    calibrate = calibration_rows(len(table))
+    prepared = prepare_table(table, surrogate.lubricant, surrogate.e_reduced)
+    rows = calibrate[prepared.kept_rows]
+    used = prepared.table[rows]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        ln_mu = np.log(surrogate.mu(*[used[col].to_numpy(dtype=float) for col in INPUT_COLUMNS], warn=False))
+    features = {k: v[rows] for k, v in prepared.features.items()}
+    se = prediction_se(c.formula, c.covariance, c.resid_variance, features, c.blend_half_width)
+    quantiles = calibrate_scores(prepared.ln_mu[rows] - ln_mu, se, features["lam"], c.formula.lambda_threshold)
+    lam = features["lam"]
+    table_out = {"method": CALIBRATION_METHOD,
+                 "rows": "the even rows of the off-grid sample (the odd rows measure the coverage)",
+                 "calibration_rows": {"mixed": int(np.sum(lam <= c.formula.lambda_threshold)),
+                                      "full_film": int(np.sum(lam > c.formula.lambda_threshold))},
+                 "score_quantiles": {b: {f"{cov:g}": q for cov, q in sorted(qs.items())} for b, qs in quantiles.items()},
+                 "t_quantile_90": {b: t_quantile_90(c.df_resid[b]) for b in quantiles}}
+    return table_out, ~calibrate
+
+
+def t_quantile_90(df_resid: float) -> float:
+    """Student's t_{0.95, ν}: the factor of the plain statsmodels 90 % interval, stored beside the calibrated one.
+
+    Parameters
+    ----------
+    df_resid : float
+        Residual degrees of freedom [-].
+
+    Returns
+    -------
+    float
+        The quantile [-].
+    """
+    from .intervals import t_quantile
+
+    return t_quantile(1.0 - COVERAGE, df_resid)
+
+
 def offgrid_errors(surrogate, table: pd.DataFrame, *, coverage: float = COVERAGE,
                    coverage_rows: np.ndarray | None = None) -> dict[str, Any]:
     """Errors of ``surrogate`` on the solved rows of ``table`` (module docstring).
@@ -99,6 +169,7 @@ def offgrid_errors(surrogate, table: pd.DataFrame, *, coverage: float = COVERAGE
                else np.asarray(coverage_rows, dtype=bool)[prepared.kept_rows])
     out: dict[str, Any] = {"n_rows": int(len(table)), "exclusions": prepared.exclusions,
                            "coverage_nominal": coverage,
+                           "interval_method": surrogate.coefficients.interval_method,
                            "coverage_rows": "all" if coverage_rows is None else
                            "the odd rows of the sample, not used to calibrate the interval",
                            "overall": _summary(rel, inside, counted)}
@@ -152,6 +223,9 @@ def offgrid_lines(offgrid: dict[str, Any] | None) -> list[str]:
     sample = offgrid.get("sample", {})
     lines = [f"off-grid validation on {sample.get('n_points', '?')} random contacts in the fitted ranges "
              f"(seed {sample.get('seed', '?')}, level {sample.get('level', '?')}):"]
+    if offgrid.get("interval_method"):
+        counted = "" if offgrid.get("coverage_rows", "all") == "all" else f", coverage on {offgrid['coverage_rows']}"
+        lines.append(f"  interval: {offgrid['interval_method']}{counted}")
     for key in ("overall", "mixed", "full_film"):
         m = offgrid.get(key) or {}
         if not m.get("n"):

@@ -332,9 +332,10 @@ def fit_and_write(dataset_paths, coefficients_file: str | Path, *, form: str = "
 def validate_offgrid(coefficients_file: str | Path, offgrid_path: str | Path) -> dict[str, Any]:
     """Measure a written coefficient file on the solved off-grid sample and record the result in the file.
 
-    A learned file's interval is first recalibrated on the even rows of the sample (:func:`calibrated_interval`);
-    its coverage is then counted on the odd rows only. Its errors of μ, and everything of an Eq. 9 file, are
-    measured on all rows (the sample takes no part in the fit).
+    A learned file's interval is first recalibrated on the even rows of the sample (:func:`calibrated_interval`), an
+    Eq. 9 file's gets split-conformal factors from them (:func:`surrogate.offgrid.eq9_interval_calibration`); the
+    coverage is then counted on the odd rows only. The errors of μ are measured on all rows (the sample takes no
+    part in the fit).
 
     Parameters
     ----------
@@ -354,7 +355,15 @@ def validate_offgrid(coefficients_file: str | Path, offgrid_path: str | Path) ->
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         surrogate = FrictionSurrogate.load(coefficients_file)
-        interval, coverage_rows = None, None
+        interval, coverage_rows, calibration = None, None, None
+        if surrogate.form == "eq9" and surrogate.coefficients.covariance is not None:
+            from surrogate.dataset_io import load_dataset
+            from surrogate.offgrid import eq9_interval_calibration
+
+            calibration, coverage_rows = eq9_interval_calibration(surrogate, load_dataset(offgrid_path).table)
+            doc = {**surrogate.coefficients.document, "interval_calibration": calibration}
+            surrogate = FrictionSurrogate(validate_coefficients(
+                {**doc, "content_sha256": _rehash(doc)}, str(coefficients_file)))
         if surrogate.form == "learned":
             interval, coverage_rows = calibrated_interval(surrogate, offgrid_path)
             doc = dict(surrogate.coefficients.document)
@@ -362,7 +371,7 @@ def validate_offgrid(coefficients_file: str | Path, offgrid_path: str | Path) ->
             surrogate = FrictionSurrogate(validate_coefficients(
                 {**doc, "content_sha256": _rehash(doc)}, str(coefficients_file)))
         offgrid = offgrid_of(surrogate, offgrid_path, coverage_rows)
-    record_offgrid(coefficients_file, offgrid, learned_interval=interval)
+    record_offgrid(coefficients_file, offgrid, learned_interval=interval, interval_calibration=calibration)
     return offgrid
 
 
