@@ -39,9 +39,11 @@ def register(subparsers) -> None:
                             "slow: minutes per case)")
     solve.add_argument("--closure", default=DEFAULT_CLOSURE, choices=CLOSURES,
                        help="closure of the homogenised model: the flow factors transverse (1-D roughness, no side "
-                            "leakage, as the paper's model) or isotropic (side leakage), or film_law (smooth "
+                            "leakage, as the paper's model) or isotropic (side leakage), film_law (smooth "
                             "pressure, the measured film law of resolved rough contacts and the dry-contact table's "
-                            "traction; for wide contacts, docs/explanation/mixed-regime.md); default transverse")
+                            "traction; for wide contacts, docs/explanation/mixed-regime.md), or asperity (film_law "
+                            "plus the load and friction of the roughness that survives in the conjunction); default "
+                            "transverse")
     solve.add_argument("--dx-um", type=float, default=None,
                        help="grid spacing of the deterministic model [µm] (default: the level's grid rule)")
     solve.add_argument("--wide", default="auto", choices=["auto", "resolve", "windows"],
