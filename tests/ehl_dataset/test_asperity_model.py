@@ -82,6 +82,12 @@ def test_thick_film_gives_no_share_and_the_film_law(lub):
     assert res.converged
     assert res.asperity_load_share < 1e-6
     assert res.mu == pytest.approx(fl.mu, rel=1e-6)
+    # with the thermal correction of the traction (the planner's plan) likewise
+    options = {"model": "homogenised"}
+    thermal = solve_contact(case, lub, "fast", "auto", homogenised=HomogenisedOptions(closure="asperity"), **options)
+    thermal_fl = solve_contact(case, lub, "fast", "auto", homogenised=HomogenisedOptions(closure="film_law"), **options)
+    assert "thermal" in thermal.extra
+    assert thermal.mu == pytest.approx(thermal_fl.mu, rel=1e-6)
 
 
 def test_load_balance_and_share_rise_with_roughness(lub):
