@@ -7,7 +7,8 @@ load the asperities carry, in four steps.
 
 1. **Surviving roughness.** Inside an EHL conjunction a harmonic roughness component of wavelength λ is flattened
    by the fluid pressure; its amplitude ratio is a function of one parameter (Venner, Couhier, Lubrecht & Greenwood,
-   Tribology Series 32 (1997) 103; Venner & Lubrecht, J. Tribol. 120 (1998) 705, rolling–sliding):
+   Tribology Series 32 (1997) 103; with slip: "Waviness amplitude reduction in EHL line contacts", J. Tribol. 120
+   (1998) 705):
 
        A_d/A_i = F(∇) = 1/(1 + 0.15∇ + 0.015∇²),   ∇ = c_∇ · (λ_c/a) · M^¾ / L^½,
 
@@ -48,8 +49,9 @@ load the asperities carry, in four steps.
    correction of the Couette part is kept as its ratio to the isothermal stress at s = 0.
 
 Limits: s → 0 where the film is thick against σ_s (the film-law μ); smooth surfaces are the caller's (the smooth
-solve); as the film vanishes s → 1 and μ → μ_d plus the fluid shear of the open fraction 1 − A_s. The cost is the
-film-law solve plus a scalar root and two stress averages (``benchmarks/bench_asperity_model.py``).
+solve); as the film vanishes s → ∫_zone p̄ dx/w (the load inside the film-law zone) and μ → μ_d·s plus the film
+law's stress outside the zone and the fluid shear of the open fraction 1 − A_s. The cost is the film-law solve plus
+a scalar root and one stress average, two with the thermal correction (``benchmarks/bench_asperity_model.py``).
 """
 
 from __future__ import annotations
