@@ -1,4 +1,4 @@
-"""Benchmark: coverage of the 90 % prediction intervals of coefficient files on held-out off-grid contacts.
+"""Coverage of the 90 % prediction intervals of coefficient files on held-out off-grid contacts.
 
 Two independent samples of the factorial's box, solved by the factorial's route (:func:`workflows.surrogate_stage.
 offgrid_stage`, resumable, reused when the work directory holds them):
@@ -10,8 +10,8 @@ offgrid_stage`, resumable, reused when the work directory holds them):
 For an Eq. 9 file with ``interval_calibration`` both its calibrated interval and the plain statsmodels interval
 (the same file without the table) are measured; a learned file is measured as it is. Usage::
 
-    python benchmarks/bench_surrogate_intervals.py --work-dir DIR [FILE ...] [--factorial quick] [--seed 7]
-        [--workers 1] [--out benchmarks/results/surrogate_intervals.json]
+    python validation/surrogate_intervals.py --work-dir DIR [FILE ...] [--factorial quick] [--seed 7]
+        [--workers 1] [--out validation/results/surrogate_intervals.json]
 
 FILE defaults to the shipped ``atf_quick`` and ``atf_quick_learned``.
 """
@@ -26,8 +26,10 @@ from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from _common import RESULTS_DIR, emit_json, machine_info  # noqa: E402
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
+from _common import emit_json, machine_info  # noqa: E402  (shared with the speed benchmarks)
+
+RESULTS_DIR = Path(__file__).resolve().parent / "results"
 
 COVERAGE = 0.90
 
