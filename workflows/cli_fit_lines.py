@@ -14,7 +14,7 @@ FORM_HELP = ("form of the friction surrogate: eq9 (paper Eq. 9, statsmodels OLS,
 def add_form_options(parser, *, adaptive: bool = False) -> None:
     """``--form``, ``--offgrid-points`` (and, for ``lubricant fit``, ``--adaptive``, ``--budget``,
     ``--target-median``, ``--target-p90``) on ``parser``."""
-    from .sample_runs import OFFGRID_POINTS
+    from .offgrid_defaults import OFFGRID_POINTS
 
     parser.add_argument("--form", choices=("eq9", "learned"), default=None, help=FORM_HELP)
     parser.add_argument("--offgrid-points", type=int, default=OFFGRID_POINTS, metavar="N", help=OFFGRID_HELP)

@@ -16,10 +16,7 @@ import numpy as np
 
 from ehl_dataset.validation import InputError
 
-OFFGRID_POINTS = 200
-"""Default size of the off-grid validation sample of a fit."""
-OFFGRID_SEED = 2009
-"""Default seed of the off-grid sample (independent uniform draws in the factorial's box)."""
+from .offgrid_defaults import OFFGRID_POINTS, OFFGRID_SEED
 
 
 def offgrid_points(factorial, n: int = OFFGRID_POINTS, seed: int = OFFGRID_SEED):
