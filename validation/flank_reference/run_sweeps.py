@@ -263,7 +263,7 @@ def paired_step(coarse: dict, fine: dict) -> tuple[float, float, int]:
 
 
 def summary() -> None:
-    rows = [json.loads(p.read_text()) for p in sorted(RESULTS.glob("*_ls*.json"))]
+    rows = [json.loads(p.read_text()) for p in sorted(RESULTS.glob("*_ls*.json")) if not p.name.endswith(".error.json")]
     by_point = {}
     for r in rows:
         by_point.setdefault(r["point"], {})[r["spacing_divisor"]] = r
