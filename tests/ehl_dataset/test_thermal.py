@@ -199,7 +199,7 @@ def test_rough_solvers_record_that_they_ran_isothermal():
     """The transient solver has no thermal model: a plan asking for it is recorded off, with the reason."""
     case = ContactCase.from_engineering(1.0, 20, 5, 0.3, 90, 0.4, 0.4)
     plan = Effects(True, True, True, True, "forced", {"decisions": {}}, thermal=True)
-    from ehl_dataset.solver import _isothermal
+    from ehl_dataset.solvers.problem import _isothermal
 
     ran = _isothermal(plan, "transient")
     assert not ran.thermal and "no thermal model" in ran.reasons["decisions"]["thermal"]
