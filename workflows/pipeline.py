@@ -1,7 +1,7 @@
 """The end-to-end pipeline: a factorial of mixed-EHL contacts → a fitted friction surrogate → a gear design's loss.
 
 Three stage functions, each returning a :class:`StageResult` (artefact path, wall time, the numbers worth
-reporting), and :func:`run_pipeline` that chains them in one process (docs/pipeline.md):
+reporting), and :func:`run_pipeline` that chains them in one process (docs/getting-started.md):
 
 1. :func:`dataset_stage` — :func:`ehl_dataset.dataset.runner.run_factorial` into ``OUT/dataset.h5``; an existing file
    of the same factorial, solver and lubricant is continued (only rows that are not ``ok`` are computed).
