@@ -51,8 +51,8 @@ SOLVER_VERSION = "ehl-2026.11-15"
 """Version of the numerics behind :func:`solve_contact`. The dataset store records it and refuses to resume a file
 computed with another version: bump it with every change that can alter a solved value. The deterministic model's
 numerics carry their own version (:data:`ehl_dataset.solvers.deterministic.MODEL_VERSION`, recorded in the files that
-use it: ``model="deterministic"`` or the ``reference`` level), so a change of that model alone bumps only it
-(det-2026.11-9: Courant 0.25; det-2026.11-11: the cancellation-free logarithmic face mean)."""
+use it: ``model="deterministic"`` or the ``reference`` level), so a change of that model alone bumps only it. What
+each version changed is listed in CHANGELOG.md, "Solver versions"."""
 
 MODELS = names.MODELS
 """Contact models :func:`solve_contact` can be asked for: ``auto`` (the effect plan decides: steady smooth; for rough

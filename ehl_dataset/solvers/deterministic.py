@@ -57,46 +57,9 @@ from .steady import ContactScales, dowson_higginson_lambda, moes_h_c, solve_stea
 from .time_average import time_mean
 
 MODEL_VERSION = "det-2026.11-21"
-"""Version of the deterministic model's numerics (recorded with its results; bump with any change that can alter a
-solved value). :data:`ehl_dataset.solver.SOLVER_VERSION` covers the whole solver. det-2026.11-11: the logarithmic
-face mean is evaluated without cancellation (:func:`~ehl_dataset.discretisation.mixed_system.logarithmic_mean`),
-which removes the 2–5e-10 floor of the global mass balance on contact-dominated runs. det-2026.11-12: the inlet term
-of the grid rule depends on the level (:data:`ehl_dataset.solvers.levels.REGISTRY`); a run with a given ``dx_m`` is unchanged.
-det-2026.11-13: the logarithmic face mean takes t = ln a − ln b far from a = b; det-11's log1p form read fluid factors
-more than 1e16 apart as t = −∞ (face conductance 0, NaN partials), which failed every Newton solve from such a state
-(case E at ``fast``, 25 °C, at step 1,134; case G at step 426; docs/validation/deterministic-reference.md, "Robustness
-and cost").
-det-2026.11-14: a linear solve that took :data:`REFACTOR_ITERATIONS` GMRES iterations makes the next one refactor the
-preconditioner first (the converged states are the same to the Newton tolerance; μ moves within a run's round-off
-sensitivity, checked by validation/deterministic_rerun_check.py). det-2026.11-15: the round-off stop on a small
-correction needs it below 1e-15 p_h instead of 1e-12 (:data:`ROUND_OFF_STEP`): steps that stopped with a global
-mass balance above the tolerance now iterate on to meet it (rerun under it, recorded runs move by ≤ 1.2e-6 relative
-in μ on short windows and ≤ 5.7e-5 on long ones; validation/results/deterministic_rerun_check_det-2026.11-15.json).
-det-2026.11-16: on grids of at most :data:`DENSE_KERNEL_NODES` nodes the deflection is a dense matrix–vector product
-instead of the FFT pair (the same operator; other round-off), and the periodic preconditioner's wrap-around
-convolution is a padded ``np.convolve``: the per-call overhead of the FFT dispatch and of ``scipy.ndimage`` dominated
-small grids (docs/validation/deterministic-reference.md, "Robustness and cost").
-det-2026.11-17: a Newton solve stalled above ROUND_OFF_MARGIN × the tolerance also stops where its norm is within the
-round-off floor it measures (:meth:`MixedProblem.round_off_floor`): B at β/256 (3,020 nodes) failed at step 22,017
-with its Newton stalled at a scaled residual of 1.0e-9 at every split, where moving the state by one unit in the last
-place moves the rows by 3e-9 (docs/validation/deterministic-reference.md, "Robustness and cost"). det-16 split such a
-step or failed
-it; steps whose solves converge within the margin are unchanged. det-2026.11-18: a time step that fails at every
-split is tried again, split as before, with Newton allowed :data:`WATCHDOG_STEPS` damped steps that the line search
-rejected (a non-monotone "watchdog" globalisation): B at β/256 failed at step 24,653 under det-13 and det-17 where a
-sub-step's line search found no decrease along the Newton direction at the outlet's re-forming film (a kink of the
-cavitation rows); with it that step passes. A run det-17 completes is step for step the same.
-det-2026.11-19: on a periodic window the global lubricant balance (Newton's convergence norm, the round-off floor and
-the recorded ``mass_error``) sums the mass rows of every node; before, it left out node 0's, as on the whole contact
-(whose node 0 carries the inlet condition θ = 1, not a mass row), so a window's recorded balance could miss one row
-of up to the tolerance. The whole contact is unchanged: its runs are step for step those of det-18.
-det-2026.11-20: a transient run carries the film offset relative to the steady start's (:meth:`MixedProblem.
-rebase_film_offset`, H = (H_ref + gap + K P) + δH0): one unit in the last place of H0 ≈ −0.6 moved every node's film
-at once and with it the global lubricant balance by 8e-11 on case L at β/16 and H at β/32, 0.8 of the target
-(validation/deterministic_balance_floor.py); of δH0 it moves it by about 1e-13. The same equations; other round-off.
-States saved by det-18 and -19 are continued with their absolute offset (their numerics).
-det-2026.11-21: a solve that stalls at the round-off floor where only the global balance misses the tolerance goes on
-for up to :data:`BALANCE_RETRIES` more iterations (H at β/32 under det-20: 11 of 13,584 steps ended at 1.01–1.5e-10)."""
+"""Version of the deterministic model's numerics, recorded with its results; bump with any change that can alter a
+solved value (what each version changed is listed in CHANGELOG.md, "Solver versions").
+:data:`ehl_dataset.solver.SOLVER_VERSION` covers the whole solver."""
 
 FLOOR_STOP_SINCE = "det-2026.11-17"
 """The first model version whose Newton solve may stop at its measured round-off floor above ROUND_OFF_MARGIN × the

@@ -1,7 +1,7 @@
 """A periodic window of a wide rough contact at given local mean conditions: the deterministic model of
 :mod:`ehl_dataset.solvers.deterministic` on one period of length L (many correlation lengths β, a few per cent of
 a wide contact), loaded with a mean pressure p̄ and holding a mean lubricant content ρ̄(p̄)·h̄ (docs/
-deterministic_solver.md, "Periodic window").
+explanation/mixed-regime.md).
 
 Where a line contact is many correlation lengths wide, the roughness is a statistically homogeneous micro-scale
 inside a macro-contact whose mean pressure and mean film vary on the scale a ≫ β. Around a point of the Hertzian
