@@ -396,12 +396,7 @@ class FrictionSurrogate:
         """
         feats = self.features(p_h, r_eq, u_r, sr, temperature, rq1, rq2, warn=warn)
         out, _ = self._ln_mu_features(feats, spread=False)
-        bad = ~np.isfinite(out)
-        if bad.any():
-            index = int(np.flatnonzero(bad.ravel())[0])
-            point = {k: float(np.ravel(feats[k])[index]) for k in ("W", "alpha", "r", "V", "lam", "Sc", "Seq")}
-            raise InputError("inputs", point, "contact conditions where the regression terms are defined "
-                             "(positive W, V, r, alpha)", f"non-finite ln mu at index {index}")
+        self._check_finite(out, feats)
         return out
 
     def mu(self, p_h, r_eq, u_r, sr, temperature, rq1, rq2, *, warn: bool = True) -> np.ndarray:
