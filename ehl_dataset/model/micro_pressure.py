@@ -120,11 +120,25 @@ def flattening_pressure_rms(e_reduced: float, slope_rms: float) -> float:
     return 0.25 * e_reduced * slope_rms
 
 
+_NORMAL_FLOOR = np.finfo(float).tiny / np.finfo(float).eps
+"""Smallest value [Pa] whose every share above one rounding unit is a normal float (≈ 1e-292): the product form of
+:func:`gamma_pressure_quantiles` is exact to rounding when the mean and the scaled levels' mean are above it."""
+
+
 def gamma_pressure_quantiles(mean_pa, std_pa, count: int = PRESSURE_QUANTILES) -> np.ndarray:
     """Equal-probability levels (i + ½)/count of a gamma distribution of pressure (mean p̄, standard deviation σ_p).
 
     Rescaled so that their mean is p̄ exactly (the quadrature conserves the load; it truncates the tail, so its
     standard deviation is below σ_p where σ_p > p̄). p̄ ≤ 0 gives zeros; σ_p = 0 gives p̄.
+
+    The gamma law has shape k = (p̄/σ_p)² and scale θ = σ_p²/p̄; its quantiles are θ·P⁻¹(k, q) with P the regularised
+    lower incomplete gamma function (``scipy.special.gammaincinv``, as ``scipy.stats.gamma.ppf`` computes them).
+    Where θ over- or underflows, or the levels that carry the mean fall below the normal floating-point range (p̄ far
+    below σ_p: k ≲ 2.2e-5 at 32 levels, or p̄ itself below 1e-292 Pa), the levels are formed in log space instead: the scale cancels in the rescaling, the level
+    i gets the weight x_i/x_max of its standard quantile x_i = P⁻¹(k, q_i), and where x_i underflows the small-x
+    inverse of P(k, x) ≈ x^k/Γ(k + 1) (Abramowitz & Stegun 6.5.29), ln x_i = (ln q_i + ln Γ(k + 1))/k, exact to a
+    relative O(x_i). As k → 0 the weights of all but the top level vanish: the mass concentrates at 0 with the whole
+    load count·p̄ on the top level (a small probability of large pressures).
 
     Parameters
     ----------
@@ -138,7 +152,7 @@ def gamma_pressure_quantiles(mean_pa, std_pa, count: int = PRESSURE_QUANTILES) -
     Returns
     -------
     ndarray
-        Shape (len(mean_pa), count) [Pa].
+        Shape (len(mean_pa), count), finite for finite p̄ [Pa].
     """
     mean = np.maximum(np.asarray(mean_pa, dtype=float).ravel(), 0.0)
     std = np.broadcast_to(np.asarray(std_pa, dtype=float), mean.shape)
@@ -148,12 +162,40 @@ def gamma_pressure_quantiles(mean_pa, std_pa, count: int = PRESSURE_QUANTILES) -
     if not spread.any():
         return out
     m, s = mean[spread], std[spread]
-    # the gamma quantile function, as scipy.stats.gamma.ppf computes it (without its argument handling)
-    quantiles = gammaincinv(((m / s) ** 2)[:, None], levels[None, :]) * (s ** 2 / m)[:, None]
-    total = quantiles.mean(axis=1)
-    positive = total > 0.0  # a shape so small that every level rounds to 0: the mass goes to the last one
-    quantiles[positive] *= (m[positive] / total[positive])[:, None]
-    quantiles[~positive] = 0.0
-    quantiles[~positive, -1] = count * m[~positive]
+    with np.errstate(over="ignore", under="ignore", invalid="ignore", divide="ignore"):
+        shape = (m / s) ** 2
+        standard = gammaincinv(shape[:, None], levels[None, :])
+        scale = s ** 2 / m
+        quantiles = standard * scale[:, None]
+        total = quantiles.mean(axis=1)
+    # the product form (what scipy.stats.gamma.ppf returns, rescaled) where every level that carries the mean is a
+    # normal float; log space elsewhere
+    direct = np.isfinite(scale) & np.isfinite(total) & (total >= _NORMAL_FLOOR) & (m >= _NORMAL_FLOOR)
+    quantiles[direct] *= (m[direct] / total[direct])[:, None]
+    narrow = ~np.isfinite(shape)  # σ_p/p̄ below 1e-154: the distribution is p̄ to double precision
+    quantiles[narrow] = m[narrow, None]
+    rest = ~direct & ~narrow
+    if rest.any():
+        quantiles[rest] = _log_space_levels(m[rest], shape[rest], standard[rest], levels)
     out[spread] = quantiles
     return out
+
+
+def _log_space_levels(mean: np.ndarray, shape: np.ndarray, standard: np.ndarray, levels: np.ndarray) -> np.ndarray:
+    """Gamma levels rescaled to ``mean`` [Pa] from the log of the standard quantiles ``standard`` (one row per
+    ``shape`` k): ln x_i where x_i is a normal float, the small-x inverse (ln q_i + ln Γ(k + 1))/k where it is not;
+    weights exp(ln x_i − max ln x), scaled so that the row sums to count·p̄. Where even the top level's ln x
+    overflows (k underflowed to 0, or 1/k near the largest float): the limit k → 0, the whole load on the top level."""
+    from scipy.special import gammaln
+
+    count = levels.size
+    tiny = np.finfo(float).tiny
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        inverse_k = 1.0 / shape
+        small_x = (np.log(levels)[None, :] + gammaln(1.0 + shape)[:, None]) * inverse_k[:, None]
+        log_x = np.where(np.isfinite(standard) & (standard >= tiny), np.log(standard), small_x)
+    limit = ~np.isfinite(log_x.max(axis=1))  # 1/k so large that even the top level's ln x overflows
+    log_x[limit] = -np.inf
+    log_x[limit, -1] = 0.0
+    weights = np.exp(log_x - log_x.max(axis=1, keepdims=True))
+    return weights * (count * mean / weights.sum(axis=1))[:, None]

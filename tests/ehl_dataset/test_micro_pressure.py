@@ -55,6 +55,37 @@ def test_gamma_levels_keep_the_mean_exactly_and_the_spread_of_a_mild_gamma():
     assert np.array_equal(gamma_pressure_quantiles(mean, 0.0), np.repeat(mean[:, None], 32, axis=1))
 
 
+
+@pytest.mark.parametrize("shape", [1e-6, 2.15e-5, 1e-4, 1e-2, 1.0])
+@pytest.mark.parametrize("mean_pa", [1e8, 1e-80])
+def test_gamma_levels_stay_finite_and_keep_the_mean_at_a_tiny_shape(shape, mean_pa):
+    """Shape k = (p̄/σ_p)² from 1 down to 1e-6 (σ_p up to 1000 p̄), at a Hertzian mean pressure and at one far below
+    the normal floating-point range of the scaled levels: every level finite and non-negative, no overflow warning,
+    and the mean p̄ to 1e-12 (the quadrature conserves the load). Where scipy.stats.gamma.ppf (scale σ_p²/p̄) gives
+    normal floats, the levels are its quantiles rescaled to mean p̄, to 1e-12. Where its top quantile underflows
+    (k ≲ 2.2e-5 at 32 levels: ln x = (ln q + ln Γ(1 + k))/k < −708, Abramowitz & Stegun 6.5.29), the next level
+    carries (q_31/q_32)^(1/k) < e^−1400 of the top one: the k → 0 limit, the whole load count·p̄ on the top level.
+    k = 2.15e-5 is the band where the product form divided 0 by an underflowed total (NaN levels)."""
+    import warnings
+
+    std = mean_pa / math.sqrt(shape)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        levels = gamma_pressure_quantiles([mean_pa], std)[0]
+    assert np.all(np.isfinite(levels)) and np.all(levels >= 0.0)
+    assert levels.mean() == pytest.approx(mean_pa, rel=1e-12, abs=0.0)
+    q = (np.arange(32) + 0.5) / 32
+    with np.errstate(under="ignore"):
+        ppf = stats.gamma.ppf(q, shape, scale=std ** 2 / mean_pa)
+    normal = ppf >= np.finfo(float).tiny
+    if ppf[-1] >= np.finfo(float).tiny / np.finfo(float).eps:
+        expected = ppf * (mean_pa / ppf.mean())
+        assert levels[normal] == pytest.approx(expected[normal], rel=1e-12, abs=0.0)
+        assert np.all(levels[~normal] <= 1e-280 * mean_pa)
+    else:
+        assert shape < 2.2e-5
+        assert levels[-1] == 32 * mean_pa and np.all(levels[:-1] == 0.0)
+
 def test_flattening_pressure_is_johnsons_for_a_sinusoid():
     """Johnson (Contact Mechanics, 1985, §13.1): a sinusoid of amplitude Δ and wavelength λ is flattened by
     p* = π E* Δ/λ with 1/E* = Σ(1 − ν²)/E = 2/E'. Its slope has r.m.s. Δq = 2πΔ/(λ√2), and the r.m.s. of p* cos is
