@@ -777,7 +777,8 @@ def solve_deterministic(case: ContactCase, state: LubricantState, plan: Effects,
                                  "a state saved by this same run (same case, lubricant, roughness, options and model "
                                  f"version {MODEL_VERSION} or one it continues, {', '.join(CONTINUES)}); this one "
                                  "was saved by another run: delete it or give another path")
-            k, t, z, h, record = saved["k"], saved["t"], saved["z"], saved["h"], saved["record"]
+            k, t, z, h = saved["k"], saved["t"], saved["z"], saved["h"]
+            record = saved["record"] if isinstance(saved["record"], _Record) else _Record.from_state(saved["record"])
             state_now = saved["state_now"]
             problem.film_reference = 0.0  # states saved before det-2026.11-20 hold the absolute H0 (and go on so)
             for name, value in saved["problem"].items():
@@ -801,7 +802,7 @@ def solve_deterministic(case: ContactCase, state: LubricantState, plan: Effects,
             save_failure = getattr(checkpoint, "save_failure", None)
             if save_failure is not None:
                 kept = save_failure(_saved_state(fingerprint, k, t, z, h, record, state_now, clock() - start,
-                                                 problem))
+                                                 problem, checkpoint))
                 message += f"; the state before that step is kept in {kept} (hand it to the same run to replay it)"
             break
         z, h, g, substeps = outcome
@@ -819,7 +820,8 @@ def solve_deterministic(case: ContactCase, state: LubricantState, plan: Effects,
             if mu_mean.within(tolerance):
                 break
         if checkpoint is not None and clock() - last_save >= checkpoint.every_s:
-            checkpoint.save(_saved_state(fingerprint, k, t, z, h, record, state_now, clock() - start, problem))
+            checkpoint.save(_saved_state(fingerprint, k, t, z, h, record, state_now, clock() - start, problem,
+                                         checkpoint))
             last_save = clock()
     if converged and k < n_min:
         converged = False
@@ -836,10 +838,15 @@ def solve_deterministic(case: ContactCase, state: LubricantState, plan: Effects,
     return result
 
 
-def _saved_state(fingerprint, k, t, z, h, record, state_now, elapsed_s, problem) -> dict:
-    """What a checkpoint keeps of a run after step ``k`` (:func:`solve_deterministic` continues from it)."""
-    return {"fingerprint": fingerprint, "k": k, "t": t, "z": z, "h": h, "record": record, "state_now": state_now,
-            "elapsed_s": elapsed_s, "problem": {name: getattr(problem, name) for name in _PROBLEM_STATE}}
+def _saved_state(fingerprint, k, t, z, h, record, state_now, elapsed_s, problem, checkpoint=None) -> dict:
+    """What a checkpoint keeps of a run after step ``k`` (:func:`solve_deterministic` continues from it): plain data
+    but the factorised preconditioner, which a ``portable`` checkpoint leaves out (the next step rebuilds it)."""
+    kept = {name: getattr(problem, name) for name in _PROBLEM_STATE}
+    if getattr(checkpoint, "portable", False):
+        kept["preconditioner"] = None
+    return {"fingerprint": fingerprint, "k": k, "t": t, "z": z, "h": h, "record": record.to_state(),
+            "state_now": {key: value for key, value in state_now.items() if key != "last_storage"},
+            "elapsed_s": elapsed_s, "problem": kept}
 
 
 _PROBLEM_STATE = ("m_ref", "preconditioner", "cost", "last_residual", "last_gmres_iterations", "film_reference")
@@ -978,6 +985,30 @@ class _Record:
         self.substep_steps = 0
         self.continued_from = None
         self.smooth = {}
+
+    _SERIES = ("mu", "asperity", "share", "yielded", "h_min", "h_c", "t", "mass", "load")
+
+    def to_state(self) -> dict:
+        """The record as plain data (series as float64 arrays) for a checkpoint; :meth:`from_state` inverts it."""
+        state = {name: np.asarray(getattr(self, name), dtype=float) for name in self._SERIES}
+        state.update(film_sum=self.film_sum, film_count=self.film_count, profile_sums=dict(self.profile_sums),
+                     substep_steps=int(self.substep_steps), continued_from=self.continued_from,
+                     smooth=dict(self.smooth))
+        return state
+
+    @classmethod
+    def from_state(cls, state: dict) -> "_Record":
+        """The record :meth:`to_state` saved (series back to lists of floats: the same values)."""
+        record = cls()
+        for name in cls._SERIES:
+            setattr(record, name, np.asarray(state[name], dtype=float).tolist())
+        record.film_sum = state["film_sum"]
+        record.film_count = int(state["film_count"])
+        record.profile_sums = dict(state["profile_sums"] or {})
+        record.substep_steps = int(state["substep_steps"])
+        record.continued_from = state["continued_from"]
+        record.smooth = dict(state["smooth"] or {})
+        return record
 
     def accumulate(self):
         """Add the last state's profiles to the sums of the averaging window."""

@@ -518,6 +518,47 @@ def test_a_checkpoint_of_another_run_or_a_corrupt_file_is_one_clear_error(tmp_pa
     assert not path.exists()
 
 
+def test_a_portable_checkpoint_is_plain_data_and_continues_to_the_uninterrupted_result_within_tolerance(tmp_path):
+    """A long validation run must survive a change of machine, so its saved state is committed beside its results:
+    the portable form is a NumPy archive that loads with allow_pickle=False (no code executed), without the
+    factorised preconditioner. Without it the continued run's linear solves take another path to the same
+    tolerance, so its μ series equals the uninterrupted one to the Newton tolerance, not bit for bit, and its mean
+    μ agrees far inside the run's own standard error."""
+    uninterrupted = _short_rough_run(mu_sem_target=1e-9)
+    path = tmp_path / "run.npz"
+    with pytest.raises(_Killed):
+        _short_rough_run(checkpoint=_FileThenKill(FileCheckpoint(path, every_s=0.0, portable=True), saves=40),
+                         mu_sem_target=1e-9)
+    with np.load(path, allow_pickle=False) as archive:
+        assert "record/mu" in archive.files and not any(name.startswith("problem/preconditioner")
+                                                        for name in archive.files if name != "__none__")
+    saved = FileCheckpoint(path).load()
+    assert saved["k"] == 40 and len(saved["record"]["mu"]) == 40 and saved["problem"]["preconditioner"] is None
+    resumed = _short_rough_run(checkpoint=FileCheckpoint(path, every_s=math.inf, portable=True),
+                               mu_sem_target=1e-9)
+    assert resumed.converged, resumed.message
+    assert resumed.extra["n_steps"] == uninterrupted.extra["n_steps"]
+    np.testing.assert_array_equal(resumed.extra["mu_series"][:40], uninterrupted.extra["mu_series"][:40])
+    np.testing.assert_allclose(resumed.extra["mu_series"], uninterrupted.extra["mu_series"], rtol=1e-6)
+    assert abs(resumed.mu - uninterrupted.mu) < 1e-3 * uninterrupted.mu_sem
+
+
+def test_flattened_checkpoint_state_round_trips_types_and_refuses_objects():
+    """The portable form keeps ints, floats, bools, strings, None, nested and empty dicts and arrays as they were,
+    and names a value that is not plain data instead of pickling it."""
+    from ehl_dataset.dataset.checkpoint import flatten_state, unflatten_state
+
+    state = {"k": 3, "t": 0.25, "ok": True, "name": "det", "none": None, "empty": {},
+             "nested": {"a": np.arange(3.0), "b": {"c": None, "d": 7}}}
+    back = unflatten_state(flatten_state(state))
+    assert back["k"] == 3 and type(back["k"]) is int and back["t"] == 0.25 and back["ok"] is True
+    assert back["name"] == "det" and back["none"] is None and back["empty"] == {}
+    np.testing.assert_array_equal(back["nested"]["a"], state["nested"]["a"])
+    assert back["nested"]["b"] == {"c": None, "d": 7}
+    with pytest.raises(TypeError, match="nested/obj"):
+        flatten_state({"nested": {"obj": object()}})
+
+
 def test_a_run_that_fails_keeps_the_state_before_the_failing_step_and_replays_it(tmp_path):
     """Never hide non-convergence, and make it replayable: a run whose Newton solve cannot pass a step (here eight
     iterations and no sub-steps allowed: it passes 40 steps and fails the 41st) reports the step, keeps its state
@@ -544,6 +585,7 @@ def test_a_run_that_fails_keeps_the_state_before_the_failing_step_and_replays_it
 class _FileThenKill:
     def __init__(self, inner, saves):
         self.inner, self.saves, self.count, self.every_s = inner, saves, 0, inner.every_s
+        self.portable = getattr(inner, "portable", False)
 
     def load(self):
         return self.inner.load()

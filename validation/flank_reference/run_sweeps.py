@@ -18,8 +18,8 @@ validation/results/flank_reference/<point>_ls<n>.json: μ, its standard error, t
 and minimum film, the smooth-surface μ of the same contact (the steady start of the run), residuals, converged flag
 and message, wall time, model version, roughness name and sha256, and the means of μ and share over consecutive
 quarter-pass time windows. A run saves its state every 10 min in validation/results/flank_reference/checkpoints/
-and continues from it when started again (same result as an uninterrupted run); the checkpoint is removed when the
-segment is written.
+and continues from it when started again (the same result as an uninterrupted run, to the linear solver's
+tolerance); the checkpoint is removed when the segment is written.
 
     python validation/flank_reference/run_sweeps.py --estimate      # cost of every run from a short coarse run
     python validation/flank_reference/run_sweeps.py --run           # the queue, cheapest first (resumable)
@@ -34,8 +34,11 @@ Run the queue in the background on one core:
 
 The same command resumes it: finished segments are skipped, an interrupted run continues from its checkpoint. A run
 that raises writes <run>.error.json (the error) and is tried again on the next start; a run that does not converge
-writes its segment with converged false and the solver's message. Checkpoints are pickles of the solver state (not
-committed: they exceed the size limit of tracked result files); a change of machine loses only the run in progress.
+writes its segment with converged false and the solver's message. Checkpoints are portable (a NumPy archive of plain
+data, no pickle, without the factorised preconditioner: ``FileCheckpoint(..., portable=True)``), a few hundred kB,
+and are committed with the segments, so a run in progress survives a change of machine: commit
+validation/results/flank_reference/ while it runs. A run continued from one differs from an uninterrupted run only at
+the linear solver's tolerance (tests/ehl_dataset/test_deterministic.py).
 """
 
 from __future__ import annotations
@@ -227,7 +230,7 @@ def run(record: dict, spacings=SPACINGS, only: str | None = None) -> None:
         tried.add(name)
         path = RESULTS / f"{name}.json"
         case, state, options, profile = setup(point, n)
-        checkpoint = FileCheckpoint(CHECKPOINTS / f"{name}.pkl")
+        checkpoint = FileCheckpoint(CHECKPOINTS / f"{name}.npz", portable=True)
         print(f"run {name} (estimate {cost:.0f} s) started {time.strftime('%H:%M:%S')}", flush=True)
         start = time.perf_counter()
         try:
