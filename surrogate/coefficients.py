@@ -24,6 +24,9 @@ Layout (``format = "gearloss.friction_coefficients"``, ``format_version = 2``), 
   ``n_used``, ``input_ranges`` ({name: [min, max]} seen in the fitted data), ``stable``;
 * ``lubricant`` (the lubricant definition, rebuilt with ``lubricant_from_dict``), ``e_reduced_pa``;
 * ``source``: ``path``, ``sha256`` of the dataset file, ``n_points``, ``accuracy_level``, ``description``;
+* ``roughness`` (optional): ``name`` and ``sha256`` of the roughness profile of the fitted dataset, copied from its
+  HDF5 file (:mod:`ehl_dataset.model.roughness_identity`); absent where the dataset records none (older datasets,
+  CSV tables): reports say "not recorded";
 * ``package_version``, ``created_utc``;
 * ``content_sha256``: SHA-256 of the canonical JSON (sorted keys, compact) of everything else. A file edited
   after writing fails this check; to change a file deliberately, refit.
@@ -47,6 +50,7 @@ from typing import Any
 import numpy as np
 
 from ehl_dataset.model.lubricant import Lubricant, lubricant_from_dict
+from ehl_dataset.model.roughness_identity import check_roughness_record
 from ehl_dataset.validation import InputError
 
 from .diagnostics import summary_text
@@ -105,7 +109,8 @@ def content_hash(payload: dict[str, Any]) -> str:
 
 
 def coefficients_payload(fit, *, source: dict[str, Any] | None = None,
-                         offgrid: dict[str, Any] | None = None) -> dict[str, Any]:
+                         offgrid: dict[str, Any] | None = None,
+                         roughness: dict[str, str] | None = None) -> dict[str, Any]:
     """The JSON document (as a dict, hash included) describing ``fit``.
 
     Parameters
@@ -117,6 +122,8 @@ def coefficients_payload(fit, *, source: dict[str, Any] | None = None,
         Provenance of the dataset [-].
     offgrid : dict, optional
         Off-grid validation (:func:`surrogate.offgrid.offgrid_report`) [-].
+    roughness : dict, optional
+        ``{"name", "sha256"}`` of the dataset's roughness profile, written as the ``roughness`` key (None: no key) [-].
 
     Returns
     -------
@@ -125,8 +132,9 @@ def coefficients_payload(fit, *, source: dict[str, Any] | None = None,
     """
     from .learned_fit import LearnedFit
 
+    roughness = check_roughness_record(roughness, "roughness")
     if isinstance(fit, LearnedFit):
-        return _finish(_learned_payload(fit, source, offgrid))
+        return _finish(_with_roughness(_learned_payload(fit, source, offgrid), roughness))
     branches = {}
     for name, branch in fit.branches.items():
         entry = branch.to_dict()
@@ -164,7 +172,13 @@ def coefficients_payload(fit, *, source: dict[str, Any] | None = None,
     }
     if offgrid is not None:
         payload["offgrid"] = offgrid
-    return _finish(payload)
+    return _finish(_with_roughness(payload, roughness))
+
+
+def _with_roughness(payload: dict[str, Any], roughness: dict[str, str] | None) -> dict[str, Any]:
+    if roughness is not None:
+        payload["roughness"] = roughness
+    return payload
 
 
 def _finish(payload: dict[str, Any]) -> dict[str, Any]:
@@ -214,7 +228,7 @@ def summary_path(path: str | Path) -> Path:
 
 
 def write_coefficients(fit, path: str | Path, *, source: dict[str, Any] | None = None,
-                       offgrid: dict[str, Any] | None = None) -> Path:
+                       offgrid: dict[str, Any] | None = None, roughness: dict[str, str] | None = None) -> Path:
     """Write the coefficient file (JSON) and its summary beside it.
 
     Parameters
@@ -227,6 +241,9 @@ def write_coefficients(fit, path: str | Path, *, source: dict[str, Any] | None =
         Provenance of the dataset [-].
     offgrid : dict, optional
         Off-grid validation of the fit [-].
+    roughness : dict, optional
+        ``{"name", "sha256"}`` of the dataset's roughness profile (:attr:`surrogate.dataset_io.Dataset.roughness`);
+        None: not recorded [-].
 
     Returns
     -------
@@ -239,7 +256,7 @@ def write_coefficients(fit, path: str | Path, *, source: dict[str, Any] | None =
     if path.suffix != ".json":
         raise InputError("out", str(path), "a file name ending in .json")
     path.parent.mkdir(parents=True, exist_ok=True)
-    payload = coefficients_payload(fit, source=source, offgrid=offgrid)
+    payload = coefficients_payload(fit, source=source, offgrid=offgrid, roughness=roughness)
     tmp = path.with_name(path.name + ".tmp")
     tmp.write_text(json.dumps(payload, indent=1, sort_keys=True, allow_nan=False) + "\n", encoding="utf-8")
     tmp.replace(path)
@@ -347,6 +364,11 @@ class CoefficientSet:
     """The :class:`surrogate.mlp.MlpEnsemble` of a learned file."""
     score_quantiles: dict[str, dict[float, float]] | None = None
     """Split-conformal factors of an Eq. 9 interval (None: plain statsmodels interval)."""
+
+    @property
+    def roughness(self) -> dict[str, str] | None:
+        """``{"name", "sha256"}`` of the roughness profile of the fitted dataset; None: not recorded."""
+        return self.document.get("roughness")
 
     @property
     def has_interval(self) -> bool:
@@ -558,6 +580,7 @@ def _common_fields(doc: dict, origin: str):
     except InputError as err:
         raise InputError(f"lubricant.{err.parameter}", err.value, err.accepted) from None
     _require(doc, "source", dict, "a table describing the source dataset")
+    check_roughness_record(doc.get("roughness"), "roughness")
     if "offgrid" in doc:
         _require(doc, "offgrid", dict, "the off-grid validation table")
     _require(doc, "package_version", str, "the gearloss version that wrote the file")

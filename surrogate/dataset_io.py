@@ -37,12 +37,16 @@ class Dataset:
         Reduced modulus E' of the contacts [Pa].
     source : dict
         Provenance: file path, its hash, solver version and level [-].
+    roughness : dict or None
+        The roughness profile the dataset's rough points used, ``{"name", "sha256"}`` as the HDF5 file records it
+        (:mod:`ehl_dataset.model.roughness_identity`); None where not recorded (older files, CSV tables) [-].
     """
 
     table: pd.DataFrame
     lubricant: Lubricant
     e_reduced: float
     source: dict[str, Any]
+    roughness: dict[str, str] | None = None
 
 
 def load_dataset(path: str | Path, lubricant: str | Path | Lubricant | None = None) -> Dataset:
@@ -64,6 +68,7 @@ def load_dataset(path: str | Path, lubricant: str | Path | Lubricant | None = No
     if not path.is_file():
         raise InputError("dataset", str(path), "an existing HDF5 (.h5) dataset file or a CSV table")
     source: dict[str, Any] = {"path": path.name, "sha256": file_sha256(path)}  # the name: no machine path
+    roughness = None
     if path.suffix.lower() in HDF5_SUFFIXES:
         from ehl_dataset.dataset.store import read_metadata, read_table
 
@@ -79,6 +84,7 @@ def load_dataset(path: str | Path, lubricant: str | Path | Lubricant | None = No
                       solver_version=solver.get("version"),
                       factorial=(meta.get("factorial") or {}).get("name"), created=meta.get("created"),
                       git_revision=meta.get("git_revision"), dataset_package_version=meta.get("package_version"))
+        roughness = meta.get("roughness")
     elif path.suffix.lower() == ".csv":
         try:
             table = pd.read_csv(path)
@@ -90,4 +96,4 @@ def load_dataset(path: str | Path, lubricant: str | Path | Lubricant | None = No
         source.update(format="csv", n_points=int(len(table)), accuracy_level=",".join(levels) or None)
     else:
         raise InputError("dataset", str(path), f"a file ending in {HDF5_SUFFIXES} or .csv")
-    return Dataset(table, lub, e_reduced, source)
+    return Dataset(table, lub, e_reduced, source, roughness)

@@ -46,7 +46,8 @@ def register(subparsers) -> None:
     _execution_options(resume, solver_default=None)
     resume.set_defaults(handler=_resume)
 
-    info = commands.add_parser("info", help="counts by status, time spent, slowest points, configuration")
+    info = commands.add_parser("info", help="counts by status, time spent, slowest points, configuration (solver, "
+                                                "lubricant, roughness profile)")
     info.add_argument("file", help="HDF5 file of a run")
     info.add_argument("--slowest", type=int, default=5, help="how many of the slowest points to list")
     info.add_argument("--json", action="store_true", help="print one JSON object")
@@ -150,6 +151,8 @@ def _human_info(p: dict) -> str:
         f"solver     {sol.get('function')} version {sol.get('version')}, level {sol.get('level')}, "
         f"effects {sol.get('effects')}, model {sol.get('model', 'auto')}",
         f"lubricant  {p['lubricant_name']}",
+        f"roughness  " + (f"{p['roughness']['name']} (sha256 {p['roughness']['sha256']})" if p.get("roughness")
+                          else "not recorded"),
         f"status     ok {counts['ok']}, failed {counts['failed']}, pending {counts['pending']}; "
         f"not converged {p['non_converged']}; most computations of one point {p['max_attempts']}",
         f"time       solver {p['solver_time_s']:.1f} s in total (median {p['median_solver_time_s']:.3g} s/point), "

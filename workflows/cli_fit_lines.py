@@ -91,8 +91,10 @@ BAND_COMBINATION = ("every contact point at the same end of its mu interval: err
 
 
 def band_entries(loss, friction) -> dict:
-    """The band of P and η of a power-loss result (:mod:`efficiency.power_loss`) and the friction model's off-grid
-    validation, as the JSON entries of ``gear evaluate`` (SI; absent when the model has no interval)."""
+    """The band of P and η of a power-loss result (:mod:`efficiency.power_loss`), the friction model's off-grid
+    validation and, for a coefficient file, the roughness profile of its dataset (``friction_roughness``:
+    ``{"name", "sha256"}``, null where the file records none), as the JSON entries of ``gear evaluate`` (SI; the
+    band absent when the model has no interval)."""
     out = {}
     if loss.power_loss_band is not None:
         out.update(power_loss_band_w=list(loss.power_loss_band), efficiency_band=list(loss.efficiency_band),
@@ -102,6 +104,9 @@ def band_entries(loss, friction) -> dict:
     offgrid = getattr(friction, "offgrid", None)
     if offgrid:
         out["friction_offgrid"] = offgrid
+    coefficients = getattr(friction, "coefficients", None)
+    if coefficients is not None and hasattr(coefficients, "roughness"):  # a coefficient file: null = not recorded
+        out["friction_roughness"] = coefficients.roughness
     return out
 
 
@@ -115,6 +120,10 @@ def band_lines(p: dict) -> list[str]:
                      f"{high / 1e3:.4g} kW, η {eta_low * 100:.3f} to {eta_high * 100:.3f} % ({p['band_combination']})")
     elif p.get("band_note"):
         lines.append(p["band_note"])
+    if "friction_roughness" in p:
+        from ehl_dataset.model.roughness_identity import describe_roughness
+
+        lines.append(f"surrogate fitted on roughness profile: {describe_roughness(p['friction_roughness'])}")
     overall = (p.get("friction_offgrid") or {}).get("overall")
     if overall and overall.get("n"):
         cov = overall.get("coverage")

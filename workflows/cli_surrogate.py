@@ -87,7 +87,7 @@ def _fit(args) -> int:
         else:
             fit = fit_surrogate(data.table, data.lubricant, data.e_reduced, k_folds=args.k_folds, seed=args.seed,
                                 blend_half_width=args.blend, allow_unstable=args.allow_unstable)
-    path = write_coefficients(fit, args.out, source=data.source)
+    path = write_coefficients(fit, args.out, source=data.source, roughness=data.roughness)
     offgrid = validate_offgrid(path, args.offgrid) if args.offgrid else None
     if args.form == "learned":
         return _fit_learned_output(args, fit, path, offgrid, caught)
@@ -223,6 +223,7 @@ def _predict(args) -> int:
         "offgrid": surrogate.offgrid,
         "formula": doc["formula"]["name"],
         "lubricant": surrogate.lubricant.name,
+        "roughness": surrogate.coefficients.roughness,
         "coefficients": surrogate.coefficients.path,
         "wall_time_s": time.perf_counter() - start,
     }

@@ -87,7 +87,7 @@ def run_sample(path: str | Path, points: np.ndarray, description: dict, *, lubri
         The runner's summary.
     """
     from ehl_dataset.dataset.factorial import canonical_json
-    from ehl_dataset.dataset.runner import DEFAULT_SOLVER, check_time_limit, execute, solver_config
+    from ehl_dataset.dataset.runner import DEFAULT_SOLVER, check_time_limit, dataset_roughness, execute, solver_config
     from ehl_dataset.dataset.store import DatasetStore
 
     solver = DEFAULT_SOLVER if solver is None else solver
@@ -104,13 +104,14 @@ def run_sample(path: str | Path, points: np.ndarray, description: dict, *, lubri
         store = DatasetStore.open(path, "r+")
         try:
             store.check_compatible(factorial_sha256=description["points_sha256"], solver=config,
-                                   lubricant=lubricant_dict)
+                                   lubricant=lubricant_dict, roughness=dataset_roughness(solver))
         except BaseException:
             store.close()
             raise
         kind = "continue"
     else:
-        store = DatasetStore.create(path, points, factorial=description, solver=config, lubricant=lubricant_dict)
+        store = DatasetStore.create(path, points, factorial=description, solver=config, lubricant=lubricant_dict,
+                                    roughness=dataset_roughness(solver))
         kind = "run"
     with store:
         return execute(store, solver=solver, workers=workers, scheduler=scheduler, kind=kind, progress=progress,

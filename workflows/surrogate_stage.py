@@ -159,8 +159,9 @@ SPACE_FILLING_KINDS = ("sample:sobol", "sample:random", "sample:lhs")
 
 
 def load_rows(paths) -> tuple[pd.DataFrame, Any, Any]:
-    """Every row of one or more dataset files (same lubricant and E'), the first file's :class:`Dataset` (its table
-    replaced by all rows), and the calibration mask of the learned form's interval: None for one file; for several
+    """Every row of one or more dataset files (same lubricant, E' and recorded roughness profile), the first file's
+    :class:`Dataset` (its table replaced by all rows; its roughness None unless every file records it), and the
+    calibration mask of the learned form's interval: None for one file; for several
     (an adaptive design) the rows of the space-filling files (:data:`SPACE_FILLING_KINDS`), not those chosen where
     the ensemble disagreed (:func:`surrogate.mlp.fit_mlp_ensemble`)."""
     import numpy as np
@@ -181,6 +182,12 @@ def load_rows(paths) -> tuple[pd.DataFrame, Any, Any]:
         if other.lubricant.to_json_dict() != first.lubricant.to_json_dict() or other.e_reduced != first.e_reduced:
             raise InputError("dataset", str(path), f"a dataset of the lubricant and E' of {paths[0]}")
     table = pd.concat([d.table for d in datasets], ignore_index=True) if len(datasets) > 1 else first.table
+    for other, path in zip(datasets[1:], paths[1:]):
+        if other.roughness != first.roughness and other.roughness is not None and first.roughness is not None:
+            raise InputError("dataset", str(path), f"a dataset of the roughness profile of {paths[0]} "
+                             f"({first.roughness['name']})", f"it records {other.roughness['name']}")
+    if any(d.roughness is None for d in datasets):
+        first.roughness = None  # one file records none: the mix is not recorded
     if len(datasets) > 1:
         first.source["files"] = [{"path": Path(p).name, "sha256": d.source["sha256"], "n_points": len(d.table)}
                                  for p, d in zip(paths, datasets)]
@@ -322,7 +329,7 @@ def fit_and_write(dataset_paths, coefficients_file: str | Path, *, form: str = "
         fit = widen_to_box(fit_form(form, table, data, allow_unstable=allow_unstable,
                                     blend_half_width=blend_half_width, calibration=calibration),
                            sample_box(dataset_paths))
-    path = write_coefficients(fit, coefficients_file, source=data.source)
+    path = write_coefficients(fit, coefficients_file, source=data.source, roughness=data.roughness)
     details = fit_details(fit) | {"lubricant": data.lubricant.name, "summary": str(summary_path(path))}
     if offgrid_path is not None:
         details["offgrid"] = validate_offgrid(path, offgrid_path)

@@ -238,6 +238,18 @@ def solver_config(solver: str | Callable, level: str, effects: str, model: str =
     return config
 
 
+def dataset_roughness(solver: str | Callable) -> dict[str, str] | None:
+    """The roughness profile the rough points of a run use, as the file records it (``{"name", "sha256"}``,
+    :func:`ehl_dataset.model.roughness_identity.roughness_identity`): the package's solver takes the default
+    profile (:data:`ehl_dataset.model.roughness.DEFAULT_PROFILE`); for another solve function the runner does not
+    know its profile and records none (None)."""
+    if solver_reference(solver) != DEFAULT_SOLVER:
+        return None
+    from ..model.roughness_identity import roughness_identity
+
+    return roughness_identity()
+
+
 def recorded_model(recorded_solver: dict) -> str:
     """The contact model a file's solver configuration records; files written before the model was recorded ran
     the default (``"auto"``)."""
@@ -501,8 +513,9 @@ def run_factorial(out, factorial: Factorial | str | os.PathLike, *, lubricant=No
                   model: str | None = None, **options) -> RunSummary:
     """Compute ``factorial`` into the HDF5 file ``out``.
 
-    If ``out`` exists and records the same factorial, solver (model included) and lubricant, the run continues it
-    (like :func:`resume_run`); if it records something else the call is refused unless ``overwrite``.
+    If ``out`` exists and records the same factorial, solver (model included), lubricant and roughness profile
+    (:func:`dataset_roughness`), the run continues it (like :func:`resume_run`); if it records something else the
+    call is refused unless ``overwrite``. A new file records the roughness profile.
 
     Parameters
     ----------
@@ -552,19 +565,20 @@ def run_factorial(out, factorial: Factorial | str | os.PathLike, *, lubricant=No
     config = solver_config(solver, level or plan.level, effects or plan.effects, model or plan.model)
     lubricant_dict = json.loads(canonical_json(lub.to_json_dict()))
     factorial_dict = plan.to_dict()
+    roughness = dataset_roughness(solver)
     out = Path(out)
     if out.exists() and not overwrite:
         store = DatasetStore.open(out, "r+")
         kind = "continue"
         try:
             store.check_compatible(factorial_sha256=factorial_dict["points_sha256"], solver=config,
-                                   lubricant=lubricant_dict)
+                                   lubricant=lubricant_dict, roughness=roughness)
         except BaseException:
             store.close()
             raise
     else:
         store = DatasetStore.create(out, plan.points(), factorial=factorial_dict, solver=config,
-                                    lubricant=lubricant_dict, overwrite=overwrite)
+                                    lubricant=lubricant_dict, overwrite=overwrite, roughness=roughness)
         kind = "run"
     with store:
         return execute(store, solver=solver, workers=workers, scheduler=scheduler, kind=kind,
@@ -591,8 +605,9 @@ def resume_run(path, *, workers: int = 1, scheduler: str | None = None, solver: 
     The solver, level, effects, contact model and lubricant are those recorded in the file (a file that records no
     model ran ``"auto"``). The solver's current version (and level definition) must equal the recorded ones; the
     arguments below that name the configuration must match the file too, otherwise the resume is refused with
-    ``InputError``. Rows stored not converged, including those stopped by an earlier budget, are ``ok`` and are not
-    recomputed unless ``retry_not_converged``.
+    ``InputError``. So must the roughness profile the solver uses now (:func:`dataset_roughness`) where the file
+    records one: a changed default profile is not mixed into a file. Rows stored not converged, including those
+    stopped by an earlier budget, are ``ok`` and are not recomputed unless ``retry_not_converged``.
 
     Parameters
     ----------
@@ -641,7 +656,8 @@ def resume_run(path, *, workers: int = 1, scheduler: str | None = None, solver: 
         if factorial is not None:
             plan = factorial if isinstance(factorial, Factorial) else load_factorial(factorial)
             factorial_hash = plan.points_hash()
-        store.check_compatible(factorial_sha256=factorial_hash, solver=config, lubricant=lubricant_dict)
+        store.check_compatible(factorial_sha256=factorial_hash, solver=config, lubricant=lubricant_dict,
+                               roughness=dataset_roughness(solver_used))
         return execute(store, solver=solver_used, workers=workers, scheduler=scheduler, kind="resume",
                        time_limit_s=time_limit_s, retry_not_converged=retry_not_converged, **options)
 

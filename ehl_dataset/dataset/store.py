@@ -5,7 +5,10 @@ Layout (format ``gearloss-ehl-dataset``, version :data:`FORMAT_VERSION`)::
 
     /                     root attributes: format, format_version, package_version, created (ISO 8601, UTC),
                           git_revision, n_points, factorial (JSON), factorial_sha256, solver (JSON),
-                          lubricant (JSON, ``Lubricant.to_json_dict()``), sessions (JSON list of runs/resumes)
+                          lubricant (JSON, ``Lubricant.to_json_dict()``), sessions (JSON list of runs/resumes),
+                          roughness (JSON ``{"name", "sha256"}``: the roughness profile of the rough points; absent
+                          from files written before it was recorded, and for a solve function other than the
+                          package's, whose profile the runner does not know)
     /points/point         row index 0..N-1 (an HDF5 dimension scale attached to every column)
     /points/<column>      one 1-D dataset per column, length N; attributes ``units`` and ``description``
 
@@ -42,6 +45,7 @@ from typing import Any, Iterable
 
 import numpy as np
 
+from ..model.roughness_identity import check_roughness_record, describe_roughness
 from ..solvers.result import RECORD_UNITS
 from ..validation import InputError
 from .factorial import POINT_DTYPE, POINT_FIELDS, POINT_UNITS, canonical_json
@@ -283,15 +287,18 @@ class DatasetStore:
     # -- creation and opening ---------------------------------------------------------------------------------
     @classmethod
     def create(cls, path, points: np.ndarray, *, factorial: dict, solver: dict, lubricant: dict,
-               overwrite: bool = False) -> "DatasetStore":
+               overwrite: bool = False, roughness: dict | None = None) -> "DatasetStore":
         """Create a new file for ``points`` (dtype :data:`POINT_DTYPE`) and open it for writing.
 
-        ``factorial`` (with ``points_sha256``), ``solver`` (function, version, level, effects, ...) and
-        ``lubricant`` (``Lubricant.to_json_dict()``) are stored as JSON root attributes and checked on resume.
+        ``factorial`` (with ``points_sha256``), ``solver`` (function, version, level, effects, ...),
+        ``lubricant`` (``Lubricant.to_json_dict()``) and ``roughness`` (``{"name", "sha256"}`` of the profile the
+        rough points use, :func:`ehl_dataset.model.roughness_identity.roughness_identity`; None: not recorded) are
+        stored as JSON root attributes and checked on resume.
         """
         import h5py
 
         path = Path(path)
+        roughness = check_roughness_record(roughness, "roughness")
         if path.exists() and not overwrite:
             raise InputError("out", str(path), "a new file (or pass overwrite to replace it)", "the file exists")
         points = np.asarray(points)
@@ -313,6 +320,8 @@ class DatasetStore:
                 attrs["factorial_sha256"] = str(factorial.get("points_sha256", ""))
                 attrs["solver"] = canonical_json(solver)
                 attrs["lubricant"] = canonical_json(lubricant)
+                if roughness is not None:
+                    attrs["roughness"] = canonical_json(roughness)
                 attrs["sessions"] = "[]"
                 group = h5.create_group("points", track_order=True)
                 scale = group.create_dataset("point", data=np.arange(n, dtype="<i8"), track_times=False)
@@ -406,6 +415,16 @@ class DatasetStore:
     def sessions(self) -> list:
         return self._json_attr("sessions")
 
+    @property
+    def roughness(self) -> dict | None:
+        """The recorded roughness profile ``{"name", "sha256"}``, or None where the file records none."""
+        if "roughness" not in self._h5.attrs:
+            return None
+        try:
+            return check_roughness_record(self._json_attr("roughness"), "roughness")
+        except (ValueError, InputError) as err:
+            raise _bad_file(self.path, f"root attribute 'roughness' is not a roughness record ({err})") from None
+
     def counts(self) -> dict[str, int]:
         """Number of rows per status (including results still in the write buffer)."""
         return {name: int(np.count_nonzero(self._status == i)) for i, name in enumerate(STATUS_NAMES)}
@@ -426,6 +445,7 @@ class DatasetStore:
             "factorial_sha256": _as_str(attrs["factorial_sha256"]),
             "solver": self.solver,
             "lubricant": self.lubricant,
+            "roughness": self.roughness,
             "sessions": self.sessions,
             "counts": counts,
             "n_ok": counts["ok"],
@@ -487,8 +507,9 @@ class DatasetStore:
 
     # -- compatibility ------------------------------------------------------------------------------------------
     def check_compatible(self, *, factorial_sha256: str | None = None, solver: dict | None = None,
-                         lubricant: dict | None = None) -> None:
-        """Refuse (``InputError``) to continue this file with a different factorial, solver or lubricant."""
+                         lubricant: dict | None = None, roughness: dict | None = None) -> None:
+        """Refuse (``InputError``) to continue this file with a different factorial, solver, lubricant or roughness
+        profile (a file that records no roughness is continued as before)."""
         hint = "start a new file (another --out, or --overwrite) to change it"
         recorded_hash = _as_str(self._h5.attrs["factorial_sha256"])
         if factorial_sha256 is not None and factorial_sha256 != recorded_hash:
@@ -507,6 +528,10 @@ class DatasetStore:
             raise InputError("lubricant", lubricant.get("name", "<unnamed>"),
                              f"the lubricant definition recorded in {self.path} "
                              f"({self.lubricant.get('name', '<unnamed>')!r}, compared field by field)", hint)
+        recorded_roughness = self.roughness
+        if roughness is not None and recorded_roughness is not None and roughness != recorded_roughness:
+            raise InputError("roughness", describe_roughness(roughness), f"the roughness profile recorded in "
+                             f"{self.path} ({describe_roughness(recorded_roughness)})", hint)
 
     # -- writing ---------------------------------------------------------------------------------------------------
     def _require_writable(self):
@@ -678,7 +703,8 @@ def read_metadata(path) -> dict[str, Any]:
     dict
         format_version, package_version, created, git_revision, factorial (dict), solver (dict: function, version,
         level, effects, ...), lubricant (dict as parsed from the lubricant TOML: rebuild with
-        :func:`ehl_dataset.model.lubricant.lubricant_from_dict`), sessions, n_points and counts by status.
+        :func:`ehl_dataset.model.lubricant.lubricant_from_dict`), roughness (``{"name", "sha256"}`` of the roughness
+        profile, None where not recorded), sessions, n_points and counts by status.
     """
     with _reading(path) as store:
         return store.metadata()
@@ -694,7 +720,8 @@ _INPUT_KEYS = {"p_h": "p_h_pa", "r_eq": "r_eq_m", "u_r": "u_r_m_s", "sr": "sr", 
 
 
 def summarize(path, slowest: int = 5, failures: int = 5) -> dict[str, Any]:
-    """What ``gearloss dataset info`` shows: counts by status, time spent, slowest points, failures, configuration.
+    """What ``gearloss dataset info`` shows: counts by status, time spent, slowest points, failures, configuration
+    (solver, lubricant, roughness profile: None where the file records none).
 
     Times: ``solver_time_s`` sums the solvers' own wall times of the recorded results, ``worker_time_s`` the
     worker-side times (retries included), ``session_wall_time_s`` the coordinator's wall time over the sessions that
@@ -749,4 +776,5 @@ def summarize(path, slowest: int = 5, failures: int = 5) -> dict[str, Any]:
         "solver": meta["solver"],
         "lubricant_name": meta["lubricant"].get("name", ""),
         "lubricant": meta["lubricant"],
+        "roughness": meta["roughness"],
     }
