@@ -19,9 +19,15 @@ def register(subparsers) -> None:
     solve.add_argument("--temp-c", type=float, default=90.0, help="oil inlet temperature [°C] (default 90)")
     solve.add_argument("--rq1-um", type=float, default=0.0, help="RMS roughness of surface 1 [µm] (default 0)")
     solve.add_argument("--rq2-um", type=float, default=0.0, help="RMS roughness of surface 2 [µm] (default 0)")
-    solve.add_argument("--roughness-file", default=None,
-                       help="measured roughness profile (two columns x, z; detrended, resampled, scaled to Rq1/Rq2); "
-                            "default: the shipped synthetic baseline")
+    shape = solve.add_mutually_exclusive_group()
+    shape.add_argument("--roughness", default=None, metavar="NAME",
+                       help="shipped roughness profile by its registered name, scaled to Rq1/Rq2: baseline_synthetic "
+                            "(the default: Gaussian ACF, beta 15 um) or flank_ground (self-affine, ground-flank-like); "
+                            "`gearloss roughness show NAME` describes one. The result records the profile's name and "
+                            "sha256 (roughness_name, roughness_sha256)")
+    shape.add_argument("--roughness-file", default=None, metavar="FILE",
+                       help="measured roughness profile instead (two columns x, z; detrended, resampled, scaled to "
+                            "Rq1/Rq2); the result records the file's name and sha256")
     solve.add_argument("--roughness-unit", default="um", choices=["um", "mm", "m"],
                        help="unit of both columns of --roughness-file (default um)")
     solve.add_argument("--lubricant", default="atf",
@@ -68,11 +74,7 @@ def _solve(args) -> int:
 
     case = ContactCase.from_engineering(args.p_h_gpa, args.r_eq_mm, args.u_r, args.sr, args.temp_c,
                                         args.rq1_um, args.rq2_um)
-    roughness = None
-    if args.roughness_file is not None:
-        from ehl_dataset.model.roughness import load_profile
-
-        roughness = load_profile(args.roughness_file, unit=args.roughness_unit)
+    roughness, identity = _roughness(args)
     deterministic = None
     if args.dx_um is not None or args.wide != "auto":
         from ehl_dataset.solvers.deterministic import deterministic_options
@@ -84,12 +86,37 @@ def _solve(args) -> int:
     problem = resolve_contact(case, args.lubricant, args.level, args.effects, roughness, args.time_limit_s,
                               args.model, deterministic, HomogenisedOptions(closure=args.closure))
     result = solve_problem(problem)
+    rough = case.s_c > 0.0  # smooth surfaces use no profile
     payload = {**result.to_dict(), "load_per_length_n_m": case.load_per_length, "half_width_m": case.half_width,
-               "lubricant": problem.lubricant.name}
+               "lubricant": problem.lubricant.name,
+               "roughness_name": identity["name"] if rough else None,
+               "roughness_sha256": identity["sha256"] if rough else None}
     from workflows.cli_output import emit
 
     emit(payload, args.json, _human)
     return 0 if result.converged else 1
+
+
+def _roughness(args):
+    """The profile the solve is given (None: the models' default) and its record ``{"name", "sha256"}``: a
+    registered name (an unknown one is an error listing the registered names), a user's file, or the default."""
+    from ehl_dataset.model.roughness_identity import roughness_identity
+
+    if args.roughness_file is not None:
+        from ehl_dataset.model.roughness import load_profile
+
+        return (load_profile(args.roughness_file, unit=args.roughness_unit),
+                roughness_identity(path=args.roughness_file))
+    if args.roughness is None:
+        return None, roughness_identity()
+    from ehl_dataset.model.roughness import PROFILES, named_profile
+    from ehl_dataset.validation import InputError
+
+    if args.roughness not in PROFILES:
+        raise InputError("roughness", args.roughness, f"a registered profile name, one of {sorted(PROFILES)} "
+                         "(a measured profile: --roughness-file FILE)")
+    profile = named_profile(args.roughness)
+    return profile, roughness_identity(profile)
 
 
 def _human(d: dict) -> str:
@@ -107,6 +134,8 @@ def _human(d: dict) -> str:
         f"model         {d['model']}" + (f" ({d['closure']} closure)" if d.get("closure") else "")
         + (f", {d['route']} route" if d.get("route") else ""),
     ]
+    if d.get("roughness_name"):
+        lines.append(f"roughness     {d['roughness_name']} (sha256 {d['roughness_sha256'][:12]}...)")
     if d["converged"] and d.get("message") and d["message"] != "converged":
         lines.append(f"note          {d['message'].removeprefix('converged; ')}")
     if d.get("thermal"):
