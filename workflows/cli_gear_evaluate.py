@@ -12,7 +12,8 @@ With ``--friction MODEL`` (and ``--oil-temp-c --rq-um --lubricant``; :func:`effi
 it also computes the mechanical power loss of Li & Kahraman 2009, Eq. 10–11: the cycle mean P (``power_loss_w``),
 the efficiency η (``efficiency``) and P(φ_m) at every mesh position (``power_loss_instant_w``); a coefficient file's
 surrogate reports how many loaded points it clipped to its fitted ranges, per input
-(``friction_clipped_inputs`` of ``friction_points``). Without ``--friction`` no power loss is computed.
+(``friction_clipped_inputs`` of ``friction_points``), and the off-grid validation its file records
+(``friction_offgrid``; printed per branch with ``--offgrid``). Without ``--friction`` no power loss is computed.
 """
 
 from __future__ import annotations
@@ -69,6 +70,10 @@ def register(gear_subparsers) -> None:
     friction.add_argument("--lubricant", default="atf",
                           help="lubricant name or TOML file for the EHL and published models (default atf; a "
                                "coefficient file carries its own)")
+    friction.add_argument("--offgrid", action="store_true",
+                          help="also print the off-grid validation the coefficient file records: median, 90th "
+                               "percentile and max error of mu per branch and the interval's coverage (always in "
+                               "--json, as friction_offgrid; null when the model records none)")
     iso = parser.add_argument_group("ISO/TR 14179-2 mean friction and mesh loss (with --iso14179-2)")
     iso.add_argument("--iso14179-2", dest="iso14179_2", action="store_true",
                      help="also report the standard's μ_mz, H_V and P_VZP (uses --oil-temp-c)")
@@ -188,6 +193,8 @@ def run_evaluate(args: argparse.Namespace) -> int:
     from efficiency.mesh_cycle import evaluate_mesh
 
     started = time.perf_counter()
+    if args.offgrid and args.friction is None:
+        raise InputError("offgrid", True, "only with --friction COEFFS (a coefficient file)")
     inputs = resolve_inputs(args)
     pair, point, options = inputs.pair, inputs.point, inputs.options
     mods = point.modifications
@@ -216,7 +223,7 @@ def run_evaluate(args: argparse.Namespace) -> int:
     from .cli_validity import finish
 
     checks = mesh_checks(result, pair) + payload.pop("friction_checks", [])
-    return finish(payload, checks, args, _human, converged=result.converged,
+    return finish(payload, checks, args, lambda p: _human(p, args.offgrid), converged=result.converged,
                   options={"contact_pressure": "torque-nm", "root_stress": "torque-nm", "deflection": "torque-nm",
                            "friction_surrogate_range": "friction"})
 
@@ -281,6 +288,7 @@ def _power_loss(mesh, inputs: EvaluateInputs, args) -> dict:
     from .cli_fit_lines import band_entries
 
     out.update(band_entries(loss, friction))
+    out.setdefault("friction_offgrid", getattr(friction, "offgrid", None) or None)
     if "ehl_solves" in loss.extra:
         out["ehl_solves"] = int(loss.extra["ehl_solves"])
         out["ehl_points"] = int(loss.extra["ehl_points"])
@@ -296,7 +304,9 @@ def _power_loss(mesh, inputs: EvaluateInputs, args) -> dict:
     return out
 
 
-def _human(p: dict) -> str:
+def _human(p: dict, show_offgrid: bool = False) -> str:
+    """The human-readable output; with ``show_offgrid`` the friction model's off-grid validation per branch
+    (:func:`surrogate.offgrid.offgrid_lines`) in place of its one-line summary."""
     lines = [
         f"torque {p['torque_nm']:.4g} N·m at {p['speed_rpm']:.5g} rpm; M_P {p['profile_crown_m'] * 1e6:.3g} µm, "
         f"M_L {p['lead_crown_m'] * 1e6:.3g} µm, lead slope {p['lead_slope_m'] * 1e6:.3g} µm; "
@@ -327,7 +337,15 @@ def _human(p: dict) -> str:
                      f"efficiency η = {p['efficiency'] * 100:.3f} %, load-weighted μ = {p['mu_mean']:.4f}")
         from .cli_fit_lines import band_lines
 
-        lines.extend(band_lines(p))
+        if show_offgrid:
+            from surrogate.offgrid import offgrid_lines
+
+            lines.extend(band_lines({k: v for k, v in p.items() if k != "friction_offgrid"}))
+            lines.extend(offgrid_lines(p["friction_offgrid"]) if p.get("friction_offgrid") is not None else
+                         ["off-grid validation: none recorded by this friction model (a coefficient file "
+                          "fitted with an off-grid sample records one)"])
+        else:
+            lines.extend(band_lines(p))
         lines.append(f"instantaneous P(φ) {p['power_loss_instant_min_w'] / 1e3:.4g} to "
                      f"{p['power_loss_instant_max_w'] / 1e3:.4g} kW over the cycle "
                      f"({p['power_loss_time_s'] * 1e3:.0f} ms)")

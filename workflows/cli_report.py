@@ -2,8 +2,9 @@
 studies as PNG files (matplotlib), each with the command that made it and the solver version written under it.
 
 The friction model is the project's fitted coefficient file (``--friction``, default the shipped ``atf``, the fit of the paper factorial);
-``--compare`` adds published formulas (default ``xu2007``) drawn alongside. The operating conditions default to the
-study's (data/studies/paper2009.toml: 250 N·m, 4000 rpm, ATF 90 °C, Rq 0.4 µm, M_P 15 µm, M_L 12 µm). See
+``--compare`` adds published formulas (default ``xu2007``) drawn alongside. With a friction model that has
+prediction intervals the efficiency map carries the 90 % band of P and η per cell (``--table`` writes it as CSV).
+The operating conditions default to the study's (data/studies/paper2009.toml: 250 N·m, 4000 rpm, ATF 90 °C, Rq 0.4 µm, M_P 15 µm, M_L 12 µm). See
 :mod:`workflows.report` and docs/how-to/studies-and-reports.md.
 """
 
@@ -26,12 +27,18 @@ def register(subparsers) -> None:
 
     emap = sub.add_parser("efficiency-map", help="η and P of a design over input torque × speed",
                           description="Efficiency and power loss of one design over input torque × speed; cells "
-                                      "outside the models' validity are hatched.")
+                                      "outside the models' validity are hatched. With a friction model that has "
+                                      "prediction intervals (a coefficient file of format 2 or a learned file) "
+                                      "every cell carries the 90 % band of P and η, fully correlated over the "
+                                      "mesh, and the figure draws the band's width.")
     _design_options(emap)
     emap.add_argument("--torques-nm", default="25:500:25",
                       help="input torques [N·m]: list a,b,c or range start:stop:step")
     emap.add_argument("--speeds-rpm", default="500:6000:500",
                       help="input speeds [rpm]: list a,b,c or range start:stop:step")
+    emap.add_argument("--table", default=None, metavar="FILE.csv",
+                      help="also write the map as a CSV table, one row per cell (SI units, the unit in each column "
+                           "name; the band columns power_loss_low_w ... efficiency_high empty without a band)")
     _conditions(emap)
     _common(emap, "efficiency_map.png")
     emap.set_defaults(handler=run_efficiency_map)
@@ -162,6 +169,8 @@ def run_efficiency_map(args: argparse.Namespace) -> int:
 
     torques = _values(args.torques_nm, "torques-nm", 0.0, 1e7, "N·m")
     speeds = _values(args.speeds_rpm, "speeds-rpm", 0.0, 1e6, "rpm")
+    if args.table is not None and not str(args.table).lower().endswith(".csv"):
+        raise InputError("table", args.table, "a file name ending in .csv")
     study, frictions, point, options = _setup(args)
     name, pair = _study_pair(args, study)
     spec = args.friction
@@ -170,19 +179,42 @@ def run_efficiency_map(args: argparse.Namespace) -> int:
     study_point = (point.input_torque, point.input_speed * 30 / math.pi)
     figure = report.efficiency_map_figure(result, args.out, args.command_line, study_point,
                                           report.coefficients_note({spec: frictions[spec]}))
-    payload = {**result.to_dict(), "figure": figure, "conditions": _point_text(point)}
-    emit(payload, args.json, lambda p: (f"wrote {p['figure']}: design {p['design']}, friction {p['friction_model']},"
-                                        f" {len(p['torque_nm'])} torques × {len(p['speed_rpm'])} speeds, η "
-                                        f"{_range(p['efficiency'], 100)} %, {int(p['valid'].sum())} of "
-                                        f"{p['valid'].size} cells inside the validity ({p['wall_time_s']:.1f} s)"))
+    payload = {**result.to_dict(), "figure": figure, "table": None, "conditions": _point_text(point)}
+    if args.table is not None:
+        from pathlib import Path
+
+        Path(args.table).parent.mkdir(parents=True, exist_ok=True)
+        result.to_table().to_csv(args.table, index=False)
+        payload["table"] = str(args.table)
+    emit(payload, args.json, _map_text)
     return 0
 
 
-def _range(values, scale) -> str:
+def _map_text(p: dict) -> str:
+    """Human lines of ``report efficiency-map``: what was written, the range of η and, with a band, its width."""
     import numpy as np
 
-    finite = np.asarray(values)[np.isfinite(values)]
-    return f"{finite.min() * scale:.3f}–{finite.max() * scale:.3f}" if finite.size else "n/a"
+    lines = [f"wrote {p['figure']}" + (f" and {p['table']}" if p["table"] else "") + f": design {p['design']}, "
+             f"friction {p['friction_model']}, {len(p['torque_nm'])} torques × {len(p['speed_rpm'])} speeds, η "
+             f"{_range(p['efficiency'], 100)} %, {int(p['valid'].sum())} of {p['valid'].size} cells inside the "
+             f"validity ({p['wall_time_s']:.1f} s)"]
+    if p["power_loss_low_w"] is None:
+        lines.append(p["band_note"])
+    else:
+        with np.errstate(invalid="ignore", divide="ignore"):
+            width = (np.asarray(p["efficiency_high"]) - np.asarray(p["efficiency_low"]))
+            below = 1.0 - np.asarray(p["power_loss_low_w"]) / np.asarray(p["power_loss_w"])
+            above = np.asarray(p["power_loss_high_w"]) / np.asarray(p["power_loss_w"]) - 1.0
+        lines.append(f"{p['band_note']}: width of η's band {_range(width, 100)} percentage points; P_low "
+                     f"{_range(below, 100, '.1f')} % below P, P_high {_range(above, 100, '.1f')} % above")
+    return "\n".join(lines)
+
+
+def _range(values, scale, fmt: str = ".3f") -> str:
+    import numpy as np
+
+    finite = np.asarray(values, dtype=float)[np.isfinite(np.asarray(values, dtype=float))]
+    return f"{finite.min() * scale:{fmt}}–{finite.max() * scale:{fmt}}" if finite.size else "n/a"
 
 
 def run_mesh_cycle(args: argparse.Namespace) -> int:

@@ -1,7 +1,8 @@
 """The figures gear engineers expect, computed and drawn (``gearloss report ...``, docs/how-to/studies-and-reports.md).
 
 * :func:`efficiency_map` — η and P of one design over input torque × speed, cells outside the models' validity
-  hatched (:mod:`efficiency.validity`);
+  hatched (:mod:`efficiency.validity`); with a friction model that has prediction intervals, the 90 % band of P and
+  η of every cell (:mod:`efficiency.power_loss`: fully correlated over the mesh) and a panel of its width;
 * :func:`mesh_cycle_loss` — the instantaneous friction power loss P(φ) over one mesh cycle and the cycle-mean loss
   along the line of action (with μ and SR there), for the fitted coefficients and published formulas;
 * :func:`study_sweep` and :func:`study_modifications` — the paper's design sweep (Fig. 3–5) and modification study
@@ -103,6 +104,10 @@ def _evaluate(pair, friction, point, options) -> dict:
 
 
 # ---------------------------------------------------------------------- efficiency map
+NO_BAND_NOTE = "no band: the friction model has no prediction interval"
+"""The efficiency map's note for a friction model without μ intervals (a format-1 file, a published formula)."""
+
+
 @dataclass
 class EfficiencyMap:
     """η and P over torque × speed.
@@ -129,6 +134,14 @@ class EfficiencyMap:
         The distinct reasons of the cells that are not valid [-].
     wall_time_s : float
         Evaluation time [s].
+    power_loss_low_w : ndarray or None
+        (T, N) lower end of the band of P from the friction model's μ prediction intervals
+        (:mod:`efficiency.power_loss`: every contact point at the same end of its interval); None when the model
+        has no interval [W].
+    power_loss_high_w : ndarray or None
+        (T, N) upper end of that band [W].
+    band_coverage : float or None
+        Nominal coverage of the μ intervals behind the band (0.9); None without a band [-].
     """
 
     design: str
@@ -141,6 +154,37 @@ class EfficiencyMap:
     converged: np.ndarray
     reasons: list[str] = field(default_factory=list)
     wall_time_s: float = 0.0
+    power_loss_low_w: np.ndarray | None = None
+    power_loss_high_w: np.ndarray | None = None
+    band_coverage: float | None = None
+
+    @property
+    def has_band(self) -> bool:
+        """Whether the map carries a band of P and η (a friction model with prediction intervals) [-]."""
+        return self.power_loss_low_w is not None
+
+    @property
+    def input_power_w(self) -> np.ndarray:
+        """(T, N) input power T ω of every cell [W]."""
+        return self.torque_nm[:, None] * self.speed_rpm[None, :] * (math.pi / 30.0)
+
+    @property
+    def efficiency_low(self) -> np.ndarray | None:
+        """(T, N) lower end of the band of η, 1 − P_high/(T ω); None without a band [-]."""
+        return None if self.power_loss_high_w is None else 1.0 - self.power_loss_high_w / self.input_power_w
+
+    @property
+    def efficiency_high(self) -> np.ndarray | None:
+        """(T, N) upper end of the band of η, 1 − P_low/(T ω); None without a band [-]."""
+        return None if self.power_loss_low_w is None else 1.0 - self.power_loss_low_w / self.input_power_w
+
+    @property
+    def band_note(self) -> str:
+        """What the band is, or why there is none (the figure's legend and the JSON's ``band_note``) [-]."""
+        if not self.has_band:
+            return NO_BAND_NOTE
+        return (f"{self.band_coverage * 100:.0f} % prediction band of the friction surrogate, fully correlated over the mesh "
+                "(every contact point at the same end of its μ interval)")
 
     def to_dict(self) -> dict[str, Any]:
         """The map as a JSON-ready dict (arrays as arrays; ``friction_model``, ``not_valid_reasons`` as named there).
@@ -148,12 +192,40 @@ class EfficiencyMap:
         Returns
         -------
         dict
-            The fields, units in the key names.
+            The fields, units in the key names; ``power_loss_low_w``, ``power_loss_high_w``, ``efficiency_low``,
+            ``efficiency_high`` per cell (None without a band), ``band_coverage`` and ``band_note``.
         """
         return {"design": self.design, "friction_model": self.friction, "torque_nm": self.torque_nm,
                 "speed_rpm": self.speed_rpm, "efficiency": self.efficiency, "power_loss_w": self.power_loss_w,
+                "power_loss_low_w": self.power_loss_low_w, "power_loss_high_w": self.power_loss_high_w,
+                "efficiency_low": self.efficiency_low, "efficiency_high": self.efficiency_high,
+                "band_coverage": self.band_coverage, "band_note": self.band_note,
                 "valid": self.valid, "converged": self.converged, "not_valid_reasons": self.reasons,
                 "wall_time_s": self.wall_time_s}
+
+    def to_table(self):
+        """One row per cell (torque-major), SI columns: the table ``report efficiency-map --table`` writes.
+
+        Returns
+        -------
+        pandas.DataFrame
+            ``torque_nm``, ``speed_rpm``, ``input_power_w``, ``power_loss_w``, ``power_loss_low_w``,
+            ``power_loss_high_w``, ``efficiency``, ``efficiency_low``, ``efficiency_high`` (the band columns NaN
+            without a band), ``valid``, ``converged``.
+        """
+        import pandas as pd
+
+        torque, speed = np.meshgrid(self.torque_nm, self.speed_rpm, indexing="ij")
+        nan = np.full(self.power_loss_w.shape, np.nan)
+        columns = {"torque_nm": torque, "speed_rpm": speed, "input_power_w": self.input_power_w,
+                   "power_loss_w": self.power_loss_w,
+                   "power_loss_low_w": nan if self.power_loss_low_w is None else self.power_loss_low_w,
+                   "power_loss_high_w": nan if self.power_loss_high_w is None else self.power_loss_high_w,
+                   "efficiency": self.efficiency,
+                   "efficiency_low": nan if self.efficiency_low is None else self.efficiency_low,
+                   "efficiency_high": nan if self.efficiency_high is None else self.efficiency_high,
+                   "valid": self.valid, "converged": self.converged}
+        return pd.DataFrame({k: np.ravel(v) for k, v in columns.items()})
 
 
 def efficiency_map(pair, friction, torques_nm, speeds_rpm, point, options, *, design: str = "",
@@ -182,14 +254,18 @@ def efficiency_map(pair, friction, torques_nm, speeds_rpm, point, options, *, de
     Returns
     -------
     EfficiencyMap
-        η and P on the torque × speed grid with the validity of each cell.
+        η and P on the torque × speed grid with the validity of each cell and, for a friction model with
+        prediction intervals (``has_interval``), the band of P of every cell (:mod:`efficiency.power_loss`: the
+        90 % μ intervals taken fully correlated over the mesh).
     """
+    from efficiency.power_loss import BAND_COVERAGE
     from efficiency.studies import StudyPoint
 
     started = time.perf_counter()
     torques, speeds = np.asarray(torques_nm, dtype=float), np.asarray(speeds_rpm, dtype=float)
     shape = (len(torques), len(speeds))
     eff, loss = np.full(shape, np.nan), np.full(shape, np.nan)
+    low, high = np.full(shape, np.nan), np.full(shape, np.nan)
     valid, converged = np.zeros(shape, dtype=bool), np.zeros(shape, dtype=bool)
     reasons: dict[str, None] = {}
     for i, torque in enumerate(torques):
@@ -198,11 +274,14 @@ def efficiency_map(pair, friction, torques_nm, speeds_rpm, point, options, *, de
                               point.rq2, point.modifications)
             row = _evaluate(pair, friction, here, options)
             eff[i, j], loss[i, j] = row["efficiency"], row["power_loss_w"]
+            low[i, j], high[i, j] = row.get("power_loss_low_w", math.nan), row.get("power_loss_high_w", math.nan)
             valid[i, j], converged[i, j] = bool(row["valid"]), bool(row["converged"])
             for reason in filter(None, str(row.get("not_valid_because", "")).split(" | ")):
                 reasons[_reason_kind(reason)] = None
+    band = bool(getattr(friction, "has_interval", False))
     return EfficiencyMap(design, friction_name, torques, speeds, eff, loss, valid, converged, list(reasons),
-                         time.perf_counter() - started)
+                         time.perf_counter() - started, power_loss_low_w=low if band else None,
+                         power_loss_high_w=high if band else None, band_coverage=BAND_COVERAGE if band else None)
 
 
 def _reason_kind(reason: str) -> str:
@@ -218,7 +297,12 @@ def _reason_kind(reason: str) -> str:
 
 def efficiency_map_figure(result: EfficiencyMap, path, command: str, study_point: tuple[float, float] | None,
                           note: str = "") -> str:
-    """Draw η and P over torque × speed (contours, cells outside the validity marked) and save the figure.
+    """Draw η and P over torque × speed (contours, cells outside the validity marked) and, for a map with a band,
+    the band's width, and save the figure.
+
+    The third panel (maps with a band only) fills the width of the band of η, η_high − η_low, in percentage points,
+    with contour lines of the relative width of the band of P, (P_high − P_low)/P in per cent; its legend says what
+    the band is (:attr:`EfficiencyMap.band_note`). A map without a band says so in its title.
 
     Parameters
     ----------
@@ -229,7 +313,7 @@ def efficiency_map_figure(result: EfficiencyMap, path, command: str, study_point
     command : str
         The command that made the figure, printed in its footer (:func:`provenance`) [-].
     study_point : tuple of float, optional
-        (speed in rpm, torque in N·m) of the study's operating point, marked on the map [-].
+        (torque in N·m, speed in rpm) of the study's operating point, marked on the map [-].
     note : str
         Extra footer text [-].
 
@@ -238,24 +322,40 @@ def efficiency_map_figure(result: EfficiencyMap, path, command: str, study_point
     str
         The path written.
     """
+    import textwrap
+
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import Patch
+
     plt = _pyplot()
-    fig, axes = plt.subplots(1, 2, figsize=(13, 5.4))
+    panels = [(result.efficiency * 100, "mechanical efficiency η [%]", "%.2f", "viridis"),
+              (result.power_loss_w / 1e3, "friction power loss P [kW]", "%.2f", "viridis")]
+    if result.has_band:
+        panels.append(((result.efficiency_high - result.efficiency_low) * 100,
+                       f"width of the {result.band_coverage * 100:.0f} % band of η [percentage points]", "%.3f", "magma_r"))
+    fig, axes = plt.subplots(1, len(panels), figsize=(6.5 * len(panels), 6.3 if result.has_band else 5.4))
     t, n = result.torque_nm, result.speed_rpm
-    for ax, values, label, fmt in ((axes[0], result.efficiency * 100, "mechanical efficiency η [%]", "%.2f"),
-                                   (axes[1], result.power_loss_w / 1e3, "friction power loss P [kW]", "%.2f")):
+    contoured = len(t) > 1 and len(n) > 1
+    for ax, (values, label, fmt, cmap) in zip(axes, panels):
         finite = np.isfinite(values)
-        if finite.sum() >= 4 and len(t) > 1 and len(n) > 1:
-            filled = ax.contourf(n, t, np.ma.masked_invalid(values), levels=14, cmap="viridis")
-            lines = ax.contour(n, t, np.ma.masked_invalid(values), levels=filled.levels[::2], colors="white",
-                               linewidths=0.6)
-            ax.clabel(lines, fmt=fmt, fontsize=7)
+        if finite.sum() >= 4 and contoured:
+            filled = ax.contourf(n, t, np.ma.masked_invalid(values), levels=14, cmap=cmap)
+            if label.startswith("width"):
+                _relative_band_lines(ax, result)
+            else:
+                lines = ax.contour(n, t, np.ma.masked_invalid(values), levels=filled.levels[::2], colors="white",
+                                   linewidths=0.6)
+                ax.clabel(lines, fmt=fmt, fontsize=7)
             fig.colorbar(filled, ax=ax, label=label)
         else:
-            mesh = ax.pcolormesh(n, t, np.ma.masked_invalid(values), shading="nearest", cmap="viridis")
+            mesh = ax.pcolormesh(_cell_edges(n), _cell_edges(t), np.ma.masked_invalid(values), shading="flat",
+                                 cmap=cmap)
             fig.colorbar(mesh, ax=ax, label=label)
+            if label.startswith("width"):
+                _relative_band_labels(ax, result)
         bad = ~result.valid
         if bad.any():
-            if len(t) > 1 and len(n) > 1:
+            if contoured:
                 ax.contourf(n, t, bad.astype(float), levels=[0.5, 1.5], colors="none", hatches=["///"])
             grid_n, grid_t = np.meshgrid(n, t)
             ax.plot(grid_n[bad], grid_t[bad], "x", color="0.15", ms=4, label="outside validity (x, hatched)")
@@ -264,13 +364,64 @@ def efficiency_map_figure(result: EfficiencyMap, path, command: str, study_point
             ax.plot(study_point[1], study_point[0], "r*", ms=12, label="study operating point")
         ax.set_xlabel("input speed [rpm]")
         ax.set_ylabel("input torque [N·m]")
-        ax.set_title(label)
-        ax.legend(loc="upper right", fontsize=8)
+        ax.set_title(label, fontsize=10)
+        handles, labels = ax.get_legend_handles_labels()
+        if label.startswith("width"):
+            relative = _relative_band(result)
+            handles += [Patch(facecolor=plt.get_cmap(cmap)(0.6), label=textwrap.fill(result.band_note, 70)),
+                        Line2D([], [], color="0.5", lw=0.8, label=f"{'lines' if contoured else 'cell labels'}: "
+                               f"(P_high − P_low)/P [%], {_finite_range(relative, '%.1f')} % over the map")]
+            ax.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, -0.13), fontsize=7.5, ncol=1)
+        else:
+            ax.legend(handles=handles, labels=labels, loc="upper right", fontsize=8)
     note = "; ".join(result.reasons) if result.reasons else "every cell inside the validity"
-    fig.suptitle(f"Efficiency map of design {result.design}, friction: {result.friction}\nhatched: {note}",
+    band = "" if result.has_band else f"\n{result.band_note}"
+    fig.suptitle(f"Efficiency map of design {result.design}, friction: {result.friction}\nhatched: {note}{band}",
                  fontsize=10)
     fig.tight_layout(rect=(0, 0.05, 1, 1))
     return _save(fig, path, command, note)
+
+
+def _cell_edges(centres: np.ndarray) -> np.ndarray:
+    """Edges of the cells around sorted ``centres`` (midpoints; ±5 % around a single value) for pcolormesh."""
+    centres = np.asarray(centres, dtype=float)
+    if centres.size == 1:
+        half = 0.05 * abs(centres[0]) or 0.5
+        return np.array([centres[0] - half, centres[0] + half])
+    mid = 0.5 * (centres[1:] + centres[:-1])
+    return np.concatenate([[2 * centres[0] - mid[0]], mid, [2 * centres[-1] - mid[-1]]])
+
+
+def _finite_range(values: np.ndarray, fmt: str) -> str:
+    """``min–max`` of the finite values, each formatted with ``fmt``; ``n/a`` when there are none."""
+    finite = np.asarray(values)[np.isfinite(values)]
+    return f"{fmt % finite.min()}–{fmt % finite.max()}" if finite.size else "n/a"
+
+
+def _relative_band(result: EfficiencyMap) -> np.ndarray:
+    """(P_high − P_low)/P of every cell [%]."""
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return (result.power_loss_high_w - result.power_loss_low_w) / result.power_loss_w * 100
+
+
+def _relative_band_lines(ax, result: EfficiencyMap) -> None:
+    """Labelled contour lines of (P_high − P_low)/P [%] on the band panel."""
+    relative = np.ma.masked_invalid(_relative_band(result))
+    if relative.count() < 4 or float(relative.max() - relative.min()) <= 0.0:
+        return
+    lines = ax.contour(result.speed_rpm, result.torque_nm, relative, levels=6, colors="white", linewidths=0.8)
+    ax.clabel(lines, fmt="%.1f %%", fontsize=7)
+
+
+def _relative_band_labels(ax, result: EfficiencyMap) -> None:
+    """(P_high − P_low)/P [%] written into every cell of a band panel drawn as cells (one torque or one speed)."""
+    relative = _relative_band(result)
+    for i, torque in enumerate(result.torque_nm):
+        for j, speed in enumerate(result.speed_rpm):
+            if np.isfinite(relative[i, j]):
+                ax.annotate(f"{relative[i, j]:.1f} %", (speed, torque), xytext=(0, 10), textcoords="offset points",
+                            ha="center", va="bottom", fontsize=7,
+                            bbox={"boxstyle": "round,pad=0.2", "facecolor": "white", "alpha": 0.7, "lw": 0})
 
 
 # ---------------------------------------------------------------------- mesh cycle and line of action
