@@ -374,9 +374,9 @@ def efficiency_map_figure(result: EfficiencyMap, path, command: str, study_point
             ax.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, -0.13), fontsize=7.5, ncol=1)
         else:
             ax.legend(handles=handles, labels=labels, loc="upper right", fontsize=8)
-    note = "; ".join(result.reasons) if result.reasons else "every cell inside the validity"
+    hatched = "; ".join(result.reasons) if result.reasons else "every cell inside the validity"
     band = "" if result.has_band else f"\n{result.band_note}"
-    fig.suptitle(f"Efficiency map of design {result.design}, friction: {result.friction}\nhatched: {note}{band}",
+    fig.suptitle(f"Efficiency map of design {result.design}, friction: {result.friction}\nhatched: {hatched}{band}",
                  fontsize=10)
     fig.tight_layout(rect=(0, 0.05, 1, 1))
     return _save(fig, path, command, note)
