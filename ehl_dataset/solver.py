@@ -33,19 +33,36 @@ non-converged result carries its residuals and a message.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
 
 from . import names
+from .lazy import lazy_exports
 from .model.contact import ContactCase
 from .model.effects import Effects
 from .model.lubricant import Lubricant
-from .solvers.deterministic import DeterministicOptions
-from .solvers.homogenised import HomogenisedOptions, solve_homogenised
 from .solvers.levels import AccuracyLevel
 from .solvers.problem import ContactProblem, resolve_contact
 from .solvers.result import ContactResult
 from .solvers.threads import one_blas_thread
 from .solvers.steady import solve_steady
-from .solvers.wide_contact import solve_deterministic_contact
+
+if TYPE_CHECKING:
+    from .solvers.deterministic import DeterministicOptions
+    from .solvers.homogenised import HomogenisedOptions
+
+# the mixed-model solvers (and their scipy.fft, scipy.interpolate, scipy.special imports) load on first use: a smooth
+# solve does not need them
+_LAZY = {"solve_homogenised": "ehl_dataset.solvers.homogenised",
+         "HomogenisedOptions": "ehl_dataset.solvers.homogenised",
+         "solve_deterministic_contact": "ehl_dataset.solvers.wide_contact",
+         "DeterministicOptions": "ehl_dataset.solvers.deterministic"}
+__getattr__, __dir__ = lazy_exports(__name__, _LAZY, globals())
+
+
+def _entry(name: str):
+    """The module attribute ``name``, imported on first use (a value set on the module, e.g. a test's stand-in,
+    wins)."""
+    return globals()[name] if name in globals() else __getattr__(name)
 
 SOLVER_VERSION = "ehl-2026.11-15"
 """Version of the numerics behind :func:`solve_contact`. The dataset store records it and refuses to resume a file
@@ -151,8 +168,8 @@ def solve_problem(problem: ContactProblem) -> ContactResult:
     # one BLAS thread per solve: the dense solves are small, and workers run one case per core
     with one_blas_thread():
         if p.route in ("homogenised", "film_law"):
-            return solve_homogenised(p.case, p.state, p.steady_level, p.plan, p.roughness, p.homogenised)
+            return _entry("solve_homogenised")(p.case, p.state, p.steady_level, p.plan, p.roughness, p.homogenised)
         if p.route == "deterministic":
-            return solve_deterministic_contact(p.case, p.state, p.plan, p.deterministic, p.roughness, p.time_limit_s,
-                                               p.level.name, p.checkpoint)
+            return _entry("solve_deterministic_contact")(p.case, p.state, p.plan, p.deterministic, p.roughness,
+                                                         p.time_limit_s, p.level.name, p.checkpoint)
         return solve_steady(p.case, p.state, p.steady_level, p.plan)

@@ -69,7 +69,6 @@ def _solve(args) -> int:
     (:meth:`~ehl_dataset.solvers.result.ContactResult.to_dict`) with the case's Hertzian quantities."""
     from ehl_dataset.model.contact import ContactCase
     from ehl_dataset.solver import solve_problem
-    from ehl_dataset.solvers.homogenised import HomogenisedOptions
     from ehl_dataset.solvers.problem import resolve_contact
 
     case = ContactCase.from_engineering(args.p_h_gpa, args.r_eq_mm, args.u_r, args.sr, args.temp_c,
@@ -83,8 +82,13 @@ def _solve(args) -> int:
         if args.dx_um is not None:
             overrides["dx_m"] = args.dx_um * 1e-6
         deterministic = deterministic_options(args.level, **overrides)
+    homogenised = None  # the default closure: the homogenised model's default options (loaded only if it runs)
+    if args.closure != DEFAULT_CLOSURE:
+        from ehl_dataset.solvers.homogenised import HomogenisedOptions
+
+        homogenised = HomogenisedOptions(closure=args.closure)
     problem = resolve_contact(case, args.lubricant, args.level, args.effects, roughness, args.time_limit_s,
-                              args.model, deterministic, HomogenisedOptions(closure=args.closure))
+                              args.model, deterministic, homogenised)
     result = solve_problem(problem)
     rough = case.s_c > 0.0  # smooth surfaces use no profile
     payload = {**result.to_dict(), "load_per_length_n_m": case.load_per_length, "half_width_m": case.half_width,

@@ -72,9 +72,9 @@ from typing import Any
 import numba
 import numpy as np
 from scipy.linalg import solve_triangular
-from scipy.optimize import brentq
 
-from ..validation import InputError, check_range
+from ..validation import InputError, SolverError, check_range
+from .scalar_root import brent_root
 
 OIL_CONDUCTIVITY_W_MK = 0.14
 """Default lubricant thermal conductivity [W/(m·K)] (representative, module docstring)."""
@@ -755,7 +755,13 @@ def centre_estimate(table: TemperatureTable, h_central: float, half_width: float
         return coefficient * abs(u_s) * abs(float(np.ravel(film(flash)[0])[0])) - flash
 
     upper = coefficient * abs(u_s) * tau_iso
-    flash = brentq(excess, 0.0, upper, xtol=1e-9 * (1.0 + upper), rtol=1e-12) if excess(upper) < 0.0 else upper
+    flash = upper
+    if excess(upper) < 0.0:
+        root = brent_root(excess, 0.0, upper, xtol=1e-9 * (1.0 + upper), rtol=1e-12)
+        if not root.converged:
+            raise SolverError(f"flash temperature of the planner's thermal estimate not converged after "
+                              f"{root.iterations} Brent steps (last {root.root!r} K in [0, {upper!r}] K)")
+        flash = root.root
     t, xpar, beta_s = film(flash)
     tau = abs(float(np.ravel(t)[0]))
     centre = float(np.ravel(film_centre_rise(xpar, beta_s, tau, u_s, h_central, properties.oil_conductivity))[0])

@@ -62,7 +62,6 @@ import time
 from dataclasses import replace
 
 import numpy as np
-from scipy.optimize import brentq
 
 from ..model.contact import ContactCase
 from ..model.dry_contact import dry_contact_table, profile_hash, windows_that_fit
@@ -288,6 +287,8 @@ def asperity_closure(film_law: ContactResult, case: ContactCase, state: Lubrican
     if balance(0.0) >= 0.0:
         share = 0.0
     else:
+        from scipy.optimize import brentq  # imported here: only the asperity closure needs it (a slow import)
+
         share = brentq(balance, 0.0, s_max, xtol=1e-12, rtol=1e-10)
     film, p_a = asperity_pressure(share)
     residual = abs(balance(share))

@@ -11,7 +11,7 @@ decides which solver runs it (the ``route``) with which options. The solvers beh
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from ..model.contact import ContactCase
 from ..model.effects import Effects
@@ -19,10 +19,12 @@ from ..model.lubricant import Lubricant, LubricantState, load_lubricant
 from ..model.roughness import RoughnessProfile
 from ..names import CONTACT_EFFECT_PLANS, MODELS
 from ..validation import InputError, check_time_limit
-from .deterministic import DeterministicOptions, deterministic_options
-from .homogenised import HomogenisedOptions
 from .levels import AccuracyLevel, Level, level_settings
 from .planner import resolve_effects, with_model, without_thermal
+
+if TYPE_CHECKING:  # imported where a route needs them: a smooth solve does not load the mixed models
+    from .deterministic import DeterministicOptions
+    from .homogenised import HomogenisedOptions
 
 ROUTES = ("steady", "film_law", "homogenised", "deterministic")
 """Which solver a resolved problem runs: the steady smooth solver, the planner's film-law homogenised model, the
@@ -145,10 +147,16 @@ def resolve_contact(case: ContactCase, lubricant: Lubricant | str, level: str | 
         raise InputError("roughness", type(roughness).__name__, "a RoughnessProfile or None")
     if model not in MODELS:
         raise InputError("model", model, f"one of {list(MODELS)}")
-    if deterministic is not None and not isinstance(deterministic, DeterministicOptions):
-        raise InputError("deterministic", type(deterministic).__name__, "a DeterministicOptions or None")
-    if homogenised is not None and not isinstance(homogenised, HomogenisedOptions):
-        raise InputError("homogenised", type(homogenised).__name__, "a HomogenisedOptions or None")
+    if deterministic is not None:
+        from .deterministic import DeterministicOptions
+
+        if not isinstance(deterministic, DeterministicOptions):
+            raise InputError("deterministic", type(deterministic).__name__, "a DeterministicOptions or None")
+    if homogenised is not None:
+        from .homogenised import HomogenisedOptions
+
+        if not isinstance(homogenised, HomogenisedOptions):
+            raise InputError("homogenised", type(homogenised).__name__, "a HomogenisedOptions or None")
     time_limit_s = check_time_limit(time_limit_s)
     state = lubricant.state(case.temperature)
     settings = level_settings(level)
@@ -181,14 +189,20 @@ def resolve_contact(case: ContactCase, lubricant: Lubricant | str, level: str | 
                          "reference level's plan for a rough contact, or effects='full' on a rough contact)")
     options_h = options_d = None
     if route == "homogenised":
+        from .homogenised import HomogenisedOptions
+
         options_h = homogenised or HomogenisedOptions()
         # the film-law closure (and the asperity closure built on it) has the smooth solver's thermal correction;
         # the flow-factor closures have none
         if options_h.closure not in ("film_law", "asperity"):
             plan = _isothermal(plan, "homogenised")
     elif route == "film_law":
+        from .homogenised import HomogenisedOptions
+
         options_h = HomogenisedOptions(closure="film_law")
     elif route == "deterministic":
+        from .deterministic import deterministic_options
+
         plan = _isothermal(plan, "deterministic")
         options_d = deterministic or deterministic_options(settings)
     return ContactProblem(case, lubricant, state, settings, plan, model, route, roughness, options_h, options_d,
