@@ -4,8 +4,8 @@ studies as PNG files (matplotlib), each with the command that made it and the so
 The friction model is the project's fitted coefficient file (``--friction``, default the shipped ``atf``, the fit of the paper factorial);
 ``--compare`` adds published formulas (default ``xu2007``) drawn alongside. With a friction model that has
 prediction intervals the efficiency map carries the 90 % band of P and η per cell (``--table`` writes it as CSV).
-The operating conditions default to the study's (data/studies/paper2009.toml: 250 N·m, 4000 rpm, ATF 90 °C, Rq 0.4 µm, M_P 15 µm, M_L 12 µm). See
-:mod:`workflows.report` and docs/how-to/studies-and-reports.md.
+The operating conditions default to the study's (data/studies/paper2009.toml: 250 N·m, 4000 rpm, ATF 90 °C,
+Rq 0.4 µm, M_P 15 µm, M_L 12 µm). See :mod:`workflows.report` and docs/how-to/studies-and-reports.md.
 """
 
 from __future__ import annotations

@@ -183,8 +183,8 @@ class EfficiencyMap:
         """What the band is, or why there is none (the figure's legend and the JSON's ``band_note``) [-]."""
         if not self.has_band:
             return NO_BAND_NOTE
-        return (f"{self.band_coverage * 100:.0f} % prediction band of the friction surrogate, fully correlated over the mesh "
-                "(every contact point at the same end of its μ interval)")
+        return (f"{self.band_coverage * 100:.0f} % prediction band of the friction surrogate, fully correlated over "
+                "the mesh (every contact point at the same end of its μ interval)")
 
     def to_dict(self) -> dict[str, Any]:
         """The map as a JSON-ready dict (arrays as arrays; ``friction_model``, ``not_valid_reasons`` as named there).
@@ -331,8 +331,8 @@ def efficiency_map_figure(result: EfficiencyMap, path, command: str, study_point
     panels = [(result.efficiency * 100, "mechanical efficiency η [%]", "%.2f", "viridis"),
               (result.power_loss_w / 1e3, "friction power loss P [kW]", "%.2f", "viridis")]
     if result.has_band:
-        panels.append(((result.efficiency_high - result.efficiency_low) * 100,
-                       f"width of the {result.band_coverage * 100:.0f} % band of η [percentage points]", "%.3f", "magma_r"))
+        width = f"width of the {result.band_coverage * 100:.0f} % band of η [percentage points]"
+        panels.append(((result.efficiency_high - result.efficiency_low) * 100, width, "%.3f", "magma_r"))
     fig, axes = plt.subplots(1, len(panels), figsize=(6.5 * len(panels), 6.3 if result.has_band else 5.4))
     t, n = result.torque_nm, result.speed_rpm
     contoured = len(t) > 1 and len(n) > 1
