@@ -120,10 +120,6 @@ def band_lines(p: dict) -> list[str]:
                      f"{high / 1e3:.4g} kW, η {eta_low * 100:.3f} to {eta_high * 100:.3f} % ({p['band_combination']})")
     elif p.get("band_note"):
         lines.append(p["band_note"])
-    if "friction_roughness" in p:
-        from ehl_dataset.model.roughness_identity import describe_roughness
-
-        lines.append(f"surrogate fitted on roughness profile: {describe_roughness(p['friction_roughness'])}")
     overall = (p.get("friction_offgrid") or {}).get("overall")
     if overall and overall.get("n"):
         cov = overall.get("coverage")

@@ -69,11 +69,6 @@ def test_gear_evaluate_shows_the_coefficient_files_record(fitted, capsys):
     capsys.readouterr()
     main(["gear", "evaluate", *DESIGN_D, "--friction", str(fitted[0]), "--json"])
     assert json.loads(capsys.readouterr().out)["friction_roughness"] == FLANK
-    main(["gear", "evaluate", *DESIGN_D, "--friction", str(fitted[0])])
-    assert f"surrogate fitted on roughness profile: flank_ground (sha256 {FLANK['sha256'][:12]}...)" in \
-        capsys.readouterr().out
-    main(["gear", "evaluate", *DESIGN_D, "--friction", "atf"])
-    assert "surrogate fitted on roughness profile: not recorded" in capsys.readouterr().out
     main(["gear", "evaluate", *DESIGN_D, "--friction", "atf", "--json"])
     assert json.loads(capsys.readouterr().out)["friction_roughness"] is None
 
