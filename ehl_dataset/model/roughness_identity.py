@@ -23,7 +23,9 @@ def roughness_identity(profile=None, path: str | Path | None = None) -> dict[str
     ----------
     profile : RoughnessProfile or None
         A registered profile (:func:`~ehl_dataset.model.roughness.named_profile`, which carries its name and file
-        hash); None with no ``path``: the default profile every model uses when given none [-].
+        hash); None with no ``path``: the default profile every model uses when given none, recorded from its
+        registry entry without reading the file (every model reads it through ``named_profile``, which refuses a
+        file whose sha256 differs from the entry's) [-].
     path : str or Path, optional
         A user's profile file the profile was read from: recorded by its file name and the sha256 of its bytes [-].
 
@@ -38,13 +40,13 @@ def roughness_identity(profile=None, path: str | Path | None = None) -> dict[str
         For a profile that is neither registered nor given with its file.
     """
     from ..validation import InputError
-    from .roughness import DEFAULT_PROFILE, file_sha256, named_profile
+    from .roughness import DEFAULT_PROFILE, PROFILES, file_sha256
 
     if path is not None:
         path = Path(path)
         return {"name": path.name, "sha256": file_sha256(path)}
     if profile is None:
-        profile = named_profile(DEFAULT_PROFILE)
+        return {"name": DEFAULT_PROFILE, "sha256": PROFILES[DEFAULT_PROFILE].sha256}
     if not profile.name or not profile.sha256:
         raise InputError("roughness profile", profile.source or "<profile>",
                          "a registered profile (named_profile) or the file it was read from")
