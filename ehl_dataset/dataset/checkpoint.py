@@ -42,8 +42,8 @@ class FileCheckpoint:
     every_s : float
         Wall time between saves [s].
     portable : bool
-        Write the plain-data ``.npz`` form (no pickle, no preconditioner) instead of a pickle [-]; either form is
-        read back whatever this flag says.
+        Write the plain-data ``.npz`` form (no pickle, no preconditioner) instead of a pickle; either form is read
+        back whatever this flag says [-].
     """
 
     def __init__(self, path: str | os.PathLike, every_s: float = DEFAULT_EVERY_S, portable: bool = False):
