@@ -1,11 +1,15 @@
 """``gearloss --version`` reports the solver's own constants without loading the solver: the version line is read
-from the source of ehl_dataset.solver, and the process that prints it imports neither numpy, scipy, numba nor h5py."""
+from the source of ehl_dataset.solver, and the process that prints it imports neither numpy, scipy, numba nor h5py.
+``gearloss --help`` and a command's ``--help`` build the parser without them too (the options' defaults and choices
+live in modules without numerics)."""
 
 from __future__ import annotations
 
 import json
 import subprocess
 import sys
+
+import pytest
 
 from ehl_dataset.names import MODELS
 from ehl_dataset.solver import SOLVER_VERSION
@@ -17,10 +21,24 @@ def test_version_line_names_the_solver_version_and_models():
     assert f"EHL solver {SOLVER_VERSION};" in version_text()
 
 
-def test_version_imports_no_numerics():
-    code = ("import json, sys\nfrom workflows.cli import main\nmain(['--version'])\n"
-            "print(json.dumps(sorted({m.split('.')[0] for m in sys.modules} & "
-            "{'numpy', 'scipy', 'numba', 'h5py', 'pandas', 'statsmodels'})))")
-    out = subprocess.run([sys.executable, "-c", code], check=True, capture_output=True, text=True).stdout
+NUMERICS = ("numpy", "scipy", "numba", "h5py", "pandas", "statsmodels")
+
+
+def numerics_loaded_by(argv: list[str]) -> tuple[str, list[str]]:
+    """(the output of ``gearloss argv``, the packages of :data:`NUMERICS` it imported), in a fresh interpreter."""
+    code = ("import json, sys\nfrom workflows.cli import main\nmain(sys.argv[1:])\n"
+            f"print(json.dumps(sorted({{m.split('.')[0] for m in sys.modules}} & set({list(NUMERICS)!r}))))")
+    out = subprocess.run([sys.executable, "-c", code, *argv], check=True, capture_output=True, text=True).stdout
     lines = out.strip().splitlines()
-    assert lines[0].startswith("gearloss ") and json.loads(lines[-1]) == []
+    return "\n".join(lines[:-1]), json.loads(lines[-1])
+
+
+def test_version_imports_no_numerics():
+    out, loaded = numerics_loaded_by(["--version"])
+    assert out.startswith("gearloss ") and loaded == []
+
+
+@pytest.mark.parametrize("argv", [["--help"], ["contact", "solve", "--help"], ["dataset", "run", "--help"]])
+def test_help_imports_no_numerics(argv):
+    out, loaded = numerics_loaded_by(argv)
+    assert "usage: gearloss" in out and loaded == []
