@@ -22,8 +22,8 @@ from .cli_output import emit
 
 COMMANDS = (
     ("quick", "quick", "quick factorial (324 points, fast level): the main job, under a minute with 2 workers"),
-    ("paper", "paper2009", "the paper's 42,000-point factorial (standard level): the long run (48 min with 2 "
-                           "workers on this 2-core machine, solver ehl-2026.11-14; Dask for clusters)"),
+    ("paper", "paper2009", "the paper's 42,000-point factorial (standard level): the long run (12 min with 2 "
+                           "workers on a 2-core machine, solver ehl-2026.11-15; Dask for clusters)"),
     ("smoke", "smoke", "smoke factorial (96 points, smooth-surface solves): every stage end to end in seconds, to "
                        "check an installation; its fit is not a friction model"),
 )
