@@ -1,7 +1,8 @@
 """The gearloss command line: one console script with sub-command groups.
 
 Each group lives in its own module (``cli_contact``, ``cli_dataset``, ``cli_surrogate``, ``cli_gear``, ...) that
-exposes ``register(subparsers)``; heavy imports happen inside the handlers so ``gearloss --help`` stays fast.
+exposes ``register(subparsers)``; heavy imports happen inside the handlers so ``gearloss --help`` stays fast, and a
+command registers only its own group (``gearloss contact solve`` does not build the gear options).
 Output goes through :func:`workflows.cli_output.emit`; every error goes through :func:`workflows.cli_output.fail`
 (one line on stderr naming the option as typed, and with ``--json`` a JSON object on stdout), with the exit codes
 of :mod:`workflows.exit_codes`.
@@ -10,6 +11,7 @@ of :mod:`workflows.exit_codes`.
 from __future__ import annotations
 
 import argparse
+import importlib
 import shlex
 import signal
 import sys
@@ -17,13 +19,15 @@ from contextlib import contextmanager
 
 from ehl_dataset.validation import InputError, SolverError
 
-from . import (cli_accuracy, cli_contact, cli_dataset, cli_gear, cli_lubricant, cli_pipeline, cli_report,
-               cli_roughness, cli_surrogate, exit_codes)
+from . import exit_codes
 from .cli_help import GearlossParser, UsageError
 
-GROUP_MODULES = (cli_lubricant, cli_contact, cli_dataset, cli_surrogate, cli_gear, cli_pipeline, cli_report,
-                 cli_accuracy, cli_roughness)
-"""The command groups, in the order of ``gearloss --help``; each module adds its sub-commands (``register``)."""
+GROUPS = {"lubricant": "workflows.cli_lubricant", "contact": "workflows.cli_contact",
+          "dataset": "workflows.cli_dataset", "surrogate": "workflows.cli_surrogate", "gear": "workflows.cli_gear",
+          "pipeline": "workflows.cli_pipeline", "report": "workflows.cli_report",
+          "accuracy": "workflows.cli_accuracy", "roughness": "workflows.cli_roughness"}
+"""The command groups, in the order of ``gearloss --help``, and the module that adds each group's sub-commands
+(``register(subparsers)``), imported when the group is registered."""
 
 DESCRIPTION = """\
 gearloss: mixed-EHL line contacts -> a fitted friction surrogate -> helical gear power loss and efficiency
@@ -48,14 +52,26 @@ class _VersionAction(argparse.Action):
         parser.exit(0)
 
 
-def build_parser() -> argparse.ArgumentParser:
+def build_parser(groups=None) -> argparse.ArgumentParser:
+    """The ``gearloss`` argument parser.
+
+    Parameters
+    ----------
+    groups : iterable of str or None
+        Names of the command groups to register (keys of :data:`GROUPS`); None: all of them [-].
+
+    Returns
+    -------
+    argparse.ArgumentParser
+        The parser; a command's handler is ``args.handler``.
+    """
     parser = GearlossParser(prog="gearloss", description=DESCRIPTION,
                             epilog="exit codes (every command):\n" + exit_codes.table_text())
     parser.add_argument("--version", action=_VersionAction,
                         help="print the package and EHL solver versions and exit")
     subparsers = parser.add_subparsers(dest="group", metavar="GROUP")
-    for module in GROUP_MODULES:
-        module.register(subparsers)
+    for name in GROUPS if groups is None else groups:
+        importlib.import_module(GROUPS[name]).register(subparsers)
     return parser
 
 
@@ -168,7 +184,8 @@ def main(argv: list[str] | None = None) -> int:
         print(version_text())
         return 0
     as_json = "--json" in argv
-    parser = build_parser()
+    # a command registers only its group; anything else (no group, --help, a mistyped group) gets every group
+    parser = build_parser([argv[0]] if argv and argv[0] in GROUPS else None)
     try:
         args = parser.parse_args(argv)
     except UsageError as err:
