@@ -1,4 +1,6 @@
-"""Linear solves of the deterministic mixed solver: right-preconditioned GMRES and the banded preconditioner.
+"""Krylov linear solves: right-preconditioned GMRES and the banded preconditioners of the deterministic mixed solver
+and of the steady smooth Newton iteration (:class:`SteadyBandedPreconditioner`, the same idea on the steady
+system of :mod:`ehl_dataset.discretisation.steady_band`: a banded LU of the Newton matrix in deflection variables).
 
 The Newton matrix J = A + D·(K, 1) of :mod:`ehl_dataset.discretisation.mixed_system` is dense (K, the deflection,
 couples every node), but its product with a vector costs O(N log N) with the FFT of the deflection kernel, and a
@@ -15,11 +17,26 @@ per-call overhead of the library routine was a third of the solve time on grids 
 from __future__ import annotations
 
 import math
+from collections import OrderedDict
 
+import numba
 import numpy as np
 from scipy.linalg import lapack, solve_triangular
 
+from ..discretisation.deflection import inverse_kernel_band
 from ..discretisation.mixed_system import preconditioner_band
+from ..discretisation.steady_band import (apply_inverse_band, band_lu_solve, band_matvec, deflection_band,
+                                          inverse_band, newton_band)
+
+STEADY_INVERSE_WIDTH = 16
+"""Half width w of the banded inverse kernel B ≈ K⁻¹ of :class:`SteadyBandedPreconditioner` [nodes]."""
+STEADY_BAND = 32
+"""Half width of the band of S B that :class:`SteadyBandedPreconditioner` factorises [nodes] (about 2w: the film part
+E K B reaches beyond the band of B)."""
+STEADY_GRID_CACHE_SIZE = 32
+"""Grids whose preconditioner data (:class:`SteadyGridBand`) are kept per process, as the influence matrices."""
+_STEADY_GRIDS: OrderedDict = OrderedDict()
+_UNIT_COEFFICIENTS: dict = {}
 
 
 class BandedPreconditioner:
@@ -82,6 +99,257 @@ class BandedPreconditioner:
             out[2:-1:3] = np.convolve(y[0::3], self.binv, mode="same") - dpf
         out[-1] = dh0
         return out
+
+
+class SteadyGridBand:
+    """What :class:`SteadyBandedPreconditioner` needs of a grid and its deflection matrix, computed once per grid:
+    B ≈ K_II⁻¹ (:func:`~ehl_dataset.discretisation.steady_band.inverse_band`), the band of K_I B
+    (:func:`~ehl_dataset.discretisation.steady_band.deflection_band`) and the load row in the deflection variables
+    Bᵀℓ.
+
+    Parameters
+    ----------
+    kmat : numpy.ndarray
+        Dense deflection matrix K of the grid, (N, N) [-].
+    weights : numpy.ndarray
+        Control-volume widths w_i of the N nodes [a].
+    load_row : numpy.ndarray
+        Derivative of the relative load error with respect to the interior pressures, M = N − 2 entries [-].
+    """
+
+    def __init__(self, kmat: np.ndarray, weights: np.ndarray, load_row: np.ndarray):
+        width = STEADY_INVERSE_WIDTH
+        coefficients = _UNIT_COEFFICIENTS.get(width)
+        if coefficients is None:
+            coefficients = _UNIT_COEFFICIENTS.setdefault(width, inverse_kernel_band(width, 1.0))
+        self.kmat = kmat
+        self.binv = inverse_band(np.ascontiguousarray(weights, dtype=float), coefficients)
+        self.kb = deflection_band(np.ascontiguousarray(kmat), self.binv, STEADY_BAND + 2)
+        self.load = _transpose_band_product(self.binv, np.asarray(load_row, dtype=float))
+
+    @classmethod
+    def of(cls, kmat: np.ndarray, weights: np.ndarray, load_row: np.ndarray) -> "SteadyGridBand":
+        """The kept data of the deflection matrix ``kmat`` (the same object), computed on the first request.
+
+        Parameters
+        ----------
+        kmat : numpy.ndarray
+            Dense deflection matrix K, (N, N) [-].
+        weights : numpy.ndarray
+            Control-volume widths of the N nodes [a].
+        load_row : numpy.ndarray
+            Load-row derivative over the M interior pressures [-].
+
+        Returns
+        -------
+        SteadyGridBand
+            The data, shared by every problem on the same matrix.
+        """
+        key = id(kmat)
+        entry = _STEADY_GRIDS.get(key)
+        if entry is not None and entry.kmat is kmat:  # the entry holds kmat, so its id cannot be reused meanwhile
+            _STEADY_GRIDS.move_to_end(key)
+            return entry
+        entry = cls(kmat, weights, load_row)
+        if not kmat.flags.writeable:  # only the shared read-only matrices of influence_matrix are kept
+            _STEADY_GRIDS[key] = entry
+            while len(_STEADY_GRIDS) > STEADY_GRID_CACHE_SIZE:
+                _STEADY_GRIDS.popitem(last=False)
+        return entry
+
+
+def _transpose_band_product(binv: np.ndarray, row: np.ndarray) -> np.ndarray:
+    """Bᵀ row for B in the diagonal storage of :func:`~ehl_dataset.discretisation.steady_band.inverse_band`."""
+    m, size = binv.shape
+    width = (size - 1) // 2
+    out = np.zeros(m)
+    for k in range(-width, width + 1):
+        lo, hi = max(0, -k), min(m, m - k)
+        out[lo + k: hi + k] += binv[lo:hi, k + width] * row[lo:hi]
+    return out
+
+
+class SteadyBandedPreconditioner:
+    """Approximate inverse of the steady Newton matrix S from the LU of the band of S B
+    (:func:`~ehl_dataset.discretisation.steady_band.newton_band`), bordered by the film constant and the load row.
+
+    :meth:`apply` solves M y = r (the band of S B), eliminates ΔH0 with the exact load row in the deflection
+    variables, and returns ΔP = B y: S·apply(r) = r up to what the band leaves out of S B, which a right-preconditioned
+    GMRES (:func:`gmres`) corrects in a few iterations.
+
+    Parameters
+    ----------
+    lb, eb : numpy.ndarray
+        Local parts of the Newton matrix (:func:`~ehl_dataset.discretisation.steady_band.newton_bands`), (M, 4) [-].
+    grid : SteadyGridBand
+        Data of the grid [-].
+    """
+
+    def __init__(self, lb: np.ndarray, eb: np.ndarray, grid: SteadyGridBand):
+        self.kl = STEADY_BAND
+        self.grid = grid
+        self.m = lb.shape[0]
+        band, col_h0 = newton_band(lb, eb, grid.binv, grid.kb, self.kl)
+        self.lu, self.piv, info = lapack.dgbtrf(band, self.kl, self.kl)
+        if info < 0:
+            raise ValueError(f"dgbtrf: illegal argument {-info}")
+        self.singular = info > 0
+        if self.singular:
+            return
+        self.border = self._solve(col_h0)
+        self.denominator = float(grid.load @ self.border)
+        self.singular = not (math.isfinite(self.denominator) and self.denominator != 0.0)
+
+    def _solve(self, rhs):
+        x, _ = lapack.dgbtrs(self.lu, self.kl, self.kl, rhs, self.piv)
+        return x
+
+    def apply(self, r: np.ndarray) -> np.ndarray:
+        """Approximate S⁻¹ r (length M + 1: ΔP, ΔH0).
+
+        Parameters
+        ----------
+        r : numpy.ndarray
+            Right-hand side, M + 1 entries [-].
+
+        Returns
+        -------
+        numpy.ndarray
+            The approximate correction (ΔP, ΔH0) [-].
+        """
+        y = self._solve(r[:-1])
+        dh0 = (float(self.grid.load @ y) - r[-1]) / self.denominator
+        out = np.empty(self.m + 1)
+        out[:-1] = apply_inverse_band(self.grid.binv, y - self.border * dh0)
+        out[-1] = dh0
+        return out
+
+    def solve(self, lb: np.ndarray, eb: np.ndarray, load_row: np.ndarray, rhs: np.ndarray, tol: float,
+              max_iterations: int, give_up_after: int) -> tuple[np.ndarray, int, float]:
+        """Solve S δ = ``rhs`` by :func:`gmres` right-preconditioned with :meth:`apply`, compiled in one numba
+        function (:func:`steady_gmres`): S v from its bands and one product with K.
+
+        Parameters
+        ----------
+        lb, eb : numpy.ndarray
+            The bands this preconditioner was built from, (M, 4) [-].
+        load_row : numpy.ndarray
+            The load row, M + 1 entries [-].
+        rhs : numpy.ndarray
+            Right-hand side, M + 1 entries [-].
+        tol : float
+            Relative residual to reach [-].
+        max_iterations : int
+            GMRES iterations allowed [-].
+        give_up_after : int
+            Iterations after which GMRES stops when its mean convergence rate would not reach ``tol`` [-].
+
+        Returns
+        -------
+        tuple
+            (δ, iterations, relative residual) as :func:`gmres`.
+        """
+        return steady_gmres(lb, eb, self.grid.kmat, load_row, self.lu, self.piv, self.kl, self.border,
+                            self.grid.load, self.denominator, self.grid.binv, rhs, tol, max_iterations, give_up_after)
+
+
+@numba.njit(cache=True)
+def _steady_matvec(lb, eb, kmat, load_row, v):
+    m = lb.shape[0]
+    p = np.zeros(m + 2)
+    p[1:-1] = v[:m]
+    out = np.empty(m + 1)
+    out[:m] = band_matvec(lb, eb, v, np.dot(kmat, p))
+    out[m] = np.dot(load_row, v)
+    return out
+
+
+@numba.njit(cache=True)
+def _steady_precondition(lu, piv, kl, border, load, denominator, binv, r):
+    m = border.size
+    y = band_lu_solve(lu, piv, kl, r[:m])
+    dh0 = (np.dot(load, y) - r[m]) / denominator
+    out = np.empty(m + 1)
+    out[:m] = apply_inverse_band(binv, y - border * dh0)
+    out[m] = dh0
+    return out
+
+
+@numba.njit(cache=True)
+def steady_gmres(lb, eb, kmat, load_row, lu, piv, kl, border, load, denominator, binv, b, tol, max_iterations,
+                 give_up_after):
+    """:func:`gmres` (the same algorithm and stopping rules) for the steady Newton matrix held in bands
+    (:class:`SteadyBandedPreconditioner`), compiled: S v from :func:`~ehl_dataset.discretisation.steady_band.band_matvec`
+    and one product with K, the preconditioner from the banded LU factors (``dgbtrf``). Returns (x, iterations,
+    relative residual)."""
+    size = b.size
+    beta = math.sqrt(np.dot(b, b))
+    if beta == 0.0:
+        return np.zeros(size), 0, 0.0
+    basis = np.zeros((max_iterations + 1, size))
+    directions = np.zeros((max_iterations, size))
+    hess = np.zeros((max_iterations + 1, max_iterations))
+    g = np.zeros(max_iterations + 1)
+    cs = np.zeros(max_iterations)
+    sn = np.zeros(max_iterations)
+    basis[0] = b / beta
+    g[0] = beta
+    done = 0
+    relative = 1.0
+    for k in range(max_iterations):
+        directions[k] = _steady_precondition(lu, piv, kl, border, load, denominator, binv, basis[k])
+        w = _steady_matvec(lb, eb, kmat, load_row, directions[k])
+        for _ in range(2):  # classical Gram–Schmidt twice
+            for j in range(k + 1):
+                c = np.dot(basis[j], w)
+                hess[j, k] += c
+                w -= c * basis[j]
+        hess[k + 1, k] = math.sqrt(np.dot(w, w))
+        if hess[k + 1, k] > 0.0:
+            basis[k + 1] = w / hess[k + 1, k]
+        for j in range(k):
+            top = cs[j] * hess[j, k] + sn[j] * hess[j + 1, k]
+            hess[j + 1, k] = -sn[j] * hess[j, k] + cs[j] * hess[j + 1, k]
+            hess[j, k] = top
+        norm = math.hypot(hess[k, k], hess[k + 1, k])
+        if norm > 0.0:
+            cs[k] = hess[k, k] / norm
+            sn[k] = hess[k + 1, k] / norm
+        else:
+            cs[k] = 1.0
+            sn[k] = 0.0
+        hess[k, k] = norm
+        hess[k + 1, k] = 0.0
+        g[k + 1] = -sn[k] * g[k]
+        g[k] = cs[k] * g[k]
+        done = k + 1
+        relative = abs(g[k + 1]) / beta
+        if relative <= tol or hess[k, k] == 0.0:
+            break
+        if done >= give_up_after and relative > 0.0 and math.log(relative) * max_iterations / done > math.log(tol):
+            break
+    biggest = 0.0
+    smallest = math.inf
+    for j in range(done):
+        biggest = max(biggest, abs(hess[j, j]))
+        smallest = min(smallest, abs(hess[j, j]))
+    if done and smallest <= 1e-300 * max(biggest, 1e-300):  # breakdown: least squares
+        upper = np.zeros((done, done))
+        for i in range(done):
+            for j in range(i, done):
+                upper[i, j] = hess[i, j]
+        coefficients = np.linalg.lstsq(upper, g[:done])[0]
+    else:
+        coefficients = np.zeros(done)
+        for i in range(done - 1, -1, -1):
+            total = g[i]
+            for j in range(i + 1, done):
+                total -= hess[i, j] * coefficients[j]
+            coefficients[i] = total / hess[i, i]
+    x = np.zeros(size)
+    for j in range(done):
+        x += coefficients[j] * directions[j]
+    return x, done, relative
 
 
 def wrap_index(n: int, half: int) -> np.ndarray:

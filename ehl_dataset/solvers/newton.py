@@ -23,7 +23,8 @@ import numpy as np
 import scipy.linalg
 
 from ..discretisation.reynolds import assemble, full_jacobian, jacobian_diagonal, newton_matrix
-from .krylov import gmres
+from ..discretisation.steady_band import band_matvec, newton_bands
+from .krylov import SteadyBandedPreconditioner, SteadyGridBand, gmres
 
 LOG = logging.getLogger(__name__)
 """Every Newton iteration is logged at DEBUG level (norms, step, where the pressure moved most):
@@ -44,6 +45,16 @@ Newton tolerances, so that the iterates are those of exact linear solves up to r
 KRYLOV_ITERATIONS = 10
 """GMRES iterations allowed with a reused factorisation before the Newton matrix is factorised afresh (GMRES gives up
 from the third iteration on when its mean residual reduction would not reach :data:`KRYLOV_TOLERANCE` within them)."""
+BANDED_PRECONDITIONER = True
+"""Whether :class:`LinearSolver` solves Newton systems of at least :data:`BANDED_MIN_UNKNOWNS` unknowns by GMRES
+preconditioned with the banded LU of the Newton matrix in deflection variables
+(:class:`~ehl_dataset.solvers.krylov.SteadyBandedPreconditioner`), factorised afresh every iteration (O(N·w²))
+instead of a dense LU (O(N³)); False: the reused dense factorisation (or, with :data:`REUSE_FACTORISATION` False, one
+dense LU per iteration)."""
+BANDED_MIN_UNKNOWNS = 200
+"""Newton systems of at least this many unknowns take the banded preconditioner (:data:`BANDED_PRECONDITIONER`)."""
+BANDED_KRYLOV_ITERATIONS = 40
+"""GMRES iterations allowed with the banded preconditioner before the dense LU is used instead (a fallback, counted)."""
 
 
 @dataclass
@@ -172,22 +183,92 @@ class ReynoldsProblem:
         return newton_matrix(dp, dh, self.kmat, self.rows, d_a, d_b, load_row)
 
 
-class LinearSolver:
-    """Solves the Newton systems S δ = b of one problem, reusing an LU factorisation across iterations.
+class NewtonSystem:
+    """The semi-smooth Newton matrix S of one iteration of :func:`newton_solve`, held in its banded parts.
 
-    A system with fewer than :data:`REUSE_MIN_UNKNOWNS` unknowns is factorised (LAPACK ``dgetrf``) and solved
-    directly. A larger one is first solved by GMRES (right-preconditioned by the factorisation kept from an earlier
-    Newton iteration of the same problem, :func:`~ehl_dataset.solvers.krylov.gmres`) to the relative residual
-    :data:`KRYLOV_TOLERANCE`; if that takes more than :data:`KRYLOV_ITERATIONS` iterations (the matrix moved too far
-    from the factorised one), S is factorised afresh and solved directly. Close to the solution the Newton matrix
-    changes little between iterations, so one O(N³) factorisation serves several O(N²) iterations, and every
-    correction is that of an exact linear solve to within the Krylov tolerance (the Newton iteration keeps its
-    quadratic convergence). Counters: ``factorisations``, ``krylov_solves``, ``krylov_iterations``.
+    Rows r < M (M = N − 2 interior nodes): d_a[r] e_r − d_b[r] J_r with J = ∂R/∂P + (∂R/∂H)·K (the full Jacobian)
+    and, for a problem whose cavitation condition acts on P − s(H), minus ``coupling``[r]·∂H_i/∂(P, H0); the last
+    row is the load row. :meth:`dense` forms S (:meth:`ReynoldsProblem.newton_matrix`), :meth:`bands` its local
+    parts (:func:`~ehl_dataset.discretisation.steady_band.newton_bands`), :meth:`matvec` S v without forming it
+    (one product with K).
+
+    Parameters
+    ----------
+    problem : ReynoldsProblem
+        The problem [-].
+    dp, dh : numpy.ndarray
+        Banded ∂R/∂P and ∂R/∂H, (N, 4) [-].
+    d_a, d_b : numpy.ndarray
+        Fischer–Burmeister partials of the interior rows, M entries [-].
+    load_row : numpy.ndarray
+        Derivative of the relative load error, M + 1 entries (0 for H0) [-].
+    coupling : numpy.ndarray or None
+        d_a·∂s/∂H per interior row for a cavitation offset s(H), else None [-].
+    """
+
+    def __init__(self, problem: "ReynoldsProblem", dp, dh, d_a, d_b, load_row, coupling=None):
+        self.problem = problem
+        self.dp, self.dh, self.d_a, self.d_b = dp, dh, d_a, d_b
+        self.load_row = load_row
+        self.coupling = coupling
+        self.size = load_row.size
+        self._dense = None
+        self._bands = None
+
+    def dense(self) -> np.ndarray:
+        """S as a dense (M + 1) × (M + 1) matrix (formed once)."""
+        if self._dense is None:
+            problem = self.problem
+            system = problem.newton_matrix(self.dp, self.dh, self.d_a, self.d_b, self.load_row)
+            if self.coupling is not None:  # a = P_i − s(H_i): dH_i = K_i· dP + dH0
+                system[:-1, :-1] -= self.coupling[:, None] * problem.kmat[1:-1, 1:-1]
+                system[:-1, -1] -= self.coupling
+            self._dense = system
+        return self._dense
+
+    def bands(self) -> tuple[np.ndarray, np.ndarray]:
+        """(lb, eb), the local parts of the rows (:func:`~ehl_dataset.discretisation.steady_band.newton_bands`)."""
+        if self._bands is None:
+            lb, eb = newton_bands(self.dp, self.dh, self.problem.rows, self.d_a, self.d_b)
+            if self.coupling is not None:
+                eb[:, 2] -= self.coupling
+            self._bands = (lb, eb)
+        return self._bands
+
+    def matvec(self, v: np.ndarray) -> np.ndarray:
+        """S v (``v``: M + 1 entries, ΔP then ΔH0)."""
+        lb, eb = self.bands()
+        p = np.zeros(self.size + 1)
+        p[1:-1] = v[:-1]
+        out = np.empty(self.size)
+        out[:-1] = band_matvec(lb, eb, v, self.problem.kmat @ p)
+        out[-1] = self.load_row @ v
+        return out
+
+
+class LinearSolver:
+    """Solves the Newton systems S δ = b of one problem.
+
+    Three paths, chosen by the module switches. With :data:`BANDED_PRECONDITIONER` (the default) a
+    :class:`NewtonSystem` of at least :data:`BANDED_MIN_UNKNOWNS` unknowns is solved by GMRES
+    (:func:`~ehl_dataset.solvers.krylov.gmres`) preconditioned with the banded LU of S in deflection variables
+    (:class:`~ehl_dataset.solvers.krylov.SteadyBandedPreconditioner`, formed afresh for every system: O(N·w²)), its
+    products with S formed without the dense matrix (:meth:`NewtonSystem.matvec`), to the relative residual
+    :data:`KRYLOV_TOLERANCE`; if GMRES does not get there within :data:`BANDED_KRYLOV_ITERATIONS` (or the band is
+    singular) the dense S is factorised instead (counted in ``fallbacks``). Every other system (smaller ones, the
+    switch off, a dense matrix given) is solved with LAPACK's LU (``dgetrf``); with :data:`REUSE_FACTORISATION` a
+    system of at least :data:`REUSE_MIN_UNKNOWNS` unknowns is first solved by GMRES right-preconditioned with the
+    factorisation kept from an earlier Newton iteration of the same problem, and factorised afresh only if that would
+    take more than :data:`KRYLOV_ITERATIONS`. Every correction is that of an exact linear solve to within the Krylov
+    tolerance, so the Newton iteration keeps its quadratic convergence and its iterates. Counters:
+    ``factorisations`` (dense LU), ``krylov_solves`` and ``krylov_iterations`` (with a reused LU),
+    ``banded_solves`` and ``banded_iterations`` (GMRES with the banded preconditioner), ``fallbacks``.
 
     Parameters
     ----------
     reuse : bool or None
-        Reuse factorisations (False: one LU per system, the dense path); None takes :data:`REUSE_FACTORISATION` [-].
+        Reuse factorisations (False: one dense LU per system, the dense path: no banded preconditioner either); None
+        takes :data:`REUSE_FACTORISATION` [-].
     """
 
     def __init__(self, reuse: bool | None = None):
@@ -196,10 +277,27 @@ class LinearSolver:
         self.factorisations = 0
         self.krylov_solves = 0
         self.krylov_iterations = 0
+        self.banded_solves = 0
+        self.banded_iterations = 0
+        self.fallbacks = 0
 
-    def solve(self, system: np.ndarray, rhs: np.ndarray) -> np.ndarray:
-        """δ with S δ = b (``system`` S, ``rhs`` b); raises ``numpy.linalg.LinAlgError`` or ``ValueError`` when S is
-        singular or not finite."""
+    def counts(self) -> dict:
+        """The counters as a dict of ints."""
+        return {"factorisations": self.factorisations, "krylov_solves": self.krylov_solves,
+                "krylov_iterations": self.krylov_iterations, "banded_solves": self.banded_solves,
+                "banded_iterations": self.banded_iterations, "fallbacks": self.fallbacks}
+
+    def solve(self, system, rhs: np.ndarray) -> np.ndarray:
+        """δ with S δ = b (``system`` S: a :class:`NewtonSystem` or a dense matrix, ``rhs`` b); raises
+        ``numpy.linalg.LinAlgError`` or ``ValueError`` when S is singular or not finite."""
+        if isinstance(system, NewtonSystem):
+            if (self.reuse and BANDED_PRECONDITIONER and system.size >= BANDED_MIN_UNKNOWNS
+                    and np.all(np.isfinite(rhs))):
+                delta = self._banded(system, rhs)
+                if delta is not None:
+                    return delta
+                self.fallbacks += 1
+            system = system.dense()
         if self.lu is not None and self.lu[0].shape == system.shape:
             lu = self.lu
             delta, its, relative = gmres(system.dot, lambda r: scipy.linalg.lu_solve(lu, r, check_finite=False), rhs,
@@ -216,6 +314,24 @@ class LinearSolver:
         self.factorisations += 1
         self.lu = lu if self.reuse and system.shape[0] >= REUSE_MIN_UNKNOWNS else None
         return scipy.linalg.lu_solve(lu, rhs, check_finite=False)
+
+    def _banded(self, system: NewtonSystem, rhs: np.ndarray) -> np.ndarray | None:
+        """GMRES with the banded preconditioner; None when it does not reach :data:`KRYLOV_TOLERANCE`."""
+        problem = system.problem
+        lb, eb = system.bands()
+        if not (np.all(np.isfinite(lb)) and np.all(np.isfinite(eb))):
+            return None
+        grid = SteadyGridBand.of(problem.kmat, problem.weights, system.load_row[:-1])
+        preconditioner = SteadyBandedPreconditioner(lb, eb, grid)
+        if preconditioner.singular:
+            return None
+        delta, its, relative = preconditioner.solve(lb, eb, system.load_row, rhs, KRYLOV_TOLERANCE,
+                                                    BANDED_KRYLOV_ITERATIONS, 5)
+        self.banded_iterations += its
+        if relative <= KRYLOV_TOLERANCE and np.all(np.isfinite(delta)):
+            self.banded_solves += 1
+            return delta
+        return None
 
 
 @dataclass
@@ -339,11 +455,8 @@ def newton_solve(problem: ReynoldsProblem, p0: np.ndarray, h00: float, *, homoto
             dp[:, 2] -= sq * mm[1]
             dh[:, 2] -= sq * mm[2]
         # dφ/dx = d_a e_i − d_b J_i  (b = −κ R), and the load row
-        system = problem.newton_matrix(dp, dh, d_a, d_b, load_row)
-        if shift is not None:  # a = P_i − s(H_i): dH_i = K_i· dP + dH0
-            coupling = d_a * shift[1][1:-1]
-            system[:-1, :-1] -= coupling[:, None] * problem.kmat[1:-1, 1:-1]
-            system[:-1, -1] -= coupling
+        system = NewtonSystem(problem, dp, dh, d_a, d_b, load_row,
+                              None if shift is None else d_a * shift[1][1:-1])
         rhs = -np.concatenate([phi, [load_err]])
         try:
             delta = problem.linear.solve(system, rhs)

@@ -273,6 +273,7 @@ def solve_steady(case: ContactCase, state: LubricantState, lvl: AccuracyLevel, p
         if not outcome.converged:
             outcome = None
     x_coarse = steady_grid(lvl, COARSENING, h_c=h_c)
+    coarse = None
     if outcome is None and x_coarse.size < 0.6 * x.size:
         coarse = _problem_on(x_coarse, case, state, plan, scales)
         p0, h00 = _initial_guess(x_coarse, coarse, case, state, scales)
@@ -291,6 +292,7 @@ def solve_steady(case: ContactCase, state: LubricantState, lvl: AccuracyLevel, p
         outcome, its, stages = solve_steady_problem(problem, p0, h00, lvl)
         iterations += its
         record["fine_from_scratch"] = {"nodes": int(x.size), "stages": stages}
+    record["linear"] = _linear_counts(problem, coarse)
     if outcome.converged:
         for array in (x, outcome.p, outcome.h):
             array.flags.writeable = False
@@ -302,6 +304,18 @@ def solve_steady(case: ContactCase, state: LubricantState, lvl: AccuracyLevel, p
     result.extra["continuation"] = record
     result.wall_time = time.perf_counter() - start
     return result
+
+
+def _linear_counts(*problems: ReynoldsProblem | None) -> dict:
+    """The linear-solve counters (:meth:`~ehl_dataset.solvers.newton.LinearSolver.counts`) summed over the problems
+    of one solve (dense LU factorisations, GMRES solves with the banded preconditioner and their iterations, fallbacks
+    from it to the dense LU)."""
+    total: dict = {}
+    for problem in problems:
+        if problem is not None:
+            for key, value in problem.linear.counts().items():
+                total[key] = total.get(key, 0) + value
+    return total
 
 
 def _neighbour(x: np.ndarray, key: tuple, lam: float) -> _Kept | None:
