@@ -29,6 +29,7 @@ def register(subparsers) -> None:
     run.add_argument("--effects", choices=EFFECTS_CHOICES, help=EFFECTS_HELP + "; default: the factorial's")
     run.add_argument("--model", choices=MODELS, help=model_help("default: the factorial's, auto for the shipped ones except smoke"))
     run.add_argument("--overwrite", action="store_true", help="replace an existing file instead of continuing it")
+    add_roughness_options(run, "the file records its name and sha256; default: baseline_synthetic")
     _execution_options(run)
     run.set_defaults(handler=_run)
 
@@ -43,6 +44,8 @@ def register(subparsers) -> None:
     resume.add_argument("--retry-not-converged", action="store_true",
                         help="also recompute the rows stored not converged (e.g. stopped by an earlier "
                              "--time-limit-s), overwriting their earlier result")
+    add_roughness_options(resume, "default: the profile the file records; a profile file must be given again "
+                                  "(its path is not recorded); refused unless it is the recorded one")
     _execution_options(resume, solver_default=None)
     resume.set_defaults(handler=_resume)
 
@@ -52,6 +55,28 @@ def register(subparsers) -> None:
     info.add_argument("--slowest", type=int, default=5, help="how many of the slowest points to list")
     info.add_argument("--json", action="store_true", help="print one JSON object")
     info.set_defaults(handler=_info)
+
+
+def add_roughness_options(parser: argparse.ArgumentParser, default_text: str) -> None:
+    """``--roughness NAME | --roughness-file FILE`` and ``--roughness-unit``: the roughness profile of the rough
+    points (:func:`ehl_dataset.dataset.roughness_choice.choose_roughness`); ``default_text`` ends the help."""
+    group = parser.add_mutually_exclusive_group()
+    group.add_argument("--roughness", default=None, metavar="NAME",
+                       help="registered roughness profile every rough point takes, scaled to its Rq1/Rq2: "
+                            "baseline_synthetic (Gaussian ACF, beta 15 um) or flank_ground (self-affine, "
+                            f"ground-flank-like); `gearloss roughness show NAME` describes one ({default_text})")
+    group.add_argument("--roughness-file", default=None, metavar="FILE",
+                       help="a measured profile instead (two columns x, z in .txt/.csv, or a profilometer file with "
+                            "the roughness extra); every worker reads it at this path and checks its sha256")
+    parser.add_argument("--roughness-unit", default="um", choices=["um", "mm", "m"],
+                        help="unit of both columns of --roughness-file (default um)")
+
+
+def roughness_choice(args):
+    """The :class:`~ehl_dataset.dataset.roughness_choice.RoughnessChoice` of the parsed options (None: none given)."""
+    from ehl_dataset.dataset.roughness_choice import choose_roughness
+
+    return choose_roughness(args.roughness, args.roughness_file, args.roughness_unit)
 
 
 def _execution_options(parser: argparse.ArgumentParser, solver_default: str | None = "default") -> None:
@@ -89,6 +114,9 @@ def _finish(summary, as_json: bool) -> int:
     from .exit_codes import NOT_VALID, OK, SIGNAL_EXIT
 
     payload = summary.to_dict()
+    from ehl_dataset.dataset.store import read_metadata
+
+    payload["roughness"] = read_metadata(summary.path)["roughness"]
     if summary.interrupted:
         payload["resume_command"] = f"gearloss dataset resume {summary.path}"
     emit(payload, as_json, _human_summary)
@@ -104,6 +132,10 @@ def _human_summary(p: dict) -> str:
              f"({p['points_per_s']:.3g} points/s, store {p['store_time_per_point_s'] * 1e3:.2f} ms/point)",
              f"  rows: ok {p['ok']}, failed {p['failed']}, pending {p['pending']} of {p['n_points']}; "
              f"not converged {p['non_converged']}"]
+    if "roughness" in p:
+        from ehl_dataset.model.roughness_identity import describe_roughness
+
+        lines.append(f"  roughness profile: {describe_roughness(p['roughness'])}")
     if p["interrupted"]:
         lines.append(f"  interrupted by {p['interrupted']}: finished points are on disk; continue with "
                      f"'gearloss dataset resume {p['path']}'")
@@ -116,7 +148,7 @@ def _run(args) -> int:
     summary = run_factorial(args.out, args.factorial, lubricant=args.lubricant, level=args.level,
                             effects=args.effects, model=args.model, workers=args.workers,
                             scheduler=args.scheduler, solver=args.solver or DEFAULT_SOLVER,
-                            overwrite=args.overwrite, **_options(args))
+                            overwrite=args.overwrite, roughness=roughness_choice(args), **_options(args))
     return _finish(summary, args.json)
 
 
@@ -126,7 +158,7 @@ def _resume(args) -> int:
     summary = resume_run(args.file, workers=args.workers, scheduler=args.scheduler, solver=args.solver,
                          factorial=args.factorial, lubricant=args.lubricant, level=args.level,
                          effects=args.effects, model=args.model, retry_not_converged=args.retry_not_converged,
-                         **_options(args))
+                         roughness=roughness_choice(args), **_options(args))
     return _finish(summary, args.json)
 
 

@@ -61,6 +61,7 @@ from ..solvers.threads import one_blas_thread
 from ..validation import InputError, check_time_limit as check_positive_seconds
 from .executors import make_executor
 from .factorial import EFFECTS_MODES, Factorial, canonical_json, load_factorial
+from .roughness_choice import RoughnessChoice, choice_from_record, resolve_choice
 from .store import FAILED, OK, SOLVER_DEFAULTS, DatasetStore, package_version
 
 DEFAULT_SOLVER = "ehl_dataset.solver:solve_contact"
@@ -80,7 +81,10 @@ class PointTask:
     solver only when set, so solvers without that keyword work without a budget) and the contact ``model`` (a name
     of :data:`ehl_dataset.solver.MODELS`; passed to every solver that accepts a ``model`` keyword, and a solver
     without it is accepted only for ``"auto"``, :func:`check_model`); ``warm_start``: steady solves may start from
-    the worker's kept solution of a neighbouring point (:func:`ehl_dataset.solvers.steady.neighbour_warm_starts`)."""
+    the worker's kept solution of a neighbouring point (:func:`ehl_dataset.solvers.steady.neighbour_warm_starts`);
+    ``roughness``: the run's roughness profile (:class:`~ehl_dataset.dataset.roughness_choice.RoughnessChoice`: name,
+    sha256 and, for a user's file, its path; resolved and hash-checked once per worker process, passed to the solver
+    as ``roughness`` unless it is the default profile; None: the solver's default)."""
 
     index: int
     point: tuple[float, ...]
@@ -91,6 +95,7 @@ class PointTask:
     time_limit_s: float | None = None
     model: str = DEFAULT_MODEL
     warm_start: bool = False
+    roughness: RoughnessChoice | None = None
 
 
 _SOLVER_CACHE: dict[str, Callable] = {}
@@ -181,6 +186,9 @@ def compute_point(task: PointTask) -> dict[str, Any]:
         solve = resolve_solver(task.solver)
         if task.model != DEFAULT_MODEL or accepts_keyword(solve, "model"):
             budget["model"] = task.model
+        profile = resolve_choice(task.roughness)
+        if profile is not None:
+            budget["roughness"] = profile
         case = ContactCase(*task.point)
         with warnings.catch_warnings(), _one_blas_thread():
             warnings.simplefilter("always")
@@ -207,10 +215,13 @@ def compute_point(task: PointTask) -> dict[str, Any]:
 # ---------------------------------------------------------------------------------------------------------------
 # Configuration
 # ---------------------------------------------------------------------------------------------------------------
-def solver_config(solver: str | Callable, level: str, effects: str, model: str = DEFAULT_MODEL) -> dict[str, Any]:
+def solver_config(solver: str | Callable, level: str, effects: str, model: str = DEFAULT_MODEL,
+                  roughness: RoughnessChoice | None = None) -> dict[str, Any]:
     """What identifies the computation of a point: function, its version, level (and its definition), effects and
     contact model (:func:`check_model`); with the deterministic model also its model version, so that a file is
-    never resumed under other deterministic numerics.
+    never resumed under other deterministic numerics. With a user's roughness file (``roughness``) also the length
+    unit its columns were read in (``roughness_unit``): the file's record (name and sha256) does not hold it. The
+    profile itself is recorded beside the configuration (:func:`dataset_roughness`).
 
     The version is the function's ``solver_version`` attribute, else its module's ``SOLVER_VERSION`` or
     ``__version__``, else ``gearloss <package version>``. The level definition comes from
@@ -235,19 +246,69 @@ def solver_config(solver: str | Callable, level: str, effects: str, model: str =
         # every rough contact to it
         config["model_version"] = DETERMINISTIC_MODEL_VERSION
         config["wide_model_version"] = WIDE_MODEL_VERSION
+    check_roughness(roughness, solver)
+    if roughness is not None and not roughness.registered:
+        config["roughness_unit"] = roughness.unit
     return config
 
 
-def dataset_roughness(solver: str | Callable) -> dict[str, str] | None:
+def dataset_roughness(solver: str | Callable, roughness: RoughnessChoice | None = None) -> dict[str, str] | None:
     """The roughness profile the rough points of a run use, as the file records it (``{"name", "sha256"}``,
-    :func:`ehl_dataset.model.roughness_identity.roughness_identity`): the package's solver takes the default
-    profile (:data:`ehl_dataset.model.roughness.DEFAULT_PROFILE`); for another solve function the runner does not
-    know its profile and records none (None)."""
+    :func:`ehl_dataset.model.roughness_identity.roughness_identity`): the profile chosen for the run
+    (``roughness``, :func:`ehl_dataset.dataset.roughness_choice.choose_roughness`), else the default profile that
+    the package's solver takes (:data:`ehl_dataset.model.roughness.DEFAULT_PROFILE`); for another solve function
+    with no profile chosen (or the default one) the runner does not know its profile and records none (None)."""
+    if roughness is not None and (not roughness.is_default or solver_reference(solver) == DEFAULT_SOLVER):
+        return roughness.record
     if solver_reference(solver) != DEFAULT_SOLVER:
         return None
     from ..model.roughness_identity import roughness_identity
 
     return roughness_identity()
+
+
+def check_roughness(roughness: RoughnessChoice | None, solver: str | Callable | None = None) -> None:
+    """Refuse (``InputError``, at the start instead of at every point) a roughness profile other than the default
+    for a solve function without a ``roughness`` keyword (or ``**kwargs``), and anything but a
+    :class:`~ehl_dataset.dataset.roughness_choice.RoughnessChoice` or None."""
+    if roughness is None:
+        return
+    if not isinstance(roughness, RoughnessChoice):
+        raise InputError("roughness", type(roughness).__name__, "a RoughnessChoice (choose_roughness) or None")
+    if not roughness.is_default and solver is not None and not accepts_keyword(resolve_solver(solver), "roughness"):
+        raise InputError("roughness", roughness.name, "the default profile for a solver without a roughness "
+                         "parameter", f"{solver_reference(solver)} does not accept it")
+
+
+def check_recorded_roughness(store: DatasetStore, solver: str | Callable,
+                             roughness: RoughnessChoice | None) -> None:
+    """Refuse (``InputError``) to compute into ``store`` on another roughness profile than the one it records,
+    naming both profiles and the option that chooses the recorded one. A file that records none (written before
+    the record, or by a solve function whose profile the runner does not know) is continued as before, but not on
+    a chosen profile other than the default."""
+    from ..model.roughness_identity import describe_roughness
+
+    recorded, chosen = store.roughness, dataset_roughness(solver, roughness)
+    if recorded is None and roughness is not None and not roughness.is_default:
+        raise InputError("roughness_file" if not roughness.registered else "roughness", roughness.name,
+                         f"no profile option for {store.path}, which records no roughness profile (its rows were "
+                         "solved on the solver's default)", "start a new file (another --out, or --overwrite) for "
+                         "another profile")
+    if recorded is None or chosen is None or recorded == chosen:
+        return
+    registered = _registered(recorded)
+    option = f"--roughness {recorded['name']}" if registered else f"--roughness-file {recorded['name']}"
+    raise InputError("roughness_file" if roughness is not None and not roughness.registered else "roughness",
+                     describe_roughness(chosen), f"the roughness profile recorded in {store.path} "
+                     f"({describe_roughness(recorded)})", f"continue it with {option}, or start a new file "
+                     "(another --out, or --overwrite) for another profile")
+
+
+def _registered(record: dict) -> bool:
+    from ..model.roughness import PROFILES
+
+    entry = PROFILES.get(record["name"])
+    return entry is not None and entry.sha256 == record["sha256"]
 
 
 def recorded_model(recorded_solver: dict) -> str:
@@ -510,7 +571,7 @@ class RunSummary:
 def run_factorial(out, factorial: Factorial | str | os.PathLike, *, lubricant=None, level: str | None = None,
                   effects: str | None = None, workers: int = 1, scheduler: str | None = None,
                   solver: str | Callable = DEFAULT_SOLVER, overwrite: bool = False, time_limit_s: float | None = None,
-                  model: str | None = None, **options) -> RunSummary:
+                  model: str | None = None, roughness: RoughnessChoice | None = None, **options) -> RunSummary:
     """Compute ``factorial`` into the HDF5 file ``out``.
 
     If ``out`` exists and records the same factorial, solver (model included), lubricant and roughness profile
@@ -543,6 +604,9 @@ def run_factorial(out, factorial: Factorial | str | os.PathLike, *, lubricant=No
     model : str, optional
         Contact model (:data:`ehl_dataset.solver.MODELS`), recorded in the solver configuration and passed to the
         solver; None: the factorial's [-].
+    roughness : RoughnessChoice, optional
+        The roughness profile of the rough points (:func:`ehl_dataset.dataset.roughness_choice.choose_roughness`),
+        recorded in the file and resolved once by every worker; None: the solver's default profile [-].
     **options
         Execution options: ``window``, ``max_attempts``, ``flush_interval_s``, ``flush_rows``, ``progress``,
         ``warm_up``, ``stream``, ``log_every_s`` [-].
@@ -562,27 +626,28 @@ def run_factorial(out, factorial: Factorial | str | os.PathLike, *, lubricant=No
     plan = factorial if isinstance(factorial, Factorial) else load_factorial(factorial)
     lub = lubricant if isinstance(lubricant, Lubricant) else load_lubricant(lubricant or plan.lubricant)
     check_lubricant_covers(plan, lub)
-    config = solver_config(solver, level or plan.level, effects or plan.effects, model or plan.model)
+    config = solver_config(solver, level or plan.level, effects or plan.effects, model or plan.model, roughness)
     lubricant_dict = json.loads(canonical_json(lub.to_json_dict()))
     factorial_dict = plan.to_dict()
-    roughness = dataset_roughness(solver)
+    record = dataset_roughness(solver, roughness)
     out = Path(out)
     if out.exists() and not overwrite:
         store = DatasetStore.open(out, "r+")
         kind = "continue"
         try:
+            check_recorded_roughness(store, solver, roughness)
             store.check_compatible(factorial_sha256=factorial_dict["points_sha256"], solver=config,
-                                   lubricant=lubricant_dict, roughness=roughness)
+                                   lubricant=lubricant_dict, roughness=record)
         except BaseException:
             store.close()
             raise
     else:
         store = DatasetStore.create(out, plan.points(), factorial=factorial_dict, solver=config,
-                                    lubricant=lubricant_dict, overwrite=overwrite, roughness=roughness)
+                                    lubricant=lubricant_dict, overwrite=overwrite, roughness=record)
         kind = "run"
     with store:
         return execute(store, solver=solver, workers=workers, scheduler=scheduler, kind=kind,
-                       time_limit_s=time_limit_s, **options)
+                       time_limit_s=time_limit_s, roughness=roughness, **options)
 
 
 def check_lubricant_covers(plan: Factorial, lub: Lubricant) -> None:
@@ -599,15 +664,17 @@ def check_lubricant_covers(plan: Factorial, lub: Lubricant) -> None:
 def resume_run(path, *, workers: int = 1, scheduler: str | None = None, solver: str | Callable | None = None,
                factorial=None, lubricant=None, level: str | None = None, effects: str | None = None,
                model: str | None = None, time_limit_s: float | None = None, retry_not_converged: bool = False,
-               **options) -> RunSummary:
+               roughness: RoughnessChoice | None = None, **options) -> RunSummary:
     """Continue the run recorded in ``path``: compute every row that is not ``ok``.
 
     The solver, level, effects, contact model and lubricant are those recorded in the file (a file that records no
     model ran ``"auto"``). The solver's current version (and level definition) must equal the recorded ones; the
     arguments below that name the configuration must match the file too, otherwise the resume is refused with
-    ``InputError``. So must the roughness profile the solver uses now (:func:`dataset_roughness`) where the file
-    records one: a changed default profile is not mixed into a file. Rows stored not converged, including those
-    stopped by an earlier budget, are ``ok`` and are not recomputed unless ``retry_not_converged``.
+    ``InputError``. The roughness profile is the one the file records (a registered profile by its name, checked
+    against its sha256) unless ``roughness`` is given, which must then match the record; a file that records a
+    user's profile file needs ``roughness`` (its path is not recorded), and a file that records none runs the
+    solver's default profile. A changed default profile is not mixed into a file. Rows stored not converged,
+    including those stopped by an earlier budget, are ``ok`` and are not recomputed unless ``retry_not_converged``.
 
     Parameters
     ----------
@@ -633,6 +700,9 @@ def resume_run(path, *, workers: int = 1, scheduler: str | None = None, solver: 
         Wall-time budget per point, for the rows computed now; it may differ from earlier sessions' budgets [s].
     retry_not_converged : bool
         Also recompute the ``ok`` rows whose solve did not converge [-].
+    roughness : RoughnessChoice, optional
+        Must match the recorded roughness profile; None: the recorded one
+        (:func:`ehl_dataset.dataset.roughness_choice.choice_from_record`) [-].
     **options
         Execution options, as for :func:`run_factorial` [-].
 
@@ -646,8 +716,10 @@ def resume_run(path, *, workers: int = 1, scheduler: str | None = None, solver: 
     with DatasetStore.open(path, "r+") as store:
         recorded = store.solver
         solver_used = solver if solver is not None else recorded.get("function", DEFAULT_SOLVER)
+        if roughness is None:
+            roughness = choice_from_record(store.roughness, where=str(store.path))
         config = solver_config(solver_used, level or recorded.get("level"), effects or recorded.get("effects"),
-                               model or recorded_model(recorded))
+                               model or recorded_model(recorded), roughness)
         lubricant_dict = None
         if lubricant is not None:
             lub = lubricant if isinstance(lubricant, Lubricant) else load_lubricant(lubricant)
@@ -656,30 +728,35 @@ def resume_run(path, *, workers: int = 1, scheduler: str | None = None, solver: 
         if factorial is not None:
             plan = factorial if isinstance(factorial, Factorial) else load_factorial(factorial)
             factorial_hash = plan.points_hash()
+        check_recorded_roughness(store, solver_used, roughness)
         store.check_compatible(factorial_sha256=factorial_hash, solver=config, lubricant=lubricant_dict,
-                               roughness=dataset_roughness(solver_used))
+                               roughness=dataset_roughness(solver_used, roughness))
         return execute(store, solver=solver_used, workers=workers, scheduler=scheduler, kind="resume",
-                       time_limit_s=time_limit_s, retry_not_converged=retry_not_converged, **options)
+                       time_limit_s=time_limit_s, retry_not_converged=retry_not_converged, roughness=roughness,
+                       **options)
 
 
 def warm_up_indices(points: np.ndarray, candidates: list[int], lubricant: dict, level: str, effects: str,
-                    solver) -> list[int]:
+                    solver, roughness: RoughnessChoice | None = None) -> list[int]:
     """Points the coordinator computes before the workers start, so each compiled code path is built once.
 
     For the default solver with ``effects="auto"`` or ``"isothermal"``: for each distinct plan (roughness, transient, shear thinning)
     the planner makes among ``candidates``, the candidate with the narrowest contact (smallest p_h·r_eq, to which
     the Hertz half width and so the transient grid are proportional: the coordinator should not spend minutes on
-    a wide rough contact while the workers wait); otherwise just the first candidate.
+    a wide rough contact while the workers wait); otherwise just the first candidate. The plans are made with the
+    correlation length of the run's roughness profile (``roughness``; None: the default profile's).
     """
     if not candidates:
         return []
     if solver_reference(solver) != DEFAULT_SOLVER or effects not in ("auto", "isothermal"):
         return candidates[:1]
     lub = _lubricant(canonical_json(lubricant))
+    profile = resolve_choice(roughness)
+    beta = None if profile is None else profile.correlation_length
     chosen: dict[tuple, int] = {}
     for index in candidates:
         try:
-            plan = plan_effects(ContactCase(*(float(v) for v in points[index])), lub, level)
+            plan = plan_effects(ContactCase(*(float(v) for v in points[index])), lub, level, beta)
         except Exception:  # noqa: BLE001 - the point will report its own error when computed
             continue
         key = (plan.roughness, plan.transient, plan.shear_thinning)
@@ -731,7 +808,7 @@ def execute(store: DatasetStore, *, solver: str | Callable = DEFAULT_SOLVER, wor
             flush_interval_s: float = 5.0, flush_rows: int = 2000, progress: str = "auto",
             warm_up: bool = True, stream: TextIO | None = None, log_every_s: float = 30.0,
             time_limit_s: float | None = None, retry_not_converged: bool = False,
-            warm_start: bool = False) -> RunSummary:
+            warm_start: bool = False, roughness: RoughnessChoice | None = None) -> RunSummary:
     """Compute every row of an open (writable) store that is not ``ok``, with the configuration it records
     (``retry_not_converged``: also the ``ok`` rows whose solve did not converge; their earlier result is
     overwritten by the new one, and their ``attempts`` count goes on).
@@ -752,10 +829,15 @@ def execute(store: DatasetStore, *, solver: str | Callable = DEFAULT_SOLVER, wor
     axes: temperature, slide-to-roll ratio; :func:`ehl_dataset.solvers.steady.neighbour_warm_starts`); the results
     agree with cold starts within the level's Newton tolerances, but their last digits then depend on which points a
     worker solved before. An execution option, recorded in the session entry like ``time_limit_s``.
+    ``roughness``: the roughness profile of the rough points
+    (:class:`~ehl_dataset.dataset.roughness_choice.RoughnessChoice`; None: the solver's default); it must be the
+    profile the store records (:func:`check_recorded_roughness`), and every task carries it.
     """
     _check_options(workers, {"max_attempts": max_attempts, "window": window, "progress": progress,
                              "flush_interval_s": flush_interval_s, "warm_start": warm_start})
     time_limit_s = check_time_limit(time_limit_s, solver)
+    check_roughness(roughness, solver)
+    check_recorded_roughness(store, solver, roughness)
     recorded = store.solver
     points = store.points()
     if _points_sha256(points) != store.metadata()["factorial_sha256"]:
@@ -766,7 +848,7 @@ def execute(store: DatasetStore, *, solver: str | Callable = DEFAULT_SOLVER, wor
 
     def task(index: int) -> PointTask:
         return PointTask(int(index), tuple(float(v) for v in points[index]), lubricant_json, level, effects, solver,
-                         time_limit_s, model, warm_start)
+                         time_limit_s, model, warm_start, roughness)
 
     if not isinstance(retry_not_converged, bool):
         raise InputError("retry_not_converged", retry_not_converged, "True or False")
@@ -829,7 +911,7 @@ def execute(store: DatasetStore, *, solver: str | Callable = DEFAULT_SOLVER, wor
         try:
             if warm_up and pending and not scheduler and workers > 0:
                 for index in warm_up_indices(points, list(pending)[:500], store.lubricant, level, effects,
-                                             solver):
+                                             solver, roughness):
                     pending.remove(index)
                     record(compute_point(task(index)))
                     if stop.signal_name is not None:

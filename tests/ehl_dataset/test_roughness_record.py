@@ -9,6 +9,7 @@ import pytest
 
 from ehl_dataset.data_files import data_path
 from ehl_dataset.dataset.factorial import factorial_from_dict
+from ehl_dataset.dataset.roughness_choice import choose_roughness
 from ehl_dataset.dataset.runner import DEFAULT_SOLVER, dataset_roughness, resume_run, run_factorial, solver_config
 from ehl_dataset.dataset.store import DatasetStore, read_metadata, summarize
 from ehl_dataset.model.lubricant import load_lubricant
@@ -74,8 +75,9 @@ def test_a_file_without_the_record_loads_and_says_not_recorded(tmp_path, capsys)
 
 
 def test_resume_refuses_another_profile_and_continues_a_file_that_records_none(tmp_path):
-    """A file that records a profile is not continued by a solver that uses another one (e.g. after the default
-    changed); a file that records none is continued as before."""
+    """A file that records a profile is not continued on another one (e.g. the default, after it changed: a resume
+    without a profile option takes the recorded one, so the refusal is of an explicit choice); a file that records
+    none is continued as before."""
     plan = one_point_plan()
     other = {"name": "flank_ground", "sha256": PROFILES["flank_ground"].sha256}
     config = solver_config(DEFAULT_SOLVER, "fast", "auto")
@@ -89,7 +91,7 @@ def test_resume_refuses_another_profile_and_continues_a_file_that_records_none(t
         assert "flank_ground" in str(err.value) and DEFAULT_PROFILE in str(err.value)
         store.check_compatible(roughness=other)
     with pytest.raises(InputError, match="roughness"):
-        resume_run(path, workers=0, progress="none")
+        resume_run(path, workers=0, progress="none", roughness=choose_roughness(DEFAULT_PROFILE))
     bare = tmp_path / "bare.h5"
     with DatasetStore.create(bare, plan.points(), factorial=plan.to_dict(), solver=config,
                              lubricant=lubricant) as store:
