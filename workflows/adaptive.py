@@ -130,7 +130,7 @@ def run_adaptive(out_dir: str | Path, factorial, lubricant, *, level: str, effec
                  offgrid_table: pd.DataFrame | None = None, target_median: float | None = None,
                  target_p90: float | None = None, workers: int = 1, scheduler: str | None = None,
                  progress: str = "auto", time_limit_s: float | None = None, e_reduced: float | None = None,
-                 log=None, solver=None) -> AdaptiveResult:
+                 log=None, solver=None, roughness=None) -> AdaptiveResult:
     """Adaptive sampling of ``factorial``'s box (module docstring); returns every solve and the rounds.
 
     Parameters
@@ -169,6 +169,9 @@ def run_adaptive(out_dir: str | Path, factorial, lubricant, *, level: str, effec
         Called with one line per round [-].
     solver : str or callable, optional
         Solve function (``"module:function"`` or a callable); None: the EHL solver [-].
+    roughness : RoughnessChoice, optional
+        Roughness profile of every batch's rough solves, recorded in each batch store
+        (:func:`ehl_dataset.dataset.roughness_choice.choose_roughness`); None: the default profile [-].
 
     Returns
     -------
@@ -195,7 +198,8 @@ def run_adaptive(out_dir: str | Path, factorial, lubricant, *, level: str, effec
     folder = Path(out_dir) / ADAPTIVE_DIR
     folder.mkdir(parents=True, exist_ok=True)
     route = {"lubricant": lubricant, "level": level, "effects": effects, "model": model, "workers": workers,
-             "scheduler": scheduler, "progress": progress, "time_limit_s": time_limit_s, "solver": solver}
+             "scheduler": scheduler, "progress": progress, "time_limit_s": time_limit_s, "solver": solver,
+             "roughness": roughness}
     result = AdaptiveResult(table=pd.DataFrame())
     tables: list[pd.DataFrame] = []
     say = log or (lambda line: None)

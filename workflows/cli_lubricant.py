@@ -62,7 +62,12 @@ def register(subparsers) -> None:
     fit.add_argument("--effects", choices=EFFECTS_CHOICES, default=None,
                      help=EFFECTS_HELP + "; default: the factorial's (isothermal for quick and paper2009)")
     fit.add_argument("--out-dir", default=None, metavar="DIR",
-                     help="output directory (default: gearloss_<lubricant>_<factorial>_<level>[_<model>])")
+                     help="output directory (default: gearloss_<lubricant>_<factorial>_<level>[_<model>]"
+                          "[_<effects>][_<roughness profile>])")
+    from .cli_dataset import add_roughness_options
+
+    add_roughness_options(fit, "the dataset, the off-grid sample and every adaptive batch solve on it and record its "
+                               "name and sha256, as does the coefficient file; default: baseline_synthetic")
     fit.add_argument("--overwrite", action="store_true", help="start afresh instead of resuming DIR's run")
     fit.add_argument("--workers", type=int, default=1, help="local worker processes (default 1)")
     fit.add_argument("--scheduler", default=None, metavar="ADDRESS",
@@ -128,13 +133,14 @@ def _fit(args: argparse.Namespace) -> int:
     from ehl_dataset.validation import check_range
 
     from . import exit_codes
+    from .cli_dataset import roughness_choice
     from .cli_pipeline import announce, dataset_fit_lines
     from .pipeline import check_inputs, run_lubricant_fit
 
     check_range("workers", args.workers, 1, 1024)
     run = check_inputs(args.factorial, out_dir=args.out_dir, level=args.level, model=args.model,
                        lubricant=args.lubricant, design=None, overwrite=args.overwrite, workers=args.workers,
-                       time_limit_s=args.time_limit_s, effects=args.effects)
+                       time_limit_s=args.time_limit_s, effects=args.effects, roughness=roughness_choice(args))
     resume = _resume_command(args, run)
     announce(f"gearloss lubricant fit: lubricant {run.lubricant_name}, factorial", run, resume, args.overwrite)
     result = run_lubricant_fit(args.lubricant, run.factorial, out_dir=run.out_dir, workers=args.workers,

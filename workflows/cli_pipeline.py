@@ -4,9 +4,10 @@
 factorial (the long run; ``--scheduler ADDRESS`` sends the points to a Dask cluster), ``smoke`` the 96-point
 ``smoke`` factorial with smooth-surface solves (every stage in seconds; its fit is not a friction model). Each run
 writes ``DIR/dataset.h5`` and ``DIR/<lubricant>_<factorial>.json`` (+ ``.summary.txt``), DIR named after the
-factorial, level, model and effects (``gearloss_quick_fast_isothermal``; ``--out-dir`` chooses another), and prints Design D's P [kW], η,
-TE, σ_c, σ_b at the study's operating point and the time of each stage. Running the same command again resumes an
-interrupted run. See :mod:`workflows.pipeline` and docs/getting-started.md.
+factorial, level, model, effects and a chosen roughness profile (``gearloss_quick_fast_isothermal``,
+``..._flank_ground`` with ``--roughness flank_ground``; ``--out-dir`` chooses another), and prints Design D's
+P [kW], η, TE, σ_c, σ_b at the study's operating point and the time of each stage. Running the same command again
+resumes an interrupted run. See :mod:`workflows.pipeline` and docs/getting-started.md.
 """
 
 from __future__ import annotations
@@ -44,7 +45,8 @@ def register(subparsers) -> None:
         p = sub.add_parser(name, help=help_text, description=help_text, epilog=EPILOG)
         p.add_argument("--out-dir", default=None, metavar="DIR",
                        help="directory for dataset.h5 and the coefficient file (default: gearloss_<factorial>_"
-                            "<level>[_<model>][_<effects>], e.g. " + ("gearloss_smoke_fast_smooth" if name == "smoke"
+                            "<level>[_<model>][_<effects>][_<roughness profile>], e.g. "
+                            + ("gearloss_smoke_fast_smooth" if name == "smoke"
                                                                     else f"gearloss_{default}_" + (
                                                                         "fast" if name == "quick" else "standard")
                                                                     + "_isothermal") + ")")
@@ -61,6 +63,7 @@ def register(subparsers) -> None:
         p.add_argument("--effects", choices=EFFECTS_CHOICES, default=None,
                        help=EFFECTS_HELP + "; default: the factorial's (isothermal for quick and paper, the "
                                               "paper's model; auto for smoke)")
+        _add_roughness_options(p)
         p.add_argument("--design", default="D",
                        help="published design of the study to evaluate (A, B, C, D) or a design TOML file")
         p.add_argument("--progress", choices=("auto", "bar", "log", "none"), default="auto",
@@ -81,16 +84,25 @@ def register(subparsers) -> None:
         p.set_defaults(handler=run_pipeline_command)
 
 
+def _add_roughness_options(parser: argparse.ArgumentParser) -> None:
+    from .cli_dataset import add_roughness_options
+
+    add_roughness_options(parser, "stage 1 and the off-grid sample solve on it; the dataset and the coefficient file "
+                                  "record its name and sha256, the default directory name carries it; default: "
+                                  "baseline_synthetic")
+
+
 def run_pipeline_command(args: argparse.Namespace) -> int:
     from ehl_dataset.validation import check_range
 
     from . import exit_codes
+    from .cli_dataset import roughness_choice
     from .pipeline import check_inputs, run_pipeline
 
     check_range("workers", args.workers, 1, 1024)
     run = check_inputs(args.factorial, out_dir=args.out_dir, level=args.level, model=args.model,
                        design=args.design, overwrite=args.overwrite, workers=args.workers,
-                       time_limit_s=args.time_limit_s, effects=args.effects)
+                       time_limit_s=args.time_limit_s, effects=args.effects, roughness=roughness_choice(args))
     resume = _resume_command(args, run)
     announce(f"gearloss pipeline {args.pipeline_command}: factorial", run, resume, args.overwrite)
     result = run_pipeline(run.out_dir, run.factorial, workers=args.workers,
@@ -117,6 +129,8 @@ def announce(title: str, run, resume: str, overwrite: bool) -> None:
     state = (f"resuming: {run.resumable} of {n} points done" if run.resumable and not overwrite
              else f"new run of {n} points")
     effects = "" if run.effects == "auto" else f", effects {run.effects}"
+    if run.roughness is not None:
+        effects += f", roughness {run.roughness.name}"
     print(f"{title} {run.factorial.name}, level {run.level}, model {run.model}{effects}; {state}\n  output: {run.dataset} "
           f"and {run.coefficients}\n  Ctrl-C stops and keeps the finished points; resume with: {resume}",
           file=sys.stderr, flush=True)
@@ -142,6 +156,7 @@ def dataset_fit_lines(data: dict, fit: dict) -> list[str]:
     lines = [
         f"stage 1 dataset   {data['artefact']}: factorial {data['factorial']} (level {data['level']}, model "
         f"{data['model']}" + ("" if data.get("effects", "auto") == "auto" else f", effects {data['effects']}")
+        + (f", roughness {data['roughness']['name']}" if data.get("roughness") else "")
         + f"), {data['n_points']} points, {data['computed']} computed"
         f"{' (resumed)' if data['resumed'] else ''}; ok {data['ok']}, failed {data['failed']}, non-converged "
         f"{data['non_converged']} — {data['wall_time_s']:.1f} s"]

@@ -140,13 +140,19 @@ def _factorial(factorial):
 
 
 def default_out_dir(factorial_name: str, level: str, model: str = "auto", lubricant_name: str | None = None,
-                    effects: str = "auto") -> str:
-    """``gearloss_[<lubricant>_]<factorial>_<level>`` (``_<model>`` appended unless auto, ``_<effects>`` unless auto;
-    the lubricant's name when one is chosen instead of the factorial's): one directory per kind of run."""
+                    effects: str = "auto", roughness_name: str | None = None) -> str:
+    """``gearloss_[<lubricant>_]<factorial>_<level>`` (``_<model>`` appended unless auto, ``_<effects>`` unless auto,
+    ``_<roughness profile>`` when another than the default is chosen (a profile file by its name without the
+    suffix); the lubricant's name when one is chosen instead of the factorial's): one directory per kind of run."""
     parts = ([lubricant_name] if lubricant_name else []) + [factorial_name]
-    safe = "_".join("".join(c if c.isalnum() or c in "-_" else "_" for c in part) for part in parts)
+    safe = "_".join(_safe(part) for part in parts)
     return (f"gearloss_{safe}_{level}" + ("" if model == "auto" else f"_{model}")
-            + ("" if effects == "auto" else f"_{effects}"))
+            + ("" if effects == "auto" else f"_{effects}")
+            + ("" if not roughness_name else f"_{_safe(Path(roughness_name).stem)}"))
+
+
+def _safe(part: str) -> str:
+    return "".join(c if c.isalnum() or c in "-_" else "_" for c in part)
 
 
 @dataclass
@@ -173,6 +179,9 @@ class PipelinePlan:
         Points already done in an existing dataset file of the same run (0: new run) [-].
     effects : str
         Effect plan of stage 1 [-].
+    roughness : RoughnessChoice or None
+        Roughness profile of stage 1's rough points and of every sample solved by its route
+        (:func:`ehl_dataset.dataset.roughness_choice.choose_roughness`); None: the default profile [-].
     """
 
     factorial: Any
@@ -184,6 +193,7 @@ class PipelinePlan:
     out_dir: Path
     resumable: int  # points already done in an existing dataset file of the same run (0: new run)
     effects: str = "auto"
+    roughness: Any = None
 
     @property
     def dataset(self) -> Path:
@@ -200,14 +210,15 @@ class PipelinePlan:
 
 def check_inputs(factorial=QUICK_FACTORIAL, *, out_dir=None, level: str | None = None, model: str | None = None,
                  lubricant=None, study: str = "paper2009", design: str | None = "D", overwrite: bool = False,
-                 workers: int = 1, time_limit_s: float | None = None, effects: str | None = None) -> PipelinePlan:
+                 workers: int = 1, time_limit_s: float | None = None, effects: str | None = None,
+                 roughness=None) -> PipelinePlan:
     """Check everything a run needs before stage 1 computes anything.
 
     A typo in ``design`` must not cost the stage-1 run.
 
     Checks the factorial, level, model, effect plan, lubricant (its data range covers the factorial's temperatures),
-    the design, workers, time limit, and that ``out_dir`` either holds nothing of this run or the same run (then it
-    resumes).
+    the design, workers, time limit, and that ``out_dir`` either holds nothing of this run or the same run, on the
+    same roughness profile (then it resumes).
 
     Parameters
     ----------
@@ -234,6 +245,9 @@ def check_inputs(factorial=QUICK_FACTORIAL, *, out_dir=None, level: str | None =
     effects : str, optional
         Stage 1's effect plan (one of :data:`ehl_dataset.dataset.factorial.EFFECTS_MODES`; ``isothermal`` gives the
         isothermal data the paper fitted); None: the factorial's [-].
+    roughness : RoughnessChoice, optional
+        Roughness profile of the rough points (:func:`ehl_dataset.dataset.roughness_choice.choose_roughness`);
+        None: the default profile [-].
 
     Returns
     -------
@@ -245,10 +259,13 @@ def check_inputs(factorial=QUICK_FACTORIAL, *, out_dir=None, level: str | None =
     InputError
         Naming the first bad input.
     """
-    from ehl_dataset.dataset.runner import check_lubricant_covers, check_model, check_time_limit, recorded_model
     from ehl_dataset.dataset.factorial import EFFECTS_MODES, canonical_json
+    from ehl_dataset.dataset.roughness_choice import recorded_option
+    from ehl_dataset.dataset.runner import (DEFAULT_SOLVER, check_lubricant_covers, check_model, check_roughness,
+                                            check_time_limit, dataset_roughness, recorded_model)
     from ehl_dataset.dataset.store import SOLVER_DEFAULTS, read_metadata
     from ehl_dataset.model.lubricant import load_lubricant
+    from ehl_dataset.model.roughness_identity import describe_roughness
     from ehl_dataset.solvers.levels import get_level
     from ehl_dataset.validation import check_range
 
@@ -262,10 +279,13 @@ def check_inputs(factorial=QUICK_FACTORIAL, *, out_dir=None, level: str | None =
         raise InputError("effects", effects, f"one of {list(EFFECTS_MODES)}")
     lub = load_lubricant(lubricant or plan.lubricant)
     check_lubricant_covers(plan, lub)
+    check_roughness(roughness)
     if design is not None:
         _check_design(study, design)
+    chosen = dataset_roughness(DEFAULT_SOLVER, roughness)
     out = Path(out_dir) if out_dir is not None else Path(default_out_dir(
-        plan.name, level, model, None if lubricant is None or lub.name == plan.lubricant else lub.name, effects))
+        plan.name, level, model, None if lubricant is None or lub.name == plan.lubricant else lub.name, effects,
+        None if roughness is None or roughness.is_default else roughness.name))
     if out.exists() and not out.is_dir():
         raise InputError("out-dir", str(out), "a directory (this path is a file)")
     resumable = 0
@@ -284,8 +304,19 @@ def check_inputs(factorial=QUICK_FACTORIAL, *, out_dir=None, level: str | None =
         if canonical_json(lub.to_json_dict()) != canonical_json(meta["lubricant"]):
             raise InputError("lubricant", lub.name, f"the definition of {meta['lubricant'].get('name')!r} as "
                              f"recorded in {dataset} (compared field by field)", hint)
+        if meta["roughness"] is not None and meta["roughness"] != chosen:
+            recorded_roughness = meta["roughness"]
+            option = ("--roughness" if roughness is None or roughness.registered else "--roughness-file")
+            raise InputError(option, describe_roughness(chosen), f"the roughness profile of the run in {out} "
+                             f"({describe_roughness(recorded_roughness)})", f"resume it with "
+                             f"{recorded_option(recorded_roughness)}; another --out-dir, or --overwrite to replace "
+                             "it")
+        if roughness is not None and not roughness.registered \
+                and recorded.get("roughness_unit") != roughness.unit:
+            raise InputError("--roughness-unit", roughness.unit, f"{recorded.get('roughness_unit')!r} as recorded in "
+                             f"{dataset}", hint)
         resumable = int(meta["counts"]["ok"])
-    return PipelinePlan(plan, level, model, lub.name, study, design, out, resumable, effects)
+    return PipelinePlan(plan, level, model, lub.name, study, design, out, resumable, effects, roughness)
 
 
 def _check_design(study: str, design: str) -> None:
@@ -311,7 +342,7 @@ def coefficients_file_name(lubricant_name: str, factorial_name: str) -> str:
 def dataset_stage(out_dir: str | Path, factorial, *, workers: int = 1, scheduler: str | None = None,
                   lubricant=None, level: str | None = None, progress: str = "auto", overwrite: bool = False,
                   time_limit_s: float | None = None, model: str | None = None, effects: str | None = None,
-                  **runner_options) -> StageResult:
+                  roughness=None, **runner_options) -> StageResult:
     """Compute ``factorial`` into ``out_dir/dataset.h5``; continue the file if it holds the same run.
 
     Parameters
@@ -339,6 +370,9 @@ def dataset_stage(out_dir: str | Path, factorial, *, workers: int = 1, scheduler
         Contact model of the solves (``auto``, ``homogenised``, ``deterministic``); None: the factorial's [-].
     effects : str, optional
         The effect plan; None: the factorial's [-].
+    roughness : RoughnessChoice, optional
+        Roughness profile of the rough points (:func:`ehl_dataset.dataset.roughness_choice.choose_roughness`);
+        None: the default profile [-].
     **runner_options
         Options of :func:`ehl_dataset.dataset.runner.run_factorial` (``window``, ``max_attempts``, ``stream``, ...) [-].
 
@@ -357,12 +391,13 @@ def dataset_stage(out_dir: str | Path, factorial, *, workers: int = 1, scheduler
     resumed = out.exists() and not overwrite
     summary = run_factorial(out, plan, lubricant=lubricant, level=level, workers=workers, scheduler=scheduler,
                             progress=progress, overwrite=overwrite, time_limit_s=time_limit_s, model=model,
-                            effects=effects, **runner_options)
+                            effects=effects, roughness=roughness, **runner_options)
     from ehl_dataset.dataset.store import read_metadata
 
-    solver = read_metadata(out)["solver"]
+    meta = read_metadata(out)
+    solver = meta["solver"]
     details = {"factorial": plan.name, "level": solver.get("level"), "model": solver.get("model", "auto"),
-               "effects": solver.get("effects"),
+               "effects": solver.get("effects"), "roughness": meta["roughness"],
                "n_points": summary.n_points, "computed": summary.computed,
                "time_limit_s": time_limit_s,
                "ok": summary.ok, "failed": summary.failed, "pending": summary.pending,
@@ -439,7 +474,8 @@ def surrogate_stages(run: PipelinePlan, dataset: str | None, lubricant=None, *, 
     sample (``offgrid_points`` seeded random contacts in the factorial's ranges, solved by its route into
     ``OUT/offgrid.h5``; 0: none) and its errors recorded in the file; with ``adaptive_budget`` the training rows are
     the adaptive design (:mod:`workflows.adaptive`, up to that many solves, stopping early at the off-grid targets)
-    instead of ``dataset``. Smooth-surface runs (the smoke factorial) get no off-grid sample.
+    instead of ``dataset``. Smooth-surface runs (the smoke factorial) get no off-grid sample. Every sample is
+    solved on the run's roughness profile (``run.roughness``) and records it.
 
     Parameters
     ----------
@@ -483,7 +519,8 @@ def surrogate_stages(run: PipelinePlan, dataset: str | None, lubricant=None, *, 
 
     check_form(form)
     route = {"level": run.level, "effects": run.effects, "model": run.model, "workers": workers,
-             "scheduler": scheduler, "progress": progress, "time_limit_s": time_limit_s}
+             "scheduler": scheduler, "progress": progress, "time_limit_s": time_limit_s,
+             "roughness": run.roughness}
     lub = lubricant if isinstance(lubricant, Lubricant) else load_lubricant(lubricant or run.factorial.lubricant)
     stages: list[StageResult] = []
 
@@ -606,7 +643,7 @@ def run_pipeline(out_dir: str | Path | None = None, factorial=QUICK_FACTORIAL, *
                  progress: str = "auto", study: str = "paper2009", design: str = "D", allow_unstable: bool = False,
                  mesh_options=None, clip_to_fitted_ranges: bool = True, time_limit_s: float | None = None,
                  overwrite: bool = False, resume_command: str | None = None, checked: PipelinePlan | None = None,
-                 effects: str | None = None, form: str = "eq9", offgrid_points: int = 0,
+                 effects: str | None = None, form: str = "eq9", offgrid_points: int = 0, roughness=None,
                  **runner_options) -> PipelineResult:
     """Stages 1–3 in one process: dataset → coefficient file → design evaluation (module docstring).
 
@@ -655,6 +692,10 @@ def run_pipeline(out_dir: str | Path | None = None, factorial=QUICK_FACTORIAL, *
     offgrid_points : int
         Points of the off-grid validation sample recorded in the coefficient file (0: none;
         :func:`surrogate_stages`) [-].
+    roughness : RoughnessChoice, optional
+        Roughness profile of every rough solve (:func:`ehl_dataset.dataset.roughness_choice.choose_roughness`),
+        recorded in the dataset and the coefficient file; None: the default profile. Ignored with ``checked``,
+        which carries its own [-].
     **runner_options
         Options of :func:`ehl_dataset.dataset.runner.run_factorial` (``window``, ``max_attempts``, ``stream``, ...) [-].
 
@@ -666,7 +707,7 @@ def run_pipeline(out_dir: str | Path | None = None, factorial=QUICK_FACTORIAL, *
     started = time.perf_counter()
     run = checked or check_inputs(factorial, out_dir=out_dir, level=level, model=model, lubricant=lubricant,
                                   study=study, design=design, overwrite=overwrite, workers=workers,
-                                  time_limit_s=time_limit_s, effects=effects)
+                                  time_limit_s=time_limit_s, effects=effects, roughness=roughness)
     out = run.out_dir
     if overwrite:
         for path in (run.dataset, run.coefficients, run.coefficients.with_suffix(".summary.txt")):
@@ -674,7 +715,7 @@ def run_pipeline(out_dir: str | Path | None = None, factorial=QUICK_FACTORIAL, *
     try:
         stages = [dataset_stage(out, run.factorial, workers=workers, scheduler=scheduler, lubricant=lubricant,
                                 level=run.level, model=run.model, progress=progress, time_limit_s=time_limit_s,
-                                effects=run.effects, **runner_options)]
+                                effects=run.effects, roughness=run.roughness, **runner_options)]
     except InputError as err:  # the store names dataset-run options; the pipeline's are --out-dir / --overwrite
         if "start a new file" in str(err):
             raise InputError(err.parameter, err.value, err.accepted,
@@ -702,7 +743,7 @@ def run_lubricant_fit(lubricant, factorial=QUICK_FACTORIAL, *, out_dir=None, wor
                       overwrite: bool = False, resume_command: str | None = None,
                       checked: PipelinePlan | None = None, effects: str | None = None, form: str = "eq9",
                       offgrid_points: int = 0, adaptive_budget: int | None = None,
-                      target_median: float | None = None, target_p90: float | None = None,
+                      target_median: float | None = None, target_p90: float | None = None, roughness=None,
                       **runner_options) -> PipelineResult:
     """Stages 1–2 for ``lubricant``: ``factorial`` → ``OUT/dataset.h5`` → ``OUT/<lubricant>_<factorial>.json``.
 
@@ -753,6 +794,10 @@ def run_lubricant_fit(lubricant, factorial=QUICK_FACTORIAL, *, out_dir=None, wor
         (:mod:`workflows.adaptive`); None: the factorial [-].
     target_median, target_p90 : float, optional
         Off-grid targets of |Δμ/μ| that stop the adaptive design early [-].
+    roughness : RoughnessChoice, optional
+        Roughness profile of every rough solve (dataset, off-grid sample, adaptive batches;
+        :func:`ehl_dataset.dataset.roughness_choice.choose_roughness`), recorded in each store and the coefficient
+        file; None: the default profile. Ignored with ``checked``, which carries its own [-].
     **runner_options
         Options of :func:`ehl_dataset.dataset.runner.run_factorial` (``window``, ``max_attempts``, ``stream``, ...) [-].
 
@@ -764,7 +809,7 @@ def run_lubricant_fit(lubricant, factorial=QUICK_FACTORIAL, *, out_dir=None, wor
     started = time.perf_counter()
     run = checked or check_inputs(factorial, out_dir=out_dir, level=level, model=model, lubricant=lubricant,
                                   design=None, overwrite=overwrite, workers=workers, time_limit_s=time_limit_s,
-                                  effects=effects)
+                                  effects=effects, roughness=roughness)
     if overwrite:
         for path in (run.dataset, run.coefficients, run.coefficients.with_suffix(".summary.txt")):
             path.unlink(missing_ok=True)
@@ -772,7 +817,8 @@ def run_lubricant_fit(lubricant, factorial=QUICK_FACTORIAL, *, out_dir=None, wor
     if adaptive_budget is None:
         dataset = dataset_stage(run.out_dir, run.factorial, workers=workers, scheduler=scheduler,
                                 lubricant=lubricant, level=run.level, model=run.model, progress=progress,
-                                time_limit_s=time_limit_s, effects=run.effects, **runner_options)
+                                time_limit_s=time_limit_s, effects=run.effects, roughness=run.roughness,
+                                **runner_options)
         if dataset.details["interrupted"]:
             raise Interrupted(dataset.details["interrupted"], f"lubricant fit stage 1 ({dataset.details['computed']} "
                               f"points computed, {dataset.details['pending']} pending in {dataset.artefact})",

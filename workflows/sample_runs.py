@@ -48,9 +48,9 @@ def offgrid_points(factorial, n: int = OFFGRID_POINTS, seed: int = OFFGRID_SEED)
 
 def run_sample(path: str | Path, points: np.ndarray, description: dict, *, lubricant, level: str, effects: str,
                model: str, workers: int = 1, scheduler: str | None = None, progress: str = "auto",
-               time_limit_s: float | None = None, solver=None, **options):
-    """Compute ``points`` into the store ``path``: created, or continued when it records the same points, solver and
-    lubricant; anything else is refused with :class:`InputError`.
+               time_limit_s: float | None = None, solver=None, roughness=None, **options):
+    """Compute ``points`` into the store ``path``: created, or continued when it records the same points, solver,
+    lubricant and roughness profile; anything else is refused with :class:`InputError`.
 
     Parameters
     ----------
@@ -78,6 +78,9 @@ def run_sample(path: str | Path, points: np.ndarray, description: dict, *, lubri
         Wall-time budget per point [s].
     solver : str or callable, optional
         The solve function (``"module:function"`` or a callable); None: the EHL solver [-].
+    roughness : RoughnessChoice, optional
+        Roughness profile of the rough points (:func:`ehl_dataset.dataset.roughness_choice.choose_roughness`),
+        recorded in the store; None: the default profile [-].
     **options
         Execution options of :func:`ehl_dataset.dataset.runner.execute` [-].
 
@@ -87,12 +90,13 @@ def run_sample(path: str | Path, points: np.ndarray, description: dict, *, lubri
         The runner's summary.
     """
     from ehl_dataset.dataset.factorial import canonical_json
-    from ehl_dataset.dataset.runner import DEFAULT_SOLVER, check_time_limit, dataset_roughness, execute, solver_config
+    from ehl_dataset.dataset.runner import (DEFAULT_SOLVER, check_recorded_roughness, check_time_limit,
+                                            dataset_roughness, execute, solver_config)
     from ehl_dataset.dataset.store import DatasetStore
 
     solver = DEFAULT_SOLVER if solver is None else solver
     time_limit_s = check_time_limit(time_limit_s, solver)
-    config = solver_config(solver, level, effects, model)
+    config = solver_config(solver, level, effects, model, roughness)
     lubricant_dict = json.loads(canonical_json(lubricant.to_json_dict()))
     t_lo, t_hi = lubricant.t_min, lubricant.t_max
     bad = (points["temperature"] < t_lo) | (points["temperature"] > t_hi)
@@ -103,16 +107,17 @@ def run_sample(path: str | Path, points: np.ndarray, description: dict, *, lubri
     if path.exists():
         store = DatasetStore.open(path, "r+")
         try:
+            check_recorded_roughness(store, solver, roughness)
             store.check_compatible(factorial_sha256=description["points_sha256"], solver=config,
-                                   lubricant=lubricant_dict, roughness=dataset_roughness(solver))
+                                   lubricant=lubricant_dict, roughness=dataset_roughness(solver, roughness))
         except BaseException:
             store.close()
             raise
         kind = "continue"
     else:
         store = DatasetStore.create(path, points, factorial=description, solver=config, lubricant=lubricant_dict,
-                                    roughness=dataset_roughness(solver))
+                                    roughness=dataset_roughness(solver, roughness))
         kind = "run"
     with store:
         return execute(store, solver=solver, workers=workers, scheduler=scheduler, kind=kind, progress=progress,
-                       time_limit_s=time_limit_s, **options)
+                       time_limit_s=time_limit_s, roughness=roughness, **options)

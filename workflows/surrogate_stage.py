@@ -58,7 +58,7 @@ def coefficients_path(base: Path, form: str, adaptive: bool = False) -> Path:
 
 def offgrid_stage(out_dir: str | Path, factorial, lubricant, *, level: str, effects: str, model: str,
                   n: int = OFFGRID_POINTS, seed: int = OFFGRID_SEED, workers: int = 1, scheduler: str | None = None,
-                  progress: str = "auto", time_limit_s: float | None = None) -> dict[str, Any]:
+                  progress: str = "auto", time_limit_s: float | None = None, roughness=None) -> dict[str, Any]:
     """Solve the off-grid validation sample of ``factorial`` into ``out_dir/offgrid.h5`` (resumable).
 
     Parameters
@@ -83,6 +83,9 @@ def offgrid_stage(out_dir: str | Path, factorial, lubricant, *, level: str, effe
         Progress mode [-].
     time_limit_s : float, optional
         Wall-time budget per solve [s].
+    roughness : RoughnessChoice, optional
+        Roughness profile of the route (:func:`ehl_dataset.dataset.roughness_choice.choose_roughness`); None: the
+        default profile [-].
 
     Returns
     -------
@@ -93,7 +96,8 @@ def offgrid_stage(out_dir: str | Path, factorial, lubricant, *, level: str, effe
     points, description = offgrid_points(factorial, n, seed)
     path = Path(out_dir) / OFFGRID_FILE
     summary = run_sample(path, points, description, lubricant=lubricant, level=level, effects=effects, model=model,
-                         workers=workers, scheduler=scheduler, progress=progress, time_limit_s=time_limit_s)
+                         workers=workers, scheduler=scheduler, progress=progress, time_limit_s=time_limit_s,
+                         roughness=roughness)
     details = {"n_points": summary.n_points, "seed": seed, "computed": summary.computed, "ok": summary.ok,
                "failed": summary.failed, "pending": summary.pending, "non_converged": summary.non_converged,
                "interrupted": summary.interrupted}
@@ -103,7 +107,8 @@ def offgrid_stage(out_dir: str | Path, factorial, lubricant, *, level: str, effe
 def adaptive_stage(out_dir: str | Path, factorial, lubricant, *, level: str, effects: str, model: str, budget: int,
                    offgrid_path: str | Path | None = None, target_median: float | None = None,
                    target_p90: float | None = None, workers: int = 1, scheduler: str | None = None,
-                   progress: str = "auto", time_limit_s: float | None = None, log=None) -> dict[str, Any]:
+                   progress: str = "auto", time_limit_s: float | None = None, log=None,
+                   roughness=None) -> dict[str, Any]:
     """Adaptive training design (:func:`workflows.adaptive.run_adaptive`) with the off-grid set as stop test.
 
     Parameters
@@ -132,6 +137,8 @@ def adaptive_stage(out_dir: str | Path, factorial, lubricant, *, level: str, eff
         Wall-time budget per solve [s].
     log : callable, optional
         Receives one line per round [-].
+    roughness : RoughnessChoice, optional
+        Roughness profile of the route; None: the default profile [-].
 
     Returns
     -------
@@ -148,7 +155,7 @@ def adaptive_stage(out_dir: str | Path, factorial, lubricant, *, level: str, eff
     result = run_adaptive(out_dir, factorial, lubricant, level=level, effects=effects, model=model, budget=budget,
                           offgrid_table=offgrid_table, target_median=target_median, target_p90=target_p90,
                           workers=workers, scheduler=scheduler, progress=progress, time_limit_s=time_limit_s,
-                          log=log)
+                          log=log, roughness=roughness)
     folder = Path(out_dir) / "adaptive"
     return {"artefacts": [str(folder / name) for name in result.batch_files], "wall_time_s": result.wall_time_s,
             "details": result.to_dict()}

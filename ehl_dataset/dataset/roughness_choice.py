@@ -172,6 +172,27 @@ def choice_from_record(record: dict | None, name: str | None = None, path: str |
     return None if choice.is_default else choice
 
 
+def recorded_option(record: dict) -> str:
+    """The command-line option that chooses the profile of ``record``: ``--roughness NAME`` for a registered
+    profile (the name and the registered sha256 match), else ``--roughness-file NAME``.
+
+    Parameters
+    ----------
+    record : dict
+        ``{"name", "sha256"}`` as a dataset records it [-].
+
+    Returns
+    -------
+    str
+        The option with its value [-].
+    """
+    from ..model.roughness import PROFILES
+
+    entry = PROFILES.get(record["name"])
+    registered = entry is not None and entry.sha256 == record["sha256"]
+    return f"--roughness {record['name']}" if registered else f"--roughness-file {record['name']}"
+
+
 def resolve_choice(choice: RoughnessChoice | None):
     """The profile a solve takes for ``choice``: read once per process, its sha256 checked against the choice's.
 

@@ -61,7 +61,7 @@ from ..solvers.threads import one_blas_thread
 from ..validation import InputError, check_time_limit as check_positive_seconds
 from .executors import make_executor
 from .factorial import EFFECTS_MODES, Factorial, canonical_json, load_factorial
-from .roughness_choice import RoughnessChoice, choice_from_record, resolve_choice
+from .roughness_choice import RoughnessChoice, choice_from_record, recorded_option, resolve_choice
 from .store import FAILED, OK, SOLVER_DEFAULTS, DatasetStore, package_version
 
 DEFAULT_SOLVER = "ehl_dataset.solver:solve_contact"
@@ -296,19 +296,10 @@ def check_recorded_roughness(store: DatasetStore, solver: str | Callable,
                          "another profile")
     if recorded is None or chosen is None or recorded == chosen:
         return
-    registered = _registered(recorded)
-    option = f"--roughness {recorded['name']}" if registered else f"--roughness-file {recorded['name']}"
     raise InputError("roughness_file" if roughness is not None and not roughness.registered else "roughness",
                      describe_roughness(chosen), f"the roughness profile recorded in {store.path} "
-                     f"({describe_roughness(recorded)})", f"continue it with {option}, or start a new file "
-                     "(another --out, or --overwrite) for another profile")
-
-
-def _registered(record: dict) -> bool:
-    from ..model.roughness import PROFILES
-
-    entry = PROFILES.get(record["name"])
-    return entry is not None and entry.sha256 == record["sha256"]
+                     f"({describe_roughness(recorded)})", f"continue it with {recorded_option(recorded)}, or start "
+                     "a new file (another --out, or --overwrite) for another profile")
 
 
 def recorded_model(recorded_solver: dict) -> str:
