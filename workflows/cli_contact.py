@@ -60,7 +60,7 @@ def register(subparsers) -> None:
                        help="wall-time budget of a deterministic (rough, transient) solve [s]; when spent the result is marked "
                             "not converged (default: none)")
     solve.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
-    solve.set_defaults(handler=_solve)
+    solve.set_defaults(handler=_solve, leave_objects_at_exit=True)  # writes only its output
 
 
 def _solve(args) -> int:

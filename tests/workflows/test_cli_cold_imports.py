@@ -1,7 +1,8 @@
 """What a fresh ``gearloss contact solve`` of a smooth contact loads: the steady solver and what it needs (numpy, numba,
 scipy.linalg), not the stages and models it does not run. Each module left out is import time saved on every cold
 start (docs/validation/speed.md, the cold-start row). Checked in a fresh interpreter through ``sys.modules``; a
-structural test, not a timing test.
+structural test, not a timing test. Run as the program, the command leaves its objects to the operating system at
+exit (:func:`gc.freeze`, no teardown of numba's state), with its whole output; called in process, it does not.
 """
 
 from __future__ import annotations
@@ -59,3 +60,14 @@ def test_a_rough_contact_loads_the_mixed_model_with_the_closure_asked_for(closur
     result, modules = loaded_after(argv)
     assert result["model"] == "homogenised" and result["closure"] == closure
     assert "ehl_dataset.solvers.homogenised" in modules
+
+
+def test_run_as_the_program_it_skips_the_teardown_and_prints_everything():
+    run = subprocess.run([sys.executable, "-m", "workflows.cli", *SMOOTH_CASE], capture_output=True, text=True)
+    assert run.returncode == 0, run.stderr
+    assert json.loads(run.stdout)["converged"]
+    code = ("import gc, sys\nfrom workflows.cli import main\nsys.argv = ['gearloss', *sys.argv[1:]]\n"
+            "in_process = main(sys.argv[1:])\nfrozen_in_process = gc.get_freeze_count()\ncode = main()\n"
+            "print(in_process, code, frozen_in_process, gc.get_freeze_count() > 0)")
+    run = subprocess.run([sys.executable, "-c", code, *SMOOTH_CASE], capture_output=True, text=True)
+    assert run.stdout.strip().splitlines()[-1] == "0 0 0 True"
