@@ -131,7 +131,7 @@ def apply_inverse_band(binv, v):
 def newton_band(lb, eb, binv, kb, kl):
     """LAPACK band storage ((3·kl + 1) × M, for ``dgbtrf`` with kl = ku) of the band |r − c| ≤ ``kl`` of S B
     (:func:`newton_bands`, B :func:`inverse_band`, ``kb`` :func:`deflection_band` with half ≥ kl + 2), and the
-    column E·1 of ΔH0."""
+    column E·1 of ΔH0: M[r, c] = Σ_o lb[r, o] B[r + o − 2, c] + Σ_o eb[r, o] (K_I B)[r + o − 1, c]."""
     m = lb.shape[0]
     n = kb.shape[0]
     width = (binv.shape[1] - 1) // 2
@@ -140,22 +140,20 @@ def newton_band(lb, eb, binv, kb, kl):
     band = np.zeros((2 * kl + ku + 1, m))
     col_h0 = np.zeros(m)
     for r in range(m):
+        diagonal = kl + ku + r
         for o in range(BAND):
             q = r + o - 2  # L: interior column q, times row q of B
             a = lb[r, o]
             if a != 0.0 and 0 <= q < m:
-                for k in range(-width, width + 1):
-                    c = q + k
-                    if 0 <= c < m and abs(c - r) <= kl:
-                        band[kl + ku + r - c, c] += a * binv[q, k + width]
+                for c in range(max(0, q - width, r - kl), min(m, q + width + 1, r + kl + 1)):
+                    band[diagonal - c, c] += a * binv[q, c - q + width]
             j = r + o - 1  # E: node j, times row j of K_I B
             e = eb[r, o]
             if e != 0.0 and 0 <= j < n:
                 col_h0[r] += e
-                for c in range(max(0, r - kl), min(m, r + kl + 1)):
-                    t = c - (j - 1)
-                    if -half <= t <= half:
-                        band[kl + ku + r - c, c] += e * kb[j, t + half]
+                shift = half + 1 - j
+                for c in range(max(0, r - kl, j - 1 - half), min(m, r + kl + 1, j + half)):
+                    band[diagonal - c, c] += e * kb[j, c + shift]
     return band, col_h0
 
 
