@@ -16,7 +16,8 @@ In one run, on contacts drawn (seeded) from the axes of ``data/factorials/paper2
   (``isothermal``): the default model (``model="auto"``: the film-law homogenised model on rough contacts, the smooth
   solve where the planner finds the surfaces separated) against the smooth solve of the same contact and effects.
 * ``cold`` — fresh interpreters: ``python -c pass``, ``gearloss --version``, ``gearloss --help`` and a smooth
-  ``gearloss contact solve`` (1 GPa, 20 mm, 5 m/s, SR 0.2, 90 °C), wall time including the interpreter start.
+  ``gearloss contact solve`` (1 GPa, 20 mm, 5 m/s, SR 0.2, 90 °C), wall time including the interpreter start and the
+  CPU time (user + system) of the child process.
 * ``factorial`` — ``sample``: ``--conditions`` seeded (p_h, r_eq, u_r, SR, T) conditions of the paper factorial with
   all their roughness pairs (the factorial's own order, so that a worker meets the pairs of a condition together as
   in the full run), computed by the dataset runner's worker function (``compute_point``) on a local process pool of
@@ -34,6 +35,7 @@ import argparse
 import json
 import os
 import platform
+import resource
 import statistics
 import subprocess
 import sys
@@ -171,15 +173,20 @@ def cold(repeats: int) -> dict:
                 "contact_solve_smooth": [gearloss, "contact", "solve", *COLD_CASE]}
     out = {}
     for name, command in commands.items():
-        walls = []
+        walls, cpus = [], []
         for _ in range(repeats):
+            before = resource.getrusage(resource.RUSAGE_CHILDREN)
             start = time.perf_counter()
             subprocess.run(command, check=True, capture_output=True)
             walls.append(time.perf_counter() - start)
+            after = resource.getrusage(resource.RUSAGE_CHILDREN)
+            cpus.append(after.ru_utime - before.ru_utime + after.ru_stime - before.ru_stime)
         out[name] = {"command": " ".join(["gearloss" if c == gearloss else c for c in command[:1]] + command[1:]),
-                     "wall_s": stats(walls), "load_average": load_average()}
+                     "wall_s": stats(walls), "cpu_s": stats(cpus), "load_average": load_average()}
     out["contact_solve_smooth"]["command"] = "gearloss contact solve " + " ".join(COLD_CASE)
     out["python_pass"]["command"] = "python -c pass"
+    # without it the package's own modules are compiled from source at every start (site-packages keep theirs)
+    out["bytecode_written"] = not os.environ.get("PYTHONDONTWRITEBYTECODE")
     return out
 
 
@@ -265,7 +272,8 @@ def main(argv=None) -> int:
               file=sys.stderr)
     if args.cold_repeats:
         report["cold"] = cold(args.cold_repeats)
-        print("cold: " + ", ".join(f"{k} {v['wall_s']['median']:.2f} s" for k, v in report["cold"].items()),
+        print("cold: " + ", ".join(f"{k} {v['wall_s']['median']:.2f} s wall, {v['cpu_s']['median']:.2f} s CPU"
+                                   for k, v in report["cold"].items() if isinstance(v, dict)),
               file=sys.stderr)
     if args.factorial != "none":
         indices, total = factorial_indices(args.factorial, args.conditions, args.seed)
