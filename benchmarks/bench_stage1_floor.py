@@ -1,6 +1,6 @@
 """Benchmark: the stage-1 floor — warm and cold smooth solves, the default model, the paper factorial's wall time.
 
-    python benchmarks/bench_stage1_floor.py [--n 1000] [--baseline-n 200] [--default-n 200] [--seed 45]
+    python benchmarks/bench_stage1_floor.py [--n 1000] [--baseline-n 200] [--default-n 200] [--reused-lu-n 0] [--seed 45]
         [--cold-repeats 3] [--factorial sample|full|none] [--conditions 200] [--workers 2]
         [--out benchmarks/results/stage1_floor.json]
 
@@ -9,9 +9,14 @@ In one run, on contacts drawn (seeded) from the axes of ``data/factorials/paper2
 * ``warm_smooth`` — steady smooth solves (``model="smooth"``, the planner's effects) in a warm process (numba code
   loaded), each contact solved afresh (the per-process cache of steady solutions is emptied before every solve; the
   per-grid influence matrices stay cached, as in any long run). Median, percentiles of wall and CPU time.
+  ``linear``: the linear-solve counters of the steady solves summed (dense LU factorisations, GMRES solves with the
+  banded preconditioner and their iterations, fallbacks from it to the dense LU).
 * ``dense_baseline`` — the first ``--baseline-n`` of the same contacts with the dense Newton path
   (``ehl_dataset.solvers.newton.REUSE_FACTORISATION = False``: one LU factorisation per Newton iteration, the same
   discretisation and iterates), and the largest relative difference of μ, h_min, h_c, p_max between the two paths.
+* ``reused_lu_path`` (``--reused-lu-n``) — the first contacts with the banded preconditioner off
+  (``newton.BANDED_PRECONDITIONER = False``: the reused dense LU, the default before it), and the largest relative
+  difference of the outputs to the default path.
 * ``default_model`` — the first ``--default-n`` contacts with their roughness pair and the paper factorial's effects
   (``isothermal``): the default model (``model="auto"``: the film-law homogenised model on rough contacts, the smooth
   solve where the planner finds the surfaces separated) against the smooth solve of the same contact and effects.
@@ -116,7 +121,21 @@ def warm_smooth(rows: np.ndarray, lub) -> tuple[dict, list]:
     return {"wall_s": stats(walls), "cpu_s": stats(cpus),
             "converged": int(sum(r.converged for r in results)),
             "iterations": stats([r.iterations for r in results]),
-            "nodes": stats([r.extra["n_nodes"] for r in results])}, results
+            "nodes": stats([r.extra["n_nodes"] for r in results]),
+            "linear": linear_totals(results)}, results
+
+
+def linear_totals(results: list) -> dict:
+    """The steady solves' linear-solve counters (``extra["continuation"]["linear"]``: dense LU factorisations, GMRES
+    solves with the banded preconditioner and their iterations, fallbacks to the dense LU) summed over the results,
+    and the contacts with at least one fallback."""
+    totals, with_fallback = {}, 0
+    for res in results:
+        counts = res.extra.get("continuation", {}).get("linear") or {}
+        for key, value in counts.items():
+            totals[key] = totals.get(key, 0) + int(value)
+        with_fallback += bool(counts.get("fallbacks"))
+    return {**totals, "contacts_with_fallback": with_fallback}
 
 
 def dense_baseline(rows: np.ndarray, lub, fast_results: list) -> dict:
@@ -124,9 +143,10 @@ def dense_baseline(rows: np.ndarray, lub, fast_results: list) -> dict:
     smooth[:, 5:] = 0.0
     newton.REUSE_FACTORISATION = False
     try:
-        walls, cpus, diffs, converged = [], [], {k: 0.0 for k in OUTPUTS}, 0
+        walls, cpus, diffs, converged, dense_results = [], [], {k: 0.0 for k in OUTPUTS}, 0, []
         for row, fast in zip(smooth, fast_results):
             wall, cpu, res = timed_solve(row, lub, "auto", "smooth")
+            dense_results.append(res)
             walls.append(wall)
             cpus.append(cpu)
             converged += bool(res.converged)
@@ -135,7 +155,30 @@ def dense_baseline(rows: np.ndarray, lub, fast_results: list) -> dict:
     finally:
         newton.REUSE_FACTORISATION = True
     return {"wall_s": stats(walls), "cpu_s": stats(cpus), "converged": converged,
-            "max_relative_difference_to_reuse": diffs}
+            "max_relative_difference_to_reuse": diffs, "linear": linear_totals(dense_results)}
+
+
+def reused_lu_path(rows: np.ndarray, lub, fast_results: list) -> dict:
+    """The contacts solved with the banded preconditioner switched off (``newton.BANDED_PRECONDITIONER = False``: GMRES
+    preconditioned with an older dense LU, else a fresh LU: the default before the banded preconditioner), CPU and
+    wall time, and the largest relative difference of the outputs to the default path."""
+    smooth = rows.copy()
+    smooth[:, 5:] = 0.0
+    newton.BANDED_PRECONDITIONER = False
+    try:
+        walls, cpus, diffs, results = [], [], {k: 0.0 for k in OUTPUTS}, []
+        for row, fast in zip(smooth, fast_results):
+            wall, cpu, res = timed_solve(row, lub, "auto", "smooth")
+            walls.append(wall)
+            cpus.append(cpu)
+            results.append(res)
+            for key in OUTPUTS:
+                diffs[key] = max(diffs[key], abs(getattr(fast, key) / getattr(res, key) - 1.0))
+    finally:
+        newton.BANDED_PRECONDITIONER = True
+    return {"wall_s": stats(walls), "cpu_s": stats(cpus), "converged": int(sum(r.converged for r in results)),
+            "iterations": stats([r.iterations for r in results]),
+            "max_relative_difference_to_default": diffs, "linear": linear_totals(results)}
 
 
 def default_model(rows: np.ndarray, lub) -> dict:
@@ -233,6 +276,8 @@ def main(argv=None) -> int:
     parser.add_argument("--n", type=int, default=1000, help="warm smooth solves")
     parser.add_argument("--baseline-n", type=int, default=200, help="of them, also on the dense path")
     parser.add_argument("--default-n", type=int, default=200, help="of them, with roughness and the default model")
+    parser.add_argument("--reused-lu-n", type=int, default=0,
+                        help="of them, also with the banded preconditioner off (the reused dense LU)")
     parser.add_argument("--seed", type=int, default=45)
     parser.add_argument("--cold-repeats", type=int, default=3)
     parser.add_argument("--factorial", choices=("sample", "full", "none"), default="sample")
@@ -265,6 +310,10 @@ def main(argv=None) -> int:
         report["dense_baseline"] = dense_baseline(rows[:args.baseline_n], lub, results[:args.baseline_n])
         report["dense_baseline"]["load_average_end"] = load_average()
         print(f"dense baseline: median {report['dense_baseline']['cpu_s']['median'] * 1e3:.1f} ms CPU", file=sys.stderr)
+    if args.n and args.reused_lu_n:
+        report["reused_lu_path"] = reused_lu_path(rows[:args.reused_lu_n], lub, results[:args.reused_lu_n])
+        report["reused_lu_path"]["load_average_end"] = load_average()
+        print(f"reused LU path: median {report['reused_lu_path']['cpu_s']['median'] * 1e3:.1f} ms CPU", file=sys.stderr)
     if args.n and args.default_n:
         report["default_model"] = default_model(rows[:args.default_n], lub)
         report["default_model"]["load_average_end"] = load_average()
