@@ -11,7 +11,6 @@ Gaussian-ACF profile against 0.02073 on flank_ground (``gearloss contact solve -
 
 import hashlib
 import shutil
-from pathlib import Path
 
 import numpy as np
 import pytest
