@@ -64,7 +64,7 @@ def _entry(name: str):
     wins)."""
     return globals()[name] if name in globals() else __getattr__(name)
 
-SOLVER_VERSION = "ehl-2026.11-15"
+SOLVER_VERSION = "ehl-2026.11-16"
 """Version of the numerics behind :func:`solve_contact`. The dataset store records it and refuses to resume a file
 computed with another version: bump it with every change that can alter a solved value. The deterministic model's
 numerics carry their own version (:data:`ehl_dataset.solvers.deterministic.MODEL_VERSION`, recorded in the files that
@@ -75,7 +75,8 @@ MODELS = names.MODELS
 """Contact models :func:`solve_contact` can be asked for: ``auto`` (the effect plan decides: steady smooth; for rough
 surfaces the steady homogenised model with the film-law closure where the contact is at least the planner's
 ``a_over_beta_homogenised`` correlation lengths wide, else the level's ``rough_model``: the same film-law model at
-``fast`` and ``standard`` (outside its validated range, recorded), the deterministic solver at ``reference``; forced
+``fast`` and ``standard`` (outside its validated range, recorded; the asperity-load closure on point-like
+contacts, a/β below the planner's ``a_over_beta_point_contact``), the deterministic solver at ``reference``; forced
 effects with ``transient`` on run the deterministic solver at the level's grid rule too), ``smooth``
 (steady smooth surfaces whatever the roughness), ``homogenised``
 (the steady two-scale mixed model, :mod:`ehl_dataset.solvers.homogenised`, with the closure of ``homogenised``;
@@ -99,7 +100,10 @@ of the inlet length in correlation lengths on every contact, narrow and wide, in
 none above (film-law-2026.11-3; the wide unsaturated contacts resolved whole were 40 % above the film law without
 it), and extends the closure's measured range to wide contacts; ehl-2026.11-15 deletes the transient mixed solver
 (its grid-dependent μ) and sends forced effects with ``transient`` on
-(``effects="full"``) on rough contacts to the deterministic solver at the level's grid rule."""
+(``effects="full"``) on rough contacts to the deterministic solver at the level's grid rule; ehl-2026.11-16 makes
+``auto`` at ``fast`` and ``standard`` solve point-like rough contacts (a/β < 1.8) by the asperity-load closure, and the
+film law's rolling term there take a film without steps at the zone edges (film-law-2026.11-4); no contact of the
+paper factorial (a/β ≥ 2.95) changes."""
 
 __all__ = ["solve_contact", "solve_problem", "resolve_contact", "SOLVER_VERSION", "MODELS"]
 

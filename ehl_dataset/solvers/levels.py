@@ -118,6 +118,16 @@ share 0.66 at β/128) is −78 % with the closure, the narrow factorial corner a
 at λ̄ 0.062 +162 % (−44 % without). Within the range the lowest λ̄ is 0.14 (+0.5 %); one factorial point at λ̄ 0.085 is
 +4 %: validation/results/micro_pressure_closure.json, docs/explanation/mixed-regime.md."""
 
+POINT_CONTACT_A_OVER_BETA = 1.8
+"""a/β below which a rough contact is point-like and goes to the asperity-load closure (ehl-2026.11-16). Such a
+contact is narrower than the roughness: the composite roughness curves the surfaces far more than r_eq (the
+Greenwood–Tripp parameter α = S_c·r_eq/a² is 27–107 on the contacts measured) and a few asperity pairs carry the load.
+Against the deterministic model on r_eq 12.4 mm, 10 m/s, 90 °C, Rq 0.4/0.4 µm (gear contact-line ends;
+validation/results/narrow_point_contacts.json): at a/β 0.54 and 1.08 the asperities carry 0.11–0.28 of the load and
+the film law is 70–119 % low (μ < 0 on one), the smooth model 91–96 % low, the asperity closure within 20 %. The
+factorial's narrowest contacts (a/β 2.95, reference case A) are within the film law's range; 1.8 is the geometric
+middle of 1.08 and 2.95."""
+
 NARROW_CLOSURE_ROUGHNESS = 2.5
 """Greenwood–Tripp roughness parameter α = S_c·r_eq/a² up to which the closure holds (ehl-2026.11-13). The film law
 takes the smooth Hertzian pressure as the mean pressure; where the composite roughness is large against the Hertz
@@ -160,6 +170,9 @@ class PlannerThresholds:
         calibrated (:mod:`ehl_dataset.model.micro_pressure`) at λ̄ at or above this [-].
     narrow_closure_roughness : float
         ... and a Greenwood–Tripp roughness parameter α = S_c·r_eq/a² at or below this [-].
+    a_over_beta_point_contact : float
+        A rough contact narrower than this a/β is point-like: the steady homogenised model runs it with the
+        asperity-load closure (0: never) [-].
     """
 
     lambda_smooth: float
@@ -172,6 +185,7 @@ class PlannerThresholds:
     narrow_film_law_eyring: float = math.inf
     narrow_closure_lambda: float = math.inf
     narrow_closure_roughness: float = 0.0
+    a_over_beta_point_contact: float = 0.0
 
     def __post_init__(self):
         if self.rough_model not in ROUGH_MODELS:
@@ -211,7 +225,8 @@ REGISTRY: dict[str, Level] = {
         PlannerThresholds(lambda_smooth=3.5, eyring_newtonian=0.01, tolerance=0.05, thermal_change=0.04,
                           a_over_beta_homogenised=WIDE_A_OVER_BETA, rough_model="homogenised",
                           narrow_film_law_lambda=1.0, narrow_film_law_eyring=NARROW_FILM_LAW_EYRING,
-                          narrow_closure_lambda=NARROW_CLOSURE_LAMBDA, narrow_closure_roughness=NARROW_CLOSURE_ROUGHNESS),
+                          narrow_closure_lambda=NARROW_CLOSURE_LAMBDA, narrow_closure_roughness=NARROW_CLOSURE_ROUGHNESS,
+                          a_over_beta_point_contact=POINT_CONTACT_A_OVER_BETA),
         MappingProxyType(dict(points_per_beta=8.0, points_per_ell=0.625, inlet_resolution=0.3, mu_sem_target=0.10,
                               max_passes=6.0))),
     "standard": Level(
@@ -219,7 +234,8 @@ REGISTRY: dict[str, Level] = {
         PlannerThresholds(lambda_smooth=5.0, eyring_newtonian=0.003, tolerance=0.02, thermal_change=0.016,
                           a_over_beta_homogenised=WIDE_A_OVER_BETA, rough_model="homogenised",
                           narrow_film_law_lambda=1.0, narrow_film_law_eyring=NARROW_FILM_LAW_EYRING,
-                          narrow_closure_lambda=NARROW_CLOSURE_LAMBDA, narrow_closure_roughness=NARROW_CLOSURE_ROUGHNESS),
+                          narrow_closure_lambda=NARROW_CLOSURE_LAMBDA, narrow_closure_roughness=NARROW_CLOSURE_ROUGHNESS,
+                          a_over_beta_point_contact=POINT_CONTACT_A_OVER_BETA),
         MappingProxyType(dict(points_per_beta=16.0, points_per_ell=1.25, inlet_resolution=0.2, mu_sem_target=0.03,
                               max_passes=12.0))),
     "reference": Level(

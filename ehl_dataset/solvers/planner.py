@@ -18,6 +18,9 @@ threshold says it does not change the result beyond the level's tolerance (the c
   in median (docs/explanation/mixed-regime.md); the other narrow rough contacts go to the level's ``rough_model``: the
   same film-law model at ``fast`` and ``standard``, recorded as outside its validated range (no cheap model is within
   those levels' tolerance there), the deterministic solver (the package's transient rough solver) at ``reference``.
+  A rough contact narrower than ``a_over_beta_point_contact`` (a/β below 1.8 at ``fast`` and ``standard``) is
+  point-like: narrower than the roughness, a few asperity pairs carry part of its load, and the steady homogenised
+  model runs it with the asperity-load closure (recorded as ``reasons["closure"]``, read by :func:`planned_closure`).
 * **shear thinning** — inlet Eyring number X_in = η0·|u_s|/(τ0·h_min,DH): sinh(τ_m/τ0) of the Couette shear where
   the film is formed (the inlet, at ambient viscosity). The Eyring flow factor is √(1 + X²), and only the inlet flow
   shapes the film: in the Hertz zone the Poiseuille flow is negligible whatever its factor. The Eyring number at the
@@ -167,7 +170,8 @@ def plan_effects(case, lubricant, level="standard", correlation_length_m: float 
     with its pressure-fluctuation closure is within its measured range) and ``limit``, the limit that decided
     (``lambda_bar``, ``eyring_number``, ``closure_range``, ``below_closure_lambda`` or ``above_closure_roughness``:
     :func:`narrow_film_law_range`), and for one narrower than ``a_over_beta_homogenised`` the same under
-    ``narrow_contact``.
+    ``narrow_contact``; for a point-like one (a/β below ``a_over_beta_point_contact``) ``closure`` is
+    ``"asperity"``.
 
     Parameters
     ----------
@@ -200,7 +204,8 @@ def plan_effects(case, lubricant, level="standard", correlation_length_m: float 
     alpha = nums["roughness_parameter"]
     narrow_within, narrow_limit = narrow_film_law_range(nums, limits)
     narrow_valid = not wide and narrow_within
-    homogenised = rough and (wide or narrow_valid or limits.rough_model == "homogenised")
+    point = rough and nums["a_over_beta"] < limits.a_over_beta_point_contact
+    homogenised = rough and (wide or narrow_valid or point or limits.rough_model == "homogenised")
     a_b = f"a/beta={nums['a_over_beta']:.3g}"
     x_in = nums["eyring_inlet"]
     newtonian = x_in <= limits.eyring_newtonian
@@ -212,7 +217,10 @@ def plan_effects(case, lubricant, level="standard", correlation_length_m: float 
                       ("S_c=0: smooth surfaces" if math.isinf(lam) else
                        f"lambda_bar={lam:.3g} >= {limits.lambda_smooth:g}: roughness does not change mu within "
                        f"the level tolerance, steady smooth solve")),
-        "transient": (f"{a_b} >= {limits.a_over_beta_homogenised:g}: the roughness is a homogeneous micro-scale, its "
+        "transient": (f"{a_b} < {limits.a_over_beta_point_contact:g}: point-like contact, the steady asperity-load "
+                      "closure: steady"
+                      if point else
+                      f"{a_b} >= {limits.a_over_beta_homogenised:g}: the roughness is a homogeneous micro-scale, its "
                       f"ensemble average replaces the time average: steady"
                       if homogenised and wide else
                       f"{a_b} < {limits.a_over_beta_homogenised:g}, but the level's rough model is the steady "
@@ -220,7 +228,12 @@ def plan_effects(case, lubricant, level="standard", correlation_length_m: float 
                       if homogenised else
                       "moving roughness makes the contact transient" if rough else
                       "smooth surfaces under constant load: steady"),
-        "model": (f"homogenised model, film-law closure ({a_b} >= {limits.a_over_beta_homogenised:g}; against the "
+        "model": (f"homogenised model, asperity-load closure: point-like contact ({a_b} < "
+                  f"{limits.a_over_beta_point_contact:g}, roughness parameter alpha={alpha:.3g}: narrower than the "
+                  "roughness, a few asperity pairs carry part of the load, which the film law does not model; against "
+                  "the deterministic model: docs/explanation/mixed-regime.md)"
+                  if point else
+                  f"homogenised model, film-law closure ({a_b} >= {limits.a_over_beta_homogenised:g}; against the "
                   "deterministic model's windows on the wide factorial corners: docs/explanation/mixed-regime.md)"
                   + ("" if narrow_within else
                      f"; outside the measured range of its pressure-fluctuation closure (X_h={x_h:.3g} < "
@@ -274,9 +287,17 @@ def plan_effects(case, lubricant, level="standard", correlation_length_m: float 
         reasons["film_law_range"] = {"within_measured_range": bool(narrow_within), "limit": narrow_limit}
     if rough and not wide:
         reasons["narrow_contact"] = {"within_measured_range": bool(narrow_valid), "limit": narrow_limit}
+    if point:
+        reasons["closure"] = "asperity"
     return Effects(roughness=rough, transient=rough and not homogenised, shear_thinning=not newtonian,
                    compressibility=True,
                    mode="auto", reasons=reasons, thermal=thermal)
+
+
+def planned_closure(plan: Effects) -> str:
+    """The homogenised model's closure that ``plan`` asks for: ``"asperity"`` for a point-like contact
+    (:attr:`~ehl_dataset.solvers.levels.PlannerThresholds.a_over_beta_point_contact`), else ``"film_law"``."""
+    return str((plan.reasons or {}).get("closure", "film_law"))
 
 
 def without_thermal(plan: Effects, why: str) -> Effects:

@@ -20,7 +20,7 @@ from ..model.roughness import RoughnessProfile
 from ..names import CONTACT_EFFECT_PLANS, MODELS
 from ..validation import InputError, check_time_limit
 from .levels import AccuracyLevel, Level, level_settings
-from .planner import resolve_effects, with_model, without_thermal
+from .planner import planned_closure, resolve_effects, with_model, without_thermal
 
 if TYPE_CHECKING:  # imported where a route needs them: a smooth solve does not load the mixed models
     from .deterministic import DeterministicOptions
@@ -199,7 +199,7 @@ def resolve_contact(case: ContactCase, lubricant: Lubricant | str, level: str | 
     elif route == "film_law":
         from .homogenised import HomogenisedOptions
 
-        options_h = HomogenisedOptions(closure="film_law")
+        options_h = HomogenisedOptions(closure=planned_closure(plan))
     elif route == "deterministic":
         from .deterministic import deterministic_options
 
