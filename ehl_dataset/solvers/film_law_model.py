@@ -142,10 +142,28 @@ def _thermal_ratio(case: ContactCase, state: LubricantState, x_m, p_pa, film_m, 
 
 
 def continuous_outside_film(x_m, smooth_film_m, zone, zone_film_m) -> np.ndarray:
-    """The mean film [m] outside the film-law zone that joins the zone's film without a step: the smooth solve's film
-    h_s(x) [m] on the nodes x [m] shifted by the zone's excess at the nearer zone edge, h_s(x) + h̄(±ea) − h_s(±ea)
-    (the rough surfaces' mean lines held apart by the same extra distance as at the zone edge); ``zone`` the boolean
-    mask of the zone's nodes, ``zone_film_m`` h̄ [m] on them. Inside the zone the returned values are not used."""
+    """The mean film outside the film-law zone that joins the zone's film without a step.
+
+    The smooth solve's film shifted by the zone's excess at the nearer zone edge, h_s(x) + h̄(±ea) − h_s(±ea): the
+    rough surfaces' mean lines held apart by the same extra distance as at the zone edge (module docstring).
+
+    Parameters
+    ----------
+    x_m : array_like
+        Nodes of the smooth solve [m].
+    smooth_film_m : array_like
+        Smooth film h_s on the nodes [m].
+    zone : array_like of bool
+        Mask of the zone's nodes (contiguous) [-].
+    zone_film_m : array_like
+        Film-law film h̄ on the zone's nodes [m].
+
+    Returns
+    -------
+    numpy.ndarray
+        The shifted film on every node (inside the zone the values are h_s shifted by the outlet excess and unused)
+        [m].
+    """
     x_m, h_s = np.asarray(x_m, dtype=float), np.asarray(smooth_film_m, dtype=float)
     inside = np.flatnonzero(zone)
     inlet_shift = float(zone_film_m[0] - h_s[inside[0]])

@@ -295,8 +295,19 @@ def plan_effects(case, lubricant, level="standard", correlation_length_m: float 
 
 
 def planned_closure(plan: Effects) -> str:
-    """The homogenised model's closure that ``plan`` asks for: ``"asperity"`` for a point-like contact
-    (:attr:`~ehl_dataset.solvers.levels.PlannerThresholds.a_over_beta_point_contact`), else ``"film_law"``."""
+    """The closure of the homogenised model that a plan asks for.
+
+    Parameters
+    ----------
+    plan : Effects
+        A plan of :func:`plan_effects` (or any plan; without the planner's ``closure`` reason it is the film law) [-].
+
+    Returns
+    -------
+    str
+        ``"asperity"`` for a point-like contact (a/β below
+        :attr:`~ehl_dataset.solvers.levels.PlannerThresholds.a_over_beta_point_contact`), else ``"film_law"``.
+    """
     return str((plan.reasons or {}).get("closure", "film_law"))
 
 
