@@ -123,10 +123,10 @@ POINT_CONTACT_A_OVER_BETA = 1.8
 contact is narrower than the roughness: the composite roughness curves the surfaces far more than r_eq (the
 Greenwood–Tripp parameter α = S_c·r_eq/a² is 27–107 on the contacts measured) and a few asperity pairs carry the load.
 Against the deterministic model on r_eq 12.4 mm, 10 m/s, 90 °C, Rq 0.4/0.4 µm (gear contact-line ends;
-validation/results/narrow_point_contacts.json): at a/β 0.54 and 1.08 the asperities carry 0.11–0.28 of the load and
-the film law is 70–119 % low (μ < 0 on one), the smooth model 91–96 % low, the asperity closure within 20 %. The
-factorial's narrowest contacts (a/β 2.95, reference case A) are within the film law's range; 1.8 is the geometric
-middle of 1.08 and 2.95."""
+validation/results/narrow_point_contacts.json): at a/β 0.54 and 1.08, SR 0.054 and 0.3, the asperities carry 0.10–0.28
+of the load, the film law is 67–124 % low (μ < 0 on one), the smooth model 77–95 % low, the asperity closure −20 % to
++10 % (the reference uncertain by about 20 %). The factorial's narrowest contacts (a/β 2.95, reference case A's size)
+are within the film law's range where α ≤ 2.5; 1.8 is the geometric middle of 1.08 and 2.95."""
 
 NARROW_CLOSURE_ROUGHNESS = 2.5
 """Greenwood–Tripp roughness parameter α = S_c·r_eq/a² up to which the closure holds (ehl-2026.11-13). The film law
