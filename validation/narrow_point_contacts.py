@@ -10,7 +10,8 @@ validation/results/narrow_point_contacts.json.
 
     python validation/narrow_point_contacts.py
     python validation/narrow_point_contacts.py --cases 37:0.054 --nodes 32   # the grid check
-    python validation/narrow_point_contacts.py --cheap-only                  # steady models only
+    python validation/narrow_point_contacts.py --cheap-only                  # steady models only, domain study
+    python validation/narrow_point_contacts.py --factorial-check             # the continuous film on the factorial
 
 The film law is recorded as the model runs it (on these contacts with the film continuous at the zone edges) and
 with the film steps of film-law-2026.11-3 (``film_law_with_film_steps``).
@@ -86,6 +87,68 @@ def run_case(key: str, sr: float, nodes: float, passes: float, level: str, deter
     return row
 
 
+def domain_study(level: str) -> list[dict]:
+    """The smooth model on the lightest contact (37 MPa, SR 0.054) with the inlet end of the domain moved from the
+    paper's −2.5a upstream: how much the paper's domain starves a contact this light."""
+    from ehl_dataset.model.film_formulas import moes_central_film
+    from ehl_dataset.solvers.levels import level_settings
+
+    lub = load_lubricant("atf")
+    case = ContactCase(P_H_PA["37"], R_EQ_M, U_R_M_S, 0.054, TEMPERATURE_K, RQ_M, RQ_M)
+    state = lub.state(case.temperature)
+    moes = float(moes_central_film(state.eta0, case.u_r, state.alpha1, case.e_reduced, case.r_eq,
+                                   case.load_per_length))
+    rows = []
+    for x_start in (-2.5, -5.0, -10.0, -20.0, -40.0):
+        steady = level_settings(level).steady.with_domain(x_start, 1.5)
+        result = solve_contact(case, lub, steady, "smooth")
+        rows.append({"x_start_over_a": x_start, "mu": result.mu, "h_central_m": result.h_central,
+                     "converged": result.converged, "moes_central_film_m": moes})
+    return rows
+
+
+def factorial_check() -> dict:
+    """The film law at ``fast`` with the smooth film outside the zone (as on the factorial) and with the continuous
+    film, on the factorial points that have a deterministic reference at ``fast`` (benchmarks/results/
+    ehl_mixed_{random200,corners}_fast_deterministic.json; SR > 0, rough): how much the continuous film would move μ
+    there, and the errors against the reference with and without it."""
+    import numpy as np
+
+    lub = load_lubricant("atf")
+    root = Path(__file__).resolve().parents[1]
+    points = []
+    for name in ("random200", "corners"):
+        data = json.loads((root / "benchmarks" / "results" / f"ehl_mixed_{name}_fast_deterministic.json").read_text())
+        for row in data["rows"]:
+            p_h, r_eq, u_r, sr, temp_c, rq1, rq2 = row["case"]
+            if not row.get("converged") or row.get("mu") is None or sr == 0 or rq1 + rq2 == 0:
+                continue
+            case = ContactCase.from_engineering(p_h, r_eq, u_r, sr, temp_c, rq1, rq2)
+            problem = resolve_contact(case, lub, "fast", "isothermal", model="homogenised",
+                                      homogenised=HomogenisedOptions(closure="film_law"))
+            args = (problem.case, problem.state, problem.steady_level, problem.plan, None,
+                    problem.homogenised.boundary_film_m)
+            steps = solve_film_law(*args, continuous_film=False)
+            joined = solve_film_law(*args, continuous_film=True)
+            points.append({"sample": name, "case": row["case"], "a_over_beta": steps.extra["a_over_beta"],
+                           "deterministic": row["mu"], "smooth_film_outside": steps.mu, "continuous_film": joined.mu})
+    a = np.array([[p["smooth_film_outside"], p["continuous_film"], p["deterministic"], p["a_over_beta"]]
+                  for p in points])
+    change = np.abs(a[:, 1] / a[:, 0] - 1.0)
+    summary = {}
+    for label, mask in (("narrow", a[:, 3] < 15.0), ("wide", a[:, 3] >= 15.0), ("all", a[:, 3] > 0.0)):
+        summary[label] = {"points": int(mask.sum()), "change_median": float(np.median(change[mask])),
+                          "change_max": float(change[mask].max()),
+                          "error_median_smooth_film": float(np.median(np.abs(a[mask, 0] / a[mask, 2] - 1.0))),
+                          "error_median_continuous_film": float(np.median(np.abs(a[mask, 1] / a[mask, 2] - 1.0))),
+                          "error_p90_smooth_film": float(np.percentile(np.abs(a[mask, 0] / a[mask, 2] - 1.0), 90)),
+                          "error_p90_continuous_film": float(np.percentile(np.abs(a[mask, 1] / a[mask, 2] - 1.0),
+                                                                            90))}
+    worst = points[int(np.argmax(change))]
+    return {"summary": summary, "largest_change": {**worst, "relative_change": float(change.max())},
+            "smallest_a_over_beta": float(a[:, 3].min())}
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--cases", nargs="+", default=DEFAULT_CASES, help="P:SR, P one of 37, 74, 222 (MPa)")
@@ -93,12 +156,25 @@ def main(argv=None) -> int:
     parser.add_argument("--passes", type=float, default=30.0, help="longest averaging window [passes]")
     parser.add_argument("--level", default="standard", help="level of the steady models")
     parser.add_argument("--out", type=Path, default=OUT)
+    parser.add_argument("--factorial-check", action="store_true",
+                        help="only the film law with and without the continuous film on the factorial points that "
+                             "have a deterministic reference (a few minutes)")
     parser.add_argument("--cheap-only", action="store_true",
                         help="recompute the steady models only, keeping each case's recorded deterministic run")
     args = parser.parse_args(argv)
     record = json.loads(args.out.read_text()) if args.out.exists() else {"runs": {}}
     record.update({"solver_version": SOLVER_VERSION, "machine": platform.machine(), "cpus": os.cpu_count(),
                    "command": "python validation/narrow_point_contacts.py"})
+    if args.factorial_check:
+        record["factorial_check"] = factorial_check()
+        print(json.dumps(record["factorial_check"]["summary"], indent=1))
+        args.out.write_text(json.dumps(record, indent=1, default=float) + "\n")
+        return 0
+    if args.cheap_only:
+        record["smooth_domain_study"] = domain_study(args.level)
+        for row in record["smooth_domain_study"]:
+            print(f"domain from {row['x_start_over_a']:g} a: smooth mu {row['mu']:.5f}, h_c "
+                  f"{row['h_central_m'] * 1e6:.3f} um (Moes {row['moes_central_film_m'] * 1e6:.2f} um)")
     for spec in args.cases:
         key, sr = spec.split(":")
         name = f"{key}MPa_sr{sr}_n{args.nodes:g}"
