@@ -54,8 +54,9 @@ def main(argv=None) -> int:
         friction = friction_from_spec(spec)
         label = Path(spec).name
         row = evaluate_design(study.design("D"), friction, point, MeshOptions())
+        band = [row["power_loss_low_w"], row["power_loss_high_w"]]
         cases.setdefault("design_D", {})[label] = {"p_w": row["power_loss_w"],
-                                                    "band_w": [row["power_loss_low_w"], row["power_loss_high_w"]],
+                                                    "band_w": band if all(math.isfinite(v) for v in band) else None,
                                                     "efficiency": row["efficiency"], "valid": row["valid"]}
         pair = osu_pair()
         for rpm in PJ_SPEEDS_RPM:
