@@ -75,7 +75,7 @@ class BandedPreconditioner:
             return
         # load row in z': Σ_j w_j (BΔV)_j = Σ_l (Bᵀw)_l ΔV_l (ΔP_f cancels)
         self.load_row = np.zeros(3 * self.n)
-        self.load_row[0::3] = np.convolve(weights, binv[::-1], mode="same")
+        self.load_row[0::3] = banded_product(weights, binv[::-1])
         self.denominator = -float(self.load_row @ self.border)
 
     def _solve(self, rhs):
@@ -101,9 +101,35 @@ class BandedPreconditioner:
         if self.periodic:
             out[2:-1:3] = smoothed + shift - dpf
         else:
-            out[2:-1:3] = np.convolve(y[0::3], self.binv, mode="same") - dpf
+            out[2:-1:3] = banded_product(y[0::3], self.binv) - dpf
         out[-1] = dh0
         return out
+
+
+def banded_product(values: np.ndarray, stencil: np.ndarray) -> np.ndarray:
+    """Product of a banded Toeplitz matrix with a vector on a bounded grid: out_j = Σ_k s[j − k + w] v_k over the
+    nodes k of the grid (entries beyond its ends are zero), for an odd-length stencil s of half width w.
+
+    This is ``np.convolve(values, stencil, mode="same")`` when the grid has at least 2w + 1 nodes; on a shorter grid
+    (a band wider than the grid) ``mode="same"`` returns 2w + 1 values centred on the stencil, whereas the product
+    keeps the N nodes of the grid: the middle N of the full convolution.
+
+    Parameters
+    ----------
+    values : numpy.ndarray
+        Vector v on the N nodes [-].
+    stencil : numpy.ndarray
+        Diagonals s of the band, 2w + 1 entries, the main diagonal in the middle [-].
+
+    Returns
+    -------
+    numpy.ndarray
+        The N values of the product [-].
+    """
+    half = (stencil.size - 1) // 2
+    if values.size >= stencil.size:
+        return np.convolve(values, stencil, mode="same")
+    return np.convolve(values, stencil, mode="full")[half: half + values.size]
 
 
 class SteadyGridBand:
