@@ -40,6 +40,10 @@ DEFAULT_ALPHA = 0.10
 """1 − coverage of the intervals reported by default (90 % prediction intervals)."""
 CALIBRATED_COVERAGES = (0.5, 0.68, 0.8, 0.9, 0.95)
 """Coverages whose score quantile a calibrated Eq. 9 file stores (0.9 required)."""
+TOO_FEW_CALIBRATION_ROWS = ">= 9 held-out rows for a 90 % interval"
+"""What the error of a branch with too few held-out rows accepts (the ⌈(n + 1)·0.9⌉-th smallest score exists from
+n = 9 on): callers tell this shortfall of a small sample from other bad input by it."""
+
 CALIBRATION_METHOD = ("split conformal per branch: the statsmodels prediction standard error sqrt(s^2 + x'Cx) "
                       "scaled by the ceil((n+1)c)-th smallest |ln mu - ln mu_hat|/se over held-out solved contacts")
 
@@ -227,6 +231,6 @@ def calibrate_scores(residual: np.ndarray, se: np.ndarray, lam: np.ndarray, lamb
     for branch, mask in (("mixed", lam <= lambda_threshold), ("full_film", lam > lambda_threshold)):
         quantiles = {c: q for c in coverages if np.isfinite(q := conformal_quantile(score[mask], c))}
         if 0.9 not in quantiles:
-            raise InputError(f"calibration rows ({branch})", int(mask.sum()), ">= 9 held-out rows for a 90 % interval")
+            raise InputError(f"calibration rows ({branch})", int(mask.sum()), TOO_FEW_CALIBRATION_ROWS)
         out[branch] = quantiles
     return out

@@ -226,6 +226,8 @@ def offgrid_lines(offgrid: dict[str, Any] | None) -> list[str]:
     if offgrid.get("interval_method"):
         counted = "" if offgrid.get("coverage_rows", "all") == "all" else f", coverage on {offgrid['coverage_rows']}"
         lines.append(f"  interval: {offgrid['interval_method']}{counted}")
+    if offgrid.get("interval_calibration"):  # a sample with too few usable rows on a branch to calibrate
+        lines.append(f"  interval {offgrid['interval_calibration']}")
     for key in ("overall", "mixed", "full_film"):
         m = offgrid.get(key) or {}
         if not m.get("n"):

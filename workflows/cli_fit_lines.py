@@ -5,7 +5,8 @@ from __future__ import annotations
 
 OFFGRID_HELP = ("seeded random contacts inside the factorial's ranges, solved by the same route, on which the fit's "
                 "error of mu (median, 90th percentile, max per branch) and interval coverage are measured and "
-                "recorded in the coefficient file (default 200; 0: none)")
+                "recorded in the coefficient file (default 200; 0: none; else at least 35 with eq9, 17 with "
+                "learned: its even rows calibrate the interval)")
 FORM_HELP = ("form of the friction surrogate: eq9 (paper Eq. 9, statsmodels OLS, with prediction intervals) or "
              "learned (ensemble of small perceptrons with calibrated intervals, JSON weights); default eq9 (learned with "
              "--adaptive)")
@@ -70,9 +71,11 @@ def form_arguments(args, factorial_points: int) -> dict:
     :func:`add_form_options` (checked: :class:`~ehl_dataset.validation.InputError` names the option)."""
     from ehl_dataset.validation import check_range
 
+    from .surrogate_stage import check_offgrid_points
+
     adaptive = bool(getattr(args, "adaptive", False))
-    out = {"form": args.form or ("learned" if adaptive else "eq9"),
-           "offgrid_points": int(check_range("offgrid_points", args.offgrid_points, 0, 100000))}
+    form = args.form or ("learned" if adaptive else "eq9")
+    out = {"form": form, "offgrid_points": check_offgrid_points(args.offgrid_points, form, "--offgrid-points")}
     if adaptive:
         budget = args.budget if args.budget is not None else max(128, factorial_points // 10)
         out.update(adaptive_budget=int(check_range("budget", budget, 20, 10**7)),

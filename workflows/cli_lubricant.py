@@ -142,12 +142,12 @@ def _fit(args: argparse.Namespace) -> int:
                        lubricant=args.lubricant, design=None, overwrite=args.overwrite, workers=args.workers,
                        time_limit_s=args.time_limit_s, effects=args.effects, roughness=roughness_choice(args))
     resume = _resume_command(args, run)
+    stage2 = form_arguments(args, run.factorial.size)  # checked before the run is announced
     announce(f"gearloss lubricant fit: lubricant {run.lubricant_name}, factorial", run, resume, args.overwrite)
     result = run_lubricant_fit(args.lubricant, run.factorial, out_dir=run.out_dir, workers=args.workers,
                                scheduler=args.scheduler, level=run.level, model=run.model, progress=args.progress,
                                allow_unstable=args.allow_unstable, time_limit_s=args.time_limit_s,
-                               overwrite=args.overwrite, resume_command=resume, checked=run,
-                               **form_arguments(args, run.factorial.size))
+                               overwrite=args.overwrite, resume_command=resume, checked=run, **stage2)
     payload = result.to_dict()
     payload["coefficients"] = result.stage("fit").artefact
     payload["resume_command"] = resume

@@ -98,19 +98,21 @@ def run_pipeline_command(args: argparse.Namespace) -> int:
     from . import exit_codes
     from .cli_dataset import roughness_choice
     from .pipeline import check_inputs, run_pipeline
+    from .surrogate_stage import check_offgrid_points
 
     check_range("workers", args.workers, 1, 1024)
     run = check_inputs(args.factorial, out_dir=args.out_dir, level=args.level, model=args.model,
                        design=args.design, overwrite=args.overwrite, workers=args.workers,
                        time_limit_s=args.time_limit_s, effects=args.effects, roughness=roughness_choice(args))
     resume = _resume_command(args, run)
+    offgrid_points = check_offgrid_points(args.offgrid_points, args.form or "eq9", "--offgrid-points")
     announce(f"gearloss pipeline {args.pipeline_command}: factorial", run, resume, args.overwrite)
     result = run_pipeline(run.out_dir, run.factorial, workers=args.workers,
                           scheduler=getattr(args, "scheduler", None), progress=args.progress, level=run.level,
                           model=run.model, design=args.design, allow_unstable=args.allow_unstable,
                           clip_to_fitted_ranges=not args.no_clip, time_limit_s=args.time_limit_s,
                           overwrite=args.overwrite, resume_command=resume, checked=run, form=args.form or "eq9",
-                          offgrid_points=int(check_range("offgrid_points", args.offgrid_points, 0, 100000)))
+                          offgrid_points=offgrid_points)
     payload = result.to_dict()
     design = result.stage("design").details
     payload.update({k: design[k] for k in ("power_loss_w", "efficiency", "te_pp_m", "sigma_c_pa", "sigma_b_pa",

@@ -708,6 +708,9 @@ def run_pipeline(out_dir: str | Path | None = None, factorial=QUICK_FACTORIAL, *
     run = checked or check_inputs(factorial, out_dir=out_dir, level=level, model=model, lubricant=lubricant,
                                   study=study, design=design, overwrite=overwrite, workers=workers,
                                   time_limit_s=time_limit_s, effects=effects, roughness=roughness)
+    from .surrogate_stage import check_offgrid_points
+
+    check_offgrid_points(offgrid_points, form)  # before stage 1: a sample too small to calibrate is refused now
     out = run.out_dir
     if overwrite:
         for path in (run.dataset, run.coefficients, run.coefficients.with_suffix(".summary.txt")):
@@ -810,6 +813,9 @@ def run_lubricant_fit(lubricant, factorial=QUICK_FACTORIAL, *, out_dir=None, wor
     run = checked or check_inputs(factorial, out_dir=out_dir, level=level, model=model, lubricant=lubricant,
                                   design=None, overwrite=overwrite, workers=workers, time_limit_s=time_limit_s,
                                   effects=effects, roughness=roughness)
+    from .surrogate_stage import check_offgrid_points
+
+    check_offgrid_points(offgrid_points, form)  # before any solve: a sample too small to calibrate is refused now
     if overwrite:
         for path in (run.dataset, run.coefficients, run.coefficients.with_suffix(".summary.txt")):
             path.unlink(missing_ok=True)

@@ -13,6 +13,7 @@ its stage results.
 
 from __future__ import annotations
 
+import operator
 import time
 import warnings
 from pathlib import Path
@@ -26,6 +27,63 @@ from .sample_runs import OFFGRID_POINTS, OFFGRID_SEED, offgrid_points, run_sampl
 
 FORMS = ("eq9", "learned")
 OFFGRID_FILE = "offgrid.h5"
+
+
+CALIBRATION_ROWS = 9
+"""Held-out rows a split-conformal 90 % factor needs: the ⌈(n + 1)·0.9⌉-th smallest of n scores exists from n = 9 on
+(:func:`surrogate.mlp.conformal_quantile`; the split-conformal rank of Lei et al., *J. Am. Stat. Assoc.* 113, 2018)."""
+
+
+def smallest_offgrid_sample(form: str) -> int:
+    """The smallest off-grid sample whose even rows can calibrate the interval of ``form``: :data:`CALIBRATION_ROWS`
+    even rows per interval, one interval per λ̄ branch for ``eq9`` (35 points), one for ``learned`` (17 points).
+    It is necessary, not sufficient: the sample's split between the branches and its failed or excluded solves are
+    known only once it is solved (:func:`validate_offgrid` then records the errors without calibrating).
+
+    Parameters
+    ----------
+    form : str
+        ``eq9`` or ``learned`` [-].
+
+    Returns
+    -------
+    int
+        Points [-].
+    """
+    even_rows = CALIBRATION_ROWS * (2 if check_form(form) == "eq9" else 1)
+    return 2 * even_rows - 1
+
+
+def check_offgrid_points(n: int, form: str, name: str = "offgrid_points") -> int:
+    """``n`` if it is 0 (no off-grid sample) or a sample :func:`smallest_offgrid_sample` can calibrate, up to
+    100,000; else one :class:`InputError` naming ``name``, the value and the accepted values, before anything is
+    solved.
+
+    Parameters
+    ----------
+    n : int
+        Points of the off-grid sample [-].
+    form : str
+        ``eq9`` or ``learned`` [-].
+    name : str
+        The name of the option in the message (``--offgrid-points`` on the command line) [-].
+
+    Returns
+    -------
+    int
+        ``n`` [-].
+    """
+    smallest = smallest_offgrid_sample(form)
+    try:
+        n = operator.index(n)
+    except TypeError:
+        raise InputError(name, n, "an integer") from None
+    if n != 0 and not smallest <= n <= 100000:
+        branches = "on each of the two λ̄ branches" if form == "eq9" else "for the ensemble"
+        raise InputError(name, n, f"0 (no off-grid sample) or {smallest} to 100000 with form {form}",
+                         f"the even rows of the sample calibrate the 90 % interval: {CALIBRATION_ROWS} needed "
+                         f"{branches}")
+    return n
 
 
 def check_form(form: str) -> str:
@@ -369,24 +427,52 @@ def validate_offgrid(coefficients_file: str | Path, offgrid_path: str | Path) ->
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         surrogate = FrictionSurrogate.load(coefficients_file)
-        interval, coverage_rows, calibration = None, None, None
-        if surrogate.form == "eq9" and surrogate.coefficients.covariance is not None:
-            from surrogate.dataset_io import load_dataset
-            from surrogate.offgrid import eq9_interval_calibration
+        interval, coverage_rows, calibration, not_calibrated = None, None, None, None
+        try:
+            if surrogate.form == "eq9" and surrogate.coefficients.covariance is not None:
+                from surrogate.dataset_io import load_dataset
+                from surrogate.offgrid import eq9_interval_calibration
 
-            calibration, coverage_rows = eq9_interval_calibration(surrogate, load_dataset(offgrid_path).table)
-            doc = {**surrogate.coefficients.document, "interval_calibration": calibration}
-            surrogate = FrictionSurrogate(validate_coefficients(
-                {**doc, "content_sha256": _rehash(doc)}, str(coefficients_file)))
-        if surrogate.form == "learned":
-            interval, coverage_rows = calibrated_interval(surrogate, offgrid_path)
-            doc = dict(surrogate.coefficients.document)
-            doc["learned"] = {**doc["learned"], "interval": interval}
+                calibration, coverage_rows = eq9_interval_calibration(surrogate, load_dataset(offgrid_path).table)
+                doc = {**surrogate.coefficients.document, "interval_calibration": calibration}
+            if surrogate.form == "learned":
+                interval, coverage_rows = calibrated_interval(surrogate, offgrid_path)
+                doc = dict(surrogate.coefficients.document)
+                doc["learned"] = {**doc["learned"], "interval": interval}
+        except InputError as err:
+            if not too_few_calibration_rows(err):
+                raise
+            interval, coverage_rows, calibration = None, None, None
+            not_calibrated = (f"not calibrated on this sample: {err}; the interval is the fit's own and its coverage "
+                              "is counted on all rows")
+        if interval is not None or calibration is not None:
             surrogate = FrictionSurrogate(validate_coefficients(
                 {**doc, "content_sha256": _rehash(doc)}, str(coefficients_file)))
         offgrid = offgrid_of(surrogate, offgrid_path, coverage_rows)
+    if not_calibrated is not None:
+        offgrid["interval_calibration"] = not_calibrated
+        warnings.warn(f"off-grid sample {Path(offgrid_path).name}: interval {not_calibrated}", stacklevel=2)
     record_offgrid(coefficients_file, offgrid, learned_interval=interval, interval_calibration=calibration)
     return offgrid
+
+
+def too_few_calibration_rows(err: InputError) -> bool:
+    """Whether ``err`` says that a sample has too few usable held-out rows to calibrate a 90 % interval
+    (:func:`surrogate.intervals.calibrate_scores`, :func:`surrogate.mlp.recalibrate`).
+
+    Parameters
+    ----------
+    err : InputError
+        The error [-].
+
+    Returns
+    -------
+    bool
+        True for that shortfall, False for any other error [-].
+    """
+    from surrogate.intervals import TOO_FEW_CALIBRATION_ROWS
+
+    return err.parameter.startswith("calibration rows") and err.accepted == TOO_FEW_CALIBRATION_ROWS
 
 
 def _rehash(doc: dict) -> str:
