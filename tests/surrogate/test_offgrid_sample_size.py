@@ -94,3 +94,30 @@ def test_a_sample_with_a_branch_short_of_calibration_rows_is_recorded_uncalibrat
         loaded = FrictionSurrogate.load(path)
     assert loaded.coefficients.document["offgrid"] == doc["offgrid"]
     assert any("not calibrated" in line for line in offgrid_lines(load_coefficients(path).document["offgrid"]))
+
+
+def test_a_learned_file_on_a_sample_short_of_calibration_rows_keeps_its_cross_validation_interval(
+        eq9_data, atf, e_reduced, true_params, tmp_path):
+    """16 solved contacts give 8 even rows, one short of the ensemble's 9: the file keeps its cross-validation+
+    interval (its ``learned.interval`` unchanged), the errors and coverage are counted on all 16 rows, and the
+    off-grid table says why."""
+    from surrogate.coefficients import write_coefficients
+    from surrogate.fit import prepare_table
+    from surrogate.learned_fit import fit_learned
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        fit = fit_learned(eq9_data.sample(300, random_state=3).reset_index(drop=True), atf, e_reduced, members=3,
+                          seed=0)
+    path = write_coefficients(fit, tmp_path / "learned.json", source={"path": "synthetic"})
+    before = json.loads(path.read_text())["learned"]["interval"]
+    usable = eq9_data.iloc[prepare_table(eq9_data, atf, e_reduced).kept_rows]  # no SR = 0 rows, which the fit excludes
+    rows = usable.sample(16, random_state=8).reset_index(drop=True)
+    rows["point"] = np.arange(len(rows))
+    sample = write_hdf5(rows, tmp_path / "offgrid.h5", atf)
+    with pytest.warns(UserWarning, match="not calibrated"):
+        offgrid = validate_offgrid(path, sample)
+    doc = json.loads(path.read_text())
+    assert doc["learned"]["interval"] == before
+    assert "calibration rows=8" in doc["offgrid"]["interval_calibration"]
+    assert offgrid["coverage_rows"] == "all" and offgrid["overall"]["n_coverage"] == offgrid["overall"]["n"] == 16
