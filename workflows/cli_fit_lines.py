@@ -13,8 +13,8 @@ FORM_HELP = ("form of the friction surrogate: eq9 (paper Eq. 9, statsmodels OLS,
 
 
 def add_form_options(parser, *, adaptive: bool = False) -> None:
-    """``--form``, ``--offgrid-points`` (and, for ``lubricant fit``, ``--adaptive``, ``--budget``,
-    ``--target-median``, ``--target-p90``) on ``parser``."""
+    """``--form``, ``--offgrid-points`` (and, for ``lubricant fit``, ``--adaptive``, ``--budget``, ``--initial``,
+    ``--batch``, ``--target-median``, ``--target-p90``) on ``parser``."""
     from .offgrid_defaults import OFFGRID_POINTS
 
     parser.add_argument("--form", choices=("eq9", "learned"), default=None, help=FORM_HELP)
@@ -27,6 +27,12 @@ def add_form_options(parser, *, adaptive: bool = False) -> None:
         parser.add_argument("--budget", type=int, default=None, metavar="N",
                             help="largest number of adaptive training solves (default: a tenth of the factorial's "
                                  "points, at least 128)")
+        parser.add_argument("--initial", type=int, default=None, metavar="N",
+                            help="points of the adaptive design's Sobol' start (default 128; in a box the size of "
+                                 "the paper factorial's, 1,024 met the off-grid error of the whole grid on their own: "
+                                 "docs/validation/surrogate-off-grid.md)")
+        parser.add_argument("--batch", type=int, default=None, metavar="N",
+                            help="points per adaptive batch after the start (default 64)")
         parser.add_argument("--target-median", type=float, default=None, metavar="FRACTION",
                             help="stop the adaptive design once the off-grid median |rel err mu| is at most this")
         parser.add_argument("--target-p90", type=float, default=None, metavar="FRACTION",
@@ -80,8 +86,12 @@ def form_arguments(args, factorial_points: int) -> dict:
         budget = args.budget if args.budget is not None else max(128, factorial_points // 10)
         out.update(adaptive_budget=int(check_range("budget", budget, 20, 10**7)),
                    target_median=args.target_median, target_p90=args.target_p90)
+        for option in ("initial", "batch"):
+            if getattr(args, option, None) is not None:
+                out[f"adaptive_{option}"] = int(check_range(option, getattr(args, option), 20 if option == "initial"
+                                                            else 1, 10**7))
     else:
-        for option in ("budget", "target_median", "target_p90"):
+        for option in ("budget", "initial", "batch", "target_median", "target_p90"):
             if getattr(args, option, None) is not None:
                 from ehl_dataset.validation import InputError
 

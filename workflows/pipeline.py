@@ -467,7 +467,8 @@ def fit_stage(dataset_path, coefficients_path: str | Path, *, allow_unstable: bo
 def surrogate_stages(run: PipelinePlan, dataset: str | None, lubricant=None, *, form: str = "eq9",
                      offgrid_points: int = 0,
                      adaptive_budget: int | None = None, target_median: float | None = None,
-                     target_p90: float | None = None, allow_unstable: bool = False, workers: int = 1,
+                     target_p90: float | None = None, adaptive_initial: int | None = None,
+                     adaptive_batch: int | None = None, allow_unstable: bool = False, workers: int = 1,
                      scheduler: str | None = None, progress: str = "auto", time_limit_s: float | None = None,
                      resume_command: str | None = None) -> list[StageResult]:
     """Stage 2 after the dataset: the fit of ``form`` written to its coefficient file, the off-grid validation
@@ -493,6 +494,9 @@ def surrogate_stages(run: PipelinePlan, dataset: str | None, lubricant=None, *, 
         Budget of adaptive training solves; None: train on ``dataset`` [-].
     target_median, target_p90 : float, optional
         Off-grid targets that stop the adaptive design early [-].
+    adaptive_initial, adaptive_batch : int, optional
+        Points of the adaptive design's Sobol' start and of each batch; None: the defaults of
+        :mod:`workflows.adaptive` [-].
     allow_unstable : bool
         Keep an Eq. 9 fit flagged unstable [-].
     workers : int
@@ -539,7 +543,8 @@ def surrogate_stages(run: PipelinePlan, dataset: str | None, lubricant=None, *, 
     if adaptive_budget is not None:  # the off-grid set first: it is the adaptive design's stop test
         offgrid_path = solve_offgrid()
         ran = adaptive_stage(run.out_dir, run.factorial, lub, budget=adaptive_budget, offgrid_path=offgrid_path,
-                             target_median=target_median, target_p90=target_p90,
+                             target_median=target_median, target_p90=target_p90, initial=adaptive_initial,
+                             batch=adaptive_batch,
                              log=lambda line: print(line, file=sys.stderr, flush=True) if progress != "none" else None,
                              **route)
         stages.append(StageResult("adaptive", str(run.out_dir / "adaptive"), ran["wall_time_s"], ran["details"]))
@@ -746,7 +751,8 @@ def run_lubricant_fit(lubricant, factorial=QUICK_FACTORIAL, *, out_dir=None, wor
                       overwrite: bool = False, resume_command: str | None = None,
                       checked: PipelinePlan | None = None, effects: str | None = None, form: str = "eq9",
                       offgrid_points: int = 0, adaptive_budget: int | None = None,
-                      target_median: float | None = None, target_p90: float | None = None, roughness=None,
+                      target_median: float | None = None, target_p90: float | None = None,
+                      adaptive_initial: int | None = None, adaptive_batch: int | None = None, roughness=None,
                       **runner_options) -> PipelineResult:
     """Stages 1–2 for ``lubricant``: ``factorial`` → ``OUT/dataset.h5`` → ``OUT/<lubricant>_<factorial>.json``.
 
@@ -797,6 +803,9 @@ def run_lubricant_fit(lubricant, factorial=QUICK_FACTORIAL, *, out_dir=None, wor
         (:mod:`workflows.adaptive`); None: the factorial [-].
     target_median, target_p90 : float, optional
         Off-grid targets of |Δμ/μ| that stop the adaptive design early [-].
+    adaptive_initial, adaptive_batch : int, optional
+        Points of the adaptive design's Sobol' start and of each batch; None: the defaults of
+        :mod:`workflows.adaptive` [-].
     roughness : RoughnessChoice, optional
         Roughness profile of every rough solve (dataset, off-grid sample, adaptive batches;
         :func:`ehl_dataset.dataset.roughness_choice.choose_roughness`), recorded in each store and the coefficient
@@ -833,6 +842,7 @@ def run_lubricant_fit(lubricant, factorial=QUICK_FACTORIAL, *, out_dir=None, wor
     stages.extend(surrogate_stages(run, stages[0].artefact if stages else None, lubricant, form=form,
                                    offgrid_points=offgrid_points, adaptive_budget=adaptive_budget,
                                    target_median=target_median, target_p90=target_p90,
+                                   adaptive_initial=adaptive_initial, adaptive_batch=adaptive_batch,
                                    allow_unstable=allow_unstable, workers=workers, scheduler=scheduler,
                                    progress=progress, time_limit_s=time_limit_s, resume_command=resume_command))
     result = PipelineResult(str(run.out_dir), stages, time.perf_counter() - started)

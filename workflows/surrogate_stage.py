@@ -164,7 +164,8 @@ def offgrid_stage(out_dir: str | Path, factorial, lubricant, *, level: str, effe
 
 def adaptive_stage(out_dir: str | Path, factorial, lubricant, *, level: str, effects: str, model: str, budget: int,
                    offgrid_path: str | Path | None = None, target_median: float | None = None,
-                   target_p90: float | None = None, workers: int = 1, scheduler: str | None = None,
+                   target_p90: float | None = None, initial: int | None = None, batch: int | None = None,
+                   workers: int = 1, scheduler: str | None = None,
                    progress: str = "auto", time_limit_s: float | None = None, log=None,
                    roughness=None) -> dict[str, Any]:
     """Adaptive training design (:func:`workflows.adaptive.run_adaptive`) with the off-grid set as stop test.
@@ -185,6 +186,9 @@ def adaptive_stage(out_dir: str | Path, factorial, lubricant, *, level: str, eff
         Solved off-grid sample [-].
     target_median, target_p90 : float, optional
         Off-grid targets of |Δμ/μ| [-].
+    initial, batch : int, optional
+        Points of the Sobol' start and of each batch; None: :data:`workflows.adaptive.INITIAL_POINTS`,
+        :data:`workflows.adaptive.BATCH_POINTS` [-].
     workers : int
         Local worker processes [-].
     scheduler : str, optional
@@ -210,7 +214,12 @@ def adaptive_stage(out_dir: str | Path, factorial, lubricant, *, level: str, eff
         from surrogate.dataset_io import load_dataset
 
         offgrid_table = load_dataset(offgrid_path).table
+    from .adaptive import BATCH_POINTS, INITIAL_POINTS
+
+    sizes = {"initial": INITIAL_POINTS if initial is None else int(initial),
+             "batch": BATCH_POINTS if batch is None else int(batch)}
     result = run_adaptive(out_dir, factorial, lubricant, level=level, effects=effects, model=model, budget=budget,
+                          **sizes,
                           offgrid_table=offgrid_table, target_median=target_median, target_p90=target_p90,
                           workers=workers, scheduler=scheduler, progress=progress, time_limit_s=time_limit_s,
                           log=log, roughness=roughness)

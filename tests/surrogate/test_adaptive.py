@@ -103,3 +103,38 @@ def test_adaptive_rejects_a_budget_below_the_start(tmp_path, budget, initial):
     with pytest.raises(InputError, match="budget"):
         run_adaptive(tmp_path, load_factorial("quick"), load_lubricant("atf"), budget=budget, initial=initial,
                      **ROUTE)
+
+
+def test_initial_and_batch_options_reach_the_adaptive_design(monkeypatch, tmp_path):
+    """`lubricant fit --adaptive --initial N --batch M`: the sizes reach run_adaptive (in the paper factorial's box a
+    Sobol' start of 1,024 met the whole grid's off-grid error on its own, docs/validation/surrogate-off-grid.md);
+    without --adaptive they are refused by name, and the defaults stay those of workflows.adaptive."""
+    import argparse
+
+    from ehl_dataset.validation import InputError
+    from workflows import adaptive, surrogate_stage
+    from workflows.cli_fit_lines import add_form_options, form_arguments
+
+    parser = argparse.ArgumentParser()
+    add_form_options(parser, adaptive=True)
+    chosen = form_arguments(parser.parse_args(["--adaptive", "--budget", "4200", "--initial", "1024", "--batch",
+                                               "640"]), 42000)
+    assert (chosen["adaptive_budget"], chosen["adaptive_initial"], chosen["adaptive_batch"]) == (4200, 1024, 640)
+    assert "adaptive_initial" not in form_arguments(parser.parse_args(["--adaptive"]), 42000)
+    with pytest.raises(InputError, match="initial"):
+        form_arguments(parser.parse_args(["--initial", "1024"]), 42000)
+    with pytest.raises(InputError, match="initial"):
+        form_arguments(parser.parse_args(["--adaptive", "--initial", "8"]), 42000)
+
+    seen = []
+
+    def fake_run_adaptive(out_dir, factorial, lubricant, **kwargs):
+        seen.append((kwargs["initial"], kwargs["batch"]))
+        return adaptive.AdaptiveResult(table=None)
+
+    monkeypatch.setattr(adaptive, "run_adaptive", fake_run_adaptive)
+    route = {"level": "fast", "effects": "isothermal", "model": "auto"}
+    quick, atf = load_factorial("quick"), load_lubricant("atf")
+    surrogate_stage.adaptive_stage(tmp_path, quick, atf, budget=200, initial=64, batch=16, **route)
+    surrogate_stage.adaptive_stage(tmp_path, quick, atf, budget=200, **route)
+    assert seen == [(64, 16), (adaptive.INITIAL_POINTS, adaptive.BATCH_POINTS)]
