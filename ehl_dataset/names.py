@@ -33,5 +33,13 @@ CLOSURES: tuple[str, ...] = ("transverse", "isotropic", "film_law", "asperity")
 ``asperity`` (the film law with the load the surviving roughness carries: amplitude reduction, dry-contact table,
 load balance)."""
 
+FLUCTUATIONS: tuple[str, ...] = ("inlet", "spectral")
+"""Forms of the film-law closures' micro-EHL pressure spread σ_p: ``inlet`` (c(L_in/β)·E'Δq/4, calibrated on the
+baseline profile) or ``spectral`` (E'Δq_f/4, Δq_f the slope of the part of the profile's spectrum that the
+conjunction flattens; no fitted constant)."""
+
+DEFAULT_FLUCTUATIONS = "inlet"
+"""The pressure-spread form of the film-law closures when none is given."""
+
 DEFAULT_CLOSURE = "transverse"
 """The closure of ``model="homogenised"`` when none is given."""

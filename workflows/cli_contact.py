@@ -2,7 +2,8 @@
 
 from __future__ import annotations
 
-from ehl_dataset.names import CLOSURES, CONTACT_EFFECT_PLANS, DEFAULT_CLOSURE, DEFAULT_LEVEL, LEVELS, MODELS
+from ehl_dataset.names import (CLOSURES, CONTACT_EFFECT_PLANS, DEFAULT_CLOSURE, DEFAULT_FLUCTUATIONS, DEFAULT_LEVEL,
+                               FLUCTUATIONS, LEVELS, MODELS)
 
 
 def register(subparsers) -> None:
@@ -50,6 +51,10 @@ def register(subparsers) -> None:
                             "traction; for wide contacts, docs/explanation/mixed-regime.md), or asperity (film_law "
                             "plus the load and friction of the roughness that survives in the conjunction); default "
                             "transverse")
+    solve.add_argument("--fluctuations", default=DEFAULT_FLUCTUATIONS, choices=FLUCTUATIONS,
+                       help="micro-EHL pressure spread of the film_law and asperity closures: inlet (calibrated on "
+                            "the baseline profile, c(L_in/beta)) or spectral (from the part of the profile's spectrum "
+                            "the conjunction flattens; no fitted constant); default inlet")
     solve.add_argument("--dx-um", type=float, default=None,
                        help="grid spacing of the deterministic model [µm] (default: the level's grid rule)")
     solve.add_argument("--wide", default="auto", choices=["auto", "resolve", "windows"],
@@ -83,10 +88,10 @@ def _solve(args) -> int:
             overrides["dx_m"] = args.dx_um * 1e-6
         deterministic = deterministic_options(args.level, **overrides)
     homogenised = None  # the default closure: the homogenised model's default options (loaded only if it runs)
-    if args.closure != DEFAULT_CLOSURE:
+    if args.closure != DEFAULT_CLOSURE or args.fluctuations != DEFAULT_FLUCTUATIONS:
         from ehl_dataset.solvers.homogenised import HomogenisedOptions
 
-        homogenised = HomogenisedOptions(closure=args.closure)
+        homogenised = HomogenisedOptions(closure=args.closure, fluctuations=args.fluctuations)
     problem = resolve_contact(case, args.lubricant, args.level, args.effects, roughness, args.time_limit_s,
                               args.model, deterministic, homogenised)
     result = solve_problem(problem)

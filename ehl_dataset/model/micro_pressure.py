@@ -23,6 +23,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.special import gammaincinv
 
+from .amplitude_reduction import flattened_slope_rms
 from .dry_contact import composite_windows, profile_hash, windows_that_fit
 from .roughness import RoughnessProfile
 
@@ -64,6 +65,41 @@ def micro_pressure_coefficient(inlet_over_beta: float) -> float:
     if not inlet_over_beta >= 0.0:
         raise ValueError(f"inlet_over_beta = {inlet_over_beta!r}: accepted range [0, inf)")
     return MICRO_PRESSURE_C0 / (1.0 + (inlet_over_beta / MICRO_PRESSURE_INLET_SCALE) ** 2)
+
+
+SPECTRAL_PRESSURE_SCALE = 1.0
+"""k of the spectral form σ_p = k·E'Δq_f/4 (:func:`spectral_pressure_std`) [-]: 1, the r.m.s. pressure that flattens
+the flattened part of the roughness. Fitted freely on the calibration set of the inlet form (33 contacts of the
+baseline profile), k = 1.005 (`python validation/flank_reference/closure_check.py`,
+validation/results/flank_reference_closures.json); the theoretical 1 is used."""
+
+
+def spectral_pressure_std(profile: RoughnessProfile, case, state) -> tuple[float, float]:
+    """Micro-EHL pressure spread of the spectral form, σ_p = k·E'Δq_f/4 (:data:`SPECTRAL_PRESSURE_SCALE`).
+
+    Δq_f is the r.m.s. slope of the part of the composite roughness the conjunction flattens, from the amplitude
+    reduction of each component of the profile's spectrum (:func:`ehl_dataset.model.amplitude_reduction.
+    flattened_slope_rms`, the published ∇ unscaled): roughness that passes through the conjunction changes the gaps,
+    not the pressure; roughness that is flattened does so by a pressure of r.m.s. E'Δq_f/4 (module docstring). Unlike
+    the inlet form it needs no correlation length and no fitted constant, so it carries over between profiles of
+    different spectra (docs/explanation/mixed-regime.md, "Pressure fluctuations from the flattened spectrum").
+
+    Parameters
+    ----------
+    profile : RoughnessProfile
+        Shape of both surfaces [-].
+    case : ContactCase
+        Operating conditions with Rq1, Rq2 [SI].
+    state : LubricantState
+        The lubricant at the case's temperature [SI].
+
+    Returns
+    -------
+    tuple of float
+        (σ_p [Pa], Δq_f [-]).
+    """
+    slope = flattened_slope_rms(profile, case, state)
+    return SPECTRAL_PRESSURE_SCALE * flattening_pressure_rms(case.e_reduced, slope), slope
 
 
 PRESSURE_QUANTILES = 32

@@ -56,23 +56,23 @@ a scalar root and one stress average, two with the thermal correction (``benchma
 
 from __future__ import annotations
 
-import functools
 import math
 import time
 from dataclasses import replace
 
 import numpy as np
 
+from ..model.amplitude_reduction import AMPLITUDE_A, amplitude_factor, profile_spectrum, surface_amplitude_factors
 from ..model.contact import ContactCase
-from ..model.dry_contact import dry_contact_table, profile_hash, windows_that_fit
+from ..model.dry_contact import dry_contact_table, windows_that_fit
 from ..model.effects import Effects
-from ..model.film_formulas import moes_central_film, moes_parameters
+from ..names import DEFAULT_FLUCTUATIONS
+from ..model.film_formulas import moes_central_film
 from ..model.lubricant import LubricantState
-from ..model.micro_pressure import (composite_slope_rms, flattening_pressure_rms,
-                                    micro_pressure_coefficient as inlet_micro_pressure_coefficient)
-from ..model.roughness import RoughnessProfile, baseline_profile, periodogram
+from ..model.roughness import RoughnessProfile, baseline_profile
 from ..validation import check_range
-from .film_law_model import composite_height_quantiles, fluctuation_averaged_shear_stress, solve_film_law
+from .film_law_model import (composite_height_quantiles, fluctuation_averaged_shear_stress, pressure_spread,
+                             solve_film_law)
 from .levels import AccuracyLevel
 from .result import ContactResult
 
@@ -91,34 +91,6 @@ PRESSURE_SCALE = 2.639
 
 FLATTENING_EXPONENT = 3.0
 """n of the flattening limit φ = min(1, [c_p·p_h/(E'Δq_f/4)]^n) [-]; fitted with :data:`NABLA_SCALE`."""
-
-AMPLITUDE_A = (0.15, 0.015)
-"""Coefficients of F(∇) = 1/(1 + A1∇ + A2∇²), the pure-rolling line-contact fit of Venner et al. (1997) [-]."""
-
-
-@functools.lru_cache(maxsize=8)
-def _spectrum(key: str, profile: RoughnessProfile) -> tuple[np.ndarray, np.ndarray]:
-    k, power = periodogram(profile)
-    return 2.0 * math.pi / k, power
-
-
-def amplitude_factor(nabla) -> np.ndarray:
-    """F(∇) = 1/(1 + 0.15∇ + 0.015∇²), the ratio of deformed to undeformed roughness amplitude in an EHL line
-    contact (Venner, Couhier, Lubrecht & Greenwood, Tribology Series 32 (1997) 103).
-
-    Parameters
-    ----------
-    nabla : array_like
-        ∇ = (λ/a)·M^¾/L^½, possibly scaled [-].
-
-    Returns
-    -------
-    ndarray
-        A_d/A_i [-].
-    """
-    nabla = np.asarray(nabla, dtype=float)
-    return 1.0 / (1.0 + AMPLITUDE_A[0] * nabla + AMPLITUDE_A[1] * nabla**2)
-
 
 def surviving_fractions(profile: RoughnessProfile, case: ContactCase, state: LubricantState,
                         pressure_scale: float = PRESSURE_SCALE, nabla_scale: float = NABLA_SCALE,
@@ -148,16 +120,9 @@ def surviving_fractions(profile: RoughnessProfile, case: ContactCase, state: Lub
     """
     check_range("nabla_scale", nabla_scale, 0.0, 1e3, low_inclusive=False)
     check_range("pressure_scale", pressure_scale, 0.0, 1e3, low_inclusive=False)
-    wavelength, power = _spectrum(profile_hash(profile), profile)
-    weight = power / np.sum(power)
+    wavelength, weight = profile_spectrum(profile)
     k2 = (2.0 * math.pi / wavelength) ** 2
-    m, l_ = (float(v) for v in moes_parameters(state.eta0, case.u_r, state.alpha1, case.e_reduced, case.r_eq,
-                                                case.load_per_length))
-    base = nabla_scale * m**0.75 / math.sqrt(l_) / case.half_width
-    factors = []
-    for u_i in (case.u1, case.u2):
-        factors.append(np.zeros_like(wavelength) if u_i <= 0.0
-                       else amplitude_factor(base * wavelength * case.u_r / u_i))
+    factors = surface_amplitude_factors(wavelength, case, state, nabla_scale)
     slope2 = sum(rq**2 * float(np.sum(weight * k2 * (1.0 - f) ** 2)) for rq, f in zip((case.rq1, case.rq2), factors))
     needed = 0.25 * case.e_reduced * math.sqrt(slope2)
     phi = 1.0 if needed <= 0.0 else min(1.0, (pressure_scale * case.p_h / needed) ** flattening_exponent)
@@ -225,7 +190,8 @@ def asperity_closure(film_law: ContactResult, case: ContactCase, state: Lubrican
                      profile: RoughnessProfile | None, boundary_film_m: float,
                      micro_pressure_coefficient: float | None = None,
                      pressure_scale: float = PRESSURE_SCALE, nabla_scale: float = NABLA_SCALE,
-                     flattening_exponent: float = FLATTENING_EXPONENT) -> ContactResult:
+                     flattening_exponent: float = FLATTENING_EXPONENT,
+                     fluctuations: str = DEFAULT_FLUCTUATIONS) -> ContactResult:
     """The asperity-load closure (module docstring, steps 1–4) applied to a film-law result of the same contact.
 
     Parameters
@@ -242,13 +208,16 @@ def asperity_closure(film_law: ContactResult, case: ContactCase, state: Lubrican
     boundary_film_m : float
         Floor h_b of the micro gaps in the Eyring shear [m].
     micro_pressure_coefficient : float, optional
-        c of the film law's pressure fluctuations; None: its function of the inlet length [-].
+        c of the film law's pressure fluctuations; None: the form ``fluctuations`` [-].
     pressure_scale : float
         c_p of the flattening limit [-].
     nabla_scale : float
         c_∇ of the amplitude reduction [-].
     flattening_exponent : float
         n of the flattening limit [-].
+    fluctuations : str
+        Form of the pressure spread where no c is given (:data:`ehl_dataset.names.FLUCTUATIONS`); the film-law
+        result should have been solved with the same [-].
 
     Returns
     -------
@@ -295,11 +264,8 @@ def asperity_closure(film_law: ContactResult, case: ContactCase, state: Lubrican
     p_fluid = np.maximum(p_bar - p_a, 0.0)
     open_fraction = 1.0 - table.contact_fraction(film)
     heights = composite_height_quantiles(profile, case.rq1, case.rq2)
-    coefficient = (inlet_micro_pressure_coefficient(extra["inlet_over_beta"]) if micro_pressure_coefficient is None
-                   else micro_pressure_coefficient)
-    pressure_std = (coefficient * flattening_pressure_rms(case.e_reduced, composite_slope_rms(profile, case.rq1,
-                                                                                                case.rq2))
-                    if coefficient > 0.0 else 0.0)
+    pressure_std = pressure_spread(profile, case, state, extra["inlet_over_beta"], micro_pressure_coefficient,
+                                   fluctuations)[2]
 
     def couette(p, h, weight):
         tau = fluctuation_averaged_shear_stress(state.viscosity, p, pressure_std, case.u_s, h, heights, state.tau0,
@@ -347,7 +313,7 @@ def asperity_closure(film_law: ContactResult, case: ContactCase, state: Lubrican
 def solve_asperity(case: ContactCase, state: LubricantState, lvl: AccuracyLevel, plan: Effects,
                    roughness: RoughnessProfile | None, boundary_film_m: float,
                    micro_pressure_coefficient: float | None = None, pressure_scale: float = PRESSURE_SCALE,
-                   nabla_scale: float = NABLA_SCALE) -> ContactResult:
+                   nabla_scale: float = NABLA_SCALE, fluctuations: str = DEFAULT_FLUCTUATIONS) -> ContactResult:
     """Homogenised solve with the asperity-load closure: the film-law solve, then :func:`asperity_closure`.
 
     Parameters
@@ -370,6 +336,8 @@ def solve_asperity(case: ContactCase, state: LubricantState, lvl: AccuracyLevel,
         c_p of the flattening limit [-].
     nabla_scale : float
         c_∇ of the amplitude reduction [-].
+    fluctuations : str
+        Form of the film law's pressure spread where no c is given (:data:`ehl_dataset.names.FLUCTUATIONS`) [-].
 
     Returns
     -------
@@ -377,6 +345,6 @@ def solve_asperity(case: ContactCase, state: LubricantState, lvl: AccuracyLevel,
         The result (module docstring); it says whether the solve converged.
     """
     film_law = solve_film_law(case, state, lvl, plan, roughness, boundary_film_m,
-                              micro_pressure_coefficient=micro_pressure_coefficient)
+                              micro_pressure_coefficient=micro_pressure_coefficient, fluctuations=fluctuations)
     return asperity_closure(film_law, case, state, roughness, boundary_film_m, micro_pressure_coefficient,
-                            pressure_scale, nabla_scale)
+                            pressure_scale, nabla_scale, fluctuations=fluctuations)

@@ -61,15 +61,17 @@ import time
 import numpy as np
 
 from ..model.contact import ContactCase
+from ..names import DEFAULT_FLUCTUATIONS, FLUCTUATIONS
 from ..model.dry_contact import composite_windows, profile_hash, windows_that_fit
 from ..model.effects import Effects
 from ..model.lubricant import LubricantState
 from ..model.micro_pressure import (composite_slope_rms, flattening_pressure_rms, gamma_pressure_quantiles,
-                                    micro_pressure_coefficient as inlet_micro_pressure_coefficient)
+                                    micro_pressure_coefficient as inlet_micro_pressure_coefficient,
+                                    spectral_pressure_std)
 from ..model.roughness import RoughnessProfile, baseline_profile, profile_record
 from ..model.thermal import ThermalTraction, thermal_couette_traction
 from ..model.traction import eyring_shear_stress, full_film_mask
-from ..validation import check_range
+from ..validation import InputError, check_range
 from .levels import POINT_CONTACT_A_OVER_BETA, AccuracyLevel
 from .result import ContactResult
 from .steady import dowson_higginson_lambda, solve_steady
@@ -172,16 +174,36 @@ def continuous_outside_film(x_m, smooth_film_m, zone, zone_film_m) -> np.ndarray
     return h_s + np.where(x_m < 0.0, inlet_shift, outlet_shift)
 
 
+def pressure_spread(profile: RoughnessProfile, case: ContactCase, state: LubricantState, inlet_over_beta: float,
+                    micro_pressure_coefficient: float | None, fluctuations: str) -> tuple[float, float | None, float]:
+    """(c, Δq, σ_p [Pa]) of the micro-EHL pressure spread σ_p = c·E'Δq/4: c as given, else the ``inlet`` form's
+    c(L_in/β) (:func:`~ehl_dataset.model.micro_pressure.micro_pressure_coefficient`) or the ``spectral`` form's
+    σ_p = E'Δq_f/4 (:func:`~ehl_dataset.model.micro_pressure.spectral_pressure_std`, c = Δq_f/Δq). Δq is None where
+    c = 0 (not computed)."""
+    if micro_pressure_coefficient is None and fluctuations == "spectral":
+        slope_rms = composite_slope_rms(profile, case.rq1, case.rq2)
+        pressure_std, flattened = spectral_pressure_std(profile, case, state)
+        return (flattened / slope_rms if slope_rms > 0.0 else 0.0), slope_rms, pressure_std
+    coefficient = (inlet_micro_pressure_coefficient(inlet_over_beta) if micro_pressure_coefficient is None
+                   else micro_pressure_coefficient)
+    if coefficient <= 0.0:
+        return coefficient, None, 0.0
+    slope_rms = composite_slope_rms(profile, case.rq1, case.rq2)
+    return coefficient, slope_rms, coefficient * flattening_pressure_rms(case.e_reduced, slope_rms)
+
+
 def solve_film_law(case: ContactCase, state: LubricantState, lvl: AccuracyLevel, plan: Effects,
                    roughness: RoughnessProfile | None, boundary_film_m: float,
                    edge: float = WideOptions.edge, micro_pressure_coefficient: float | None = None,
-                   continuous_film: bool | None = None) -> ContactResult:
+                   continuous_film: bool | None = None, fluctuations: str = DEFAULT_FLUCTUATIONS) -> ContactResult:
     """Film-law homogenised solve of a rough contact (module docstring) on the level's steady grid.
 
     ``boundary_film_m`` h_b [m], the floor of the micro gaps in the Eyring shear; ``edge`` the half width of the
     film-law zone [a]; ``micro_pressure_coefficient`` c of the pressure-fluctuation closure σ_p = c·E'Δq/4
     (:mod:`ehl_dataset.model.micro_pressure`; None: :func:`~ehl_dataset.model.micro_pressure.micro_pressure_coefficient`
-    of the contact's inlet length L_in/β, 0 turns the closure off); ``continuous_film`` whether the rolling term
+    of the contact's inlet length L_in/β, 0 turns the closure off); ``fluctuations`` the form of σ_p where no c is
+    given (:data:`~ehl_dataset.names.FLUCTUATIONS`: ``inlet`` the calibrated c(L_in/β), ``spectral``
+    :func:`~ehl_dataset.model.micro_pressure.spectral_pressure_std`, recorded as c = Δq_f/Δq); ``continuous_film`` whether the rolling term
     outside the zone takes the film that joins the zone's without a step (:func:`continuous_outside_film`) instead of
     the smooth film (None: on a point-like contact, a/β below
     :data:`~ehl_dataset.solvers.levels.POINT_CONTACT_A_OVER_BETA`; module docstring). The smooth case (S_c = 0) is the
@@ -190,6 +212,8 @@ def solve_film_law(case: ContactCase, state: LubricantState, lvl: AccuracyLevel,
     check_range("edge", edge, 0.1, 1.0)
     if micro_pressure_coefficient is not None:
         check_range("micro_pressure_coefficient", micro_pressure_coefficient, 0.0, 1.0)
+    if fluctuations not in FLUCTUATIONS:
+        raise InputError("fluctuations", fluctuations, f"one of {list(FLUCTUATIONS)}")
     profile = roughness if roughness is not None else baseline_profile()
     heights = composite_height_quantiles(profile, case.rq1, case.rq2)
     smooth_plan = Effects(False, False, plan.shear_thinning, plan.compressibility, plan.mode, {})
@@ -207,10 +231,8 @@ def solve_film_law(case: ContactCase, state: LubricantState, lvl: AccuracyLevel,
     zone = np.abs(x_m) <= edge * a
     xz, pz = x_m[zone], p_s[zone]
     film = h_centre * rho_centre / np.asarray(state.density(pz), dtype=float)
-    coefficient = (inlet_micro_pressure_coefficient(inlet_over_beta) if micro_pressure_coefficient is None
-                   else micro_pressure_coefficient)
-    slope_rms = composite_slope_rms(profile, case.rq1, case.rq2) if coefficient > 0.0 else None
-    pressure_std = coefficient * flattening_pressure_rms(case.e_reduced, slope_rms) if coefficient > 0.0 else 0.0
+    coefficient, slope_rms, pressure_std = pressure_spread(profile, case, state, inlet_over_beta,
+                                                           micro_pressure_coefficient, fluctuations)
     shear = fluctuation_averaged_shear_stress(state.viscosity, pz, pressure_std, case.u_s, film, heights,
                                               state.tau0, boundary_film_m)
     rolling = 0.5 * film * np.gradient(p_s, x_m)[zone]
@@ -277,7 +299,8 @@ def solve_film_law(case: ContactCase, state: LubricantState, lvl: AccuracyLevel,
                **({"thermal": {**thermal_extra["summary"], "mu_isothermal": thermal_extra["mu_isothermal"],
                                "properties": state.thermal.to_dict()}} if thermal_extra else {}),
                "smooth_h_min_m": smooth.h_min, "boundary_film_m": boundary_film_m, "zone_edge": edge,
-               "micro_pressure": {"coefficient": coefficient, "slope_rms": slope_rms, "std_pa": pressure_std},
+               "micro_pressure": {"form": fluctuations if micro_pressure_coefficient is None else "given",
+                                  "coefficient": coefficient, "slope_rms": slope_rms, "std_pa": pressure_std},
                "floored_gap_fraction_max": float(np.mean(film[:, None] + heights[None, :] < boundary_film_m,
                                                           axis=1).max()), **profile_record(profile),
                "roughness_windows": {key: getattr(windows_that_fit(profile), key)

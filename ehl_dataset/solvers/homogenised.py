@@ -74,6 +74,10 @@ class HomogenisedOptions:
     micro_pressure_coefficient : float, optional
         c of the film-law closure's pressure fluctuations σ_p = c·E'Δq/4; None: the calibrated function of the inlet
         length (:func:`ehl_dataset.model.micro_pressure.micro_pressure_coefficient`); 0: off [-].
+    fluctuations : str
+        Form of that spread where no c is given (:data:`ehl_dataset.names.FLUCTUATIONS`): ``inlet`` (the calibrated
+        c(L_in/β)) or ``spectral`` (σ_p = E'Δq_f/4 from the flattened part of the profile's spectrum,
+        :func:`ehl_dataset.model.micro_pressure.spectral_pressure_std`) [-].
     """
 
     closure: str = names.DEFAULT_CLOSURE
@@ -81,6 +85,7 @@ class HomogenisedOptions:
     flow_floor_sigma: float | None = None
     transport: str | float = "variance"
     micro_pressure_coefficient: float | None = None
+    fluctuations: str = names.DEFAULT_FLUCTUATIONS
 
     def __post_init__(self):
         if self.closure not in CLOSURES:
@@ -90,6 +95,8 @@ class HomogenisedOptions:
             check_range("flow_floor_sigma", self.flow_floor_sigma, 0.0, 10.0, low_inclusive=False)
         if self.micro_pressure_coefficient is not None:
             check_range("micro_pressure_coefficient", self.micro_pressure_coefficient, 0.0, 1.0)
+        if self.fluctuations not in names.FLUCTUATIONS:
+            raise InputError("fluctuations", self.fluctuations, f"one of {list(names.FLUCTUATIONS)}")
 
 
 PSEUDO_DT = 0.3
@@ -206,10 +213,12 @@ def solve_homogenised(case: ContactCase, state: LubricantState, lvl: AccuracyLev
         return smooth
     if closure == "film_law":
         return solve_film_law(case, state, lvl, plan, roughness, h_b_m,
-                              micro_pressure_coefficient=options.micro_pressure_coefficient)
+                              micro_pressure_coefficient=options.micro_pressure_coefficient,
+                              fluctuations=options.fluctuations)
     if closure == "asperity":
         return solve_asperity(case, state, lvl, plan, roughness, h_b_m,
-                              micro_pressure_coefficient=options.micro_pressure_coefficient)
+                              micro_pressure_coefficient=options.micro_pressure_coefficient,
+                              fluctuations=options.fluctuations)
     table = dry_contact_table(roughness, case.rq1, case.rq2, case.e_reduced)
     scales = ContactScales.of(case, state, plan.shear_thinning)
     smooth_plan = Effects(False, False, plan.shear_thinning, plan.compressibility, plan.mode, {})

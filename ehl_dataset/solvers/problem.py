@@ -131,7 +131,8 @@ def resolve_contact(case: ContactCase, lubricant: Lubricant | str, level: str | 
     deterministic : DeterministicOptions or None
         Options of the deterministic model (None: the level's) [-].
     homogenised : HomogenisedOptions or None
-        Options of ``model="homogenised"`` (None: the defaults) [-].
+        Options of ``model="homogenised"`` (None: the defaults); their ``fluctuations`` also apply to the planner's
+        film-law route [-].
     checkpoint : object or None
         Where a deterministic run saves its state; refused on any other route [-].
 
@@ -199,7 +200,8 @@ def resolve_contact(case: ContactCase, lubricant: Lubricant | str, level: str | 
     elif route == "film_law":
         from .homogenised import HomogenisedOptions
 
-        options_h = HomogenisedOptions(closure=planned_closure(plan))
+        options_h = HomogenisedOptions(closure=planned_closure(plan),
+                                       **({"fluctuations": homogenised.fluctuations} if homogenised else {}))
     elif route == "deterministic":
         from .deterministic import deterministic_options
 
