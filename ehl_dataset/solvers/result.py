@@ -133,7 +133,9 @@ class ContactResult:
             [-] (None for smooth surfaces, λ̄ = ∞); ``asperity_load_share`` [-]; ``converged``, ``iterations``,
             ``wall_time_s`` [s], ``level``, ``effects`` (the plan and its reasons), ``residuals``, ``message``;
             from the solver's record: ``model`` (``smooth`` unless a mixed model ran), ``closure``, ``route``,
-            ``roughness_profile``, ``dx_m`` [m], ``n_nodes``, ``n_steps``, ``thermal`` (None where not recorded).
+            ``roughness_profile``, ``dx_m`` [m], ``n_nodes``, ``n_steps``, ``thermal``, ``micro_pressure`` (the
+            film-law closures' pressure spread: ``form``, ``coefficient`` c, ``slope_rms`` Δq, ``std_pa`` σ_p [Pa])
+            (None where not recorded).
         """
         extra = self.extra
         return {
@@ -160,6 +162,7 @@ class ContactResult:
             "n_nodes": extra.get("n_nodes"),
             "n_steps": extra.get("n_steps"),
             "thermal": extra.get("thermal"),
+            "micro_pressure": extra.get("micro_pressure"),
         }
 
     def grid_record(self) -> dict[str, Any]:
