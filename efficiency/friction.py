@@ -143,12 +143,22 @@ class EhlFriction:
         Accuracy level of the solves [-].
     effects : str
         Effect plan: ``auto`` or ``full`` [-].
+    roughness : RoughnessProfile, optional
+        Shape of both flanks' roughness (e.g. ``named_profile("flank_ground")``), scaled to each point's Rq; None:
+        the shipped baseline [-].
+    fluctuations : str
+        Micro-EHL pressure spread of the film-law closures (:data:`ehl_dataset.names.FLUCTUATIONS`) [-].
     """
 
     lubricant: Any
     level: str = "fast"
     effects: str = "auto"
+    roughness: Any = None
+    fluctuations: str = "inlet"
     _stats: dict = field(default_factory=dict, compare=False, repr=False)
+
+    def __post_init__(self):
+        _check_rough_options(self.roughness, self.fluctuations)
 
     def __call__(self, p_h, r_eq, u_r, sr, temperature, rq1, rq2):
         from ehl_dataset.model.contact import ContactCase
@@ -166,8 +176,14 @@ class EhlFriction:
             unique, inverse = rows, np.zeros(0, int)
         mu_unique = np.empty(len(unique))
         iterations = 0
+        homogenised = None
+        if self.fluctuations != "inlet":
+            from ehl_dataset.solvers.homogenised import HomogenisedOptions
+
+            homogenised = HomogenisedOptions(fluctuations=self.fluctuations)
         for k, values in enumerate(unique):
-            result = solve_contact(ContactCase(*(float(v) for v in values)), self.lubricant, self.level, self.effects)
+            result = solve_contact(ContactCase(*(float(v) for v in values)), self.lubricant, self.level, self.effects,
+                                   roughness=self.roughness, homogenised=homogenised)
             if not result.converged:
                 index = np.unravel_index(int(np.flatnonzero(inverse.reshape(-1) == k)[0]), shape) if shape else ()
                 raise SolverError(f"EHL solve did not converge at contact point {tuple(int(i) for i in index)} "
@@ -189,6 +205,15 @@ class EhlFriction:
             ``ehl_solves`` (distinct points solved), ``ehl_points``, ``ehl_iterations`` and ``ehl_time_s`` [s].
         """
         return dict(self._stats)
+
+
+def _check_rough_options(roughness, fluctuations) -> None:
+    from ehl_dataset.names import FLUCTUATIONS
+
+    if fluctuations not in FLUCTUATIONS:
+        raise InputError("fluctuations", fluctuations, f"one of {list(FLUCTUATIONS)}")
+    if roughness is not None and not hasattr(roughness, "correlation_length"):
+        raise InputError("roughness", type(roughness).__name__, "None or a RoughnessProfile")
 
 
 def _check_effects(effects) -> None:
@@ -265,6 +290,10 @@ class EhlGridFriction:
         Chebyshev–Lobatto nodes in ln SR per side of the pitch point [-].
     load_nodes : int
         Nodes in p_h [-].
+    roughness : RoughnessProfile, optional
+        Shape of both flanks' roughness; None: the shipped baseline [-].
+    fluctuations : str
+        Micro-EHL pressure spread of the film-law closures (:data:`ehl_dataset.names.FLUCTUATIONS`) [-].
     """
 
     lubricant: Any
@@ -272,11 +301,14 @@ class EhlGridFriction:
     effects: Any = "auto"
     roll_nodes: int = 5
     load_nodes: int = 9
+    roughness: Any = None
+    fluctuations: str = "inlet"
 
     def __post_init__(self):
         check_range("roll_nodes", self.roll_nodes, 2, 64)
         check_range("load_nodes", self.load_nodes, 2, 64)
         _check_effects(self.effects)
+        _check_rough_options(self.roughness, self.fluctuations)
 
     def describe(self) -> str:
         """One line naming the model for reports.
@@ -286,7 +318,9 @@ class EhlGridFriction:
         str
             Level, effects and grid size.
         """
-        return (f"EHL solver level={self.level} effects={_effects_name(self.effects)} on a grid of "
+        rough = "" if self.roughness is None else f" roughness={self.roughness.name or self.roughness.source}"
+        spread = "" if self.fluctuations == "inlet" else f" fluctuations={self.fluctuations}"
+        return (f"EHL solver level={self.level} effects={_effects_name(self.effects)}{rough}{spread} on a grid of "
                 f"{self.roll_nodes} (ln SR) x {self.load_nodes} (p_h) nodes per side of the pitch point")
 
     def __call__(self, *args):
@@ -370,7 +404,8 @@ class _BoundGrid:
             node_s.append(np.full(p_nodes.size, path.pitch))
             node_p.append(p_nodes)
         ss, pp = np.concatenate(node_s), np.concatenate(node_p)
-        solver = EhlFriction(self.model.lubricant, self.model.level, self.model.effects)
+        solver = EhlFriction(self.model.lubricant, self.model.level, self.model.effects, self.model.roughness,
+                             self.model.fluctuations)
         try:
             mu_all = solver(pp, path.r_eq(ss), path.u_r(ss), path.sr(ss), scalars["temperature"], scalars["rq1"],
                             scalars["rq2"])

@@ -21,6 +21,12 @@ The measured losses of the paper are not in the sources available to this projec
 Run: ``python validation/petry_johnson.py [--figure docs/figures/petry_johnson.png]``; writes
 validation/results/petry_johnson.json (``--from-json validation/results/petry_johnson.json --figure F`` redraws the
 figure only).
+
+``--finish`` compares the surface finishes of the tests instead, superfinished (Rq 0.07 µm) against ground (Rq
+0.3 µm), at 2,000 and 10,000 rpm: Xu's formula (its roughness term, fitted to a mixed-EHL model), ISO/TR 14179-2
+(through Ra) and the default EHL route ``ehl-grid:fast`` with the shipped baseline roughness, with the flank-like
+profile (``flank_ground``), and with the flank-like profile and the spectral pressure spread; writes
+validation/results/petry_johnson_finish.json.
 """
 
 from __future__ import annotations
@@ -58,7 +64,12 @@ def main(argv=None) -> int:
     parser.add_argument("--figure", help="write the loss/efficiency plot here (PNG)")
     parser.add_argument("--routes", default=",".join(ROUTES))
     parser.add_argument("--from-json", help="only redraw the figure from this JSON (a previous run's --out)")
+    parser.add_argument("--finish", action="store_true",
+                        help="superfinished against ground flanks (module docstring) instead of the speed sweep")
     args = parser.parse_args(argv)
+    if args.finish:
+        return finish(Path(__file__).parent / "results" / "petry_johnson_finish.json"
+                      if args.out == parser.get_default("out") else Path(args.out))
     if args.from_json:
         import json
 
@@ -121,6 +132,69 @@ def main(argv=None) -> int:
     emit_json(report, args.out)
     if args.figure:
         draw(report, routes, args.figure)
+    return 0
+
+
+FINISHES_RQ = {"superfinished": 0.07e-6, "ground": 0.3e-6}
+"""Rq of both flanks [m]: the tests' superfinished gears (Rq 0.07 µm, shared/reference) and ground ones (0.3 µm)."""
+FINISH_SPEEDS_RPM = (2000, 10000)
+FINISH_ROUTES = ("xu2007", "iso14179-2", "ehl-grid:fast", "ehl-grid:fast flank_ground",
+                 "ehl-grid:fast flank_ground spectral")
+
+
+def finish(out: Path) -> int:
+    """Mesh loss of the superfinished and the ground pair per route and speed (module docstring)."""
+    from ehl_dataset.model.lubricant import load_lubricant
+    from ehl_dataset.model.roughness import named_profile
+    from ehl_dataset.solver import SOLVER_VERSION
+    from efficiency.friction import EhlGridFriction, friction_from_spec
+    from efficiency.iso14179 import iso_14179_2_mesh, lubricant_factor
+    from efficiency.mesh_cycle import MeshOptions, evaluate_mesh
+    from efficiency.power_loss import mesh_power_loss
+    from surrogate.features import lubricant_properties
+    from surrogate.published import RA_PER_RQ
+
+    pair = osu_pair()
+    lubricant = load_lubricant("gear_oil_75w90")
+    eta, _ = lubricant_properties(lubricant, OIL_TEMPERATURE_K)
+    flank = named_profile("flank_ground")
+    frictions = {"xu2007": friction_from_spec("xu2007", lubricant),
+                 "ehl-grid:fast": EhlGridFriction(lubricant, "fast"),
+                 "ehl-grid:fast flank_ground": EhlGridFriction(lubricant, "fast", roughness=flank),
+                 "ehl-grid:fast flank_ground spectral": EhlGridFriction(lubricant, "fast", roughness=flank,
+                                                                        fluctuations="spectral")}
+    rows = []
+    for rpm in FINISH_SPEEDS_RPM:
+        omega = rpm * math.pi / 30.0
+        mesh = evaluate_mesh(pair, TORQUE_NM, omega, options=MeshOptions(outputs=frozenset()))
+        for finish_name, rq in FINISHES_RQ.items():
+            row = {"speed_rpm": rpm, "finish": finish_name, "rq_m": rq, "input_power_w": TORQUE_NM * omega}
+            for route in FINISH_ROUTES:
+                started = time.perf_counter()
+                if route == "iso14179-2":
+                    res = iso_14179_2_mesh(pair, TORQUE_NM, omega, float(eta), RA_PER_RQ * rq, RA_PER_RQ * rq,
+                                           lubricant_factor("mineral"))
+                    loss, mu, share = res["p_vzp_w"], res["mu_mz"], None
+                else:
+                    result = mesh_power_loss(mesh, frictions[route], OIL_TEMPERATURE_K, rq, rq)
+                    loaded = mesh.loads > 0
+                    loss = result.power_loss
+                    mu = float((result.mu[loaded] * mesh.loads[loaded]).sum() / mesh.loads[loaded].sum())
+                    share = None
+                row[route] = {"power_loss_w": loss, "mu_mean": mu, "time_s": time.perf_counter() - started}
+            rows.append(row)
+            print(rpm, finish_name, {r: round(row[r]["power_loss_w"], 1) for r in FINISH_ROUTES}, file=sys.stderr)
+    ratios = {}
+    for rpm in FINISH_SPEEDS_RPM:
+        by = {r["finish"]: r for r in rows if r["speed_rpm"] == rpm}
+        ratios[str(rpm)] = {route: by["ground"][route]["power_loss_w"] / by["superfinished"][route]["power_loss_w"]
+                            for route in FINISH_ROUTES}
+    report = {"benchmark": "Petry-Johnson et al. 2008 OSU spur pair: superfinished against ground flanks",
+              "torque_nm": TORQUE_NM, "oil_temperature_k": OIL_TEMPERATURE_K, "eta_oil_pa_s": float(eta),
+              "solver_version": SOLVER_VERSION, "routes": list(FINISH_ROUTES),
+              "ground_over_superfinished_loss": ratios,
+              "measured_losses": "not available in the project's sources", "machine": machine_info(), "rows": rows}
+    emit_json(report, str(out))
     return 0
 
 

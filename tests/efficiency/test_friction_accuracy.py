@@ -269,3 +269,31 @@ def test_cli_reports_the_surrogates_clipped_inputs(capsys):
     assert any("clipped to its fitted ranges" in w for w in out["friction_warnings"])
     code, constant = _json(capsys, DESIGN_D + ["--friction", "constant:0.05"])
     assert code == 0 and "friction_clipped_inputs" not in constant
+
+
+def test_ehl_friction_takes_the_roughness_profile_and_the_pressure_spread(atf):
+    """A rough gear contact below λ̄ 1 (1.2 GPa, 10 mm, 3 m/s, SR 0.3, 90 °C, Rq 0.3 µm): the EHL friction model
+    passes the flanks' profile and the spread form to the contact solve, so each gives the μ of
+    ``solve_contact`` with the same choices (the film-law route of the planner), and they differ from each other;
+    a bad form is one InputError naming it."""
+    from ehl_dataset.model.contact import ContactCase
+    from ehl_dataset.model.roughness import named_profile
+    from ehl_dataset.solver import solve_contact
+    from ehl_dataset.solvers.homogenised import HomogenisedOptions
+
+    flank = named_profile("flank_ground")
+    args = (1.2e9, 10e-3, 3.0, 0.3, OIL_K, 0.3e-6, 0.3e-6)
+    case = ContactCase(*args)
+    values = {}
+    for name, roughness, form in (("baseline", None, "inlet"), ("flank", flank, "inlet"),
+                                  ("flank spectral", flank, "spectral")):
+        mu = float(EhlFriction(atf, "fast", roughness=roughness, fluctuations=form)(*args))
+        direct = solve_contact(case, atf, "fast", roughness=roughness,
+                               homogenised=HomogenisedOptions(fluctuations=form))
+        assert direct.extra["closure"] == "film_law" and mu == direct.mu
+        values[name] = mu
+    assert len(set(values.values())) == 3
+    grid = EhlGridFriction(atf, "fast", roughness=flank, fluctuations="spectral")
+    assert "roughness=flank_ground" in grid.describe() and "fluctuations=spectral" in grid.describe()
+    with pytest.raises(InputError, match="fluctuations"):
+        EhlGridFriction(atf, "fast", fluctuations="other")
