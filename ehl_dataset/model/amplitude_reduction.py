@@ -58,8 +58,18 @@ def _spectrum(key: str, profile: RoughnessProfile) -> tuple[np.ndarray, np.ndarr
 
 
 def profile_spectrum(profile: RoughnessProfile) -> tuple[np.ndarray, np.ndarray]:
-    """Wavelengths λ_j [m] of the profile's periodogram and their share w_j of its variance (Σ w_j = 1) [-],
-    cached per profile hash."""
+    """Wavelengths of the profile's periodogram and their shares of its variance, cached per profile hash.
+
+    Parameters
+    ----------
+    profile : RoughnessProfile
+        The profile [-].
+
+    Returns
+    -------
+    tuple of ndarray
+        (λ_j [m], w_j [-]) with Σ w_j = 1.
+    """
     return _spectrum(profile_hash(profile), profile)
 
 
@@ -72,6 +82,11 @@ def nabla_per_wavelength(case: ContactCase, state: LubricantState) -> float:
         Operating conditions [SI].
     state : LubricantState
         The lubricant at the case's temperature (η0, α) [SI].
+
+    Returns
+    -------
+    float
+        ∇/λ [1/m].
     """
     m, l_ = (float(v) for v in moes_parameters(state.eta0, case.u_r, state.alpha1, case.e_reduced, case.r_eq,
                                                 case.load_per_length))
