@@ -27,6 +27,9 @@ tolerance); the checkpoint is removed when the segment is written.
     python validation/flank_reference/run_sweeps.py --queue         # remaining runs, estimated cost, cheapest first
     python validation/flank_reference/run_sweeps.py --run --spacings 16 --only rqA   # a part of the queue
 
+A point's finest spacing is not queued when the two before it agree within 1 % of μ and carry no asperity load
+(``converged_before``; ``--all-spacings`` queues it anyway, ``--queue`` lists what it leaves out).
+
 Run the queue in the background on one core:
 
     nohup nice -n 5 env OMP_NUM_THREADS=1 NUMBA_NUM_THREADS=1 \\
@@ -211,18 +214,46 @@ def run_cost(point: dict, n: int, record: dict) -> float:
     return COST_SOURCE_FACTOR * base * PASSES[n] / info.get("passes", {}).get(str(n), PASSES[n])
 
 
-def queue(record: dict, spacings=SPACINGS, only: str | None = None) -> list:
+CONVERGED_STEP = 0.01
+"""A point counts as grid-converged when its last paired step is below this fraction of μ (and below two of its
+standard errors or this fraction, whichever is larger) and no asperity load was found: its finest spacing is then
+not queued (``--all-spacings`` queues it anyway)."""
+
+
+def converged_before(point: dict, n: int) -> str:
+    """Why the run of ``point`` at λ_s/n is not needed ('' if it is): the two spacings before it have run, carry
+    no asperity load (share ≤ 0.01) and their paired step is within CONVERGED_STEP of μ."""
+    previous = [m for m in SPACINGS if m < n][-2:]
+    if len(previous) < 2:
+        return ""
+    runs = [RESULTS / f"{run_name(point, m)}.json" for m in previous]
+    if not all(path.exists() for path in runs):
+        return ""
+    coarse, fine = (json.loads(path.read_text()) for path in runs)
+    step, sem, _ = paired_step(coarse, fine)
+    if not (math.isfinite(step) and max(coarse["asperity_load_share"], fine["asperity_load_share"]) <= 0.01):
+        return ""
+    if abs(step) <= CONVERGED_STEP * abs(fine["mu"]) and abs(step) <= max(2.0 * sem, CONVERGED_STEP * abs(fine["mu"])):
+        return (f"lambda_s/{previous[0]} -> /{previous[1]} step {step:+.5f} +- {sem:.5f}, no asperity load: "
+                f"grid-converged")
+    return ""
+
+
+def queue(record: dict, spacings=SPACINGS, only: str | None = None, all_spacings: bool = False) -> list:
     """(estimated s, point, n) of every run not yet written (of ``spacings``, of the points whose name contains
-    ``only``), cheapest first; points whose estimate failed go last."""
+    ``only``; without ``all_spacings`` not the runs :func:`converged_before` finds unneeded), cheapest first; points
+    whose estimate failed go last."""
     items = [(run_cost(point, n, record), point, n) for point in POINTS for n in spacings
-             if not (RESULTS / f"{run_name(point, n)}.json").exists() and (only is None or only in point_name(point))]
+             if not (RESULTS / f"{run_name(point, n)}.json").exists() and (only is None or only in point_name(point))
+             and (all_spacings or not converged_before(point, n))]
     return sorted(items, key=lambda item: item[0])
 
 
-def run(record: dict, spacings=SPACINGS, only: str | None = None) -> None:
+def run(record: dict, spacings=SPACINGS, only: str | None = None, all_spacings: bool = False) -> None:
     tried = set()
     while True:  # the queue is re-ordered after every run: a finished coarse run prices the finer ones
-        pending = [item for item in queue(record, spacings, only) if run_name(item[1], item[2]) not in tried]
+        pending = [item for item in queue(record, spacings, only, all_spacings)
+                   if run_name(item[1], item[2]) not in tried]
         if not pending:
             return
         cost, point, n = pending[0]
@@ -292,17 +323,24 @@ def main(argv=None) -> int:
     parser.add_argument("--spacings", type=int, nargs="+", choices=SPACINGS, default=list(SPACINGS),
                         help="run only these spacings λ_s/n (e.g. to split the queue across processes)")
     parser.add_argument("--only", default=None, help="run only the points whose name contains this text")
+    parser.add_argument("--all-spacings", action="store_true",
+                        help="queue the finest spacing of points already grid-converged too (CONVERGED_STEP)")
     args = parser.parse_args(argv)
     if not (args.estimate or args.run or args.summary or args.queue):
         parser.error("give --estimate, --run, --queue and/or --summary")
     record = estimate() if args.estimate or args.run or args.queue else None
     if args.queue:
         total = 0.0
-        for cost, point, n in queue(record, args.spacings, args.only):
+        for cost, point, n in queue(record, args.spacings, args.only, args.all_spacings):
             total += cost
             print(f"{run_name(point, n):52s} {cost / 3600:6.2f} h   cumulative {total / 3600:7.1f} h")
+        for point in POINTS:
+            for n in args.spacings:
+                why = "" if args.all_spacings else converged_before(point, n)
+                if why and not (RESULTS / f"{run_name(point, n)}.json").exists():
+                    print(f"{run_name(point, n):52s} not queued: {why}")
     if args.run:
-        run(record, args.spacings, args.only)
+        run(record, args.spacings, args.only, args.all_spacings)
     if args.summary:
         summary()
     return 0
