@@ -40,3 +40,11 @@ def test_a_step_or_asperity_load_keeps_it(results):
     assert run_sweeps.converged_before(POINT, 16) == ""
     write(results, 8, windows, share=0.05)
     assert run_sweeps.converged_before(POINT, 16) == ""
+
+
+def test_richardson_limit_of_first_order_steps():
+    """Steps halving with the spacing (first order): μ∞ = μ_fine + s2/(s1/s2 − 1) = 0.020 + 0.008 + 0.004 + 0.004."""
+    text = run_sweeps.richardson(0.020, (0.008, 0.0005), (0.004, 0.0005))
+    assert "observed order 1.00" in text and "Richardson limit 0.03600" in text
+    assert "no Richardson limit" in run_sweeps.richardson(0.020, (0.008, 0.0005), (0.009, 0.0005))  # not shrinking
+    assert "no Richardson limit" in run_sweeps.richardson(0.020, (0.008, 0.0005), (0.0008, 0.0005))  # unresolved

@@ -296,6 +296,20 @@ def paired_step(coarse: dict, fine: dict) -> tuple[float, float, int]:
     return diff.mean, diff.standard_error, len(common)
 
 
+def richardson(mu_coarse: float, step1: tuple[float, float], step2: tuple[float, float]) -> str:
+    """The grid limit of μ from three spacings halving each time, by Richardson extrapolation of the paired steps
+    s1 (coarse → middle) and s2 (middle → fine): observed order p = log2(s1/s2) and μ∞ = μ_fine + s2/(s1/s2 − 1),
+    where the steps shrink (s1/s2 > 1.2 with both of one sign and s2 resolved); otherwise says why not."""
+    (s1, e1), (s2, e2) = step1, step2
+    fine = mu_coarse + s1 + s2
+    if not (math.isfinite(s1) and math.isfinite(s2)) or abs(s2) <= 2.0 * e2 or s1 * s2 <= 0.0 or s1 / s2 <= 1.2:
+        return (f"no Richardson limit (steps {s1:+.5f} +- {e1:.5f}, {s2:+.5f} +- {e2:.5f}: not shrinking, or the last "
+                f"one not resolved); multilevel estimate at the finest spacing {fine:.5f}")
+    ratio = s1 / s2
+    limit = fine + s2 / (ratio - 1.0)
+    return f"observed order {math.log2(ratio):.2f}, Richardson limit {limit:.5f} (finest spacing {fine:.5f})"
+
+
 def summary() -> None:
     rows = [json.loads(p.read_text()) for p in sorted(RESULTS.glob("*_ls*.json")) if not p.name.endswith(".error.json")]
     by_point = {}
@@ -303,9 +317,13 @@ def summary() -> None:
         by_point.setdefault(r["point"], {})[r["spacing_divisor"]] = r
     for name, runs in sorted(by_point.items()):
         spacings = sorted(runs)
+        steps = []
         for coarse, fine in zip(spacings, spacings[1:]):
             mean, sem, count = paired_step(runs[coarse], runs[fine])
+            steps.append((mean, sem))
             print(f"{name}: lambda_s/{coarse} -> /{fine}: paired step {mean:+.5f} +- {sem:.5f} over {count} windows")
+        if len(steps) == 2:
+            print(f"{name}: {richardson(runs[spacings[0]]['mu'], *steps)}")
     print(f"{'point':48s} {'n':>3s} {'lambda':>7s} {'mu':>8s} {'sem':>8s} {'share':>6s} {'smooth':>8s} {'conv':>5s} "
           f"{'wall_s':>7s}")
     for r in sorted(rows, key=lambda r: (r["sweep"], r["point"], r["spacing_divisor"])):
