@@ -174,13 +174,12 @@ def finish(out: Path) -> int:
                 if route == "iso14179-2":
                     res = iso_14179_2_mesh(pair, TORQUE_NM, omega, float(eta), RA_PER_RQ * rq, RA_PER_RQ * rq,
                                            lubricant_factor("mineral"))
-                    loss, mu, share = res["p_vzp_w"], res["mu_mz"], None
+                    loss, mu = res["p_vzp_w"], res["mu_mz"]
                 else:
                     result = mesh_power_loss(mesh, frictions[route], OIL_TEMPERATURE_K, rq, rq)
                     loaded = mesh.loads > 0
                     loss = result.power_loss
                     mu = float((result.mu[loaded] * mesh.loads[loaded]).sum() / mesh.loads[loaded].sum())
-                    share = None
                 row[route] = {"power_loss_w": loss, "mu_mean": mu, "time_s": time.perf_counter() - started}
             rows.append(row)
             print(rpm, finish_name, {r: round(row[r]["power_loss_w"], 1) for r in FINISH_ROUTES}, file=sys.stderr)
