@@ -52,7 +52,7 @@ from dataclasses import asdict, replace
 from ..model.effects import Effects
 from ..model.film_formulas import dimensionless_groups, dowson_higginson_min_film, moes_central_film
 from ..model.lubricant import LubricantState, dowson_higginson_density
-from ..model.roughness import baseline_profile
+from ..model.roughness import default_profile
 from ..model.thermal import centre_estimate
 from ..names import EFFECT_PLANS
 from ..validation import InputError
@@ -118,7 +118,7 @@ def dimensionless_numbers(case, lubricant, correlation_length_m: float | None = 
     thermal = centre_estimate(state.temperature_table(case.p_h), h_c, case.half_width, case.u1, case.u2, state.tau0,
                               state.thermal)
     props = state.thermal
-    beta = correlation_length_m if correlation_length_m is not None else baseline_profile().correlation_length
+    beta = correlation_length_m if correlation_length_m is not None else default_profile().correlation_length
     return {
         "lambda_bar": lambda_bar,
         "a_over_beta": case.half_width / beta,
