@@ -64,7 +64,7 @@ def _entry(name: str):
     wins)."""
     return globals()[name] if name in globals() else __getattr__(name)
 
-SOLVER_VERSION = "ehl-2026.11-16"
+SOLVER_VERSION = "ehl-2026.11-17"
 """Version of the numerics behind :func:`solve_contact`. The dataset store records it and refuses to resume a file
 computed with another version: bump it with every change that can alter a solved value. The deterministic model's
 numerics carry their own version (:data:`ehl_dataset.solvers.deterministic.MODEL_VERSION`, recorded in the files that

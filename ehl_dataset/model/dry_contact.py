@@ -57,7 +57,7 @@ import scipy.fft as sfft
 from scipy.interpolate import CubicHermiteSpline, PchipInterpolator
 
 from ..data_files import data_path
-from .roughness import RoughnessProfile, baseline_profile
+from .roughness import RoughnessProfile, default_profile
 from ..validation import InputError, SolverError, check_range
 
 TABLE_FORMAT = "gearloss-dry-contact-2"
@@ -1497,8 +1497,11 @@ SHIPPED_DIR = ("roughness", "dry_contact")
 """Data sub-directory of the shipped tables (``data/roughness/dry_contact/<key>.npz``)."""
 PAPER_RQ_PAIRS_UM = ((0.05, 0.05), (0.1, 0.1), (0.2, 0.2), (0.3, 0.3), (0.4, 0.4), (0.5, 0.5), (0.7, 0.7),
                      (1.0, 1.0), (0.2, 0.5), (0.4, 1.0))
-"""The (Rq1, Rq2) pairs [µm] of the paper's factorial, whose tables (shipped baseline profile, steel E',
-H = 6.8 GPa, default settings) ship with the package."""
+"""The (Rq1, Rq2) pairs [µm] of the paper's factorial, whose tables (shipped profiles
+:data:`SHIPPED_TABLE_PROFILES`, steel E', H = 6.8 GPa, default settings) ship with the package."""
+
+SHIPPED_TABLE_PROFILES = ("baseline_synthetic", "flank_ground")
+"""Names of the shipped profiles whose dry-contact tables ship (:func:`build_shipped_tables`)."""
 
 
 def cache_directory() -> Path:
@@ -1542,7 +1545,7 @@ def dry_contact_table(profile: RoughnessProfile | None = None, rq1: float = 0.4e
     DryContactTable
         The table.
     """
-    profile = profile if profile is not None else baseline_profile()
+    profile = profile if profile is not None else default_profile()
     settings = settings or DryContactSettings()
     key = table_key(profile, rq1, rq2, e_reduced, hardness, settings)
     shipped = data_path(*SHIPPED_DIR, f"{key}.npz")
@@ -1564,24 +1567,32 @@ def dry_contact_table(profile: RoughnessProfile | None = None, rq1: float = 0.4e
     return table
 
 
-def build_shipped_tables(directory: str | Path | None = None, pairs=PAPER_RQ_PAIRS_UM, progress=print) -> Path:
-    """Compute the tables of the shipped baseline profile for the (Rq1, Rq2) ``pairs`` [µm] (steel E',
-    H = 6.8 GPa, default settings) into ``directory`` (default data/roughness/dry_contact/) with an index.json.
+def build_shipped_tables(directory: str | Path | None = None, pairs=PAPER_RQ_PAIRS_UM, progress=print,
+                         profiles=SHIPPED_TABLE_PROFILES) -> Path:
+    """Compute the tables of the shipped profiles ``profiles`` (names of
+    :data:`ehl_dataset.model.roughness.PROFILES`) for the (Rq1, Rq2) ``pairs`` [µm] (steel E', H = 6.8 GPa, default
+    settings, windowed as :func:`windows_that_fit` allows: what the homogenised models ask for) into ``directory``
+    (default data/roughness/dry_contact/) with an index.json.
     Regenerate: ``python -c "from ehl_dataset.model.dry_contact import build_shipped_tables as b; b()"``."""
+    from .roughness import named_profile
+
     target = Path(directory) if directory is not None else data_path(*SHIPPED_DIR)
     target.mkdir(parents=True, exist_ok=True)
-    profile = baseline_profile()
-    index = {"format": TABLE_FORMAT, "profile_sha256": profile_hash(profile), "e_reduced_pa": STEEL_E_REDUCED_PA,
-             "hardness_pa": DEFAULT_HARDNESS_PA, "settings": asdict(DryContactSettings()), "tables": []}
-    for rq1_um, rq2_um in pairs:
-        table = compute_dry_contact_table(profile, rq1_um * 1e-6, rq2_um * 1e-6)
-        table.save(target / f"{table.key}.npz")
-        row = table.summary()
-        index["tables"].append({"rq_um": [rq1_um, rq2_um], "key": table.key, "rows": row["rows"],
-                                "d_over_sigma": row["d_over_sigma"], "p_a_pa": row["p_a_pa"],
-                                "max_contact_fraction": row["max_contact_fraction"],
-                                "seconds": round(row["seconds"], 1)})
-        if progress:
-            progress(f"{rq1_um}/{rq2_um} um: {row['rows']} rows, {row['seconds']:.1f} s -> {table.key}.npz")
+    index = {"format": TABLE_FORMAT, "e_reduced_pa": STEEL_E_REDUCED_PA, "hardness_pa": DEFAULT_HARDNESS_PA,
+             "profiles": {}, "tables": []}
+    for name in profiles:
+        profile = named_profile(name)
+        settings = windows_that_fit(profile)
+        index["profiles"][name] = {"sha256": profile_hash(profile), "settings": asdict(settings)}
+        for rq1_um, rq2_um in pairs:
+            table = compute_dry_contact_table(profile, rq1_um * 1e-6, rq2_um * 1e-6, settings=settings)
+            table.save(target / f"{table.key}.npz")
+            row = table.summary()
+            index["tables"].append({"profile": name, "rq_um": [rq1_um, rq2_um], "key": table.key,
+                                    "rows": row["rows"], "d_over_sigma": row["d_over_sigma"], "p_a_pa": row["p_a_pa"],
+                                    "max_contact_fraction": row["max_contact_fraction"],
+                                    "seconds": round(row["seconds"], 1)})
+            if progress:
+                progress(f"{name} {rq1_um}/{rq2_um} um: {row['rows']} rows, {row['seconds']:.1f} s -> {table.key}.npz")
     (target / "index.json").write_text(json.dumps(index, indent=1) + "\n")
     return target

@@ -298,9 +298,22 @@ def write_baseline(path: str | Path | None = None) -> Path:
 
 
 def baseline_profile() -> RoughnessProfile:
-    """The shipped baseline profile, ``named_profile("baseline_synthetic")``.
+    """The shipped baseline profile, ``named_profile("baseline_synthetic")`` (Gaussian ACF, β 15 µm): the profile
+    of the baseline validation cases.
 
     Read once per process, its sha256 checked. Not detrended: it is periodic and zero-mean.
+
+    Returns
+    -------
+    RoughnessProfile
+        The profile.
+    """
+    return named_profile(BASELINE_NAME)
+
+
+def default_profile() -> RoughnessProfile:
+    """The profile every model uses when none is given, ``named_profile(DEFAULT_PROFILE)`` (the flank-like
+    ``flank_ground``; docs/explanation/roughness.md says why).
 
     Returns
     -------
@@ -533,16 +546,19 @@ class ProfileEntry:
 PROFILES = {
     "baseline_synthetic": ProfileEntry(
         BASELINE_FILE, "01f539a6266e17d2ad3cdda3e787b616d7e54a855d572c17f33573a26bb9258a",
-        "Gaussian heights, Gaussian ACF, beta 15 um, Rq 0.5 um (the default today)",
+        "Gaussian heights, Gaussian ACF, beta 15 um, Rq 0.5 um",
         source=f"shipped baseline {BASELINE_FILE}"),
     "flank_ground": ProfileEntry(
         FLANK_FILE, "4631d4a6a54bdabb8e9c9d1b7327596efaabd452dc789a0ffc6364bbe4e1bf78",
         "Gaussian heights, self-affine H 0.85 between lambda_r 50 um and lambda_s 2.5 um, Rq 0.5 um",
         FLANK_CUTOFF_WAVELENGTH_M),
 }
-"""Named roughness profiles: name → :class:`ProfileEntry`. ``baseline_synthetic`` is the default of every model."""
+"""Named roughness profiles: name → :class:`ProfileEntry`; :data:`DEFAULT_PROFILE` is the default of every model."""
 
-DEFAULT_PROFILE = "baseline_synthetic"
+BASELINE_NAME = "baseline_synthetic"
+"""Name of the Gaussian-ACF baseline profile (the baseline validation cases)."""
+
+DEFAULT_PROFILE = "flank_ground"
 """Name of the default roughness profile."""
 
 
@@ -966,7 +982,7 @@ def plan_surfaces(case, x_m, t_end_s: float, profile: RoughnessProfile | None = 
     if x.ndim != 1 or x.size < 2 or not np.all(np.isfinite(x)):
         raise InputError("x_m", f"array of shape {x.shape}", "a finite 1-D grid with at least 2 nodes")
     check_range("t_end_s", t_end_s, 0.0, 1e3, unit="s")
-    profile = profile if profile is not None else baseline_profile()
+    profile = profile if profile is not None else default_profile()
     rq0 = profile.rq
     if rq0 == 0.0:
         raise InputError("roughness profile", profile.source, "a profile with non-zero Rq")

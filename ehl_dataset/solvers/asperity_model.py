@@ -69,7 +69,7 @@ from ..model.effects import Effects
 from ..names import DEFAULT_FLUCTUATIONS
 from ..model.film_formulas import moes_central_film
 from ..model.lubricant import LubricantState
-from ..model.roughness import RoughnessProfile, baseline_profile
+from ..model.roughness import RoughnessProfile, default_profile
 from ..validation import check_range
 from .film_law_model import (composite_height_quantiles, fluctuation_averaged_shear_stress, pressure_spread,
                              solve_film_law)
@@ -226,7 +226,7 @@ def asperity_closure(film_law: ContactResult, case: ContactCase, state: Lubrican
         ``extra``; converged only if the film law converged and the balance was solved.
     """
     start = time.perf_counter()
-    profile = profile if profile is not None else baseline_profile()
+    profile = profile if profile is not None else default_profile()
     x, p_bar, film0 = film_law.x, film_law.pressure, film_law.film
     load = case.load_per_length
     r1, r2, phi = surviving_fractions(profile, case, state, pressure_scale, nabla_scale, flattening_exponent)

@@ -47,7 +47,7 @@ negative at such jumps), or first-order upwind; docs/explanation/mixed-regime.md
 from ..model.contact import ContactCase
 from ..model.effects import Effects
 from ..model.lubricant import LubricantState
-from ..model.roughness import RoughnessProfile, baseline_profile, plan_surfaces, profile_record
+from ..model.roughness import RoughnessProfile, default_profile, plan_surfaces, profile_record
 from ..model.traction import eyring_shear_stress
 from ..validation import InputError, check_range
 from .krylov import BandedPreconditioner, gmres
@@ -694,7 +694,7 @@ def solve_deterministic(case: ContactCase, state: LubricantState, plan: Effects,
     start = clock()
     scales = ContactScales.of(case, state, plan.shear_thinning)
     a = scales.a
-    profile = roughness if roughness is not None else baseline_profile()
+    profile = roughness if roughness is not None else default_profile()
     h_b_m = options.boundary_film_m if options.boundary_film_m is not None else BOUNDARY_FILM_M
     if options.wide == "windows":
         raise InputError("wide", options.wide, "'auto' or 'resolve' here: solve_deterministic resolves the whole "

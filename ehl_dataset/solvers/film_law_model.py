@@ -68,7 +68,7 @@ from ..model.lubricant import LubricantState
 from ..model.micro_pressure import (composite_slope_rms, flattening_pressure_rms, gamma_pressure_quantiles,
                                     micro_pressure_coefficient as inlet_micro_pressure_coefficient,
                                     spectral_pressure_std)
-from ..model.roughness import RoughnessProfile, baseline_profile, profile_record
+from ..model.roughness import RoughnessProfile, default_profile, profile_record
 from ..model.thermal import ThermalTraction, thermal_couette_traction
 from ..model.traction import eyring_shear_stress, full_film_mask
 from ..validation import InputError, check_range
@@ -214,7 +214,7 @@ def solve_film_law(case: ContactCase, state: LubricantState, lvl: AccuracyLevel,
         check_range("micro_pressure_coefficient", micro_pressure_coefficient, 0.0, 1.0)
     if fluctuations not in FLUCTUATIONS:
         raise InputError("fluctuations", fluctuations, f"one of {list(FLUCTUATIONS)}")
-    profile = roughness if roughness is not None else baseline_profile()
+    profile = roughness if roughness is not None else default_profile()
     heights = composite_height_quantiles(profile, case.rq1, case.rq2)
     smooth_plan = Effects(False, False, plan.shear_thinning, plan.compressibility, plan.mode, {})
     smooth = solve_steady(case, state, lvl, smooth_plan)

@@ -33,7 +33,7 @@ import numpy as np
 
 from ..model.contact import ContactCase
 from ..model.lubricant import LubricantState
-from ..model.roughness import SEGMENT_GAP_CORRELATION_LENGTHS, RoughnessProfile, baseline_profile
+from ..model.roughness import SEGMENT_GAP_CORRELATION_LENGTHS, RoughnessProfile, default_profile
 from ..validation import InputError, check_range
 from .deterministic import (BOUNDARY_FILM_M, COURANT, YIELD_PRESSURE_PA, DeterministicOptions, MixedProblem,
                             _advance, local_shear_stress)
@@ -150,7 +150,7 @@ def solve_window(case: ContactCase, state: LubricantState, mean_pressure_pa: flo
     check_range("mean_film_m", mean_film_m, 0.0, 1e-3, low_inclusive=False, unit="m")
     if case.s_c == 0.0:
         raise InputError("rq1, rq2", (case.rq1, case.rq2), "a rough case (a smooth window is uniform)")
-    profile = roughness if roughness is not None else baseline_profile()
+    profile = roughness if roughness is not None else default_profile()
     scales = ContactScales.of(case, state, True)
     a, beta = scales.a, profile.correlation_length
     length_m = options.length_beta * beta

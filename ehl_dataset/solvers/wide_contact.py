@@ -37,7 +37,7 @@ from scipy.integrate import trapezoid
 from ..model.contact import ContactCase
 from ..model.effects import Effects
 from ..model.lubricant import LubricantState
-from ..model.roughness import RoughnessProfile, baseline_profile, profile_record
+from ..model.roughness import RoughnessProfile, default_profile, profile_record
 from ..model.traction import eyring_shear_stress, full_film_mask
 from ..validation import InputError, check_range
 from .deterministic import MODEL_VERSION, BOUNDARY_FILM_M, DeterministicOptions, grid_spacing, solve_deterministic
@@ -136,7 +136,7 @@ def solve_wide(case: ContactCase, state: LubricantState, plan: Effects, options:
     start = time.perf_counter()
     if case.s_c == 0.0:
         raise InputError("rq1, rq2", (case.rq1, case.rq2), "a rough case for the wide-contact route")
-    profile = roughness if roughness is not None else baseline_profile()
+    profile = roughness if roughness is not None else default_profile()
     smooth_plan = Effects(False, False, plan.shear_thinning, plan.compressibility, plan.mode, {})
     smooth = solve_steady(case, state, get_level("standard"), smooth_plan)
     a = case.half_width
@@ -242,7 +242,7 @@ def solve_deterministic_contact(case: ContactCase, state: LubricantState, plan: 
     (:func:`~ehl_dataset.solvers.deterministic.solve_deterministic`) or, for a wide one, windows fed by the film law
     (:func:`solve_wide`), as ``options.wide`` says. ``checkpoint`` (a resolved contact only): the saved state a long
     run continues from (:func:`~ehl_dataset.solvers.deterministic.solve_deterministic`)."""
-    profile = roughness if roughness is not None else baseline_profile()
+    profile = roughness if roughness is not None else default_profile()
     if takes_windows(case, profile, options):
         if checkpoint is not None:
             raise InputError("checkpoint", str(getattr(checkpoint, "path", checkpoint)),

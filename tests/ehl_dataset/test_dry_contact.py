@@ -10,7 +10,7 @@ import pytest
 
 from ehl_dataset.discretisation.deflection import influence_matrix
 from ehl_dataset.model import dry_contact as dc
-from ehl_dataset.model.roughness import baseline_profile, generate_profile
+from ehl_dataset.model.roughness import baseline_profile, generate_profile, named_profile
 from ehl_dataset.validation import InputError
 
 E = dc.STEEL_E_REDUCED_PA
@@ -319,22 +319,26 @@ def test_input_errors(table):
 # Shipped tables
 # ---------------------------------------------------------------------------------------------------------------
 def test_shipped_tables():
-    """The tables of the paper's ten Rq pairs ship (< 1 MB in all), are found by their key, rise monotonically to
-    ≥ 3 GPa or full contact, and satisfy ⟨g⟩ = d + ⟨u_p⟩."""
+    """The tables of the paper's ten Rq pairs ship for both shipped profiles (< 1 MB in all), are found by their key
+    with the windows the homogenised models ask for, rise monotonically to ≥ 3 GPa or full contact, and satisfy
+    ⟨g⟩ = d + ⟨u_p⟩."""
     folder = dc.data_path(*dc.SHIPPED_DIR)
     index = json.loads((folder / "index.json").read_text())
-    pairs = {tuple(row["rq_um"]) for row in index["tables"]}
-    assert pairs == {tuple(p) for p in dc.PAPER_RQ_PAIRS_UM}
+    assert set(index["profiles"]) == set(dc.SHIPPED_TABLE_PROFILES)
     assert sum(f.stat().st_size for f in folder.iterdir()) < 1_000_000
-    prof = baseline_profile()
-    assert index["profile_sha256"] == dc.profile_hash(prof)
-    for row in index["tables"]:
-        rq1, rq2 = (v * 1e-6 for v in row["rq_um"])
-        assert row["key"] == dc.table_key(prof, rq1, rq2, E, dc.DEFAULT_HARDNESS_PA)
-        t = dc.DryContactTable.load(folder / f"{row['key']}.npz")
-        assert np.all(np.diff(t.tab_pressure) > 0)
-        assert t.tab_pressure[-1] >= 3e9 or t.tab_contact_fraction[-1] >= 0.995
-        assert np.allclose(t.tab_mean_gap, t.tab_separation + t.tab_mean_plastic, atol=1e-6 * t.sigma)
+    for name in dc.SHIPPED_TABLE_PROFILES:
+        prof = named_profile(name)
+        rows = [row for row in index["tables"] if row["profile"] == name]
+        assert {tuple(row["rq_um"]) for row in rows} == {tuple(p) for p in dc.PAPER_RQ_PAIRS_UM}
+        assert index["profiles"][name]["sha256"] == dc.profile_hash(prof)
+        settings = dc.windows_that_fit(prof)
+        for row in rows:
+            rq1, rq2 = (v * 1e-6 for v in row["rq_um"])
+            assert row["key"] == dc.table_key(prof, rq1, rq2, E, dc.DEFAULT_HARDNESS_PA, settings)
+            t = dc.DryContactTable.load(folder / f"{row['key']}.npz")
+            assert np.all(np.diff(t.tab_pressure) > 0)
+            assert t.tab_pressure[-1] >= 3e9 or t.tab_contact_fraction[-1] >= 0.995
+            assert np.allclose(t.tab_mean_gap, t.tab_separation + t.tab_mean_plastic, atol=1e-6 * t.sigma)
 
 
 @pytest.mark.slow
