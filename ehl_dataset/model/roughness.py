@@ -312,8 +312,7 @@ def baseline_profile() -> RoughnessProfile:
 
 
 def default_profile() -> RoughnessProfile:
-    """The profile every model uses when none is given, ``named_profile(DEFAULT_PROFILE)`` (the flank-like
-    ``flank_ground``; docs/explanation/roughness.md says why).
+    """The profile every model uses when none is given, ``named_profile(DEFAULT_PROFILE)``.
 
     Returns
     -------
