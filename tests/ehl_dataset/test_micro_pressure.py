@@ -32,8 +32,12 @@ def atf():
 
 
 def film_law(inputs, lubricant, coefficient=None):
+    """The film law with the inlet form of the spread on the baseline profile: what the reference cases and the
+    calibration ran on."""
     return solve_contact(ContactCase.from_engineering(*inputs), lubricant, "fast", "isothermal", model="homogenised",
-                         homogenised=HomogenisedOptions(closure="film_law", micro_pressure_coefficient=coefficient))
+                         roughness=baseline_profile(),
+                         homogenised=HomogenisedOptions(closure="film_law", micro_pressure_coefficient=coefficient,
+                                                        fluctuations="inlet"))
 
 
 def reference_mu(name):
