@@ -1524,7 +1524,7 @@ def dry_contact_table(profile: RoughnessProfile | None = None, rq1: float = 0.4e
     Parameters
     ----------
     profile : RoughnessProfile, optional
-        Shape of both surfaces; None: the shipped baseline [-].
+        Shape of both surfaces; None: the default profile (:func:`~ehl_dataset.model.roughness.default_profile`) [-].
     rq1 : float
         RMS roughness of surface 1 [m].
     rq2 : float
@@ -1534,7 +1534,8 @@ def dry_contact_table(profile: RoughnessProfile | None = None, rq1: float = 0.4e
     hardness : float
         Hardness H of the softer surface (``math.inf``: purely elastic) [Pa].
     settings : DryContactSettings, optional
-        Numerical settings; None: the defaults [-].
+        Numerical settings; None: the defaults, with as many windows as the profile holds (:func:`windows_that_fit`;
+        the defaults themselves on the baseline) [-].
     cache : bool
         Write a computed table to the cache [-].
     cache_dir : str or Path, optional
@@ -1546,7 +1547,7 @@ def dry_contact_table(profile: RoughnessProfile | None = None, rq1: float = 0.4e
         The table.
     """
     profile = profile if profile is not None else default_profile()
-    settings = settings or DryContactSettings()
+    settings = settings or windows_that_fit(profile)
     key = table_key(profile, rq1, rq2, e_reduced, hardness, settings)
     shipped = data_path(*SHIPPED_DIR, f"{key}.npz")
     if shipped.is_file():

@@ -341,6 +341,18 @@ def test_shipped_tables():
             assert np.allclose(t.tab_mean_gap, t.tab_separation + t.tab_mean_plastic, atol=1e-6 * t.sigma)
 
 
+def test_without_settings_a_short_profile_gets_the_windows_that_fit_and_its_shipped_table():
+    """flank_ground holds fewer than the default 8 windows of 512 β: with no settings the table is the one of the
+    windows that fit (the shipped table, found without computing), and the baseline keeps the defaults."""
+    flank = named_profile("flank_ground")
+    assert dc.windows_that_fit(flank) != dc.DryContactSettings()
+    assert dc.windows_that_fit(baseline_profile()) == dc.DryContactSettings()
+    table = dc.dry_contact_table(flank, 0.4e-6, 0.4e-6, E, cache=False)
+    assert table.meta["key"] == dc.table_key(flank, 0.4e-6, 0.4e-6, E, dc.DEFAULT_HARDNESS_PA,
+                                             dc.windows_that_fit(flank))
+    assert dc.data_path(*dc.SHIPPED_DIR, f"{table.meta['key']}.npz").is_file()
+
+
 @pytest.mark.slow
 def test_resolution_convergence():
     """β/32 against β/64 on the same windows (0.4/0.4 µm, d = σ): p_a within 0.1 %, contact fraction within 3 %
