@@ -32,11 +32,11 @@ from .. import names
 from ..discretisation.deflection import influence_matrix
 from ..discretisation.reynolds import BAND, assemble
 from ..model.contact import ContactCase
-from ..model.dry_contact import dry_contact_table, windows_that_fit
+from ..model.dry_contact import dry_contact_table
 from ..model.effects import Effects
 from ..model.flow_factors import isotropic_flow_factors, lubricated_shear_stress, transverse_flow_factors
 from ..model.lubricant import LubricantState
-from ..model.roughness import RoughnessProfile, default_profile
+from ..model.roughness import RoughnessProfile
 from ..model.traction import full_film_mask
 from ..validation import InputError, check_range
 from .asperity_model import solve_asperity
@@ -219,9 +219,7 @@ def solve_homogenised(case: ContactCase, state: LubricantState, lvl: AccuracyLev
         return solve_asperity(case, state, lvl, plan, roughness, h_b_m,
                               micro_pressure_coefficient=options.micro_pressure_coefficient,
                               fluctuations=options.fluctuations)
-    profile = roughness if roughness is not None else default_profile()
-    # as the film-law closures do: a profile shorter than the default windows gets the windows that fit on it
-    table = dry_contact_table(profile, case.rq1, case.rq2, case.e_reduced, settings=windows_that_fit(profile))
+    table = dry_contact_table(roughness, case.rq1, case.rq2, case.e_reduced)
     scales = ContactScales.of(case, state, plan.shear_thinning)
     smooth_plan = Effects(False, False, plan.shear_thinning, plan.compressibility, plan.mode, {})
     smooth = solve_steady(case, state, lvl, smooth_plan)
