@@ -138,7 +138,9 @@ def solve_contact(case: ContactCase, lubricant: Lubricant | str, level: str | Ac
         Options of the deterministic model (None: those of the level,
         :func:`~ehl_dataset.solvers.deterministic.deterministic_options`) [-].
     homogenised : HomogenisedOptions or None
-        Closure options of the homogenised model (None: the defaults). Smooth surfaces (S_c = 0) asked for either
+        Closure options of the homogenised model (None: the defaults). On the planner's route (``model="auto"``)
+        the planner's closure is used unless these name ``film_law`` or ``asperity``; the other options apply as
+        given. Smooth surfaces (S_c = 0) asked for either
         mixed model get the steady smooth solve, with the reason recorded [-].
     checkpoint : object or None
         For a resolved deterministic run only, where it saves its state and continues from it (e.g.

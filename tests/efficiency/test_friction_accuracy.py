@@ -274,7 +274,7 @@ def test_cli_reports_the_surrogates_clipped_inputs(capsys):
 def test_ehl_friction_takes_the_roughness_profile_and_the_pressure_spread(atf):
     """A rough gear contact below λ̄ 1 (1.2 GPa, 10 mm, 3 m/s, SR 0.3, 90 °C, Rq 0.3 µm): the EHL friction model
     passes the flanks' profile and the spread form to the contact solve, so each gives the μ of
-    ``solve_contact`` with the same choices (the film-law route of the planner), and they differ from each other;
+    ``solve_contact`` with the same choices (the asperity-closure route of the planner), and they differ from each other;
     a bad form is one InputError naming it."""
     from ehl_dataset.model.contact import ContactCase
     from ehl_dataset.model.roughness import baseline_profile, named_profile
