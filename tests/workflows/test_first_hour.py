@@ -342,9 +342,9 @@ def test_a_signal_that_arrives_inside_compiled_code_still_gives_its_exit_code(mo
 @pytest.mark.parametrize("sig, code, words", [(signal.SIGINT, 130, "interrupted by SIGINT"),
                                               (signal.SIGTERM, 143, "terminated by SIGTERM")])
 def test_a_signal_whose_exception_is_lost_is_sent_again_until_the_command_stops(monkeypatch, capsys, sig, code, words):
-    """A handler's exception raised inside a ``__del__`` (or a ctypes callback: numba's object-cache hook, CI of
-    stop 33) is printed as "Exception ignored" and lost. The command must still stop with its exit code and one
-    line, within a re-send interval, not run to its end."""
+    """A handler's exception raised inside a ``__del__`` (or a ctypes callback: numba's object-cache hook) is
+    printed as "Exception ignored" and lost. The command must still stop with its exit code and one line, within a
+    re-send interval, not run to its end."""
     import threading
 
     import workflows.cli as cli
