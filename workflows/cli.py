@@ -89,7 +89,7 @@ class _Redelivery:
     """Sends a caught signal to this process again every ``interval_s`` until :meth:`stop`.
 
     A signal handler's exception is lost when it lands where Python cannot propagate it: a ctypes callback (numba's
-    object-cache hook, CI of stop 33), a ``__del__`` or a weakref callback print it as "Exception ignored" and run
+    object-cache hook), a ``__del__`` or a weakref callback print it as "Exception ignored" and run
     on. Sending the signal again raises it anew, at a later bytecode of the main thread, until it gets through."""
 
     def __init__(self, signum: int, interval_s: float):

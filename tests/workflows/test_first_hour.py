@@ -308,7 +308,7 @@ def test_12_every_docs_figure_says_under_it_the_command_and_the_solver_version_a
 
 @pytest.mark.parametrize("wrapper, message", [
     (SystemError, "<CPUDispatcher> returned a result with an exception set"),  # numba, SIGTERM during a contact solve
-    (ImportError, "initialization failed"),  # scipy's HiGHS extension, Ctrl-C during its import (CI, stop 32)
+    (ImportError, "initialization failed"),  # scipy's HiGHS extension, Ctrl-C during its import
 ])
 @pytest.mark.parametrize("interrupt, code, words", [("_CtrlC", 130, "interrupted by SIGINT"),
                                                     ("_Terminated", 143, "terminated by SIGTERM")])
