@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import argparse
 import importlib
+import os
 import shlex
 import signal
 import sys
@@ -250,6 +251,10 @@ def main(argv: list[str] | None = None) -> int:
         if isinstance(interrupt, KeyboardInterrupt):
             return fail(exit_codes.SIGINT, f"interrupted by SIGINT: {args.command_line} stopped", as_json)
         return fail(exit_codes.SIGTERM, f"terminated by SIGTERM: {args.command_line} stopped", as_json)
+    except BrokenPipeError:  # the reader of the output closed it (`gearloss ... | head -1`): nothing left to say
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())  # so that the interpreter's final flush does not fail again
+        return 0
     except FileNotFoundError as err:
         return fail(exit_codes.BAD_INPUT, f"file not found: {err.filename or err}", as_json, value=err.filename)
     except (IsADirectoryError, NotADirectoryError, PermissionError) as err:
