@@ -2,7 +2,7 @@
 2,000–10,000 rpm: mesh friction power loss and efficiency against speed with the project's friction routes, with and
 without the thermal correction of the EHL traction (ehl_dataset/model/thermal.py).
 
-The pair from its manufacturing data (shared/reference/gear_cases.md: z 40/40, pitch diameter 92.74 mm, α 28°,
+The pair from its manufacturing data (Petry-Johnson et al. 2008, gear table: z 40/40, pitch diameter 92.74 mm, α 28°,
 outside diameter 95.95 mm, root diameter 85.90 mm, circular tooth thickness 2.925 mm, fillet radius 0.83 mm, face
 width 26.7 mm, centre distance 91.5 mm, Rq 0.07 µm), unmodified flanks (no modifications are published), the
 75W90 oil of data/lubricants/gear_oil_75w90.toml at the inlet temperature at which its published η0 = 10.6 mPa·s
@@ -136,7 +136,7 @@ def main(argv=None) -> int:
 
 
 FINISHES_RQ = {"superfinished": 0.07e-6, "ground": 0.3e-6}
-"""Rq of both flanks [m]: the tests' superfinished gears (Rq 0.07 µm, shared/reference) and ground ones (0.3 µm)."""
+"""Rq of both flanks [m]: the tests' superfinished gears (Rq 0.07 µm, Petry-Johnson et al. 2008) and ground ones (0.3 µm)."""
 FINISH_SPEEDS_RPM = (2000, 10000)
 FINISH_ROUTES = ("xu2007", "iso14179-2", "ehl-grid:fast", "ehl-grid:fast flank_ground",
                  "ehl-grid:fast flank_ground spectral")

@@ -40,7 +40,7 @@ def design_d_mesh():
 
 @pytest.fixture(scope="module")
 def fzg_c_mesh():
-    """FZG type C spur gears (shared/reference/gear_cases.md), no modifications: a uniform load across the face."""
+    """FZG type C spur gears (DIN ISO 14635-1), no modifications: a uniform load across the face."""
     pair = GearPair(16, 24, 4.5e-3, math.radians(20), 0.0, 14e-3, 0.1817, 0.1715, center_distance=0.0915)
     return evaluate_mesh(pair, 302.0, 2170 * math.pi / 30, options=MeshOptions(positions=6, slices=6,
                                                                                  outputs=frozenset()))
