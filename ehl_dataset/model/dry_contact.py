@@ -1576,13 +1576,14 @@ def similar_dry_contact_table(profile: RoughnessProfile | None = None, rq1: floa
     be scaled to it: (table, scale, (Rq1, Rq2) of the table [m]), to be read as p_a(d) = scale·p_table(d/scale),
     A(d) = A_table(d/scale).
 
-    The table of the pair itself (shipped or cached, :func:`dry_contact_table`) has scale 1. Otherwise the shipped
-    table of ``pairs`` nearest in composite roughness S = √(Rq1² + Rq2²) and in the mixing angle
+    A shipped table of the pair itself has scale 1. Otherwise the shipped table of ``pairs`` nearest in composite
+    roughness S = √(Rq1² + Rq2²) and in the mixing angle
     θ = atan(min(Rq)/max(Rq)) is taken with scale S/S_table. Both surfaces are stretches of one stationary profile, so
     the composite heights normalised by S have the same spectrum at every θ (only the realisation differs), and
     scaling all heights by a factor scales the elastic contact pressures and separations by it (Johnson, *Contact
     Mechanics*, 1985, §13; exact for the same θ); the plastic cap H becomes scale·H. Without a shipped table of the
-    profile (a user's profile) the table is computed (:func:`dry_contact_table`).
+    profile (a user's profile) the pair's own table is computed or read from the cache (:func:`dry_contact_table`).
+    A cached table of a shipped profile is not used: the result does not depend on what a machine has cached.
 
     Parameters
     ----------
@@ -1611,8 +1612,7 @@ def similar_dry_contact_table(profile: RoughnessProfile | None = None, rq1: floa
     if rq1 == 0.0 and rq2 == 0.0:
         raise InputError("rq1, rq2", (rq1, rq2), "at least one positive Rq")
     key = table_key(profile, rq1, rq2, e_reduced, hardness, settings)
-    own = [data_path(*SHIPPED_DIR, f"{key}.npz"), cache_directory() / f"{key}.npz"]
-    if any(path.is_file() for path in own):
+    if data_path(*SHIPPED_DIR, f"{key}.npz").is_file():
         return dry_contact_table(profile, rq1, rq2, e_reduced, hardness, settings), 1.0, (rq1, rq2)
     target_s, target_theta = math.hypot(rq1, rq2), math.atan2(min(rq1, rq2), max(rq1, rq2))
     best = None

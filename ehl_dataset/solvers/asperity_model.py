@@ -28,8 +28,8 @@ load the asperities carry, in four steps.
    are calibrated on the deterministic reference (and only there).
 
 2. **Dry contact of the surviving roughness.** The dry-contact table of the pair (elastic–plastic contact of the
-   actual profiles; a pair without a shipped or cached table of its own takes the nearest shipped table of the
-   profile scaled to it, :func:`ehl_dataset.model.dry_contact.similar_dry_contact_table`) scaled by elastic
+   actual profiles; a pair without a shipped table of its own takes the nearest shipped table of the profile
+   scaled to it, :func:`ehl_dataset.model.dry_contact.similar_dry_contact_table`) scaled by elastic
    similarity to σ_s: p_a,s(d) = r·p_a(d/r), contact fraction A_s(d) = A(d/r) (exact for linear elasticity; the
    plastic cap of the scaled table is r·H instead of H, which matters only where the contact fraction is large).
 
@@ -243,7 +243,7 @@ def asperity_closure(film_law: ContactResult, case: ContactCase, state: Lubrican
         extra.update(closure="asperity", asperity=record | {"share_residual": 0.0})
         return replace(film_law, extra=extra, wall_time=film_law.wall_time + time.perf_counter() - start)
     # the windows the profile is long enough for; a shipped table of the profile scaled to the pair where the pair's
-    # own is neither shipped nor cached (elastic similarity, :func:`similar_dry_contact_table`)
+    # own does not ship (elastic similarity, :func:`similar_dry_contact_table`)
     base, scale, pair = similar_dry_contact_table(profile, case.rq1, case.rq2, case.e_reduced,
                                                   settings=windows_that_fit(profile))
     table = SurvivingTable(base, r * scale)
