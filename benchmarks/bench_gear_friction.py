@@ -61,7 +61,7 @@ def cases():
             "pair": GearPair(16, 24, 4.5e-3, math.radians(20), 0.0, 14e-3, 0.1817, 0.1715, center_distance=0.0915),
             "torque_nm": 302.0, "speed_rpm": 2170.0, "lubricant": "gear_oil_75w90", "oil_temp_c": 90.0,
             "rq_um": 0.4, "modifications": Modifications(),
-            "source": "FZG type C spur gears (shared/reference/gear_cases.md), pinion torque 302 N·m (FZG load "
+            "source": "FZG type C spur gears (DIN ISO 14635-1), pinion torque 302 N·m (FZG load "
                       "stage 9), 2170 rpm, 75W90 at 90 °C, no flank modifications",
         },
     }

@@ -33,7 +33,7 @@ from typing import Any, Callable, Protocol
 import numpy as np
 
 from ehl_dataset.model.materials import STEEL, Material, reduced_modulus
-from ehl_dataset.names import EFFECT_PLANS, LEVELS
+from ehl_dataset.names import DEFAULT_FLUCTUATIONS, EFFECT_PLANS, LEVELS
 from ehl_dataset.validation import InputError, SolverError, check_range
 
 EHL_EFFECTS = EFFECT_PLANS
@@ -145,7 +145,7 @@ class EhlFriction:
         Effect plan: ``auto`` or ``full`` [-].
     roughness : RoughnessProfile, optional
         Shape of both flanks' roughness (e.g. ``named_profile("flank_ground")``), scaled to each point's Rq; None:
-        the shipped baseline [-].
+        the default profile (``roughness.default_profile()``) [-].
     fluctuations : str
         Micro-EHL pressure spread of the film-law closures (:data:`ehl_dataset.names.FLUCTUATIONS`) [-].
     """
@@ -154,7 +154,7 @@ class EhlFriction:
     level: str = "fast"
     effects: str = "auto"
     roughness: Any = None
-    fluctuations: str = "inlet"
+    fluctuations: str = DEFAULT_FLUCTUATIONS
     _stats: dict = field(default_factory=dict, compare=False, repr=False)
 
     def __post_init__(self):
@@ -176,11 +176,9 @@ class EhlFriction:
             unique, inverse = rows, np.zeros(0, int)
         mu_unique = np.empty(len(unique))
         iterations = 0
-        homogenised = None
-        if self.fluctuations != "inlet":
-            from ehl_dataset.solvers.homogenised import HomogenisedOptions
+        from ehl_dataset.solvers.homogenised import HomogenisedOptions
 
-            homogenised = HomogenisedOptions(fluctuations=self.fluctuations)
+        homogenised = HomogenisedOptions(fluctuations=self.fluctuations)
         for k, values in enumerate(unique):
             result = solve_contact(ContactCase(*(float(v) for v in values)), self.lubricant, self.level, self.effects,
                                    roughness=self.roughness, homogenised=homogenised)
@@ -291,7 +289,7 @@ class EhlGridFriction:
     load_nodes : int
         Nodes in p_h [-].
     roughness : RoughnessProfile, optional
-        Shape of both flanks' roughness; None: the shipped baseline [-].
+        Shape of both flanks' roughness; None: the default profile (``roughness.default_profile()``) [-].
     fluctuations : str
         Micro-EHL pressure spread of the film-law closures (:data:`ehl_dataset.names.FLUCTUATIONS`) [-].
     """
@@ -302,7 +300,7 @@ class EhlGridFriction:
     roll_nodes: int = 5
     load_nodes: int = 9
     roughness: Any = None
-    fluctuations: str = "inlet"
+    fluctuations: str = DEFAULT_FLUCTUATIONS
 
     def __post_init__(self):
         check_range("roll_nodes", self.roll_nodes, 2, 64)
@@ -318,9 +316,12 @@ class EhlGridFriction:
         str
             Level, effects and grid size.
         """
-        rough = "" if self.roughness is None else f" roughness={self.roughness.name or self.roughness.source}"
-        spread = "" if self.fluctuations == "inlet" else f" fluctuations={self.fluctuations}"
-        return (f"EHL solver level={self.level} effects={_effects_name(self.effects)}{rough}{spread} on a grid of "
+        from ehl_dataset.model.roughness import default_profile
+
+        profile = default_profile() if self.roughness is None else self.roughness
+        rough = f" roughness={profile.name or profile.source}"
+        return (f"EHL solver level={self.level} effects={_effects_name(self.effects)}{rough} "
+                f"fluctuations={self.fluctuations} on a grid of "
                 f"{self.roll_nodes} (ln SR) x {self.load_nodes} (p_h) nodes per side of the pitch point")
 
     def __call__(self, *args):

@@ -38,7 +38,7 @@ FLUCTUATIONS: tuple[str, ...] = ("inlet", "spectral")
 baseline profile) or ``spectral`` (E'Δq_f/4, Δq_f the slope of the part of the profile's spectrum that the
 conjunction flattens; no fitted constant)."""
 
-DEFAULT_FLUCTUATIONS = "inlet"
+DEFAULT_FLUCTUATIONS = "spectral"
 """The pressure-spread form of the film-law closures when none is given."""
 
 DEFAULT_CLOSURE = "transverse"

@@ -12,8 +12,8 @@
 Smooth cases (no roughness effect, or S_c = 0) go to the steady solver (:mod:`ehl_dataset.solvers.steady`: a smooth
 contact under constant load and speed has a steady solution, which is what a transient run would settle to, so the
 ``transient`` flag changes nothing for smooth surfaces); rough surfaces with the ``roughness`` effect go where the
-plan's ``model`` decision sends them (:data:`MODELS`): the steady film-law homogenised model
-(:mod:`ehl_dataset.solvers.homogenised`) at ``fast`` and ``standard``, and the deterministic mixed reference
+plan's ``model`` decision sends them (:data:`MODELS`): the steady film-law homogenised model with the asperity-load
+closure (:mod:`ehl_dataset.solvers.homogenised`) at ``fast`` and ``standard``, and the deterministic mixed reference
 (:mod:`ehl_dataset.solvers.deterministic`) at ``reference`` and wherever the effects are forced with ``transient``
 on (``effects="full"``): it is the package's one transient rough solver. ``model="homogenised"`` and
 ``model="deterministic"`` ask for those models whatever the plan; the result's effects then record what that model
@@ -64,7 +64,7 @@ def _entry(name: str):
     wins)."""
     return globals()[name] if name in globals() else __getattr__(name)
 
-SOLVER_VERSION = "ehl-2026.11-16"
+SOLVER_VERSION = "ehl-2026.11-17"
 """Version of the numerics behind :func:`solve_contact`. The dataset store records it and refuses to resume a file
 computed with another version: bump it with every change that can alter a solved value. The deterministic model's
 numerics carry their own version (:data:`ehl_dataset.solvers.deterministic.MODEL_VERSION`, recorded in the files that
@@ -72,38 +72,14 @@ use it: ``model="deterministic"`` or the ``reference`` level), so a change of th
 each version changed is listed in CHANGELOG.md, "Solver versions"."""
 
 MODELS = names.MODELS
-"""Contact models :func:`solve_contact` can be asked for: ``auto`` (the effect plan decides: steady smooth; for rough
-surfaces the steady homogenised model with the film-law closure where the contact is at least the planner's
-``a_over_beta_homogenised`` correlation lengths wide, else the level's ``rough_model``: the same film-law model at
-``fast`` and ``standard`` (outside its validated range, recorded; the asperity-load closure on point-like
-contacts, a/β below the planner's ``a_over_beta_point_contact``), the deterministic solver at ``reference``; forced
-effects with ``transient`` on run the deterministic solver at the level's grid rule too), ``smooth``
-(steady smooth surfaces whatever the roughness), ``homogenised``
-(the steady two-scale mixed model, :mod:`ehl_dataset.solvers.homogenised`, with the closure of ``homogenised``;
-errors against the reference in docs/explanation/mixed-regime.md), ``deterministic`` (the deterministic mixed reference
-solver, :mod:`ehl_dataset.solvers.deterministic`, for rough surfaces).
-
-Version history of what can change a solved value: ehl-2026.11-8 added the thermal correction of the traction;
-ehl-2026.11-9 makes ``auto`` solve wide rough contacts (a/β ≥ 15 at ``fast`` and ``standard``) by the film-law
-homogenised model instead of the transient solver; ehl-2026.11-10 makes ``auto`` at ``reference`` solve rough
-contacts by the deterministic solver (the accuracy reference) instead of the transient solver; ehl-2026.11-11 makes
-``auto`` at ``fast`` and ``standard`` solve narrow rough contacts (a/β < 15) by the film-law homogenised model too,
-instead of the transient solver (docs/explanation/mixed-regime.md); ehl-2026.11-12 keeps the film law for narrow
-contacts
-within its measured range (λ̄ > 1 or X_h ≥ 150) whatever the level's rough model, and its deterministic model
-det-2026.11-10 accepts a Newton solve stalled at the round-off floor instead of splitting the step; ehl-2026.11-13
-gives the film law on narrow contacts a micro-EHL pressure-fluctuation closure (film-law-2026.11-2,
-:mod:`ehl_dataset.model.micro_pressure`) and widens its measured range to the unsaturated narrow contacts with
-λ̄ ≥ 0.1 and roughness parameter α ≤ 2.5 (docs/explanation/mixed-regime.md); ehl-2026.11-14 makes the closure's c a
-function
-of the inlet length in correlation lengths on every contact, narrow and wide, instead of a constant below a/β 15 and
-none above (film-law-2026.11-3; the wide unsaturated contacts resolved whole were 40 % above the film law without
-it), and extends the closure's measured range to wide contacts; ehl-2026.11-15 deletes the transient mixed solver
-(its grid-dependent μ) and sends forced effects with ``transient`` on
-(``effects="full"``) on rough contacts to the deterministic solver at the level's grid rule; ehl-2026.11-16 makes
-``auto`` at ``fast`` and ``standard`` solve point-like rough contacts (a/β < 1.8) by the asperity-load closure, and the
-film law's rolling term there take a film without steps at the zone edges (film-law-2026.11-4); no contact of the
-paper factorial (a/β ≥ 2.95) changes."""
+"""Contact models :func:`solve_contact` can be asked for: ``auto`` (the effect plan decides: steady smooth for smooth
+surfaces; for rough ones at ``fast`` and ``standard`` the steady film-law homogenised model with the asperity-load
+closure (flagged where it is outside its validated range), at ``reference`` the deterministic solver; forced effects
+with ``transient`` on run the deterministic solver at the level's grid rule), ``smooth`` (steady smooth surfaces
+whatever the roughness), ``homogenised`` (the steady two-scale mixed model, :mod:`ehl_dataset.solvers.homogenised`,
+with the closure of ``homogenised``; errors against the reference in docs/explanation/mixed-regime.md),
+``deterministic`` (the deterministic mixed reference solver, :mod:`ehl_dataset.solvers.deterministic`, for rough
+surfaces). What each solver version changed: CHANGELOG.md, "Solver versions"."""
 
 __all__ = ["solve_contact", "solve_problem", "resolve_contact", "SOLVER_VERSION", "MODELS"]
 
@@ -138,7 +114,9 @@ def solve_contact(case: ContactCase, lubricant: Lubricant | str, level: str | Ac
         Options of the deterministic model (None: those of the level,
         :func:`~ehl_dataset.solvers.deterministic.deterministic_options`) [-].
     homogenised : HomogenisedOptions or None
-        Closure options of the homogenised model (None: the defaults). Smooth surfaces (S_c = 0) asked for either
+        Closure options of the homogenised model (None: the defaults). On the planner's route (``model="auto"``)
+        the planner's closure is used unless these name ``film_law`` or ``asperity``; the other options apply as
+        given. Smooth surfaces (S_c = 0) asked for either
         mixed model get the steady smooth solve, with the reason recorded [-].
     checkpoint : object or None
         For a resolved deterministic run only, where it saves its state and continues from it (e.g.

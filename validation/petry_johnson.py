@@ -2,7 +2,7 @@
 2,000–10,000 rpm: mesh friction power loss and efficiency against speed with the project's friction routes, with and
 without the thermal correction of the EHL traction (ehl_dataset/model/thermal.py).
 
-The pair from its manufacturing data (shared/reference/gear_cases.md: z 40/40, pitch diameter 92.74 mm, α 28°,
+The pair from its manufacturing data (Petry-Johnson et al. 2008, gear table: z 40/40, pitch diameter 92.74 mm, α 28°,
 outside diameter 95.95 mm, root diameter 85.90 mm, circular tooth thickness 2.925 mm, fillet radius 0.83 mm, face
 width 26.7 mm, centre distance 91.5 mm, Rq 0.07 µm), unmodified flanks (no modifications are published), the
 75W90 oil of data/lubricants/gear_oil_75w90.toml at the inlet temperature at which its published η0 = 10.6 mPa·s
@@ -24,9 +24,9 @@ figure only).
 
 ``--finish`` compares the surface finishes of the tests instead, superfinished (Rq 0.07 µm) against ground (Rq
 0.3 µm), at 2,000 and 10,000 rpm: Xu's formula (its roughness term, fitted to a mixed-EHL model), ISO/TR 14179-2
-(through Ra) and the default EHL route ``ehl-grid:fast`` with the shipped baseline roughness, with the flank-like
-profile (``flank_ground``), and with the flank-like profile and the spectral pressure spread; writes
-validation/results/petry_johnson_finish.json.
+(through Ra) and the default EHL route ``ehl-grid:fast`` (the asperity-load closure on the flank-like default
+profile, spectral pressure spread), the same with the inlet form of the spread, and on the Gaussian baseline profile;
+writes validation/results/petry_johnson_finish.json.
 """
 
 from __future__ import annotations
@@ -136,10 +136,9 @@ def main(argv=None) -> int:
 
 
 FINISHES_RQ = {"superfinished": 0.07e-6, "ground": 0.3e-6}
-"""Rq of both flanks [m]: the tests' superfinished gears (Rq 0.07 µm, shared/reference) and ground ones (0.3 µm)."""
+"""Rq of both flanks [m]: the tests' superfinished gears (Rq 0.07 µm, Petry-Johnson et al. 2008) and ground ones (0.3 µm)."""
 FINISH_SPEEDS_RPM = (2000, 10000)
-FINISH_ROUTES = ("xu2007", "iso14179-2", "ehl-grid:fast", "ehl-grid:fast flank_ground",
-                 "ehl-grid:fast flank_ground spectral")
+FINISH_ROUTES = ("xu2007", "iso14179-2", "ehl-grid:fast", "ehl-grid:fast inlet", "ehl-grid:fast baseline_synthetic")
 
 
 def finish(out: Path) -> int:
@@ -157,12 +156,11 @@ def finish(out: Path) -> int:
     pair = osu_pair()
     lubricant = load_lubricant("gear_oil_75w90")
     eta, _ = lubricant_properties(lubricant, OIL_TEMPERATURE_K)
-    flank = named_profile("flank_ground")
     frictions = {"xu2007": friction_from_spec("xu2007", lubricant),
                  "ehl-grid:fast": EhlGridFriction(lubricant, "fast"),
-                 "ehl-grid:fast flank_ground": EhlGridFriction(lubricant, "fast", roughness=flank),
-                 "ehl-grid:fast flank_ground spectral": EhlGridFriction(lubricant, "fast", roughness=flank,
-                                                                        fluctuations="spectral")}
+                 "ehl-grid:fast inlet": EhlGridFriction(lubricant, "fast", fluctuations="inlet"),
+                 "ehl-grid:fast baseline_synthetic": EhlGridFriction(lubricant, "fast",
+                                                                     roughness=named_profile("baseline_synthetic"))}
     rows = []
     for rpm in FINISH_SPEEDS_RPM:
         omega = rpm * math.pi / 30.0

@@ -2,7 +2,9 @@
 constant μ = 0.05 at the study point (data/studies/paper2009.toml), exactly as tests/efficiency/test_studies.py
 evaluates them (the tests assert the trends; this prints their values).
 
-Run: ``python validation/study_trends.py`` → validation/results/study_trends.json.
+Run: ``python validation/study_trends.py`` → validation/results/study_trends.json; ``--friction SPEC`` (e.g. ``atf``,
+any spec of :func:`efficiency.friction.friction_from_spec`) evaluates the same lines with that friction model into
+validation/results/study_trends_SPEC.json.
 """
 
 from __future__ import annotations
@@ -28,10 +30,17 @@ def main(argv=None) -> int:
     from efficiency.mesh_cycle import MeshOptions
     from efficiency.studies import StudyPoint, design_pair, design_sweep, modification_study, trend_line
 
-    mu = ConstantFriction(0.05)
+    import argparse
+
+    from efficiency.friction import friction_from_spec
+
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--friction", default=None, help="friction spec (default: constant mu = 0.05)")
+    args = parser.parse_args(argv)
+    mu = ConstantFriction(0.05) if args.friction is None else friction_from_spec(args.friction)
     study = load_study("paper2009")
     point = StudyPoint.from_operating_point(study.operating_point)
-    out = {"friction": "constant mu = 0.05", "machine": machine_info()}
+    out = {"friction": "constant mu = 0.05" if args.friction is None else args.friction, "machine": machine_info()}
 
     def line(where, vary, stride=1, at=point):
         table = design_sweep(study.space, mu, at, study.limits, MeshOptions(), where=where, stride=stride)
@@ -54,7 +63,8 @@ def main(argv=None) -> int:
     sel = mods[(mods["torque_nm"] == 250.0) & np.isclose(mods["lead_crown_m"], 12e-6)].sort_values("profile_crown_m")
     out["fig6a_250nm_ml12"] = {"profile_crown_um": (sel["profile_crown_m"] * 1e6).tolist(),
                                "power_loss_w": sel["power_loss_w"].tolist()}
-    emit_json(out, str(Path(__file__).parent / "results" / "study_trends.json"), indent=1)
+    name = "study_trends.json" if args.friction is None else f"study_trends_{Path(args.friction).stem}.json"
+    emit_json(out, str(Path(__file__).parent / "results" / name), indent=1)
     return 0
 
 

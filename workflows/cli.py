@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import argparse
 import importlib
+import os
 import shlex
 import signal
 import sys
@@ -89,7 +90,7 @@ class _Redelivery:
     """Sends a caught signal to this process again every ``interval_s`` until :meth:`stop`.
 
     A signal handler's exception is lost when it lands where Python cannot propagate it: a ctypes callback (numba's
-    object-cache hook, CI of stop 33), a ``__del__`` or a weakref callback print it as "Exception ignored" and run
+    object-cache hook), a ``__del__`` or a weakref callback print it as "Exception ignored" and run
     on. Sending the signal again raises it anew, at a later bytecode of the main thread, until it gets through."""
 
     def __init__(self, signum: int, interval_s: float):
@@ -250,6 +251,10 @@ def main(argv: list[str] | None = None) -> int:
         if isinstance(interrupt, KeyboardInterrupt):
             return fail(exit_codes.SIGINT, f"interrupted by SIGINT: {args.command_line} stopped", as_json)
         return fail(exit_codes.SIGTERM, f"terminated by SIGTERM: {args.command_line} stopped", as_json)
+    except BrokenPipeError:  # the reader of the output closed it (`gearloss ... | head -1`): nothing left to say
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())  # so that the interpreter's final flush does not fail again
+        return 0
     except FileNotFoundError as err:
         return fail(exit_codes.BAD_INPUT, f"file not found: {err.filename or err}", as_json, value=err.filename)
     except (IsADirectoryError, NotADirectoryError, PermissionError) as err:

@@ -145,6 +145,8 @@ def _human(d: dict) -> str:
     ]
     if d.get("roughness_name"):
         lines.append(f"roughness     {d['roughness_name']} (sha256 {d['roughness_sha256'][:12]}...)")
+    if d["effects"].get("roughness") and d.get("asperity_load_share") is not None:
+        lines.append(f"asperities    {100 * d['asperity_load_share']:.1f} % of the load")
     if d["converged"] and d.get("message") and d["message"] != "converged":
         lines.append(f"note          {d['message'].removeprefix('converged; ')}")
     if d.get("thermal"):

@@ -1568,6 +1568,68 @@ def dry_contact_table(profile: RoughnessProfile | None = None, rq1: float = 0.4e
     return table
 
 
+def similar_dry_contact_table(profile: RoughnessProfile | None = None, rq1: float = 0.4e-6, rq2: float = 0.4e-6,
+                              e_reduced: float = STEEL_E_REDUCED_PA, hardness: float = DEFAULT_HARDNESS_PA,
+                              settings: DryContactSettings | None = None,
+                              pairs=PAPER_RQ_PAIRS_UM) -> tuple[DryContactTable, float, tuple[float, float]]:
+    """A dry-contact table for (``rq1``, ``rq2``) without computing one where a shipped table of the same profile can
+    be scaled to it: (table, scale, (Rq1, Rq2) of the table [m]), to be read as p_a(d) = scale·p_table(d/scale),
+    A(d) = A_table(d/scale).
+
+    A shipped table of the pair itself has scale 1. Otherwise the shipped table of ``pairs`` nearest in composite
+    roughness S = √(Rq1² + Rq2²) and in the mixing angle
+    θ = atan(min(Rq)/max(Rq)) is taken with scale S/S_table. Both surfaces are stretches of one stationary profile, so
+    the composite heights normalised by S have the same spectrum at every θ (only the realisation differs), and
+    scaling all heights by a factor scales the elastic contact pressures and separations by it (Johnson, *Contact
+    Mechanics*, 1985, §13; exact for the same θ); the plastic cap H becomes scale·H. Without a shipped table of the
+    profile (a user's profile) the pair's own table is computed or read from the cache (:func:`dry_contact_table`).
+    A cached table of a shipped profile is not used: the result does not depend on what a machine has cached.
+
+    Parameters
+    ----------
+    profile : RoughnessProfile, optional
+        Shape of both surfaces; None: the default profile [-].
+    rq1, rq2 : float
+        RMS roughness of the two surfaces [m].
+    e_reduced : float
+        Reduced modulus E' [Pa].
+    hardness : float
+        Hardness H of the softer surface [Pa].
+    settings : DryContactSettings, optional
+        Numerical settings; None: the windows that fit (:func:`windows_that_fit`) [-].
+    pairs : sequence of (float, float)
+        The shipped (Rq1, Rq2) pairs to look for [µm] [-].
+
+    Returns
+    -------
+    tuple
+        (DryContactTable, scale [-], (Rq1, Rq2) of the table [m]).
+    """
+    profile = profile if profile is not None else default_profile()
+    settings = settings or windows_that_fit(profile)
+    check_range("rq1", rq1, 0.0, 1e-4, unit="m")
+    check_range("rq2", rq2, 0.0, 1e-4, unit="m")
+    if rq1 == 0.0 and rq2 == 0.0:
+        raise InputError("rq1, rq2", (rq1, rq2), "at least one positive Rq")
+    key = table_key(profile, rq1, rq2, e_reduced, hardness, settings)
+    if data_path(*SHIPPED_DIR, f"{key}.npz").is_file():
+        return dry_contact_table(profile, rq1, rq2, e_reduced, hardness, settings), 1.0, (rq1, rq2)
+    target_s, target_theta = math.hypot(rq1, rq2), math.atan2(min(rq1, rq2), max(rq1, rq2))
+    best = None
+    for rq1_um, rq2_um in pairs:
+        a, b = rq1_um * 1e-6, rq2_um * 1e-6
+        path = data_path(*SHIPPED_DIR, f"{table_key(profile, a, b, e_reduced, hardness, settings)}.npz")
+        if not path.is_file():
+            continue
+        distance = abs(math.log(target_s / math.hypot(a, b))) + abs(target_theta - math.atan2(min(a, b), max(a, b)))
+        if best is None or distance < best[0]:
+            best = (distance, path, (a, b))
+    if best is None:
+        return dry_contact_table(profile, rq1, rq2, e_reduced, hardness, settings), 1.0, (rq1, rq2)
+    _, path, pair = best
+    return DryContactTable.load(path), target_s / math.hypot(*pair), pair
+
+
 def build_shipped_tables(directory: str | Path | None = None, pairs=PAPER_RQ_PAIRS_UM, progress=print,
                          profiles=SHIPPED_TABLE_PROFILES) -> Path:
     """Compute the tables of the shipped profiles ``profiles`` (names of

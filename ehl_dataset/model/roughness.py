@@ -557,7 +557,7 @@ PROFILES = {
 BASELINE_NAME = "baseline_synthetic"
 """Name of the Gaussian-ACF baseline profile (the baseline validation cases)."""
 
-DEFAULT_PROFILE = "baseline_synthetic"
+DEFAULT_PROFILE = "flank_ground"
 """Name of the default roughness profile."""
 
 

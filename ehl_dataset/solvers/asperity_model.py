@@ -28,9 +28,10 @@ load the asperities carry, in four steps.
    are calibrated on the deterministic reference (and only there).
 
 2. **Dry contact of the surviving roughness.** The dry-contact table of the pair (elastic–plastic contact of the
-   actual profiles, :func:`ehl_dataset.model.dry_contact.dry_contact_table`) scaled by elastic similarity to σ_s:
-   p_a,s(d) = r·p_a(d/r), contact fraction A_s(d) = A(d/r) (exact for linear elasticity; the plastic cap of the
-   scaled table is r·H instead of H, which matters only where the contact fraction is large).
+   actual profiles; a pair without a shipped table of its own takes the nearest shipped table of the profile
+   scaled to it, :func:`ehl_dataset.model.dry_contact.similar_dry_contact_table`) scaled by elastic
+   similarity to σ_s: p_a,s(d) = r·p_a(d/r), contact fraction A_s(d) = A(d/r) (exact for linear elasticity; the
+   plastic cap of the scaled table is r·H instead of H, which matters only where the contact fraction is large).
 
 3. **Load balance** (Johnson, Greenwood & Poon, Wear 19 (1972) 91; Gelinck & Schipper, Tribol. Int. 33 (2000) 175):
    the fluid carries the rest of the load, (1 − s)·w, and its film is the film law's scaled by Moes' central-film
@@ -64,7 +65,7 @@ import numpy as np
 
 from ..model.amplitude_reduction import AMPLITUDE_A, amplitude_factor, profile_spectrum, surface_amplitude_factors
 from ..model.contact import ContactCase
-from ..model.dry_contact import dry_contact_table, windows_that_fit
+from ..model.dry_contact import similar_dry_contact_table, windows_that_fit
 from ..model.effects import Effects
 from ..names import DEFAULT_FLUCTUATIONS
 from ..model.film_formulas import moes_central_film
@@ -76,7 +77,7 @@ from .film_law_model import (composite_height_quantiles, fluctuation_averaged_sh
 from .levels import AccuracyLevel
 from .result import ContactResult
 
-ASPERITY_MODEL_VERSION = "asperity-2026.11-1"
+ASPERITY_MODEL_VERSION = "asperity-2026.11-2"
 """Version of this closure (amplitude reduction with its flattening limit, scaled dry-contact table, Moes load
 balance, c_∇ and c_p)."""
 
@@ -139,11 +140,11 @@ class SurvivingTable:
     table : DryContactTable
         Table of the undeformed pair [-].
     r : float
-        Surviving fraction σ_s/σ, in (0, 1] [-].
+        Height scale: the surviving fraction σ_s/σ times the scale of a similar table, in (0, 100] [-].
     """
 
     def __init__(self, table, r: float):
-        check_range("r", r, 0.0, 1.0, low_inclusive=False)
+        check_range("r", r, 0.0, 100.0, low_inclusive=False)
         self.table, self.r = table, float(r)
 
     @property
@@ -241,9 +242,12 @@ def asperity_closure(film_law: ContactResult, case: ContactCase, state: Lubrican
     if r <= 0.0 or not film_law.converged:
         extra.update(closure="asperity", asperity=record | {"share_residual": 0.0})
         return replace(film_law, extra=extra, wall_time=film_law.wall_time + time.perf_counter() - start)
-    # the windows the profile is long enough for (the defaults, and the shipped tables, for the baseline)
-    table = SurvivingTable(dry_contact_table(profile, case.rq1, case.rq2, case.e_reduced,
-                                             settings=windows_that_fit(profile)), r)
+    # the windows the profile is long enough for; a shipped table of the profile scaled to the pair where the pair's
+    # own does not ship (elastic similarity, :func:`similar_dry_contact_table`)
+    base, scale, pair = similar_dry_contact_table(profile, case.rq1, case.rq2, case.e_reduced,
+                                                  settings=windows_that_fit(profile))
+    table = SurvivingTable(base, r * scale)
+    record.update(table_rq_m=[float(pair[0]), float(pair[1])], table_scale=float(scale))
 
     def asperity_pressure(s):
         film = film0 * float(fluid_film_ratio(case, state, 1.0 - s))

@@ -10,7 +10,7 @@ threshold says it does not change the result beyond the level's tolerance (the c
   problem (the saving: one steady solve instead of hundreds of time steps). Moving roughness is what makes a line
   contact transient, so both flags go together. S_c = 0 gives λ̄ = ∞. The ``model`` decision says which solver that
   means: steady smooth; for a rough contact at least ``a_over_beta_homogenised`` roughness correlation lengths wide
-  (a/β, β of the roughness profile), the steady homogenised model with the film-law closure (the roughness is a
+  (a/β, β of the roughness profile), the steady homogenised model (the roughness is a
   homogeneous micro-scale there: measured against the deterministic model in docs/explanation/mixed-regime.md, "Film-law
   closure"), so ``transient`` is off; so is a narrower rough contact above λ̄ = 1, with an Eyring-saturated traction
   (X_h ≥ 150, see below), or within the range where the film law's micro-EHL pressure-fluctuation closure was calibrated
@@ -19,8 +19,11 @@ threshold says it does not change the result beyond the level's tolerance (the c
   same film-law model at ``fast`` and ``standard``, recorded as outside its validated range (no cheap model is within
   those levels' tolerance there), the deterministic solver (the package's transient rough solver) at ``reference``.
   A rough contact narrower than ``a_over_beta_point_contact`` (a/β below 1.8 at ``fast`` and ``standard``) is
-  point-like: narrower than the roughness, a few asperity pairs carry part of its load, and the steady homogenised
-  model runs it with the asperity-load closure (recorded as ``reasons["closure"]``, read by :func:`planned_closure`).
+  point-like: narrower than the roughness, a few asperity pairs carry part of its load; it goes to the steady
+  homogenised model too. Every rough contact the homogenised model runs gets the asperity-load closure on the film law
+  (recorded as ``reasons["closure"]``, read by :func:`planned_closure`): where no asperity touches it is the film law
+  itself, and against the deterministic reference on both shipped profiles it is within its acceptance where the film
+  law alone misses the asperity load (docs/explanation/mixed-regime.md, "The asperity-load closure").
 * **shear thinning** — inlet Eyring number X_in = η0·|u_s|/(τ0·h_min,DH): sinh(τ_m/τ0) of the Couette shear where
   the film is formed (the inlet, at ambient viscosity). The Eyring flow factor is √(1 + X²), and only the inlet flow
   shapes the film: in the Hertz zone the Poiseuille flow is negligible whatever its factor. The Eyring number at the
@@ -170,8 +173,7 @@ def plan_effects(case, lubricant, level="standard", correlation_length_m: float 
     with its pressure-fluctuation closure is within its measured range) and ``limit``, the limit that decided
     (``lambda_bar``, ``eyring_number``, ``closure_range``, ``below_closure_lambda`` or ``above_closure_roughness``:
     :func:`narrow_film_law_range`), and for one narrower than ``a_over_beta_homogenised`` the same under
-    ``narrow_contact``; for a point-like one (a/β below ``a_over_beta_point_contact``) ``closure`` is
-    ``"asperity"``.
+    ``narrow_contact``; for every rough contact sent to the homogenised model ``closure`` is ``"asperity"``.
 
     Parameters
     ----------
@@ -233,7 +235,7 @@ def plan_effects(case, lubricant, level="standard", correlation_length_m: float 
                   "roughness, a few asperity pairs carry part of the load, which the film law does not model; against "
                   "the deterministic model: docs/explanation/mixed-regime.md)"
                   if point else
-                  f"homogenised model, film-law closure ({a_b} >= {limits.a_over_beta_homogenised:g}; against the "
+                  f"homogenised model, asperity-load closure on the film law ({a_b} >= {limits.a_over_beta_homogenised:g}; against the "
                   "deterministic model's windows on the wide factorial corners: docs/explanation/mixed-regime.md)"
                   + ("" if narrow_within else
                      f"; outside the measured range of its pressure-fluctuation closure (X_h={x_h:.3g} < "
@@ -243,7 +245,7 @@ def plan_effects(case, lubricant, level="standard", correlation_length_m: float 
                         f"roughness parameter alpha={alpha:.3g} > {limits.narrow_closure_roughness:g}")
                      + "; docs/explanation/mixed-regime.md)")
                   if homogenised and wide else
-                  f"homogenised model, film-law closure, on a narrow contact within its measured range ({a_b} < "
+                  f"homogenised model, asperity-load closure on the film law, on a narrow contact within its measured range ({a_b} < "
                   f"{limits.a_over_beta_homogenised:g}, but "
                   + (f"lambda_bar={lam:.3g} > {limits.narrow_film_law_lambda:g}"
                      if narrow_limit == "lambda_bar" else
@@ -255,7 +257,7 @@ def plan_effects(case, lubricant, level="standard", correlation_length_m: float 
                      "calibrated micro-EHL pressure-fluctuation closure")
                   + ": docs/explanation/mixed-regime.md)"
                   if homogenised and narrow_valid else
-                  f"homogenised model, film-law closure, outside its validated range ({a_b} < "
+                  f"homogenised model, asperity-load closure on the film law, outside its validated range ({a_b} < "
                   f"{limits.a_over_beta_homogenised:g}, X_h={x_h:.3g} < {limits.narrow_film_law_eyring:g}, "
                   + (f"lambda_bar={lam:.3g} < {limits.narrow_closure_lambda:g}: asperities carry load, which the film "
                      "law does not model"
@@ -287,7 +289,7 @@ def plan_effects(case, lubricant, level="standard", correlation_length_m: float 
         reasons["film_law_range"] = {"within_measured_range": bool(narrow_within), "limit": narrow_limit}
     if rough and not wide:
         reasons["narrow_contact"] = {"within_measured_range": bool(narrow_valid), "limit": narrow_limit}
-    if point:
+    if homogenised:
         reasons["closure"] = "asperity"
     return Effects(roughness=rough, transient=rough and not homogenised, shear_thinning=not newtonian,
                    compressibility=True,
@@ -305,8 +307,8 @@ def planned_closure(plan: Effects) -> str:
     Returns
     -------
     str
-        ``"asperity"`` for a point-like contact (a/β below
-        :attr:`~ehl_dataset.solvers.levels.PlannerThresholds.a_over_beta_point_contact`), else ``"film_law"``.
+        ``"asperity"`` for every rough contact the planner sends to the homogenised model (the film law plus the load
+        the surviving roughness carries: it is the film law wherever no asperity touches), else ``"film_law"``.
     """
     return str((plan.reasons or {}).get("closure", "film_law"))
 

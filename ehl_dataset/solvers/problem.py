@@ -200,8 +200,13 @@ def resolve_contact(case: ContactCase, lubricant: Lubricant | str, level: str | 
     elif route == "film_law":
         from .homogenised import HomogenisedOptions
 
-        options_h = HomogenisedOptions(closure=planned_closure(plan),
-                                       **({"fluctuations": homogenised.fluctuations} if homogenised else {}))
+        # the planner's closure unless the options name one of the two this route runs (film_law, asperity)
+        if homogenised is None:
+            options_h = HomogenisedOptions(closure=planned_closure(plan))
+        elif homogenised.closure in ("film_law", "asperity"):
+            options_h = homogenised
+        else:
+            options_h = replace(homogenised, closure=planned_closure(plan))
     elif route == "deterministic":
         from .deterministic import deterministic_options
 

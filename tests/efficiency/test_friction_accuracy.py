@@ -40,7 +40,7 @@ def design_d_mesh():
 
 @pytest.fixture(scope="module")
 def fzg_c_mesh():
-    """FZG type C spur gears (shared/reference/gear_cases.md), no modifications: a uniform load across the face."""
+    """FZG type C spur gears (DIN ISO 14635-1), no modifications: a uniform load across the face."""
     pair = GearPair(16, 24, 4.5e-3, math.radians(20), 0.0, 14e-3, 0.1817, 0.1715, center_distance=0.0915)
     return evaluate_mesh(pair, 302.0, 2170 * math.pi / 30, options=MeshOptions(positions=6, slices=6,
                                                                                  outputs=frozenset()))
@@ -274,10 +274,10 @@ def test_cli_reports_the_surrogates_clipped_inputs(capsys):
 def test_ehl_friction_takes_the_roughness_profile_and_the_pressure_spread(atf):
     """A rough gear contact below λ̄ 1 (1.2 GPa, 10 mm, 3 m/s, SR 0.3, 90 °C, Rq 0.3 µm): the EHL friction model
     passes the flanks' profile and the spread form to the contact solve, so each gives the μ of
-    ``solve_contact`` with the same choices (the film-law route of the planner), and they differ from each other;
+    ``solve_contact`` with the same choices (the asperity-closure route of the planner), and they differ from each other;
     a bad form is one InputError naming it."""
     from ehl_dataset.model.contact import ContactCase
-    from ehl_dataset.model.roughness import named_profile
+    from ehl_dataset.model.roughness import baseline_profile, named_profile
     from ehl_dataset.solver import solve_contact
     from ehl_dataset.solvers.homogenised import HomogenisedOptions
 
@@ -285,12 +285,12 @@ def test_ehl_friction_takes_the_roughness_profile_and_the_pressure_spread(atf):
     args = (1.2e9, 10e-3, 3.0, 0.3, OIL_K, 0.3e-6, 0.3e-6)
     case = ContactCase(*args)
     values = {}
-    for name, roughness, form in (("baseline", None, "inlet"), ("flank", flank, "inlet"),
-                                  ("flank spectral", flank, "spectral")):
+    for name, roughness, form in (("baseline", baseline_profile(), "inlet"), ("flank", None, "inlet"),
+                                  ("flank spectral", None, "spectral")):
         mu = float(EhlFriction(atf, "fast", roughness=roughness, fluctuations=form)(*args))
         direct = solve_contact(case, atf, "fast", roughness=roughness,
                                homogenised=HomogenisedOptions(fluctuations=form))
-        assert direct.extra["closure"] == "film_law" and mu == direct.mu
+        assert direct.extra["closure"] == "asperity" and mu == direct.mu
         values[name] = mu
     assert len(set(values.values())) == 3
     grid = EhlGridFriction(atf, "fast", roughness=flank, fluctuations="spectral")

@@ -2,7 +2,7 @@
 paper's study only.
 
 Reference: the Ohio State unity-ratio spur pair of Petry-Johnson, Kahraman, Anderson & Chase, J. Mech. Des. 130
-(2008) 062601 (gear table as transcribed in shared/reference/gear_cases.md): z = 40/40, pitch diameter 92.74 mm
+(2008) 062601 (its gear table): z = 40/40, pitch diameter 92.74 mm
 (m = 2.3185 mm; "2.32" printed), α = 28°, base diameter 81.89 mm, outside diameter 95.95 mm, root diameter
 85.90 mm, start of active profile 87.73 mm, circular tooth thickness 2.925 mm, fillet radius 0.83 mm, face width
 26.7 mm, centre distance 91.5 mm.

@@ -22,7 +22,7 @@ from efficiency.mesh_cycle import MeshOptions, evaluate_mesh
 from efficiency.power_loss import contact_conditions, mesh_power_loss
 from ehl_dataset.validation import InputError
 
-# FZG gears (shared/reference/gear_cases.md): z1, z2, m_n [mm], β [deg], b [mm], x1, x2; a = 91.5 mm.
+# FZG type C gears (DIN ISO 14635-1): z1, z2, m_n [mm], β [deg], b [mm], x1, x2; a = 91.5 mm.
 FZG = {"C": (16, 24, 4.5, 0.0, 14, 0.1817, 0.1715), "H501": (20, 30, 3.5, 15.0, 23, 0.1809, 0.0891)}
 
 

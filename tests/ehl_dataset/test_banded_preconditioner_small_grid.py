@@ -14,6 +14,7 @@ import scipy.linalg
 
 from ehl_dataset.model.contact import ContactCase
 from ehl_dataset.model.lubricant import load_lubricant
+from ehl_dataset.model.roughness import baseline_profile
 from ehl_dataset.solver import solve_contact
 from ehl_dataset.solvers.deterministic import MixedProblem, deterministic_options
 from ehl_dataset.solvers.krylov import BandedPreconditioner, banded_product, gmres
@@ -94,9 +95,10 @@ def test_a_contact_narrower_than_the_correlation_length_solves_deterministically
     case = ContactCase(36856271.7, 0.0124162, 9.987, 0.054, 363.15, 4e-7, 4e-7)
     short = dict(ramp_passes=0.2, startup_passes=0.1, min_average_passes=0.2, max_passes=0.4)
     options = dataclasses.replace(deterministic_options("fast"), **short)
-    wide = solve_contact(case, ATF, level="fast", model="deterministic", deterministic=options)
+    baseline = baseline_profile()  # the β of a/β ≈ 0.5
+    wide = solve_contact(case, ATF, level="fast", model="deterministic", deterministic=options, roughness=baseline)
     narrow = solve_contact(case, ATF, level="fast", model="deterministic",
-                           deterministic=dataclasses.replace(options, band=6))
+                           deterministic=dataclasses.replace(options, band=6), roughness=baseline)
     assert wide.converged, wide.message
     assert wide.x.size < 2 * options.band + 1 and narrow.x.size == wide.x.size
     assert np.isfinite(wide.mu) and wide.mu > 0.0

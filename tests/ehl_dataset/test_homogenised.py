@@ -9,6 +9,7 @@ from hypothesis import strategies as st
 from ehl_dataset.model.contact import ContactCase
 from ehl_dataset.model.effects import Effects
 from ehl_dataset.model.lubricant import load_lubricant
+from ehl_dataset.model.roughness import baseline_profile
 from ehl_dataset.solver import solve_contact
 from ehl_dataset.solvers.homogenised import HomogenisedOptions, solve_homogenised
 from ehl_dataset.solvers.levels import get_level
@@ -142,6 +143,7 @@ def test_as_the_film_vanishes_side_leakage_takes_mu_to_mu_d_and_the_1d_closure_d
         case = ContactCase.from_engineering(1.0, 5, u_r, 0.5, 100, 0.5, 0.5)
         for closure in ("transverse", "isotropic"):
             runs[u_r, closure] = solve_contact(case, ATF, "fast", "isothermal", model="homogenised",
+                                               roughness=baseline_profile(),
                                                homogenised=HomogenisedOptions(closure=closure))
     assert all(r.converged for r in runs.values())
     assert runs[0.05, "isotropic"].lambda_bar < 0.01

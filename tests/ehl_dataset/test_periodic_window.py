@@ -71,13 +71,14 @@ def test_a_stretch_made_periodic_keeps_its_rq_and_closes_on_itself():
 
 
 def test_the_window_conserves_its_lubricant_and_holds_the_mean_pressure():
-    """Rough surfaces (σ = 0.57 µm) holding the lubricant of a 100 nm film, at Courant 0.5 so that asperities touch
+    """Rough surfaces (the baseline profile, σ = 0.57 µm) holding the lubricant of a 100 nm film, at Courant 0.5 so that asperities touch
     (at the default 0.25 the trapped lubricant keeps them apart on this coarse grid): the lubricant content of the
     periodic window (no inlet, no outlet) equals its initial value to round-off at every step, and the mean total
     pressure is p̄. The share must be well above round-off: with the 150 nm film this test used before det-2026.11-16
     it is ±1e-14 (no contact; det-15 happened to give +1.7e-15, det-16 −6.4e-15); with 100 nm 0.0018."""
     state = ATF.state(CASE.temperature)
-    result = solve_window(CASE, state, 1.0e9, 100e-9, dataclasses.replace(SHORT, courant=0.5))
+    result = solve_window(CASE, state, 1.0e9, 100e-9, dataclasses.replace(SHORT, courant=0.5),
+                          roughness=baseline_profile())
     assert result.converged, result.message
     content = result.series["lubricant_content"]
     assert np.max(np.abs(content / content[0] - 1.0)) <= 1e-9

@@ -15,7 +15,8 @@ from ehl_dataset.solver import solve_contact as solve
 from ehl_dataset.solvers.homogenised import HomogenisedOptions
 from ehl_dataset.names import ROUGH_MODELS
 from ehl_dataset.solvers.levels import REGISTRY, PlannerThresholds
-from ehl_dataset.solvers.planner import dimensionless_numbers, plan_effects, resolve_effects, thresholds_for
+from ehl_dataset.solvers.planner import (dimensionless_numbers, plan_effects, planned_closure, resolve_effects,
+                                          thresholds_for)
 from ehl_dataset.validation import InputError
 
 ATF = load_lubricant("atf")
@@ -85,7 +86,8 @@ def test_threshold_straddle(level):
 
 @pytest.mark.parametrize("level", ["fast", "standard"])
 def test_wide_rough_contacts_take_the_homogenised_model_from_a_over_beta_15(level):
-    """a/β ≥ a_over_beta_homogenised: steady film-law homogenised model within its validated range (roughness on,
+    """a/β ≥ a_over_beta_homogenised: steady homogenised model (asperity-load closure on the film law) within its
+    validated range (roughness on,
     transient off); below it the same model as a narrow contact, whose decision names the narrow-contact limits it is
     within or outside (here λ̄ 0.27, X_h 61, α 0.15: within the pressure-fluctuation closure's range). r_eq chosen for
     a/β = 0.98 and 1.02 × the threshold (a ∝ r_eq at fixed p_h)."""
@@ -97,12 +99,13 @@ def test_wide_rough_contacts_take_the_homogenised_model_from_a_over_beta_15(leve
         plan = plan_effects(c, ATF, level)
         assert plan.reasons["numbers"]["a_over_beta"] == pytest.approx(factor * threshold, rel=1e-9)
         assert plan.roughness and not plan.transient
-        assert "homogenised model, film-law closure" in plan.reasons["decisions"]["model"]
+        assert "homogenised model, asperity-load closure on the film law" in plan.reasons["decisions"]["model"]
+        assert planned_closure(plan) == "asperity"
         decision = plan.reasons["decisions"]["model"]
         assert (f"< {threshold:g}" in decision) is not wide and (f">= {threshold:g}" in decision) is wide
         assert ("pressure-fluctuation closure" in decision) is not wide
     result = solve(c, ATF, level)
-    assert result.extra["model"] == "homogenised" and result.extra["closure"] == "film_law"
+    assert result.extra["model"] == "homogenised" and result.extra["closure"] == "asperity"
     assert not result.effects["transient"] and result.effects["roughness"]
 
 

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from ehl_dataset.model.contact import ContactCase
-from ehl_dataset.model.roughness import baseline_profile
+from ehl_dataset.model.roughness import baseline_profile, default_profile
 from ehl_dataset.solver import solve_contact
 from ehl_dataset.solvers.film_law_model import continuous_outside_film, solve_film_law
 from ehl_dataset.solvers.homogenised import HomogenisedOptions
@@ -30,13 +30,13 @@ def test_the_film_step_at_the_zone_edges_is_what_made_mu_negative():
     """The rolling term (h/2)∂p/∂x integrates to −∫(p/2)∂h/∂x: with the film law's h̄ inside the zone and the smooth
     h_s outside, the film steps by Δ = h̄ − h_s at x = ±0.9a and adds (Δ_in p̄(−0.9a) − Δ_out p̄(0.9a))/2 per unit
     length. On the contact-line end (a/β 0.54, h̄ = 7.2 h_s, p̄(−0.9a) = 24.5 MPa against 5.7 MPa at +0.9a) the film
-    law with the steps is μ −0.00697 (the value that stopped the gear evaluation); the film continuous at the edges
+    law with the steps and the inlet spread is μ −0.00697 (the value that stopped the gear evaluation); the film continuous at the edges
     changes μ by exactly that term (to the trapezoid rule's 0.1 %) and makes it positive."""
-    problem = resolve_contact(END_OF_LINE, "atf", "standard", "isothermal")
-    args = (problem.case, problem.state, problem.steady_level, problem.plan, None,
+    problem = resolve_contact(END_OF_LINE, "atf", "standard", "isothermal", roughness=baseline_profile())
+    args = (problem.case, problem.state, problem.steady_level, problem.plan, baseline_profile(),
             problem.homogenised.boundary_film_m)
-    steps = solve_film_law(*args, continuous_film=False)
-    joined = solve_film_law(*args, continuous_film=True)
+    steps = solve_film_law(*args, continuous_film=False, fluctuations="inlet")
+    joined = solve_film_law(*args, continuous_film=True, fluctuations="inlet")
     smooth = solve_contact(END_OF_LINE, "atf", "standard", "isothermal", model="smooth")
     assert steps.mu == pytest.approx(-0.00697, abs=1e-5)
     assert steps.extra["rolling_film_outside"] == "smooth" and joined.extra["rolling_film_outside"] == "continuous"
@@ -90,28 +90,31 @@ def test_continuous_outside_film_joins_the_zone_film():
 def test_the_planner_routes_point_like_contacts_to_the_asperity_closure():
     """a/β 0.54 < 1.8 at ``fast`` and ``standard``: steady homogenised model with the asperity-load closure, recorded
     in the plan's reasons; the reference level keeps the deterministic model; a contact of the factorial's smallest
-    a/β (2.95, reference case A's 0.5 GPa and 5 mm) keeps the film law."""
+    a/β (2.95, reference case A's 0.5 GPa and 5 mm) is not point-like; every rough contact the homogenised model
+    runs takes the asperity closure. β of the baseline profile, on which these contacts were measured."""
+    beta = baseline_profile().correlation_length
     for level in ("fast", "standard"):
-        plan = plan_effects(END_OF_LINE, _atf(), level)
+        plan = plan_effects(END_OF_LINE, _atf(), level, beta)
         assert plan.roughness and not plan.transient
         assert plan.reasons["closure"] == "asperity" and planned_closure(plan) == "asperity"
         decision = plan.reasons["decisions"]["model"]
         assert "asperity-load closure: point-like contact (a/beta=0.539 < 1.8" in decision
         assert "alpha=107" in decision
         assert REGISTRY[level].planner.a_over_beta_point_contact == POINT_CONTACT_A_OVER_BETA == 1.8
-    assert plan_effects(END_OF_LINE, _atf(), "reference").transient
+    assert plan_effects(END_OF_LINE, _atf(), "reference", beta).transient
     case_a = ContactCase.from_engineering(0.5, 5, 5, 0.3, 90, 0.3, 0.3)
-    plan_a = plan_effects(case_a, _atf(), "standard")
+    plan_a = plan_effects(case_a, _atf(), "standard", beta)
     assert plan_a.reasons["numbers"]["a_over_beta"] == pytest.approx(2.947, abs=1e-3)
-    assert "closure" not in plan_a.reasons and planned_closure(plan_a) == "film_law"
-    assert resolve_contact(case_a, "atf", "standard").homogenised.closure == "film_law"
-    assert resolve_contact(END_OF_LINE, "atf", "standard").homogenised.closure == "asperity"
+    assert "point-like" not in plan_a.reasons["decisions"]["model"] and planned_closure(plan_a) == "asperity"
+    baseline = baseline_profile()
+    assert resolve_contact(case_a, "atf", "standard", roughness=baseline).homogenised.closure == "asperity"
+    assert resolve_contact(END_OF_LINE, "atf", "standard", roughness=baseline).homogenised.closure == "asperity"
 
 
 def test_no_contact_of_the_paper_factorial_is_point_like():
     """The smallest a/β of data/factorials/paper2009.toml (p_h 0.5 GPa, r_eq 5 mm: a = 4 r_eq p_h/E' = 44.2 µm,
-    β = 15.0 µm) is 2.95 > 1.8, so its values and the fits made on them are unchanged: every (p_h, r_eq, roughness)
-    combination plans without the asperity closure."""
+    β = 15.0 µm on the baseline, less on the default flank profile) is 2.95 > 1.8: no (p_h, r_eq, roughness)
+    combination is planned as point-like on either profile."""
     axes = tomllib.loads((ROOT / "data" / "factorials" / "paper2009.toml").read_text())["axes"]
     beta = baseline_profile().correlation_length
     smallest = ContactCase.from_engineering(min(axes["p_h_gpa"]), min(axes["r_eq_mm"]), 1.0, 0.0, 25.0)
@@ -121,7 +124,9 @@ def test_no_contact_of_the_paper_factorial_is_point_like():
         for r_eq in axes["r_eq_mm"]:
             for rq1, rq2 in axes["roughness_um"]:
                 case = ContactCase.from_engineering(p_h, r_eq, min(axes["u_r_m_s"]), 0.2, 100.0, rq1, rq2)
-                assert "closure" not in plan_effects(case, _atf(), "standard").reasons
+                for profile_beta in (beta, default_profile().correlation_length):
+                    plan = plan_effects(case, _atf(), "standard", profile_beta)
+                    assert "point-like" not in plan.reasons["decisions"]["model"]
 
 
 def _atf():

@@ -34,10 +34,12 @@ def test_unknown_name_is_one_clear_error():
         rg.named_profile("shaved_gear")
 
 
-def test_baseline_is_the_registered_default_and_unchanged():
-    """baseline_profile() is the registry's default entry; its source text and grid length (β) are as before."""
+def test_flank_is_the_registered_default_and_the_baseline_unchanged():
+    """default_profile() is the registry's default entry, flank_ground; baseline_profile() keeps its source text and
+    grid length (β)."""
+    assert rg.default_profile().name == rg.DEFAULT_PROFILE == "flank_ground"
     base = rg.baseline_profile()
-    assert base.name == rg.DEFAULT_PROFILE == "baseline_synthetic"
+    assert base.name == rg.BASELINE_NAME == "baseline_synthetic"
     assert base.source == f"shipped baseline {rg.BASELINE_FILE}"
     assert base.grid_length_m is None
     assert base.resolution_length == base.correlation_length

@@ -79,7 +79,7 @@ def test_resume_refuses_another_profile_and_continues_a_file_that_records_none(t
     without a profile option takes the recorded one, so the refusal is of an explicit choice); a file that records
     none is continued as before."""
     plan = one_point_plan()
-    other = {"name": "flank_ground", "sha256": PROFILES["flank_ground"].sha256}
+    other = {"name": "baseline_synthetic", "sha256": PROFILES["baseline_synthetic"].sha256}
     config = solver_config(DEFAULT_SOLVER, "fast", "auto")
     lubricant = load_lubricant("atf").to_json_dict()
     path = tmp_path / "other.h5"
@@ -88,7 +88,7 @@ def test_resume_refuses_another_profile_and_continues_a_file_that_records_none(t
         assert store.roughness == other
         with pytest.raises(InputError, match="roughness") as err:
             store.check_compatible(roughness=dataset_roughness(DEFAULT_SOLVER))
-        assert "flank_ground" in str(err.value) and DEFAULT_PROFILE in str(err.value)
+        assert "baseline_synthetic" in str(err.value) and DEFAULT_PROFILE in str(err.value)
         store.check_compatible(roughness=other)
     with pytest.raises(InputError, match="roughness"):
         resume_run(path, workers=0, progress="none", roughness=choose_roughness(DEFAULT_PROFILE))

@@ -536,9 +536,12 @@ def test_resume_can_retry_the_points_a_budget_stopped(tmp_path):
     touch the converged smooth point."""
     from ehl_dataset.model.lubricant import load_lubricant
 
+    from ehl_dataset.dataset.roughness_choice import choose_roughness
+    from ehl_dataset.model.roughness import BASELINE_NAME
+
     plan = factorial_from_dict(BUDGET_PLAN)
-    path = tmp_path / "two_pass.h5"
-    run_factorial(path, plan, workers=0, time_limit_s=1e-3, progress="none")
+    path = tmp_path / "two_pass.h5"  # on the baseline profile: its deterministic solve takes seconds
+    run_factorial(path, plan, workers=0, time_limit_s=1e-3, progress="none", roughness=choose_roughness(BASELINE_NAME))
     first = read_table(path, status=None)
     assert not first.iloc[1]["converged"] and first.iloc[0]["converged"]
     assert resume_run(path, workers=0, progress="none").computed == 0

@@ -10,7 +10,8 @@ import pytest
 from ehl_dataset.model.contact import ContactCase
 from ehl_dataset.model.effects import Effects
 from ehl_dataset.model.lubricant import load_lubricant
-from ehl_dataset.model.roughness import baseline_profile, generate_profile, load_profile
+from ehl_dataset.model.roughness import (BASELINE_NAME, DEFAULT_PROFILE, baseline_profile, default_profile,
+                                         generate_profile, load_profile, named_profile)
 from ehl_dataset.solver import solve_contact
 from ehl_dataset.solvers.deterministic import DeterministicOptions
 from ehl_dataset.validation import InputError
@@ -36,12 +37,17 @@ def _write(path, profile):
 
 
 def test_shipped_profile_passed_explicitly_gives_the_default_result():
-    """Identity: passing the shipped baseline gives the default run bit for bit."""
-    default = _deterministic()
+    """Identity: passing the shipped default profile gives the default run bit for bit, on the production route and
+    on the deterministic one (which the baseline profile's β keeps short here: a named profile passed explicitly
+    equals it passed by name)."""
+    default = solve_contact(CASE, LUB, "fast")
+    explicit = solve_contact(CASE, LUB, "fast", roughness=default_profile())
+    assert explicit.mu == default.mu and explicit.extra["roughness_profile"] == default.extra["roughness_profile"]
+    assert default.extra["roughness_name"] == DEFAULT_PROFILE
+    by_name = _deterministic(named_profile(BASELINE_NAME))
     explicit = _deterministic(baseline_profile())
-    assert explicit.mu == default.mu and explicit.asperity_load_share == default.asperity_load_share
-    assert explicit.extra["roughness_profile"] == default.extra["roughness_profile"]
-    assert "baseline" in default.extra["roughness_profile"]
+    assert explicit.mu == by_name.mu and explicit.asperity_load_share == by_name.asperity_load_share
+    assert "baseline" in by_name.extra["roughness_profile"]
 
 
 def test_a_measured_profile_file_reaches_the_solver_and_is_recorded(tmp_path, capsys):
@@ -56,7 +62,7 @@ def test_a_measured_profile_file_reaches_the_solver_and_is_recorded(tmp_path, ca
     profile = load_profile(path)
     assert abs(np.polyfit(np.arange(profile.z.size), profile.z, 1)[0]) < 1e-12  # detrended
     res = _deterministic(profile)
-    base = _deterministic()
+    base = _deterministic(baseline_profile())
     assert res.converged, res.message
     assert "my_trace.txt" in res.extra["roughness_profile"]
     assert res.extra["roughness_correlation_length_m"] == pytest.approx(5e-6, rel=0.3)

@@ -66,7 +66,7 @@ def test_name_and_file_exclude_each_other_and_the_help_lists_every_name(tmp_path
 
 
 def test_the_spectral_pressure_spread_reaches_the_planner_route(capsys):
-    """``--fluctuations spectral`` on the planner's film-law route (model auto) at λ̄ 0.3 on the flank-like profile:
+    """``--fluctuations spectral`` on the planner's route (model auto) at λ̄ 0.3 on the flank-like profile:
     the result records the form, and its σ_p is E'Δq_f/4, below the inlet form's c(L_in/β)·E'Δq/4 there
     (docs/explanation/mixed-regime.md: the flank profile's slope sits in wavelengths that pass the conjunction)."""
     rough = [a if a != "0.02" else "0.33" for a in BASE]
@@ -74,7 +74,7 @@ def test_the_spectral_pressure_spread_reaches_the_planner_route(capsys):
     for form in ("inlet", "spectral"):
         assert main([*rough, "--roughness", "flank_ground", "--effects", "isothermal", "--fluctuations", form]) == 0
         out = _json(capsys)
-        assert out["closure"] == "film_law"
+        assert out["closure"] == "asperity"  # the planner's closure, the film law with the asperity load
         records[form] = out["micro_pressure"]
     assert records["inlet"]["form"] == "inlet" and records["spectral"]["form"] == "spectral"
     assert 0.0 < records["spectral"]["std_pa"] < records["inlet"]["std_pa"]

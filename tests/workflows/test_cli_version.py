@@ -42,3 +42,17 @@ def test_version_imports_no_numerics():
 def test_help_imports_no_numerics(argv):
     out, loaded = numerics_loaded_by(argv)
     assert "usage: gearloss" in out and loaded == []
+
+
+def test_a_reader_that_closes_the_pipe_early_gets_no_traceback():
+    """`gearloss ... | true`: the reader is gone before the command writes (EPIPE); the command stops without a
+    traceback, exit 0."""
+    import subprocess
+    import sys
+
+    code = "import sys; from workflows.cli import main; sys.exit(main())"
+    run = subprocess.run(["bash", "-c", f"set -o pipefail; {sys.executable} -c '{code}' contact solve --p-h-gpa 1 "
+                          "--r-eq-mm 20 --u-r 5 --sr 0.2 --temp-c 90 --level fast | true"],
+                         capture_output=True, text=True)
+    assert "Traceback" not in run.stderr and "BrokenPipe" not in run.stderr, run.stderr
+    assert run.returncode == 0

@@ -308,7 +308,7 @@ def test_12_every_docs_figure_says_under_it_the_command_and_the_solver_version_a
 
 @pytest.mark.parametrize("wrapper, message", [
     (SystemError, "<CPUDispatcher> returned a result with an exception set"),  # numba, SIGTERM during a contact solve
-    (ImportError, "initialization failed"),  # scipy's HiGHS extension, Ctrl-C during its import (CI, stop 32)
+    (ImportError, "initialization failed"),  # scipy's HiGHS extension, Ctrl-C during its import
 ])
 @pytest.mark.parametrize("interrupt, code, words", [("_CtrlC", 130, "interrupted by SIGINT"),
                                                     ("_Terminated", 143, "terminated by SIGTERM")])
@@ -342,9 +342,9 @@ def test_a_signal_that_arrives_inside_compiled_code_still_gives_its_exit_code(mo
 @pytest.mark.parametrize("sig, code, words", [(signal.SIGINT, 130, "interrupted by SIGINT"),
                                               (signal.SIGTERM, 143, "terminated by SIGTERM")])
 def test_a_signal_whose_exception_is_lost_is_sent_again_until_the_command_stops(monkeypatch, capsys, sig, code, words):
-    """A handler's exception raised inside a ``__del__`` (or a ctypes callback: numba's object-cache hook, CI of
-    stop 33) is printed as "Exception ignored" and lost. The command must still stop with its exit code and one
-    line, within a re-send interval, not run to its end."""
+    """A handler's exception raised inside a ``__del__`` (or a ctypes callback: numba's object-cache hook) is
+    printed as "Exception ignored" and lost. The command must still stop with its exit code and one line, within a
+    re-send interval, not run to its end."""
     import threading
 
     import workflows.cli as cli

@@ -61,16 +61,16 @@ def test_predict_json_shows_the_record_or_null(fitted, capsys):
     assert json.loads(capsys.readouterr().out)["roughness"] == FLANK
     main(["surrogate", "predict", str(fitted[1]), *PREDICT])
     assert json.loads(capsys.readouterr().out)["roughness"] is None
-    main(["surrogate", "predict", "atf", *PREDICT])  # shipped, fitted before the record existed
-    assert json.loads(capsys.readouterr().out)["roughness"] is None
+    main(["surrogate", "predict", "atf", *PREDICT])  # shipped, fitted on the default profile
+    assert json.loads(capsys.readouterr().out)["roughness"] == FLANK
 
 
 def test_gear_evaluate_shows_the_coefficient_files_record(fitted, capsys):
     capsys.readouterr()
     main(["gear", "evaluate", *DESIGN_D, "--friction", str(fitted[0]), "--json"])
     assert json.loads(capsys.readouterr().out)["friction_roughness"] == FLANK
-    main(["gear", "evaluate", *DESIGN_D, "--friction", "atf", "--json"])
-    assert json.loads(capsys.readouterr().out)["friction_roughness"] is None
+    main(["gear", "evaluate", *DESIGN_D, "--friction", "atf_learned", "--json"])  # trained on the baseline
+    assert json.loads(capsys.readouterr().out)["friction_roughness"]["name"] == "baseline_synthetic"
 
 
 def test_training_files_of_different_profiles_are_not_mixed(datasets, tmp_path):
