@@ -14,6 +14,7 @@ bound, not a converged value.
 import json
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from ehl_dataset.model.contact import ContactCase
@@ -98,3 +99,28 @@ def test_the_asperity_closure_is_not_below_the_finest_reference_where_asperities
         ref = finest(name)
         assert ref["asperity_load_share"] >= 0.1, name
         assert result.mu >= ref["mu"] - 2.0 * ref["mu_sem"], (name, result.mu, ref["mu"])
+
+
+def test_the_default_route_is_this_closure():
+    """The planner's default (``model="auto"``, no options, default profile) runs exactly the closure above, so its
+    trends are the default route's."""
+    case = ContactCase.from_engineering(0.5, 5, 5.0, 0.3, 90, 0.33, 0.33)
+    default = solve_contact(case, "atf", "standard", effects="isothermal")
+    assert default.extra["closure"] == "asperity" and default.extra["roughness_name"] == "flank_ground"
+    assert default.mu == closure(0.33, 5.0).mu
+
+
+def test_the_shipped_atf_fit_follows_both_trends_where_the_reference_shows_them():
+    """The Eq. 9 fit of the paper factorial computed on the default route (``atf``, ehl-2026.11-17) at case A's
+    conditions: μ rises with Rq through λ̄ 2 → 0.1 (0.0171, 0.0179, 0.0245, 0.0338, 0.0453, 0.0566 at Rq 0.05, 0.1,
+    0.2, 0.4, 0.7, 1.0 µm) and falls with rolling speed at Rq 0.5 µm, λ̄ 0.06–0.32 (0.0456, 0.0416, 0.0377, 0.0362
+    at 1, 2, 5, 10 m/s), as the flank reference does on the same conditions (0.0490 → 0.0300 at λ_s/8)."""
+    from surrogate import FrictionSurrogate
+
+    atf = FrictionSurrogate.load("atf")
+    rq = np.array([0.05, 0.1, 0.2, 0.4, 0.7, 1.0]) * 1e-6
+    by_rq = atf.mu(0.5e9, 5e-3, 5.0, 0.3, 363.15, rq, rq, warn=False)
+    assert np.all(np.diff(by_rq) > 0), by_rq
+    speeds = np.array([1.0, 2.0, 5.0, 10.0])
+    by_speed = atf.mu(0.5e9, 5e-3, speeds, 0.3, 363.15, 0.5e-6, 0.5e-6, warn=False)
+    assert np.all(np.diff(by_speed) < 0), by_speed
