@@ -2,7 +2,7 @@
 
 ``data/offgrid_paper2009_seed7.csv``: 200 random contacts in the paper factorial's ranges (seed 7, drawn by
 ``workflows.sample_runs.offgrid_points``), solved by stage 1 on the factorial's route (``standard``, isothermal,
-default model, EHL solver ehl-2026.11-15), which took no part in fitting or calibrating either file; made by
+default model, EHL solver ehl-2026.11-17), which took no part in fitting or calibrating either file; made by
 ``python validation/surrogate_intervals.py --work-dir DIR atf atf_learned --factorial paper2009`` (its
 ``DIR/seed7/offgrid.h5``, columns kept: the inputs, μ and the solve's status). Targets: a learned surrogate a median
 ≤ 3 % and a 90th percentile ≤ 8 % off, and 90 % intervals of both forms covering 85–95 % of the solved μ
@@ -46,7 +46,7 @@ def test_the_independent_sample_is_the_factorial_route_and_inside_the_files_rang
 
 
 def test_shipped_learned_surrogate_meets_the_off_grid_targets_on_an_independent_sample(sample):
-    """Measured: median 0.93 %, 90th percentile 3.48 %, coverage 88 % (targets ≤ 3 %, ≤ 8 %, 85–95 %)."""
+    """Measured: median 1.38 %, 90th percentile 4.32 %, coverage 86 % (targets ≤ 3 %, ≤ 8 %, 85–95 %)."""
     errors = _errors("atf_learned", sample)
     assert errors["n"] == 200
     assert errors["median_rel_err_mu"] <= 0.03
@@ -56,7 +56,8 @@ def test_shipped_learned_surrogate_meets_the_off_grid_targets_on_an_independent_
 
 def test_shipped_eq9_interval_is_calibrated_and_its_error_is_what_its_file_states(sample):
     """Eq. 9 keeps its form: about 11 % off in median, which its own off-grid table (seed 2009) states within a
-    couple of points; its calibrated 90 % interval covers 89.5 % of the independent sample."""
+    couple of points (measured 11.7 % against the file's 11.4 %); its calibrated 90 % interval covers 90.0 % of the
+    independent sample."""
     errors = _errors("atf", sample)
     recorded = FrictionSurrogate.load("atf").coefficients.document["offgrid"]["overall"]
     assert 0.85 <= errors["coverage"] <= 0.95
