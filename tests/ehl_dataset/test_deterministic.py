@@ -6,6 +6,7 @@ docs/explanation/mixed-regime.md with the commands that make them; the tests her
 
 import math
 import pickle
+from functools import partial
 
 import numpy as np
 import pytest
@@ -16,28 +17,18 @@ from ehl_dataset.discretisation.mixed_system import FACE_MEANS, _face_partials, 
 from ehl_dataset.model.contact import ContactCase
 from ehl_dataset.model.effects import Effects
 from ehl_dataset.model.lubricant import load_lubricant
+from ehl_dataset.model.roughness import baseline_profile
 from ehl_dataset.solver import solve_contact
 from ehl_dataset.solvers.deterministic import (MAX_STEP_RATIO, ROUND_OFF_MARGIN, YIELD_PRESSURE_PA, DeterministicOptions, MixedProblem,
                                                deterministic_options, solve_deterministic, substep_sizes)
 from ehl_dataset.solvers.krylov import BandedPreconditioner, gmres
 from ehl_dataset.solvers.steady import ContactScales
 from ehl_dataset.validation import InputError
-from ehl_dataset.model.roughness import baseline_profile
 
 
-def _on_the_baseline(solve):
-    """``solve`` with the baseline profile unless a call names one: the numbers these tests check were measured on
-    it (the deterministic model's validation set)."""
-
-    def run(*args, **kwargs):
-        kwargs.setdefault("roughness", baseline_profile())
-        return solve(*args, **kwargs)
-
-    return run
-
-
-solve_deterministic = _on_the_baseline(solve_deterministic)
-solve_contact = _on_the_baseline(solve_contact)
+# the numbers these tests check were measured on the baseline profile; a call may name another one
+solve_deterministic = partial(solve_deterministic, roughness=baseline_profile())
+solve_contact = partial(solve_contact, roughness=baseline_profile())
 
 
 ATF = load_lubricant("atf")

@@ -4,6 +4,7 @@ its windows, the choice of route, and its smooth limit."""
 import dataclasses
 import json
 import math
+from functools import partial
 from pathlib import Path
 
 import numpy as np
@@ -13,26 +14,16 @@ from scipy.optimize import curve_fit
 from ehl_dataset.model.contact import ContactCase
 from ehl_dataset.model.effects import Effects
 from ehl_dataset.model.lubricant import load_lubricant
-from ehl_dataset.solvers.deterministic import DeterministicOptions, solve_deterministic
 from ehl_dataset.model.roughness import baseline_profile
+from ehl_dataset.solvers.deterministic import DeterministicOptions, solve_deterministic
 from ehl_dataset.solvers.wide_contact import (FILM_LAW_C, FILM_LAW_D, FILM_LAW_K, WideOptions, fed_central_film,
                                               inlet_length, solve_deterministic_contact, takes_windows)
 from ehl_dataset.validation import InputError
 
 
-def _on_the_baseline(solve):
-    """``solve`` with the baseline profile unless a call names one: the numbers these tests check were measured on
-    it (the deterministic model's validation set)."""
-
-    def run(*args, **kwargs):
-        kwargs.setdefault("roughness", baseline_profile())
-        return solve(*args, **kwargs)
-
-    return run
-
-
-solve_deterministic = _on_the_baseline(solve_deterministic)
-solve_deterministic_contact = _on_the_baseline(solve_deterministic_contact)
+# the numbers these tests check were measured on the baseline profile; a call may name another one
+solve_deterministic = partial(solve_deterministic, roughness=baseline_profile())
+solve_deterministic_contact = partial(solve_deterministic_contact, roughness=baseline_profile())
 
 
 FILM_LAW_DATA = Path(__file__).resolve().parents[2] / "validation" / "results" / "deterministic_film_law.json"
