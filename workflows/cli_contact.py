@@ -49,12 +49,13 @@ def register(subparsers) -> None:
                             "leakage, as the paper's model) or isotropic (side leakage), film_law (smooth "
                             "pressure, the measured film law of resolved rough contacts and the dry-contact table's "
                             "traction; for wide contacts, docs/explanation/mixed-regime.md), or asperity (film_law "
-                            "plus the load and friction of the roughness that survives in the conjunction); default "
-                            "transverse")
+                            "plus the load and friction of the roughness that survives in the conjunction: the "
+                            "planner's production closure); default transverse with --model homogenised; with "
+                            "--model auto, film_law or asperity replaces the planner's asperity closure")
     solve.add_argument("--fluctuations", default=DEFAULT_FLUCTUATIONS, choices=FLUCTUATIONS,
                        help="micro-EHL pressure spread of the film_law and asperity closures: inlet (calibrated on "
                             "the baseline profile, c(L_in/beta)) or spectral (from the part of the profile's spectrum "
-                            "the conjunction flattens; no fitted constant); default inlet")
+                            "the conjunction flattens; no fitted constant); default spectral")
     solve.add_argument("--dx-um", type=float, default=None,
                        help="grid spacing of the deterministic model [µm] (default: the level's grid rule)")
     solve.add_argument("--wide", default="auto", choices=["auto", "resolve", "windows"],
