@@ -829,8 +829,14 @@ def table_key(profile: RoughnessProfile, rq1: float, rq2: float, e_reduced: floa
               settings: DryContactSettings | None = None) -> str:
     """Content hash (hex, 24 characters) identifying a table: format version, profile hash, Rq1, Rq2, E', H and all
     settings. Dimensional values are keyed as given (plasticity breaks the σ, E' scaling of the elastic problem)."""
+    return _table_key(profile_hash(profile), rq1, rq2, e_reduced, hardness, settings)
+
+
+def _table_key(profile_digest: str, rq1: float, rq2: float, e_reduced: float, hardness: float,
+               settings: DryContactSettings | None = None) -> str:
+    """:func:`table_key` from the profile's hash (so that many keys of one profile hash it once)."""
     settings = settings or DryContactSettings()
-    payload = {"format": TABLE_FORMAT, "profile": profile_hash(profile), "rq1": float(rq1).hex(),
+    payload = {"format": TABLE_FORMAT, "profile": profile_digest, "rq1": float(rq1).hex(),
                "rq2": float(rq2).hex(), "e_reduced": float(e_reduced).hex(), "hardness": float(hardness).hex(),
                "settings": asdict(settings)}
     return hashlib.sha256(json.dumps(payload, sort_keys=True).encode()).hexdigest()[:24]
@@ -1551,7 +1557,7 @@ def dry_contact_table(profile: RoughnessProfile | None = None, rq1: float = 0.4e
     key = table_key(profile, rq1, rq2, e_reduced, hardness, settings)
     shipped = data_path(*SHIPPED_DIR, f"{key}.npz")
     if shipped.is_file():
-        return DryContactTable.load(shipped)
+        return _shipped_table(str(shipped))
     directory = Path(cache_dir) if cache_dir is not None else cache_directory()
     cached = directory / f"{key}.npz"
     if cache and cached.is_file():
@@ -1611,14 +1617,15 @@ def similar_dry_contact_table(profile: RoughnessProfile | None = None, rq1: floa
     check_range("rq2", rq2, 0.0, 1e-4, unit="m")
     if rq1 == 0.0 and rq2 == 0.0:
         raise InputError("rq1, rq2", (rq1, rq2), "at least one positive Rq")
-    key = table_key(profile, rq1, rq2, e_reduced, hardness, settings)
-    if data_path(*SHIPPED_DIR, f"{key}.npz").is_file():
-        return dry_contact_table(profile, rq1, rq2, e_reduced, hardness, settings), 1.0, (rq1, rq2)
+    digest = profile_hash(profile)
+    own = data_path(*SHIPPED_DIR, f"{_table_key(digest, rq1, rq2, e_reduced, hardness, settings)}.npz")
+    if own.is_file():
+        return _shipped_table(str(own)), 1.0, (rq1, rq2)
     target_s, target_theta = math.hypot(rq1, rq2), math.atan2(min(rq1, rq2), max(rq1, rq2))
     best = None
     for rq1_um, rq2_um in pairs:
         a, b = rq1_um * 1e-6, rq2_um * 1e-6
-        path = data_path(*SHIPPED_DIR, f"{table_key(profile, a, b, e_reduced, hardness, settings)}.npz")
+        path = data_path(*SHIPPED_DIR, f"{_table_key(digest, a, b, e_reduced, hardness, settings)}.npz")
         if not path.is_file():
             continue
         distance = abs(math.log(target_s / math.hypot(a, b))) + abs(target_theta - math.atan2(min(a, b), max(a, b)))
@@ -1627,7 +1634,14 @@ def similar_dry_contact_table(profile: RoughnessProfile | None = None, rq1: floa
     if best is None:
         return dry_contact_table(profile, rq1, rq2, e_reduced, hardness, settings), 1.0, (rq1, rq2)
     _, path, pair = best
-    return DryContactTable.load(path), target_s / math.hypot(*pair), pair
+    return _shipped_table(str(path)), target_s / math.hypot(*pair), pair
+
+
+@functools.lru_cache(maxsize=64)
+def _shipped_table(path: str) -> DryContactTable:
+    """A shipped table, read once per process (tables are not modified after loading; their curves are cached on
+    them)."""
+    return DryContactTable.load(Path(path))
 
 
 def build_shipped_tables(directory: str | Path | None = None, pairs=PAPER_RQ_PAIRS_UM, progress=print,
