@@ -819,10 +819,9 @@ def compute_dry_contact_table(profile: RoughnessProfile, rq1: float, rq2: float,
 
 
 def profile_hash(profile: RoughnessProfile) -> str:
-    """SHA-256 of a profile's heights (float64 bytes) and spacing."""
-    digest = hashlib.sha256(np.ascontiguousarray(profile.z, dtype="<f8").tobytes())
-    digest.update(repr(float(profile.spacing)).encode())
-    return digest.hexdigest()
+    """SHA-256 of a profile's heights (float64 bytes) and spacing (:attr:`RoughnessProfile.content_hash`, computed
+    once per profile object)."""
+    return profile.content_hash
 
 
 def table_key(profile: RoughnessProfile, rq1: float, rq2: float, e_reduced: float, hardness: float,

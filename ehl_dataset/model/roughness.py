@@ -27,6 +27,7 @@ All functions are pure and work in SI units (m, s).
 from __future__ import annotations
 
 import functools
+import hashlib
 import math
 from dataclasses import dataclass
 from pathlib import Path
@@ -84,6 +85,15 @@ class RoughnessProfile:
     name: str = ""
     sha256: str = ""
 
+    def __post_init__(self):
+        # heights are read-only, so that what is derived from them once (correlation length, content hash) stays
+        # true; a caller's writeable array is copied rather than frozen under them
+        z = np.asarray(self.z, dtype=float)
+        if z.flags.writeable:
+            z = z.copy()
+            z.flags.writeable = False
+        object.__setattr__(self, "z", z)
+
     @property
     def resolution_length(self) -> float:
         """Length scale [m] a solver grid must resolve: ``grid_length_m`` (the short-wavelength cut-off of a
@@ -100,6 +110,14 @@ class RoughnessProfile:
     def rq(self) -> float:
         """RMS roughness [m] about the mean line."""
         return float(np.sqrt(np.mean((self.z - self.z.mean()) ** 2)))
+
+    @functools.cached_property
+    def content_hash(self) -> str:
+        """SHA-256 (hex) of the heights as little-endian float64 bytes and the spacing's repr: what the dry-contact
+        tables and caches key a profile by."""
+        digest = hashlib.sha256(np.ascontiguousarray(self.z, dtype="<f8").tobytes())
+        digest.update(repr(float(self.spacing)).encode())
+        return digest.hexdigest()
 
     @functools.cached_property
     def correlation_length(self) -> float:

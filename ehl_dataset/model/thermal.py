@@ -66,6 +66,8 @@ the shipped lubricants.
 from __future__ import annotations
 
 import math
+import threading
+from collections import OrderedDict
 from dataclasses import asdict, dataclass
 from typing import Any
 
@@ -519,27 +521,61 @@ def film_with_secant_beta(table: TemperatureTable, rise, u_s: float, h, tau0: fl
 # ---------------------------------------------------------------------------------------------------------------
 # The surfaces: Jaeger's moving heat source at high Péclet number, Blok's partition
 # ---------------------------------------------------------------------------------------------------------------
+@numba.njit(cache=True)
+def _jaeger_kernel(x):
+    """The matrix of :func:`jaeger_operator` for increasing nodes ``x`` [m], filled row by row over the segments
+    ending at or before x_i (the rest is 0) [m^½]."""
+    n = x.size
+    out = np.zeros((n, n))
+    for i in range(1, n):
+        s1 = math.sqrt(max(x[i] - x[0], 0.0))
+        for j in range(i):
+            s0 = s1                                    # √(x_i − ξ_j), the s1 of segment j − 1
+            s1 = math.sqrt(max(x[i] - x[j + 1], 0.0))
+            d = (x[j + 1] - x[j]) / (s0 + s1)
+            i1 = 2.0 / 3.0 * d * (2.0 * s0 + s1) / (s0 + s1)
+            out[i, j] += 2.0 * d - i1
+            out[i, j + 1] += i1
+    return out
+
+
+JAEGER_CACHE_SIZE = 8
+"""Operators of the most recent distinct grids kept by :func:`jaeger_operator` (the grids of consecutive contacts
+at one operating condition repeat) [-]."""
+JAEGER_CACHE_BYTES = 64 * 2**20
+"""Most memory the kept operators take together; an operator larger than this is computed but not kept [bytes]."""
+_jaeger_cache: OrderedDict[bytes, np.ndarray] = OrderedDict()
+_jaeger_lock = threading.Lock()
+
+
 def jaeger_operator(x) -> np.ndarray:
     """Matrix J with (J q)_i = ∫_{x_0}^{x_i} q(ξ) (x_i − ξ)^(−1/2) dξ [m^½] for q piecewise linear on the nodes ``x``
     [m] (increasing, the direction of motion of both surfaces). Exact for piecewise-linear q; lower triangular.
 
     On a segment [ξ_j, ξ_j+1] ≤ x_i with s0 = √(x_i − ξ_j), s1 = √(x_i − ξ_j+1), d = s0 − s1 = Δ/(s0 + s1):
-    ∫ (x_i − ξ)^(−½) dξ = 2d and ∫ (ξ − ξ_j)/Δ (x_i − ξ)^(−½) dξ = (2/3) d (2 s0 + s1)/(s0 + s1)."""
-    x = np.asarray(x, dtype=float)
+    ∫ (x_i − ξ)^(−½) dξ = 2d and ∫ (ξ − ξ_j)/Δ (x_i − ξ)^(−½) dξ = (2/3) d (2 s0 + s1)/(s0 + s1).
+
+    The operators of the last :data:`JAEGER_CACHE_SIZE` distinct grids are kept (per process, within
+    :data:`JAEGER_CACHE_BYTES`); the returned array is shared with that store and therefore read-only (arithmetic on
+    it, e.g. ``jaeger_operator(x) / c``, gives a new array)."""
+    x = np.ascontiguousarray(x, dtype=float)
     if x.ndim != 1 or x.size < 2 or not np.all(np.diff(x) > 0.0):
         raise InputError("x", f"{x.shape} nodes", "at least two strictly increasing nodes")
-    dist = x[:, None] - x[None, :]                     # x_i − ξ_j
-    s0 = np.sqrt(np.clip(dist[:, :-1], 0.0, None))
-    s1 = np.sqrt(np.clip(dist[:, 1:], 0.0, None))
-    active = dist[:, 1:] >= 0.0                        # segment j ends at or before x_i
-    width = np.diff(x)[None, :]
-    with np.errstate(divide="ignore", invalid="ignore"):
-        d = np.where(active, width / (s0 + s1), 0.0)
-        i1 = np.where(active, (2.0 / 3.0) * d * (2.0 * s0 + s1) / (s0 + s1), 0.0)
-    i0 = 2.0 * d
-    out = np.zeros((x.size, x.size))
-    out[:, :-1] += i0 - i1
-    out[:, 1:] += i1
+    key = x.tobytes()
+    with _jaeger_lock:
+        out = _jaeger_cache.get(key)
+        if out is not None:
+            _jaeger_cache.move_to_end(key)
+            return out
+    out = _jaeger_kernel(x)
+    out.flags.writeable = False
+    if out.nbytes <= JAEGER_CACHE_BYTES:
+        with _jaeger_lock:
+            _jaeger_cache[key] = out
+            _jaeger_cache.move_to_end(key)
+            while (len(_jaeger_cache) > JAEGER_CACHE_SIZE
+                   or sum(v.nbytes for v in _jaeger_cache.values()) > JAEGER_CACHE_BYTES):
+                _jaeger_cache.popitem(last=False)
     return out
 
 

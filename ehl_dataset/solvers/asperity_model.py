@@ -65,7 +65,7 @@ import numpy as np
 
 from ..model.amplitude_reduction import AMPLITUDE_A, amplitude_factor, profile_spectrum, surface_amplitude_factors
 from ..model.contact import ContactCase
-from ..model.dry_contact import similar_dry_contact_table, windows_that_fit
+from ..model.dry_contact import profile_hash, similar_dry_contact_table, windows_that_fit
 from ..model.effects import Effects
 from ..names import DEFAULT_FLUCTUATIONS
 from ..model.film_formulas import moes_central_film
@@ -287,7 +287,14 @@ def asperity_closure(film_law: ContactResult, case: ContactCase, state: Lubrican
     else:
         wet = couette(np.maximum(p_fluid, p_floor), film, open_fraction)
         if "thermal" in extra:
-            dry = couette(p_bar, film0, 1.0)
+            # the film law's isothermal zone integral is this average when it was taken with the same spread, floor
+            # and profile
+            dry = extra["thermal"].get("zone_couette_isothermal_n_per_m")
+            same_average = (dry is not None and extra.get("boundary_film_m") == boundary_film_m
+                            and extra.get("micro_pressure", {}).get("std_pa") == pressure_std
+                            and extra.get("profile_sha256") == profile_hash(profile))
+            if not same_average:
+                dry = couette(p_bar, film0, 1.0)
             ratio = wet / dry if dry != 0.0 else 1.0
             mu_couette = extra["mu_couette"] * ratio
         else:

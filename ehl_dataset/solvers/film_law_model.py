@@ -56,6 +56,7 @@ model, not a reference.
 
 from __future__ import annotations
 
+import math
 import time
 
 import numpy as np
@@ -100,12 +101,66 @@ def composite_height_quantiles(profile: RoughnessProfile, rq1: float, rq2: float
     return _QUANTILE_CACHE[key]
 
 
+SATURATED_EYRING_ARGUMENT = 20.0
+"""Eyring argument y = η|u_s|/(τ0 g) above which the gap average of asinh y takes the asymptotic series
+asinh y = ln 2y + 1/(4y²) − 3/(32y⁴) + 5/(96y⁶) + R, |R| ≤ 35/(1024y⁸) ≤ 1.4e-12 (Abramowitz & Stegun 4.6.31; a
+relative 4e-13): every term is a power of the gap g times a function of η, so the average over the gaps needs the
+moments ⟨ln g⟩, ⟨g²⟩, ⟨g⁴⟩, ⟨g⁶⟩ once per node instead of one asinh per gap and pressure level."""
+NEWTONIAN_EYRING_ARGUMENT = 0.02
+"""Eyring argument below which the gap average takes the Taylor series asinh y = y − y³/6 + 3y⁵/40 − 5y⁷/112 + R,
+|R| ≤ 35y⁹/1152 (relative to y at most 8e-16; Abramowitz & Stegun 4.6.31), with the moments ⟨g⁻¹⟩ … ⟨g⁻⁷⟩."""
+
+_EXACT_BLOCK = 1 << 16
+"""Entries of the exact (η, gap) average formed at once (memory bound of :func:`_mean_asinh_over_gaps`)."""
+
+
+def _mean_asinh_over_gaps(arguments, gaps) -> np.ndarray:
+    """⟨asinh(A_nk/g_nj)⟩_j [-] for A ≥ 0 of shape (nodes, levels) and the gaps g > 0 of shape (nodes, J) [m].
+
+    Where even the widest gap of node n leaves A/g ≥ :data:`SATURATED_EYRING_ARGUMENT` the asymptotic series, where
+    even the narrowest leaves A/g ≤ :data:`NEWTONIAN_EYRING_ARGUMENT` the Taylor series (both with moments of the gaps
+    over j), elsewhere the exact mean: the same average to a relative 4e-13."""
+    arguments = np.asarray(arguments, dtype=float)
+    out = np.empty(arguments.shape)
+    saturated = arguments >= SATURATED_EYRING_ARGUMENT * gaps.max(axis=1)[:, None]
+    newtonian = arguments <= NEWTONIAN_EYRING_ARGUMENT * gaps.min(axis=1)[:, None]
+    if saturated.any():
+        rows = np.nonzero(saturated)[0]
+        g2 = gaps * gaps
+        m2, m4, m6 = (g2.mean(axis=1)[rows], (g2 * g2).mean(axis=1)[rows], (g2 * g2 * g2).mean(axis=1)[rows])
+        a = arguments[saturated]
+        t = 1.0 / (a * a)
+        out[saturated] = (np.log(2.0 * a) - np.log(gaps).mean(axis=1)[rows]
+                          + t * (0.25 * m2 - t * (0.09375 * m4 - t * (5.0 / 96.0) * m6)))
+    if newtonian.any():
+        rows = np.nonzero(newtonian)[0]
+        inv = 1.0 / gaps
+        inv2 = inv * inv
+        m1, m3 = inv.mean(axis=1)[rows], (inv * inv2).mean(axis=1)[rows]
+        m5, m7 = (inv * inv2 * inv2).mean(axis=1)[rows], (inv * inv2 * inv2 * inv2).mean(axis=1)[rows]
+        a = arguments[newtonian]
+        a2 = a * a
+        out[newtonian] = a * (m1 - a2 * (m3 / 6.0 - a2 * (0.075 * m5 - a2 * (5.0 / 112.0) * m7)))
+    rows, levels = np.nonzero(~(saturated | newtonian))
+    chunk = max(1, _EXACT_BLOCK // max(gaps.shape[1], 1))
+    for start in range(0, rows.size, chunk):
+        r, k = rows[start:start + chunk], levels[start:start + chunk]
+        out[r, k] = np.arcsinh(arguments[r, k][:, None] / gaps[r]).mean(axis=1)
+    return out
+
+
 def gap_averaged_shear_stress(eta, u_s: float, film_m, heights_m, tau0: float, floor_m: float) -> np.ndarray:
     """⟨τ0 asinh(η u_s/(τ0 max(h̄ + z, h_b)))⟩ over the equal-probability heights z [m] (Eyring Couette stress of
-    the gaps of a rough film of mean gap h̄ [m]; gaps below h_b floored at it) [Pa], one value per (η, h̄) node."""
-    eta = np.asarray(eta, dtype=float)[:, None]
-    gap = np.maximum(np.asarray(film_m, dtype=float)[:, None] + np.asarray(heights_m)[None, :], floor_m)
-    return np.mean(eyring_shear_stress(eta, u_s, gap, tau0), axis=1)
+    the gaps of a rough film of mean gap h̄ [m]; gaps below h_b floored at it) [Pa], one value per (η, h̄) node.
+    Where the Eyring argument is above :data:`SATURATED_EYRING_ARGUMENT` or below :data:`NEWTONIAN_EYRING_ARGUMENT` in
+    every gap, series of asinh with moments of the gaps (relative error below 4e-13, :func:`_mean_asinh_over_gaps`)."""
+    eta, film = (np.ravel(v) for v in np.broadcast_arrays(np.asarray(eta, dtype=float),
+                                                           np.asarray(film_m, dtype=float)))
+    gap = np.maximum(film[:, None] + np.asarray(heights_m, dtype=float)[None, :], floor_m)
+    if u_s == 0.0:
+        return np.zeros(eta.size)
+    mean = _mean_asinh_over_gaps((eta * (abs(u_s) / tau0))[:, None], gap)[:, 0]
+    return math.copysign(tau0, u_s) * mean
 
 
 def fluctuation_averaged_shear_stress(viscosity, p_mean, pressure_std: float, u_s: float, film_m, heights_m,
@@ -113,20 +168,24 @@ def fluctuation_averaged_shear_stress(viscosity, p_mean, pressure_std: float, u_
     """⟨τ0 asinh(η(p) u_s/(τ0 max(h̄ + z, h_b)))⟩ over the gap heights z [m] and, independently, the pressures p of a
     gamma distribution of mean p̄ and standard deviation σ_p = ``pressure_std`` [Pa]
     (:func:`ehl_dataset.model.micro_pressure.gamma_pressure_quantiles`) [Pa], one value per (p̄, h̄) node;
-    ``viscosity`` η(p) [Pa s] of an array of pressures [Pa]. σ_p = 0 gives :func:`gap_averaged_shear_stress`."""
+    ``viscosity`` η(p) [Pa s] of an array of pressures [Pa]. σ_p = 0 gives :func:`gap_averaged_shear_stress`. Where
+    the Eyring argument is above :data:`SATURATED_EYRING_ARGUMENT` or below :data:`NEWTONIAN_EYRING_ARGUMENT` in every
+    gap of a pressure level, series of asinh with moments of the gaps (relative error below 4e-13)."""
     if pressure_std <= 0.0:
         return gap_averaged_shear_stress(viscosity(p_mean), u_s, film_m, heights_m, tau0, floor_m)
     p_mean = np.asarray(p_mean, dtype=float)
     film = np.asarray(film_m, dtype=float)
     heights = np.asarray(heights_m, dtype=float)
+    if u_s == 0.0:
+        return np.zeros(p_mean.size)
     out = np.empty(p_mean.size)
     for start in range(0, p_mean.size, block):
         nodes = slice(start, start + block)
         pressures = gamma_pressure_quantiles(p_mean[nodes], pressure_std)
         eta = np.asarray(viscosity(pressures.ravel()), dtype=float).reshape(pressures.shape)
         gap = np.maximum(film[nodes, None] + heights[None, :], floor_m)
-        out[nodes] = np.mean(eyring_shear_stress(eta[:, :, None], u_s, gap[:, None, :], tau0), axis=(1, 2))
-    return out
+        out[nodes] = _mean_asinh_over_gaps(eta * (abs(u_s) / tau0), gap).mean(axis=1)
+    return math.copysign(tau0, u_s) * out
 
 
 def _thermal_ratio(case: ContactCase, state: LubricantState, x_m, p_pa, film_m, liquid
@@ -259,7 +318,9 @@ def solve_film_law(case: ContactCase, state: LubricantState, lvl: AccuracyLevel,
     if plan.thermal:
         outside_isothermal = _integral_outside(
             x_m, np.where(liquid, couette_isothermal + 0.5 * outside_film * np.gradient(p_s, x_m), 0.0), edge * a)
-        thermal_extra["mu_isothermal"] = (integral(shear_isothermal) + integral(rolling) + outside_isothermal) / load
+        thermal_extra["zone_couette_isothermal"] = integral(shear_isothermal)
+        thermal_extra["mu_isothermal"] = (thermal_extra["zone_couette_isothermal"] + integral(rolling)
+                                          + outside_isothermal) / load
     mu = sum(parts.values())
     converged = bool(smooth.converged) and bool(np.all(np.isfinite([mu, *film])))
     thermal_failed = bool(thermal_extra) and not thermal_extra["converged"]
@@ -297,10 +358,12 @@ def solve_film_law(case: ContactCase, state: LubricantState, lvl: AccuracyLevel,
                "narrow_contact": a_over_beta < WIDE_A_OVER_BETA, "smooth_mu": smooth.mu,
                "rolling_film_outside": "continuous" if continuous_film else "smooth",
                **({"thermal": {**thermal_extra["summary"], "mu_isothermal": thermal_extra["mu_isothermal"],
+                               "zone_couette_isothermal_n_per_m": thermal_extra["zone_couette_isothermal"],
                                "properties": state.thermal.to_dict()}} if thermal_extra else {}),
                "smooth_h_min_m": smooth.h_min, "boundary_film_m": boundary_film_m, "zone_edge": edge,
                "micro_pressure": {"form": fluctuations if micro_pressure_coefficient is None else "given",
                                   "coefficient": coefficient, "slope_rms": slope_rms, "std_pa": pressure_std},
+               "profile_sha256": profile_hash(profile),
                "floored_gap_fraction_max": float(np.mean(film[:, None] + heights[None, :] < boundary_film_m,
                                                           axis=1).max()), **profile_record(profile),
                "roughness_windows": {key: getattr(windows_that_fit(profile), key)

@@ -15,7 +15,10 @@ from ehl_dataset.model.contact import ContactCase
 from ehl_dataset.model.lubricant import load_lubricant
 from ehl_dataset.model.roughness import baseline_profile
 from ehl_dataset.solver import solve_contact
-from ehl_dataset.solvers.film_law_model import composite_height_quantiles, gap_averaged_shear_stress
+from ehl_dataset.solvers.film_law_model import (NEWTONIAN_EYRING_ARGUMENT, SATURATED_EYRING_ARGUMENT,
+                                               composite_height_quantiles, fluctuation_averaged_shear_stress,
+                                               gap_averaged_shear_stress)
+from ehl_dataset.model.micro_pressure import gamma_pressure_quantiles
 from ehl_dataset.solvers.homogenised import HomogenisedOptions
 from ehl_dataset.solvers.wide_contact import fed_central_film
 
@@ -50,6 +53,34 @@ def test_gap_average_of_a_two_point_height_distribution_is_exact():
     assert flat[0] == pytest.approx(tau0 * math.asinh(eta * u / (tau0 * h)), rel=1e-12)
     floored = gap_averaged_shear_stress([eta], u, [1e-8], np.array([-2e-8]), 1e15, 5e-9)
     assert floored[0] == pytest.approx(eta * u / 5e-9, rel=1e-12)  # a gap below h_b is held at h_b
+
+
+@pytest.mark.parametrize("u_s", [-2.0, 1e-4, 0.3, 5.0])
+def test_series_branches_of_the_gap_average_equal_the_direct_average(atf, u_s):
+    """The gap average takes series of asinh where every gap of a pressure level is Eyring-saturated or Newtonian
+    (Abramowitz & Stegun 4.6.31, remainders below 4e-13 relative): against the direct mean of τ0 asinh(η u_s/(τ0 g))
+    over every pressure level and gap, on a Hertzian pressure from 0 to 2 GPa, films from 5 nm to 2 µm and a rough
+    pair's heights, with Eyring arguments from below NEWTONIAN_EYRING_ARGUMENT to far above SATURATED_EYRING_ARGUMENT
+    (both branches and the direct one are taken)."""
+    state = atf.state(363.15)
+    heights = composite_height_quantiles(baseline_profile(), 0.3e-6, 0.2e-6)
+    x = np.linspace(-1.0, 1.0, 97)
+    p = 2e9 * np.sqrt(np.clip(1.0 - x**2, 0.0, None))
+    floor = 5e-9
+    for film_scale in (5e-9, 1e-7, 2e-6):
+        film = film_scale * (1.0 + 2.0 * x**2)
+        for std in (0.0, 0.2e9):
+            levels = gamma_pressure_quantiles(p, std) if std > 0.0 else p[:, None]
+            eta = state.viscosity(levels.ravel()).reshape(levels.shape)
+            gaps = np.maximum(film[:, None] + heights[None, :], floor)
+            direct = np.mean(state.tau0 * np.arcsinh(eta[:, :, None] * u_s / (state.tau0 * gaps[:, None, :])),
+                             axis=(1, 2))
+            fast = fluctuation_averaged_shear_stress(state.viscosity, p, std, u_s, film, heights, state.tau0, floor)
+            np.testing.assert_allclose(fast, direct, rtol=1e-12, atol=0.0)
+    y = eta[:, :, None] * abs(u_s) / (state.tau0 * gaps[:, None, :])
+    if u_s == 5.0:  # the fast sliding case covers both series and the direct average
+        assert (y.min(axis=2) >= SATURATED_EYRING_ARGUMENT).any() and (y.max(axis=2) <= NEWTONIAN_EYRING_ARGUMENT).any()
+        assert ((y.min(axis=2) < SATURATED_EYRING_ARGUMENT) & (y.max(axis=2) > NEWTONIAN_EYRING_ARGUMENT)).any()
 
 
 def test_composite_heights_have_the_composite_rq_and_zero_mean():
