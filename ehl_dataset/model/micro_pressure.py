@@ -20,6 +20,9 @@ traction is not saturated, τ grows nearly exponentially with p, and its mean ov
 
 from __future__ import annotations
 
+import functools
+import math
+
 import numpy as np
 from scipy.special import gammaincinv
 
@@ -105,7 +108,28 @@ def spectral_pressure_std(profile: RoughnessProfile, case, state) -> tuple[float
 PRESSURE_QUANTILES = 32
 """Equal-probability levels (midpoints) of the pressure distribution in the closure's average."""
 
+SPLINE_SHAPES = (0.2, 1e8)
+"""Range of the gamma shape k = (p̄/σ_p)² in which :func:`gamma_pressure_quantiles` interpolates the levels
+(:func:`_normalised_level_spline`) instead of inverting the incomplete gamma function at every node [-]."""
+SPLINE_STEP = 0.0025
+"""Knot spacing in ln k of :func:`_normalised_level_spline` [-]."""
+
 _SLOPE_CACHE: dict[tuple[str, float, float], float] = {}
+
+
+@functools.lru_cache(maxsize=4)
+def _normalised_level_spline(count: int):
+    """Cubic spline in ln k of the logarithm of the gamma distribution's equal-probability levels over their mean,
+    ln(x_i/x̄) with x_i = P⁻¹(k, (i + ½)/count) (``scipy.special.gammaincinv``), on knots every :data:`SPLINE_STEP`
+    from k = 0.1 to 2e8 (beyond :data:`SPLINE_SHAPES` on both sides, so that the end conditions do not reach the range
+    used). Over :data:`SPLINE_SHAPES` each level is within a relative 1e-11 of the direct inversion
+    (tests/ehl_dataset/test_micro_pressure.py). Built once per process (≈0.2 s)."""
+    from scipy.interpolate import CubicSpline  # a slow import, needed only with pressure fluctuations
+
+    log_k = np.arange(math.log(0.1), math.log(2e8) + SPLINE_STEP, SPLINE_STEP)
+    levels = (np.arange(count) + 0.5) / count
+    x = gammaincinv(np.exp(log_k)[:, None], levels[None, :])
+    return CubicSpline(log_k, np.log(x / x.mean(axis=1, keepdims=True)), axis=0)
 
 
 def composite_slope_rms(profile: RoughnessProfile, rq1: float, rq2: float) -> float:
@@ -174,7 +198,10 @@ def gamma_pressure_quantiles(mean_pa, std_pa, count: int = PRESSURE_QUANTILES) -
     i gets the weight x_i/x_max of its standard quantile x_i = P⁻¹(k, q_i), and where x_i underflows the small-x
     inverse of P(k, x) ≈ x^k/Γ(k + 1) (Abramowitz & Stegun 6.5.29), ln x_i = (ln q_i + ln Γ(k + 1))/k, exact to a
     relative O(x_i). As k → 0 the weights of all but the top level vanish: the mass concentrates at 0 with the whole
-    load count·p̄ on the top level (a small probability of large pressures).
+    load count·p̄ on the top level (a small probability of large pressures). For shapes within
+    :data:`SPLINE_SHAPES` the rescaled levels are p̄ times a cubic spline in ln k of x_i/x̄
+    (:func:`_normalised_level_spline`, each level within a relative 1e-11 of the direct inversion, about 40 times
+    cheaper).
 
     Parameters
     ----------
@@ -195,6 +222,15 @@ def gamma_pressure_quantiles(mean_pa, std_pa, count: int = PRESSURE_QUANTILES) -
     levels = (np.arange(count) + 0.5) / count
     out = np.repeat(mean[:, None], count, axis=1)
     spread = (mean > 0.0) & (std > 0.0)
+    if not spread.any():
+        return out
+    with np.errstate(over="ignore", under="ignore", invalid="ignore", divide="ignore"):
+        shape_all = (mean / np.where(spread, std, 1.0)) ** 2
+    splined = spread & (shape_all >= SPLINE_SHAPES[0]) & (shape_all <= SPLINE_SHAPES[1])
+    if splined.any():
+        ratio = np.exp(_normalised_level_spline(count)(np.log(shape_all[splined])))
+        out[splined] = ratio * (mean[splined] / ratio.mean(axis=1))[:, None]
+    spread &= ~splined
     if not spread.any():
         return out
     m, s = mean[spread], std[spread]

@@ -12,8 +12,8 @@ from scipy import stats
 
 from ehl_dataset.model.contact import ContactCase
 from ehl_dataset.model.lubricant import load_lubricant
-from ehl_dataset.model.micro_pressure import (MICRO_PRESSURE_C0, MICRO_PRESSURE_INLET_SCALE, composite_slope_rms,
-                                              flattening_pressure_rms, gamma_pressure_quantiles,
+from ehl_dataset.model.micro_pressure import (MICRO_PRESSURE_C0, MICRO_PRESSURE_INLET_SCALE, SPLINE_SHAPES,
+                                              composite_slope_rms, flattening_pressure_rms, gamma_pressure_quantiles,
                                               micro_pressure_coefficient)
 from ehl_dataset.model.roughness import baseline_profile
 from ehl_dataset.solver import solve_contact
@@ -89,6 +89,21 @@ def test_gamma_levels_stay_finite_and_keep_the_mean_at_a_tiny_shape(shape, mean_
     else:
         assert shape < 2.2e-5
         assert levels[-1] == 32 * mean_pa and np.all(levels[:-1] == 0.0)
+
+def test_splined_gamma_levels_equal_the_direct_inversion():
+    """Shapes k within SPLINE_SHAPES take the levels from a spline in ln k: every level within a relative 1e-11 of
+    scipy.stats.gamma.ppf rescaled to mean p̄ (the direct inversion), on 400 shapes log-uniform over the range and its
+    two ends, and the mean still p̄ to rounding."""
+    k = np.concatenate([[SPLINE_SHAPES[0], SPLINE_SHAPES[1]],
+                        np.exp(np.random.default_rng(11).uniform(*np.log(SPLINE_SHAPES), 400))])
+    mean = np.full(k.size, 7e8)
+    levels = gamma_pressure_quantiles(mean, mean / np.sqrt(k))
+    q = (np.arange(32) + 0.5) / 32
+    ppf = stats.gamma.ppf(q[None, :], k[:, None])
+    expected = ppf * (mean / ppf.mean(axis=1))[:, None]
+    np.testing.assert_allclose(levels, expected, rtol=1e-11, atol=0.0)
+    np.testing.assert_allclose(levels.mean(axis=1), mean, rtol=1e-14, atol=0.0)
+
 
 def test_flattening_pressure_is_johnsons_for_a_sinusoid():
     """Johnson (Contact Mechanics, 1985, §13.1): a sinusoid of amplitude Δ and wavelength λ is flattened by
