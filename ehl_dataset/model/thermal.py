@@ -323,47 +323,114 @@ def _g_scalar(x):
 
 
 @numba.njit(cache=True)
+def _film_newton_step(xi, lo, hi, s, a):
+    """One safeguarded Newton step of φ(X) = X tanh X − A asinh(S g(X)) from X = ``xi`` inside the bracket [lo, hi]
+    (:func:`film_parameter`). Returns (new X, new lo, new hi, whether the step is below 1e-13 (1 + X))."""
+    g = _g_scalar(xi)
+    sg = s * g
+    phi = xi * math.tanh(xi) - a * math.asinh(sg)
+    if phi < 0.0:
+        lo = xi
+    if phi > 0.0:
+        hi = xi
+    if xi > 1e-4:
+        dg = g * (1.0 / xi - 2.0 / math.tanh(max(2.0 * xi, 1e-300)))
+    else:
+        dg = -4.0 * xi / 3.0
+    dphi = math.tanh(xi) + xi / math.cosh(min(xi, 350.0)) ** 2 - a * s * dg / math.sqrt(1.0 + sg * sg)
+    new = xi - phi / dphi if dphi != 0.0 else math.nan
+    if not math.isfinite(new) or new < lo or new > hi:
+        new = 0.5 * (lo + hi)
+    return new, lo, hi, abs(new - xi) <= 1e-13 * (1.0 + xi)
+
+
+@numba.njit(cache=True)
+def _film_newton_start(s, a):
+    """Start of the Newton iteration of :func:`film_parameter`: (A asinh S, X0, lo, hi) with the bracket
+    [0, 2 A asinh S + 2] and X0 = min(√(A asinh S), its midpoint); X0 is NaN where A asinh S < 0."""
+    rhs0 = a * math.asinh(s)
+    hi = 2.0 * rhs0 + 2.0
+    x = min(math.sqrt(rhs0), 0.5 * hi) if rhs0 >= 0.0 else math.nan
+    return rhs0, x, 0.0, hi
+
+
+@numba.njit(cache=True)
 def _film_parameter_lockstep(s, a, steps):
     """The roots X of X tanh X = A asinh(S g(X)) at every node (:func:`film_parameter`): the safeguarded Newton
     iteration of all nodes in lockstep, stopped when every node's step is below 1e-13 (1 + X), as the array form does
     (so that both give the same numbers); 0 where A asinh S is not positive."""
     n = s.size
     rhs0 = np.empty(n)
-    lo = np.zeros(n)
+    lo = np.empty(n)
     hi = np.empty(n)
     x = np.empty(n)
     for i in range(n):
-        rhs0[i] = a[i] * math.asinh(s[i])
-        hi[i] = 2.0 * rhs0[i] + 2.0
-        x[i] = min(math.sqrt(rhs0[i]), 0.5 * hi[i]) if rhs0[i] >= 0.0 else math.nan
+        rhs0[i], x[i], lo[i], hi[i] = _film_newton_start(s[i], a[i])
     for _ in range(steps):
         done = True
         for i in range(n):
-            xi = x[i]
-            g = _g_scalar(xi)
-            sg = s[i] * g
-            phi = xi * math.tanh(xi) - a[i] * math.asinh(sg)
-            if phi < 0.0:
-                lo[i] = xi
-            if phi > 0.0:
-                hi[i] = xi
-            if xi > 1e-4:
-                dg = g * (1.0 / xi - 2.0 / math.tanh(max(2.0 * xi, 1e-300)))
-            else:
-                dg = -4.0 * xi / 3.0
-            dphi = math.tanh(xi) + xi / math.cosh(min(xi, 350.0)) ** 2 - a[i] * s[i] * dg / math.sqrt(1.0 + sg * sg)
-            new = xi - phi / dphi if dphi != 0.0 else math.nan
-            if not math.isfinite(new) or new < lo[i] or new > hi[i]:
-                new = 0.5 * (lo[i] + hi[i])
-            if not abs(new - xi) <= 1e-13 * (1.0 + xi):
+            x[i], lo[i], hi[i], small = _film_newton_step(x[i], lo[i], hi[i], s[i], a[i])
+            if not small:
                 done = False
-            x[i] = new
         if done:
             break
     for i in range(n):
         if not rhs0[i] > 0.0:
             x[i] = 0.0
     return x
+
+
+@numba.njit(cache=True)
+def _film_parameter_recorded(s, a, steps, record):
+    """:func:`_film_parameter_lockstep` reusing recorded Newton paths: the same numbers, computed only where needed.
+
+    The Newton path of one node depends on its own S and A only; the lockstep couples the nodes only through the
+    number of steps K (the first step after which every node's step is below 1e-13 (1 + X)). ``record`` (from
+    :func:`_film_path_record`, for the same ``s`` in every call) keeps for each node the paths of its last two
+    values of A (a secant iteration that has converged to round-off often alternates between two): a node whose A
+    is one of them takes up its path, stepped further only if K exceeds it. Returns X after K steps, 0 where
+    A asinh S ≤ 0."""
+    key, rhs0, path, small, lo, hi, length, slot = record
+    n = s.size
+    for i in range(n):
+        if a[i] == key[slot[i], i]:
+            continue
+        slot[i] = 1 - slot[i]
+        if a[i] == key[slot[i], i]:
+            continue
+        j = slot[i]
+        key[j, i] = a[i]
+        rhs0[j, i], path[j, 0, i], lo[j, i], hi[j, i] = _film_newton_start(s[i], a[i])
+        length[j, i] = 0
+    taken = steps
+    for k in range(steps):
+        done = True
+        for i in range(n):
+            j = slot[i]
+            if length[j, i] <= k:
+                path[j, k + 1, i], lo[j, i], hi[j, i], small[j, k, i] = _film_newton_step(path[j, k, i], lo[j, i],
+                                                                                          hi[j, i], s[i], a[i])
+                length[j, i] = k + 1
+            if not small[j, k, i]:
+                done = False
+        if done:
+            taken = k + 1
+            break
+    x = np.empty(n)
+    for i in range(n):
+        j = slot[i]
+        x[i] = path[j, taken, i] if rhs0[j, i] > 0.0 else 0.0
+    return x
+
+
+@numba.njit(cache=True)
+def _film_path_record(n, steps):
+    """An empty record of Newton paths for :func:`_film_parameter_recorded`: for two values of A per node (slot 0,
+    1) the value (NaN: none), A asinh S, X after k steps, whether step k + 1 was below tolerance, the bracket after
+    the recorded steps, their number, and the slot of the node's last call."""
+    return (np.full((2, n), np.nan), np.empty((2, n)), np.empty((2, steps + 1, n)),
+            np.empty((2, steps, n), dtype=np.bool_), np.empty((2, n)), np.empty((2, n)),
+            np.zeros((2, n), dtype=np.int64), np.zeros(n, dtype=np.int64))
 
 
 @numba.njit(cache=True)
@@ -388,7 +455,10 @@ def _table_at(rises, log_eta, column, rise):
 @numba.njit(cache=True)
 def _secant_film_kernel(rises, log_eta, rise, u_s, h, tau0, conductivity, secant_iterations, steps):
     """:func:`film_with_secant_beta` of node ``i`` = column ``i`` of ``log_eta`` at ``rise[i]`` with film ``h[i]``:
-    the secant iteration of all nodes in lockstep, stopped when every β has converged to 1e-10, as the array form."""
+    the secant iteration of all nodes in lockstep, stopped when every β has converged to 1e-10, as the array form.
+    The film parameter X of each secant step is that of :func:`_film_parameter_lockstep`, with the Newton paths of
+    a node's last two β reused (:func:`_film_parameter_recorded`); a node whose β and X did not change in the last
+    secant step keeps its secant: the same numbers as recomputing them."""
     n = rise.size
     log_eta_s = np.empty(n)
     beta = np.empty(n)
@@ -398,10 +468,16 @@ def _secant_film_kernel(rises, log_eta, rise, u_s, h, tau0, conductivity, secant
     eta_s = np.exp(log_eta_s)
     log_eta_s = np.log(eta_s)
     s = eta_s * abs(u_s) / (tau0 * h)
+    record = _film_path_record(n, steps)
+    x = np.full(n, np.nan)
+    unchanged = np.zeros(n, dtype=np.bool_)
     for _ in range(secant_iterations):
-        x = _film_parameter_lockstep(s, beta * abs(u_s) * h * tau0 / (8.0 * conductivity), steps)
+        x_last = x
+        x = _film_parameter_recorded(s, beta * abs(u_s) * h * tau0 / (8.0 * conductivity), steps, record)
         done = True
         for i in range(n):
+            if unchanged[i] and x[i] == x_last[i]:
+                continue                               # same β and X as in the last step: the same secant again
             centre = 2.0 * (x[i] + math.log1p(math.exp(-2.0 * x[i])) - math.log(2.0)) / beta[i] if beta[i] > 0.0 \
                 else 0.0
             secant = beta[i]
@@ -411,15 +487,69 @@ def _secant_film_kernel(rises, log_eta, rise, u_s, h, tau0, conductivity, secant
             secant = max(secant, 0.0)
             if not abs(secant - beta[i]) <= 1e-10 * max(beta[i], 1e-300):
                 done = False
+            unchanged[i] = secant == beta[i]
             beta[i] = secant
         if done:
             break
-    x = _film_parameter_lockstep(s, beta * abs(u_s) * h * tau0 / (8.0 * conductivity), steps)
+    x = _film_parameter_recorded(s, beta * abs(u_s) * h * tau0 / (8.0 * conductivity), steps, record)
     sign = 1.0 if u_s >= 0.0 else -1.0
     tau = np.empty(n)
     for i in range(n):
         tau[i] = sign * tau0 * math.asinh(s[i] * _g_scalar(x[i]))
     return tau, x, beta
+
+
+@numba.njit(cache=True)
+def _film_root_from(s, a, x0, steps):
+    """The root X of X tanh X = A asinh(S g(X)) of one node by the Newton steps of :func:`film_parameter`, started
+    from ``x0`` where it lies inside the bracket (else from the usual start) and stopped at the first step below
+    1e-13 (1 + X); 0 where A asinh S is not positive."""
+    rhs0, x, lo, hi = _film_newton_start(s, a)
+    if not rhs0 > 0.0:
+        return 0.0
+    if lo < x0 < hi:
+        x = x0
+    for _ in range(steps):
+        x, lo, hi, small = _film_newton_step(x, lo, hi, s, a)
+        if small:
+            break
+    return x
+
+
+@numba.njit(cache=True)
+def _secant_film_near_kernel(rises, log_eta, rise, u_s, h, tau0, conductivity, live, beta0, x0, secant_iterations,
+                             steps):
+    """τ [Pa] of :func:`_secant_film_kernel` at the wall rises ``rise`` [K] on the nodes ``live`` (0 elsewhere),
+    started from the secant β0 [1/K] and film parameter X0 [-] converged at a nearby rise: each node iterated on its
+    own, its secant β until it changes by at most 1e-10 β, its X until the Newton step is below 1e-13 (1 + X). The
+    same fixed point as the lockstep kernel, to the tolerance of its secant iteration (not bit for bit)."""
+    n = rise.size
+    tau = np.zeros(n)
+    sign = 1.0 if u_s >= 0.0 else -1.0
+    for i in range(n):
+        if not live[i]:
+            continue
+        log_eta_s, slope_beta = _table_at(rises, log_eta, i, rise[i])
+        eta_s = math.exp(log_eta_s)
+        log_eta_s = math.log(eta_s)
+        s = eta_s * abs(u_s) / (tau0 * h[i])
+        beta = beta0[i] if beta0[i] >= 0.0 else max(slope_beta, 0.0)
+        x = x0[i]
+        for _ in range(secant_iterations):
+            x = _film_root_from(s, beta * abs(u_s) * h[i] * tau0 / (8.0 * conductivity), x, steps)
+            centre = 2.0 * (x + math.log1p(math.exp(-2.0 * x)) - math.log(2.0)) / beta if beta > 0.0 else 0.0
+            secant = beta
+            if centre > 1e-6:
+                eta_c = math.exp(_table_at(rises, log_eta, i, rise[i] + centre)[0])
+                secant = (log_eta_s - math.log(eta_c)) / centre
+            secant = max(secant, 0.0)
+            converged = abs(secant - beta) <= 1e-10 * max(beta, 1e-300)
+            beta = secant
+            if converged:
+                break
+        x = _film_root_from(s, beta * abs(u_s) * h[i] * tau0 / (8.0 * conductivity), x, steps)
+        tau[i] = sign * tau0 * math.asinh(s * _g_scalar(x))
+    return tau
 
 
 def film_shear_stress(eta_wall, u_s: float, h, tau0: float, beta, conductivity: float):
@@ -668,7 +798,8 @@ def thermal_couette_traction(x, film, table: TemperatureTable, liquid, u1: float
 
     Newton's method on G(ΔT_s) = ΔT_s − J q(ΔT_s) = 0 with J the (lower-triangular) flash-temperature operator and
     q = |u_s τ(ΔT_s)|: the Jacobian I − J diag(dq/dΔT_s) is lower triangular (dq/dΔT_s by a forward difference of
-    0.01 K), steps halved until |G| falls. Stops at max |G| ≤ 1e-9 (1 + max ΔT_s) K.
+    0.01 K, the film at ΔT_s + 0.01 K iterated node by node from the β and X converged at ΔT_s,
+    :func:`_secant_film_near_kernel`), steps halved until |G| falls. Stops at max |G| ≤ 1e-9 (1 + max ΔT_s) K.
 
     Parameters
     ----------
@@ -705,8 +836,11 @@ def thermal_couette_traction(x, film, table: TemperatureTable, liquid, u1: float
     idx = np.flatnonzero(liquid)
     sub = slice(idx[0], idx[-1] + 1)       # heat sources lie from the first to the last liquid node
     xs, hs, live = x[sub], np.where(liquid, h, 1.0)[sub], liquid[sub]
-    tab = TemperatureTable(table.rises, table.log_eta[:, sub])
+    rises = np.asarray(table.rises, dtype=float)
+    log_eta = np.ascontiguousarray(table.log_eta[:, sub], dtype=float)    # once, not per film evaluation
+    tab = TemperatureTable(rises, log_eta)
     op = jaeger_operator(xs) / blok_denominator(u1, u2, properties)
+    diagonal = np.arange(xs.size)
 
     def traction(rise):
         tau, xpar, beta_s = film_with_secant_beta(tab, rise, u_s, hs, tau0, k)
@@ -724,8 +858,12 @@ def thermal_couette_traction(x, film, table: TemperatureTable, liquid, u1: float
         if norm <= FIXED_POINT_TOLERANCE * (1.0 + float(np.max(rise))):
             converged = True
             break
-        dq = (np.abs(traction(rise + step)[0] * u_s) - np.abs(tau * u_s)) / step
-        jacobian = np.eye(xs.size) - op * dq[None, :]
+        near = _secant_film_near_kernel(rises, log_eta, rise + step, float(u_s), hs, float(tau0), float(k), live,
+                                        beta_s, xpar, SECANT_ITERATIONS, NEWTON_STEPS)
+        dq = (np.abs(near * u_s) - np.abs(tau * u_s)) / step
+        jacobian = np.multiply(op, dq[None, :])
+        np.negative(jacobian, out=jacobian)
+        jacobian[diagonal, diagonal] += 1.0                 # I − J diag(dq)
         delta = -solve_triangular(jacobian, g, lower=True, check_finite=False)
         factor = 1.0
         while True:

@@ -12,9 +12,12 @@ from scipy.integrate import quad
 from ehl_dataset.model.contact import ContactCase
 from ehl_dataset.model.effects import Effects
 from ehl_dataset.model.lubricant import load_lubricant, lubricant_from_dict
-from ehl_dataset.model.thermal import (BLOK_MAX_COEFFICIENT, ThermalProperties, TemperatureTable, _g,
-                                       blok_denominator, film_centre_rise, film_parameter, film_shear_stress,
-                                       jaeger_operator, surface_temperature_rise, thermal_couette_traction)
+from ehl_dataset.model import thermal
+from ehl_dataset.model.thermal import (BLOK_MAX_COEFFICIENT, NEWTON_STEPS, SECANT_ITERATIONS, ThermalProperties,
+                                       TemperatureTable, _film_parameter_lockstep, _g, _g_scalar, _secant_film_kernel,
+                                       _secant_film_near_kernel, _table_at, blok_denominator, film_centre_rise,
+                                       film_parameter, film_shear_stress, film_with_secant_beta, jaeger_operator,
+                                       surface_temperature_rise, thermal_couette_traction)
 from ehl_dataset.solver import solve_contact
 from ehl_dataset.validation import InputError
 
@@ -35,6 +38,62 @@ def test_jaeger_operator_is_exact_for_a_uniform_flux():
     ramp = (x - x[0]) / (x[-1] - x[0])       # ∫ (ξ − x0)(x − ξ)^(−1/2) dξ = (4/3)(x − x0)^(3/2)
     assert jaeger_operator(x) @ ramp == pytest.approx(4.0 / 3.0 * (x - x[0]) ** 1.5 / (x[-1] - x[0]), rel=1e-10,
                                                       abs=1e-18)
+
+
+def _jaeger_array_formula(x):
+    """The operator as dense array arithmetic over all (i, j): on segment j with s0 = √(x_i − ξ_j),
+    s1 = √(x_i − ξ_j+1), d = Δ_j/(s0 + s1): weight 2d − i1 to node j and i1 = (2/3) d (2 s0 + s1)/(s0 + s1) to node
+    j + 1, for the segments that end at or before x_i."""
+    dist = x[:, None] - x[None, :]
+    s0 = np.sqrt(np.clip(dist[:, :-1], 0.0, None))
+    s1 = np.sqrt(np.clip(dist[:, 1:], 0.0, None))
+    active = dist[:, 1:] >= 0.0
+    with np.errstate(divide="ignore", invalid="ignore"):
+        d = np.where(active, np.diff(x)[None, :] / (s0 + s1), 0.0)
+        i1 = np.where(active, (2.0 / 3.0) * d * (2.0 * s0 + s1) / (s0 + s1), 0.0)
+    out = np.zeros((x.size, x.size))
+    out[:, :-1] += 2.0 * d - i1
+    out[:, 1:] += i1
+    return out
+
+
+def test_jaeger_operator_equals_the_array_formula_on_a_clustered_grid():
+    """The compiled operator against the same equations written as array arithmetic, on a grid clustered (100:1)
+    around the centre like the solvers' grids."""
+    u = np.linspace(-1.0, 1.0, 381)
+    x = 4.2e-4 * (u + 0.99 * np.sin(np.pi * u) / np.pi)
+    assert np.min(np.diff(x)) < np.max(np.diff(x)) / 50
+    reference = _jaeger_array_formula(x)
+    op = jaeger_operator(x)
+    assert np.all(op[np.triu_indices(x.size, 1)] == 0.0)
+    assert np.max(np.abs(op - reference)) <= 1e-13 * np.max(np.abs(reference))
+    lower = reference != 0.0
+    assert np.max(np.abs(op[lower] - reference[lower]) / np.abs(reference[lower])) <= 1e-13
+
+
+def test_jaeger_operator_cache_returns_equal_protected_arrays():
+    """Repeated grids come from the per-process store: equal values, read-only, so a caller cannot change what the
+    next caller gets; arithmetic on the result gives a new array; a grid pushed out of the store is recomputed."""
+    x = np.cumsum(np.r_[0.0, np.random.default_rng(5).uniform(0.5, 1.5, 120)]) * 1e-6
+    first = jaeger_operator(x)
+    expected = _jaeger_array_formula(x)
+    again = jaeger_operator(x.copy())
+    assert np.array_equal(first, again) and not first.flags.writeable
+    with pytest.raises(ValueError):
+        first[1, 0] = 0.0
+    scaled = jaeger_operator(x) / 2.0
+    scaled[:] = -1.0
+    copy = np.array(jaeger_operator(x))
+    copy[:] = -1.0
+    assert np.max(np.abs(jaeger_operator(x) - expected)) <= 1e-13 * np.max(expected)
+    for shift in range(1, thermal.JAEGER_CACHE_SIZE + 2):
+        jaeger_operator(x + shift * 1e-3)
+    assert np.max(np.abs(jaeger_operator(x) - expected)) <= 1e-13 * np.max(expected)
+    assert len(thermal._jaeger_cache) <= thermal.JAEGER_CACHE_SIZE
+    with pytest.raises(InputError, match="strictly increasing"):
+        jaeger_operator(x[::-1])
+    with pytest.raises(InputError, match="strictly increasing"):
+        jaeger_operator(np.array([0.0]))
 
 
 def test_uniform_band_source_reproduces_jaegers_constants():
@@ -137,6 +196,78 @@ def test_film_root_is_unique_and_accurate():
     assert np.max(np.abs(residual) / (1 + a * np.arcsinh(s))) < 1e-12
     grid = np.linspace(0, 20, 2001)
     assert np.all(np.diff(grid * np.tanh(grid)) > 0) and np.all(np.diff(_g(grid)) < 0)
+
+
+def _secant_film_lockstep_reference(rises, log_eta, rise, u_s, h, tau0, conductivity):
+    """The secant-β film of all nodes in lockstep, every film parameter recomputed by the plain lockstep Newton
+    iteration (:func:`_film_parameter_lockstep`) at every secant step: the definition that the compiled kernel,
+    which reuses unchanged Newton paths, must reproduce bit for bit."""
+    n = rise.size
+    log_eta_s, beta = np.empty(n), np.empty(n)
+    for i in range(n):
+        log_eta_s[i], slope = _table_at(rises, log_eta, i, rise[i])
+        beta[i] = max(slope, 0.0)
+    eta_s = np.array([math.exp(v) for v in log_eta_s])
+    log_eta_s = np.array([math.log(v) for v in eta_s])
+    s = eta_s * abs(u_s) / (tau0 * h)
+    for _ in range(SECANT_ITERATIONS):
+        x = _film_parameter_lockstep(s, beta * abs(u_s) * h * tau0 / (8.0 * conductivity), NEWTON_STEPS)
+        done = True
+        for i in range(n):
+            centre = 2.0 * (x[i] + math.log1p(math.exp(-2.0 * x[i])) - math.log(2.0)) / beta[i] if beta[i] > 0 else 0.0
+            secant = beta[i]
+            if centre > 1e-6:
+                secant = (log_eta_s[i] - math.log(math.exp(_table_at(rises, log_eta, i, rise[i] + centre)[0]))) / centre
+            secant = max(secant, 0.0)
+            done = done and abs(secant - beta[i]) <= 1e-10 * max(beta[i], 1e-300)
+            beta[i] = secant
+        if done:
+            break
+    x = _film_parameter_lockstep(s, beta * abs(u_s) * h * tau0 / (8.0 * conductivity), NEWTON_STEPS)
+    tau = np.array([math.copysign(1.0, u_s) * tau0 * math.asinh(s[i] * _g_scalar(x[i])) for i in range(n)])
+    return tau, x, beta
+
+
+def _hot_film_nodes():
+    state = ATF.state(363.15)
+    p = np.linspace(0.1e9, 1.4e9, 48)
+    table = state.temperature_table(p)
+    h = np.linspace(1.2e-7, 4e-7, p.size)
+    rise = np.linspace(0.0, 70.0, p.size) + 0.37
+    return table, h, rise, state.tau0
+
+
+@pytest.mark.parametrize("u_s", [3.0, 5.0, -12.0])
+def test_secant_film_kernel_reproduces_the_plain_lockstep_bit_for_bit(u_s):
+    """Reusing the Newton paths of unchanged β (and the secant of unchanged β and X) changes no number: equal to the
+    lockstep that recomputes every film parameter at every secant step, and to the array form of
+    :func:`film_with_secant_beta` to round-off."""
+    table, h, rise, tau0 = _hot_film_nodes()
+    rises, log_eta = np.asarray(table.rises, dtype=float), np.ascontiguousarray(table.log_eta)
+    kernel = _secant_film_kernel(rises, log_eta, rise, u_s, h, tau0, 0.14, SECANT_ITERATIONS, NEWTON_STEPS)
+    reference = _secant_film_lockstep_reference(rises, log_eta, rise, u_s, h, tau0, 0.14)
+    for got, want in zip(kernel, reference):
+        assert np.array_equal(got, want)
+    assert np.max(kernel[1]) > 0.5                 # a hot film: the secant iteration does work
+    one_rise = film_with_secant_beta(table, 20.0, u_s, h, tau0, 0.14)              # the array form
+    compiled = film_with_secant_beta(table, np.full(h.size, 20.0), u_s, h, tau0, 0.14)
+    for got, want in zip(compiled, one_rise):
+        assert got == pytest.approx(want, rel=1e-12, abs=0.0)
+
+
+def test_film_near_a_converged_rise_matches_the_kernel():
+    """The film at ΔT_s + 0.01 K started from the β and X converged at ΔT_s (the forward difference of the coupled
+    Newton iteration): the kernel's τ to within its secant tolerance; 0 on nodes without liquid."""
+    table, h, rise, tau0 = _hot_film_nodes()
+    rises, log_eta = np.asarray(table.rises, dtype=float), np.ascontiguousarray(table.log_eta)
+    live = np.ones(h.size, dtype=bool)
+    live[[0, 7]] = False
+    _, x0, beta0 = _secant_film_kernel(rises, log_eta, rise, 5.0, h, tau0, 0.14, SECANT_ITERATIONS, NEWTON_STEPS)
+    tau = _secant_film_kernel(rises, log_eta, rise + 0.01, 5.0, h, tau0, 0.14, SECANT_ITERATIONS, NEWTON_STEPS)[0]
+    near = _secant_film_near_kernel(rises, log_eta, rise + 0.01, 5.0, h, tau0, 0.14, live, beta0, x0,
+                                    SECANT_ITERATIONS, NEWTON_STEPS)
+    assert np.all(near[~live] == 0.0)
+    assert near[live] == pytest.approx(tau[live], rel=1e-12, abs=0.0)
 
 
 def test_coupled_correction_without_sliding_or_temperature_dependence():
