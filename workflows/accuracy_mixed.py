@@ -3,8 +3,9 @@
 The reference is the validation set of the deterministic mixed-EHL solver (``data/reference/
 deterministic_validation.json``, made by ``python validation/deterministic_validation.py --summarise``: each case
 solved at three grid spacings, μ Richardson-extrapolated, with its uncertainty; docs/validation/deterministic-reference.md). Each
-model of :data:`MIXED_MODELS` solves every reference case through :func:`ehl_dataset.solver.solve_contact`, and the
-study records
+model of :data:`MIXED_MODELS` solves every reference case through :func:`ehl_dataset.solver.solve_contact` on the
+roughness the reference was computed with (the shipped ``baseline_synthetic`` profile, whatever the package's default),
+and the study records
 
     err_mu = |μ − μ_ref|/μ_ref,   err_hc = |h_c − h_c,ref|/h_c,ref,   Δshare = share − share_ref,
 
@@ -118,8 +119,11 @@ def solve_model(case: ContactCase, lubricant, name: str, solve: Callable | None 
 
     if name not in MIXED_MODELS:
         raise InputError("model", name, f"one of {list(MIXED_MODELS)}")
+    from ehl_dataset.model.roughness import baseline_profile
+
     spec = MIXED_MODELS[name]
-    kwargs = {"model": spec["model"]}
+    # the reference cases were computed on the shipped baseline profile, not on the package's default roughness
+    kwargs = {"model": spec["model"], "roughness": baseline_profile()}
     if "closure" in spec:
         kwargs["homogenised"] = HomogenisedOptions(closure=spec["closure"])
     return (solve or solve_contact)(case, lubricant, spec["level"], spec.get("effects", "auto"), **kwargs)

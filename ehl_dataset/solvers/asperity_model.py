@@ -205,7 +205,7 @@ def asperity_closure(film_law: ContactResult, case: ContactCase, state: Lubrican
     state : LubricantState
         The lubricant at the case's temperature [SI].
     profile : RoughnessProfile, optional
-        Shape of both surfaces; None: the shipped baseline [-].
+        Shape of both surfaces; None: the default profile (:func:`~ehl_dataset.model.roughness.default_profile`) [-].
     boundary_film_m : float
         Floor h_b of the micro gaps in the Eyring shear [m].
     micro_pressure_coefficient : float, optional
@@ -338,7 +338,7 @@ def solve_asperity(case: ContactCase, state: LubricantState, lvl: AccuracyLevel,
     plan : Effects
         The effect plan (thermal correction of the traction or not) [-].
     roughness : RoughnessProfile, optional
-        Shape of both surfaces; None: the shipped baseline [-].
+        Shape of both surfaces; None: the default profile (:func:`~ehl_dataset.model.roughness.default_profile`) [-].
     boundary_film_m : float
         Floor h_b of the micro gaps in the Eyring shear [m].
     micro_pressure_coefficient : float, optional

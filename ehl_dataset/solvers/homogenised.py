@@ -192,7 +192,7 @@ def solve_homogenised(case: ContactCase, state: LubricantState, lvl: AccuracyLev
     plan : Effects
         The effect plan [-].
     roughness : RoughnessProfile, optional
-        Shape of both surfaces; None: the shipped baseline [-].
+        Shape of both surfaces; None: the default profile (:func:`~ehl_dataset.model.roughness.default_profile`) [-].
     options : HomogenisedOptions, optional
         Closure choices; None: the defaults or ``closure_options`` [-].
     **closure_options

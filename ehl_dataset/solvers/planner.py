@@ -88,7 +88,7 @@ def dimensionless_numbers(case, lubricant, correlation_length_m: float | None = 
     lubricant : Lubricant or LubricantState
         A lubricant, whose temperature range is checked, or its state at the case's temperature, already checked [-].
     correlation_length_m : float, optional
-        Correlation length β of the roughness profile; None: the shipped baseline profile's [m].
+        Correlation length β of the roughness profile; None: the default profile's [m].
 
     Returns
     -------
@@ -184,7 +184,7 @@ def plan_effects(case, lubricant, level="standard", correlation_length_m: float 
     level : str or AccuracyLevel or Level
         Accuracy level, whose :class:`PlannerThresholds` apply [-].
     correlation_length_m : float, optional
-        Correlation length β of the roughness profile; None: the shipped baseline profile's [m].
+        Correlation length β of the roughness profile; None: the default profile's [m].
 
     Returns
     -------
@@ -345,7 +345,7 @@ def with_model(plan: Effects, model: str, rough: bool) -> Effects:
 def resolve_effects(effects, case, lubricant, level="standard", correlation_length_m: float | None = None) -> Effects:
     """``"auto"`` → :func:`plan_effects`; ``"isothermal"`` → the same plan with the thermal correction off;
     ``"full"`` → :meth:`Effects.full`; an :class:`Effects` as given. ``correlation_length_m``: β of the roughness
-    profile [m] (None: the shipped baseline's)."""
+    profile [m] (None: the default profile's)."""
     if isinstance(effects, Effects):
         return effects
     if effects == "auto":

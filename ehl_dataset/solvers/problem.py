@@ -53,7 +53,7 @@ class ContactProblem:
     route : str
         The solver that runs (:data:`ROUTES`) [-].
     roughness : RoughnessProfile or None
-        Shape of both surfaces in rough runs (None: the shipped baseline profile) [m].
+        Shape of both surfaces in rough runs (None: the default profile) [m].
     homogenised : HomogenisedOptions or None
         Options of the homogenised routes (None on the others) [-].
     deterministic : DeterministicOptions or None
@@ -123,7 +123,7 @@ def resolve_contact(case: ContactCase, lubricant: Lubricant | str, level: str | 
         ``"smooth"`` (steady smooth surfaces, isothermal; :data:`ehl_dataset.names.CONTACT_EFFECT_PLANS`) or an
         :class:`~ehl_dataset.model.effects.Effects` used as given [-].
     roughness : RoughnessProfile or None
-        Shape of both surfaces in rough runs, scaled to the case's Rq1 and Rq2 (None: the shipped baseline) [m].
+        Shape of both surfaces in rough runs, scaled to the case's Rq1 and Rq2 (None: the default profile) [m].
     time_limit_s : float or None
         Wall-time budget of a deterministic solve (None: no limit) [s].
     model : str

@@ -33,6 +33,7 @@ def test_errors_are_measured_against_the_reference_and_runs_resume(tmp_path):
 
     def solve(case, lubricant, level, effects, **kwargs):
         calls.append((level, kwargs["model"]))
+        assert kwargs["roughness"].name == "baseline_synthetic"  # the reference's roughness, not the default
         return FakeResult(0.0330)
 
     checkpoint = tmp_path / "study.partial.json"

@@ -160,7 +160,7 @@ def main(argv=None) -> int:
     args = parser.parse_args(argv)
     lub = load_lubricant("atf")
     rows = baseline_reference() + flank_reference()
-    profiles = {"baseline_synthetic": None, "flank_ground": named_profile("flank_ground")}
+    profiles = {"baseline_synthetic": baseline_profile(), "flank_ground": named_profile("flank_ground")}
     shipped = GRID.index((NABLA_SCALE, PRESSURE_SCALE, FLATTENING_EXPONENT))
     scans = {}
     for form in FORMS:
