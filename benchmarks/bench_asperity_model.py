@@ -22,6 +22,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from _common import RESULTS_DIR, emit_json, median_time, machine_info  # noqa: E402
 
 from ehl_dataset.model.lubricant import load_lubricant  # noqa: E402
+from ehl_dataset.model.roughness import baseline_profile  # noqa: E402
 from ehl_dataset.solver import SOLVER_VERSION, solve_contact  # noqa: E402
 from ehl_dataset.solvers.asperity_model import ASPERITY_MODEL_VERSION  # noqa: E402
 from ehl_dataset.solvers import steady  # noqa: E402
@@ -42,12 +43,15 @@ def main(argv=None) -> int:
             return solve(case)
         return call
 
+    profile = baseline_profile()  # the validation cases' roughness, as gearloss accuracy --mixed solves them
     calls = {
         "smooth": uncached(lambda c: solve_contact(c, lub, args.level, "smooth")),
         "film_law": uncached(lambda c: solve_contact(c, lub, args.level, "isothermal", model="homogenised",
-                                                     homogenised=HomogenisedOptions(closure="film_law"))),
+                                                     homogenised=HomogenisedOptions(closure="film_law"),
+                                                     roughness=profile)),
         "asperity": uncached(lambda c: solve_contact(c, lub, args.level, "isothermal", model="homogenised",
-                                                     homogenised=HomogenisedOptions(closure="asperity"))),
+                                                     homogenised=HomogenisedOptions(closure="asperity"),
+                                                     roughness=profile)),
     }
     rows = []
     for row in load_reference():

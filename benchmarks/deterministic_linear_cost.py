@@ -26,6 +26,7 @@ import numpy as np
 from ehl_dataset.model.contact import ContactCase
 from ehl_dataset.model.effects import Effects
 from ehl_dataset.model.lubricant import load_lubricant
+from ehl_dataset.model.roughness import baseline_profile
 from ehl_dataset.solvers.deterministic import (MODEL_VERSION, DeterministicOptions, deterministic_options,
                                                solve_deterministic)
 
@@ -44,7 +45,8 @@ def run_point(name: str, band: int) -> dict:
     state = load_lubricant("atf").state(case.temperature)
     options = deterministic_options("fast", max_passes=2.0, min_average_passes=0.5, mu_sem_target=1.0, band=band)
     start = time.process_time()
-    result = solve_deterministic(case, state, Effects.full(), options)
+    # the same roughness for every version: the baseline profile the recorded rows ran on, not the default
+    result = solve_deterministic(case, state, Effects.full(), options, roughness=baseline_profile())
     cpu = time.process_time() - start
     row = {"point": name, "inputs": POINTS[name], "model_version": MODEL_VERSION, "band": band, "converged": result.converged,
            "mu": result.mu, "cpu_time_s": cpu, "load_average_1min": os.getloadavg()[0]}
@@ -59,7 +61,8 @@ def warm_up() -> None:
     case = ContactCase.from_engineering(*POINTS["0.5GPa-5mm-5ms-SR0.3-90C-Rq0.3"])
     options = deterministic_options("fast", ramp_passes=0.1, startup_passes=0.1, min_average_passes=0.1,
                                     max_passes=0.4, mu_sem_target=1.0)
-    solve_deterministic(case, load_lubricant("atf").state(case.temperature), Effects.full(), options)
+    solve_deterministic(case, load_lubricant("atf").state(case.temperature), Effects.full(), options,
+                        roughness=baseline_profile())
 
 
 def main(argv=None) -> int:

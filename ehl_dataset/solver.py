@@ -104,7 +104,8 @@ def solve_contact(case: ContactCase, lubricant: Lubricant | str, level: str | Ac
         ``"auto"``, ``"isothermal"``, ``"full"``, ``"smooth"`` or an :class:`Effects` used as given [-].
     roughness : RoughnessProfile or None
         A profile (e.g. a measured trace from :func:`~ehl_dataset.model.roughness.load_profile`) whose shape both
-        surfaces take in rough runs, scaled to the case's Rq1 and Rq2; None uses the shipped synthetic baseline [m].
+        surfaces take in rough runs, scaled to the case's Rq1 and Rq2; None uses the default profile
+        (:func:`~ehl_dataset.model.roughness.default_profile`) [m].
     time_limit_s : float or None
         Wall-time budget of a deterministic (rough, transient) solve; when it runs out the result is returned
         ``converged=False`` with a message naming the step reached. None: no limit. Steady solves ignore it [s].

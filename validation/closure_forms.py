@@ -25,6 +25,7 @@ from scipy.optimize import minimize
 from ehl_dataset.model.contact import ContactCase  # noqa: E402
 from ehl_dataset.dataset.factorial import load_factorial  # noqa: E402
 from ehl_dataset.model.lubricant import load_lubricant  # noqa: E402
+from ehl_dataset.model.roughness import baseline_profile  # noqa: E402
 from ehl_dataset.solver import SOLVER_VERSION  # noqa: E402
 from ehl_dataset.solvers.levels import NARROW_FILM_LAW_EYRING  # noqa: E402
 from ehl_dataset.solvers.planner import dimensionless_numbers  # noqa: E402
@@ -60,9 +61,10 @@ def wide_unsaturated_share(lubricant, n: int = 1500, seed: int = 0) -> dict:
     combos = list(itertools.product(*(range(len(v)) for v in levels)))
     picks = np.random.default_rng(seed).choice(len(combos), n, replace=False)
     a_over_beta = []
+    beta = baseline_profile().correlation_length  # the calibration contacts' β (a/β of the same profile)
     for i in picks:
         p, r, u, sr, t, rq = (levels[k][j] for k, j in enumerate(combos[i]))
-        nums = dimensionless_numbers(ContactCase.from_engineering(p, r, u, sr, t, *rq), lubricant)
+        nums = dimensionless_numbers(ContactCase.from_engineering(p, r, u, sr, t, *rq), lubricant, beta)
         if (nums["a_over_beta"] >= WIDE_A_OVER_BETA and nums["lambda_bar"] <= 1.0
                 and nums["eyring_number"] < NARROW_FILM_LAW_EYRING):
             a_over_beta.append(round(float(nums["a_over_beta"]), 1))

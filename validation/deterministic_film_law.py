@@ -101,7 +101,8 @@ def family_run(name: str, conditions, rq: float, lubricant, rerun_stale: bool = 
     options = DeterministicOptions(dx_m=beta / SPACING, max_passes=PASSES, mu_sem_target=1.0,
                                    min_average_passes=PASSES - 1.5)
     start = time.time()
-    result = solve_deterministic(case, state, Effects.full(), options)
+    # the baseline profile (spacing, a/β and L_in/β in its β, as the recorded runs fitted with it), not the default
+    result = solve_deterministic(case, state, Effects.full(), options, roughness=baseline_profile())
     x = result.x / case.half_width
     film = centre_mean(x, result.extra["mean_content_film_profile_m"])
     record = point(f"family {name}", (*conditions, rq, rq), film, result.mu, result.asperity_load_share,
@@ -155,6 +156,7 @@ def closure_films(points: list[dict], lubricant) -> None:
         state = lubricant.state(case.temperature)
         for closure in ("transverse", "isotropic"):
             result = solve_homogenised(case, state, get_level("standard"), Effects.full(),
+                                       roughness=baseline_profile(),  # the resolved runs' profile
                                        options=HomogenisedOptions(closure=closure))
             film = centre_mean(result.x / case.half_width, result.film)
             p[f"{closure}_excess_over_sigma"] = (film - p["smooth_film_m"]) / p["sigma_m"]

@@ -105,7 +105,8 @@ def main(argv=None) -> int:
         options = DeterministicOptions(dx_m=beta / args.spacing, max_passes=MAX_PASSES, mu_sem_target=1.0,
                                        min_average_passes=args.passes - 1.5)
         start = time.time()
-        result = solve_deterministic(case, state, Effects.full(), options)
+        # the baseline profile (spacing in its β; runs paired across Rq and versions), not the default
+        result = solve_deterministic(case, state, Effects.full(), options, roughness=baseline_profile())
         e = result.extra
         window = slice(e["average_from_step"], None)
         mu = np.asarray(e["mu_series"][window], dtype=float)
@@ -148,7 +149,8 @@ def courant_check(args) -> int:
                                            mu_sem_target=1.0, min_average_passes=sweep["passes"] - 1.5,
                                            courant=courant)
             start = time.time()
-            result = solve_deterministic(case, state, Effects.full(), options)
+            # the sweep's baseline profile, not the default
+            result = solve_deterministic(case, state, Effects.full(), options, roughness=baseline_profile())
             e = result.extra
             window = slice(e["average_from_step"], None)
             mu = np.asarray(e["mu_series"][window], dtype=float)

@@ -39,7 +39,8 @@ def main(argv=None) -> int:
     start = time.time()
     result = solve_deterministic(case, state, Effects.full(),
                                  DeterministicOptions(dx_m=beta / args.spacing, max_passes=args.passes,
-                                                      mu_sem_target=0.0))
+                                                      mu_sem_target=0.0),
+                                 roughness=baseline_profile())  # spacing in baseline β: not the default profile
     inside = np.abs(result.x) < case.half_width
     record = {"inputs": args.inputs, "points_per_beta": args.spacing, "passes": args.passes,
               "model_version": MODEL_VERSION, "a_over_beta": case.half_width / beta, "mu": result.mu,

@@ -94,7 +94,8 @@ def main(argv=None) -> int:
         options = DeterministicOptions(dx_m=beta / args.spacing, max_passes=MAX_PASSES, mu_sem_target=1.0,
                                        min_average_passes=args.passes - 1.5, **VARIANTS[name])
         start = time.time()
-        result = solve_deterministic(case, state, Effects.full(), options)
+        # the baseline profile, as the paired base run of deterministic_convergence.py (not the default)
+        result = solve_deterministic(case, state, Effects.full(), options, roughness=baseline_profile())
         e = result.extra
         window = slice(e["average_from_step"], None)
         mu_window = np.asarray(e["mu_series"][window], dtype=float)

@@ -20,6 +20,7 @@ from pathlib import Path
 from ehl_dataset.model.contact import ContactCase
 from ehl_dataset.model.effects import Effects
 from ehl_dataset.model.lubricant import load_lubricant
+from ehl_dataset.model.roughness import baseline_profile
 from ehl_dataset.solvers.deterministic import MODEL_VERSION
 from ehl_dataset.solvers.wide_contact import WIDE_MODEL_VERSION, WideOptions, solve_wide
 
@@ -34,8 +35,9 @@ def main(argv=None) -> int:
     args = parser.parse_args(argv)
     case = ContactCase.from_engineering(*args.inputs)
     state = load_lubricant("atf").state(case.temperature)
+    # the baseline profile the resolved runs it is compared with were computed on, not the package's default
     result = solve_wide(case, state, Effects.full(), WideOptions(film_offset_sigma=args.offset_sigma),
-                        deterministic_version=MODEL_VERSION)
+                        roughness=baseline_profile(), deterministic_version=MODEL_VERSION)
     record = {"inputs": args.inputs, "model_version": MODEL_VERSION, "wide_model_version": WIDE_MODEL_VERSION,
               "offset_sigma": args.offset_sigma, "mu": result.mu, "mu_sem": result.mu_sem,
               "asperity_load_share": result.asperity_load_share, "h_central_m": result.h_central,

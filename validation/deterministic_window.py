@@ -49,7 +49,8 @@ def full_run(case, state, spacing: float, passes: float, path: Path) -> dict:
     beta = baseline_profile().correlation_length
     start = time.time()
     result = solve_deterministic(case, state, Effects.full(),
-                                 DeterministicOptions(dx_m=beta / spacing, max_passes=passes, mu_sem_target=0.0))
+                                 DeterministicOptions(dx_m=beta / spacing, max_passes=passes, mu_sem_target=0.0),
+                                 roughness=baseline_profile())  # spacing in baseline β: not the default profile
     data = {"x_m": result.x, "film_m": result.film, **{k: result.extra[k] for k in PROFILES},
             "mu": result.mu, "mu_sem": result.mu_sem, "share": result.asperity_load_share,
             "converged": result.converged, "wall_time_s": time.time() - start, "n_steps": result.extra["n_steps"],
@@ -103,7 +104,7 @@ def main(argv=None) -> int:
     for feed, film in (("resolved", local["mean_content_film_profile_m"]), ("smooth", smooth_centre)):
         for length in args.lengths:
             options = WindowOptions(length_beta=length, points_per_beta=args.spacing)
-            result = solve_window(case, state, p_bar, film, options)
+            result = solve_window(case, state, p_bar, film, options, roughness=baseline_profile())  # the full run's
             row = {"feed": feed, "length_beta": length, "fed_film_m": film, "mu_local": result.mu_local,
                    "mu_local_sem": result.mu_local_sem, "asperity_share": result.asperity_share,
                    "asperity_share_sem": result.asperity_share_sem, "content_film_m": result.content_film_m,
@@ -140,7 +141,7 @@ def across(case, state, full: dict, args) -> int:
     for position, weight in zip(positions, weights):
         p_bar = float(np.interp(position, x, full["mean_pressure_profile_pa"]))
         film = float(np.interp(position, x, full["mean_content_film_profile_m"]))
-        result = solve_window(case, state, p_bar, film, options)
+        result = solve_window(case, state, p_bar, film, options, roughness=baseline_profile())  # the full run's
         window_inside += weight * result.shear_stress_pa
         rows.append({"x_over_a": position, "pressure_pa": p_bar, "film_m": film,
                      "resolved_shear_pa": float(np.interp(position, x, tau)), "window_shear_pa": result.shear_stress_pa,

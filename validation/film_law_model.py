@@ -33,6 +33,7 @@ from ehl_dataset.model.contact import ContactCase
 from ehl_dataset.model.dry_contact import dry_contact_table
 from ehl_dataset.model.flow_factors import lubricated_shear_stress
 from ehl_dataset.model.lubricant import load_lubricant
+from ehl_dataset.model.roughness import baseline_profile
 from ehl_dataset.solver import SOLVER_VERSION, solve_contact
 from ehl_dataset.solvers.film_law_model import FILM_LAW_MODEL_VERSION
 from ehl_dataset.solvers.homogenised import HomogenisedOptions
@@ -57,16 +58,17 @@ MIN_MU = 1e-3
 
 
 def film_law(case, lubricant):
-    """Isothermal, as the deterministic model (the planner's runs add the thermal correction where it matters)."""
+    """Isothermal, as the deterministic model (the planner's runs add the thermal correction where it matters); on
+    the baseline profile every deterministic result compared here was computed on, not the package's default."""
     return solve_contact(case, lubricant, "standard", "isothermal", model="homogenised",
-                         homogenised=HomogenisedOptions(closure="film_law"))
+                         homogenised=HomogenisedOptions(closure="film_law"), roughness=baseline_profile())
 
 
 def with_table_load(case, lubricant, result) -> tuple[float, float]:
     """μ of the variant with the dry-contact table's asperity load at the film law's mean gap (module docstring),
     and the share of the load the table gives the asperities."""
     state = lubricant.state(case.temperature)
-    table = dry_contact_table(None, case.rq1, case.rq2, case.e_reduced)
+    table = dry_contact_table(baseline_profile(), case.rq1, case.rq2, case.e_reduced)  # the film law's profile
     x, p, film = result.x, result.pressure, result.film
     p_a = np.asarray(table.asperity_pressure(film))
     shear = lubricated_shear_stress(table, film, state.viscosity(np.maximum(p - p_a, 0.0)), case.u_s, state.tau0,

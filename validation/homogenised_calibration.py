@@ -31,6 +31,7 @@ import numpy as np
 from ehl_dataset.model.contact import ContactCase
 from ehl_dataset.model.effects import Effects
 from ehl_dataset.model.lubricant import load_lubricant
+from ehl_dataset.model.roughness import baseline_profile
 from ehl_dataset.solvers.homogenised import HomogenisedOptions, solve_homogenised
 from ehl_dataset.solvers.levels import get_level
 
@@ -85,7 +86,6 @@ class ScaledRoughnessTable:
 
 def amplitude_reduction(case: ContactCase, lubricant) -> float:
     """Power-weighted amplitude reduction r of the shipped profile in the conjunction of ``case`` (module doc)."""
-    from ehl_dataset.model.roughness import baseline_profile
     from ehl_dataset.solvers.planner import dimensionless_numbers
 
     profile = baseline_profile()
@@ -122,7 +122,9 @@ def amplitude_experiment(lubricant) -> list[dict]:
                 homogenised.HomogenisedProblem.flow_factors = original_factors if where == "all" else \
                     undeformed_factors
                 for closure in ("transverse", "isotropic"):
-                    res = solve_homogenised(case, state, get_level("standard"), Effects.full(), closure=closure)
+                    # the reference's (and r's) baseline profile, not the package's default
+                    res = solve_homogenised(case, state, get_level("standard"), Effects.full(),
+                                            roughness=baseline_profile(), closure=closure)
                     row = {"case": name, "r": r, "scaled": where, "closure": closure, "mu": res.mu,
                            "mu_reference": ref["mu"], "mu_error": res.mu / ref["mu"] - 1.0,
                            "asperity_load_share": res.asperity_load_share,
@@ -157,6 +159,7 @@ def main(argv=None) -> int:
         for closure, floor in [("transverse", f) for f in floors] + [("isotropic", None)]:
             start = time.perf_counter()
             r = solve_homogenised(case, state, get_level("standard"), Effects.full(),
+                                  roughness=baseline_profile(),  # the reference's profile, not the default
                                   options=HomogenisedOptions(closure=closure, flow_floor_sigma=floor))
             inside = np.abs(r.x) < case.half_width
             row = {"case": name, "closure": closure, "flow_floor_sigma": floor, "mu": r.mu,

@@ -26,6 +26,7 @@ from ehl_dataset.model.contact import ContactCase  # noqa: E402
 from ehl_dataset.model.effects import Effects  # noqa: E402
 from ehl_dataset.model.lubricant import load_lubricant  # noqa: E402
 from ehl_dataset.model.micro_pressure import gamma_pressure_quantiles  # noqa: E402
+from ehl_dataset.model.roughness import baseline_profile  # noqa: E402
 from ehl_dataset.model.traction import eyring_shear_stress  # noqa: E402
 from ehl_dataset.solvers.planner import dimensionless_numbers  # noqa: E402
 
@@ -38,7 +39,9 @@ def analyse(name: str, n: int) -> dict:
     case = ContactCase.from_engineering(*CASES[name])
     state = lubricant.state(case.temperature)
     states = []
+    # the validation set's roughness (its spacings are in baseline β), not the package's default profile
     result = deterministic.solve_deterministic(case, state, Effects.full(), options_for(n, False),
+                                               roughness=baseline_profile(),
                                                observer=lambda t, p, h, fill: states.append((p, h, fill)))
     window = states[result.extra["average_from_step"]:]
     x = result.x / case.half_width

@@ -34,6 +34,7 @@ from ehl_dataset.model.contact import ContactCase  # noqa: E402
 from ehl_dataset.model.lubricant import load_lubricant  # noqa: E402
 from ehl_dataset.model.micro_pressure import (MICRO_PRESSURE_C0, MICRO_PRESSURE_INLET_SCALE,  # noqa: E402
                                               micro_pressure_coefficient)
+from ehl_dataset.model.roughness import baseline_profile  # noqa: E402
 from ehl_dataset.solver import SOLVER_VERSION, solve_contact  # noqa: E402
 from ehl_dataset.solvers.homogenised import HomogenisedOptions  # noqa: E402
 from ehl_dataset.solvers.levels import (NARROW_CLOSURE_LAMBDA, NARROW_CLOSURE_ROUGHNESS,  # noqa: E402
@@ -67,8 +68,9 @@ def points(lubricant) -> list[dict]:
         run = json.loads((RESULTS / f"deterministic_run_{tag}.json").read_text())
         out.append({"label": f"{tag} resolved", "inputs": list(run["inputs"]), "mu_det": run["mu"],
                     "det_version": run["model_version"]})
+    beta = baseline_profile().correlation_length  # the deterministic points' profile: a/β in its β
     for p in out:
-        nums = dimensionless_numbers(ContactCase.from_engineering(*p["inputs"]), lubricant)
+        nums = dimensionless_numbers(ContactCase.from_engineering(*p["inputs"]), lubricant, beta)
         p.update({key: nums[key] for key in ("lambda_bar", "eyring_number", "roughness_parameter", "a_over_beta")})
     return out
 
@@ -103,8 +105,10 @@ def closure_c(theta, inlet_over_beta: float) -> float:
 def film_law_solve(p: dict, lubricant, c: float | None):
     """The film-law solve of point ``p`` at c (None: the shipped c(L_in/β)); raises if it does not converge."""
     case = ContactCase.from_engineering(*p["inputs"])
+    # on the baseline profile the deterministic points were computed on, not the package's default
     result = solve_contact(case, lubricant, LEVEL, "isothermal", model="homogenised",
-                           homogenised=HomogenisedOptions(closure="film_law", micro_pressure_coefficient=c))
+                           homogenised=HomogenisedOptions(closure="film_law", micro_pressure_coefficient=c),
+                           roughness=baseline_profile())
     if not result.converged:
         raise RuntimeError(f"{p['label']}: film law not converged: {result.message}")
     return result

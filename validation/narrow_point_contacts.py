@@ -47,8 +47,9 @@ def run_case(key: str, sr: float, nodes: float, passes: float, level: str, deter
     ``deterministic`` False)."""
     lub = load_lubricant("atf")
     case = ContactCase(P_H_PA[key], R_EQ_M, U_R_M_S, sr, TEMPERATURE_K, RQ_M, RQ_M)
-    beta = baseline_profile().correlation_length
-    plan = plan_effects(case, lub, level)
+    profile = baseline_profile()  # the contacts' baseline roughness (module docstring), not the package's default
+    beta = profile.correlation_length
+    plan = plan_effects(case, lub, level, beta)
     nums = plan.reasons["numbers"]
     row = {"p_h_pa": case.p_h, "sr": sr, "a_m": case.half_width, "a_over_beta": case.half_width / beta,
            "lambda_bar": nums["lambda_bar"], "roughness_parameter": nums["roughness_parameter"],
@@ -57,15 +58,15 @@ def run_case(key: str, sr: float, nodes: float, passes: float, level: str, deter
                          ("auto", {"model": "auto"}),
                          ("film_law", {"model": "homogenised", "homogenised": HomogenisedOptions(closure="film_law")}),
                          ("asperity", {"model": "homogenised", "homogenised": HomogenisedOptions(closure="asperity")})):
-        result = solve_contact(case, lub, level, "isothermal", **kwargs)
+        result = solve_contact(case, lub, level, "isothermal", roughness=profile, **kwargs)
         row[name] = {"mu": result.mu, "asperity_load_share": result.asperity_load_share,
                      "h_central_m": result.h_central, "converged": result.converged,
                      **{k: result.extra[k] for k in ("mu_couette", "mu_poiseuille", "mu_outside_zone",
                                                      "fed_central_film_m", "smooth_central_film_m")
                         if k in result.extra}}
-    problem = resolve_contact(case, lub, level, "isothermal", model="homogenised",
+    problem = resolve_contact(case, lub, level, "isothermal", model="homogenised", roughness=profile,
                               homogenised=HomogenisedOptions(closure="film_law"))
-    steps = solve_film_law(problem.case, problem.state, problem.steady_level, problem.plan, None,
+    steps = solve_film_law(problem.case, problem.state, problem.steady_level, problem.plan, profile,
                            problem.homogenised.boundary_film_m, continuous_film=False)
     row["film_law_with_film_steps"] = {"mu": steps.mu, **{k: steps.extra[k] for k in (
         "mu_couette", "mu_poiseuille", "mu_outside_zone")}}
@@ -75,7 +76,8 @@ def run_case(key: str, sr: float, nodes: float, passes: float, level: str, deter
     options = deterministic_options("fast", dx_m=dx, max_passes=passes, layout_passes=max(passes, 40.0),
                                     mu_sem_target=0.03, wide="resolve")
     cpu = time.process_time()
-    result = solve_contact(case, lub, "fast", "isothermal", model="deterministic", deterministic=options)
+    result = solve_contact(case, lub, "fast", "isothermal", model="deterministic", deterministic=options,
+                           roughness=profile)
     extra = result.extra
     row["deterministic"] = {
         "mu": result.mu, "mu_sem": result.mu_sem, "mu_std": result.mu_std, "asperity_load_share": result.asperity_load_share,
@@ -115,6 +117,7 @@ def factorial_check() -> dict:
     import numpy as np
 
     lub = load_lubricant("atf")
+    profile = baseline_profile()
     root = Path(__file__).resolve().parents[1]
     points = []
     for name in ("random200", "corners"):
@@ -124,9 +127,10 @@ def factorial_check() -> dict:
             if not row.get("converged") or row.get("mu") is None or sr == 0 or rq1 + rq2 == 0:
                 continue
             case = ContactCase.from_engineering(p_h, r_eq, u_r, sr, temp_c, rq1, rq2)
-            problem = resolve_contact(case, lub, "fast", "isothermal", model="homogenised",
+            # the baseline profile the deterministic reference was computed on, not the package's default
+            problem = resolve_contact(case, lub, "fast", "isothermal", model="homogenised", roughness=profile,
                                       homogenised=HomogenisedOptions(closure="film_law"))
-            args = (problem.case, problem.state, problem.steady_level, problem.plan, None,
+            args = (problem.case, problem.state, problem.steady_level, problem.plan, profile,
                     problem.homogenised.boundary_film_m)
             steps = solve_film_law(*args, continuous_film=False)
             joined = solve_film_law(*args, continuous_film=True)

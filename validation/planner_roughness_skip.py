@@ -20,6 +20,7 @@ from _common import emit_json, machine_info  # noqa: E402
 
 from ehl_dataset.model.contact import ContactCase
 from ehl_dataset.model.lubricant import load_lubricant
+from ehl_dataset.model.roughness import baseline_profile
 from ehl_dataset.solver import SOLVER_VERSION, solve_contact
 from ehl_dataset.solvers.deterministic import MODEL_VERSION
 from ehl_dataset.solvers.planner import dimensionless_numbers, thresholds_for
@@ -36,7 +37,8 @@ def measure(level: str, lubricant) -> dict:
                              smooth_case.temperature, rq, rq)
     planned = solve_contact(rough_case, lubricant, level, "isothermal")
     start = time.perf_counter()
-    full = solve_contact(rough_case, lubricant, level, "full")
+    # the baseline profile, as the rough side of test_roughness_skip_agrees_with_full_model (not the default)
+    full = solve_contact(rough_case, lubricant, level, "full", roughness=baseline_profile())
     wall = time.perf_counter() - start
     return {"level": level, "lambda_bar_threshold": lam, "tolerance": thresholds_for(level).tolerance, "rq_m": rq,
             "planned_roughness": bool(planned.effects["roughness"]), "mu_planned": planned.mu, "mu_full": full.mu,

@@ -14,6 +14,7 @@ from __future__ import annotations
 import json
 import sys
 
+from ehl_dataset.dataset.roughness_choice import choice_from_record, resolve_choice
 from ehl_dataset.model.contact import ContactCase
 from ehl_dataset.solver import solve_contact
 from surrogate.dataset_io import load_dataset
@@ -31,6 +32,9 @@ def main(argv: list[str]) -> int:
     dataset = load_dataset(argv[0])
     table = dataset.table
     level = str(table["level"].iloc[0]) if "level" in table else "fast"
+    # the profile the dataset records (None: the default), not always the package's default: a dataset made
+    # before the flank default was computed on baseline_synthetic
+    roughness = resolve_choice(choice_from_record(dataset.roughness, where=argv[0]))
     print(describe(fit_surrogate(table, dataset.lubricant, dataset.e_reduced), "as computed"))
     isothermal = table.copy()
     replaced = 0
@@ -38,7 +42,8 @@ def main(argv: list[str]) -> int:
         plan = json.loads(effects) if isinstance(effects, (str, bytes)) else effects
         if plan.get("thermal"):
             case = ContactCase(*(float(table[c].iloc[i]) for c in COLUMNS))
-            isothermal.loc[isothermal.index[i], "mu"] = solve_contact(case, dataset.lubricant, level, "isothermal").mu
+            isothermal.loc[isothermal.index[i], "mu"] = solve_contact(case, dataset.lubricant, level, "isothermal",
+                                                                       roughness=roughness).mu
             replaced += 1
     print(f"{replaced} thermally corrected rows solved again isothermal at level {level}")
     print(describe(fit_surrogate(isothermal, dataset.lubricant, dataset.e_reduced), "isothermal"))

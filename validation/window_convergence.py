@@ -23,6 +23,7 @@ import numpy as np
 
 from ehl_dataset.model.contact import ContactCase
 from ehl_dataset.model.lubricant import load_lubricant
+from ehl_dataset.model.roughness import baseline_profile
 from ehl_dataset.solvers.deterministic import MODEL_VERSION
 from ehl_dataset.solvers.periodic_window import WindowOptions, solve_window
 from ehl_dataset.solvers.time_average import time_mean
@@ -52,8 +53,10 @@ def main(argv=None) -> int:
     finest = None
     for length in args.length:
         for spacing in args.spacings:
+            # the baseline profile of the resolved run the pressure and film come from, not the default
             result = solve_window(case, state, args.pressure_gpa * 1e9, args.film_nm * 1e-9,
-                                  WindowOptions(length_beta=length, points_per_beta=spacing))
+                                  WindowOptions(length_beta=length, points_per_beta=spacing),
+                                  roughness=baseline_profile())
             row = {"length_beta": length, "points_per_beta": spacing, "mu_local": result.mu_local,
                    "mu_local_sem": result.mu_local_sem, "asperity_share": result.asperity_share,
                    "content_film_m": result.content_film_m, "mean_film_m": result.mean_film_m,

@@ -1016,7 +1016,7 @@ def plan_surfaces(case, x_m, t_end_s: float, profile: RoughnessProfile | None = 
 
 def surface_pair(case, x_m, t_s, t_end_s: float, profile: RoughnessProfile | None = None):
     """(R1, R2) [m] = (R1(x − u1 t), R2(x − u2 t)) on the grid ``x_m`` at time(s) ``t_s`` of a run lasting
-    ``t_end_s`` [s], from independent stretches of ``profile`` (default: the shipped baseline) scaled to the
+    ``t_end_s`` [s], from independent stretches of ``profile`` (default: :func:`default_profile`) scaled to the
     case's Rq1 and Rq2. Equivalent to ``plan_surfaces(case, x_m, t_end_s, profile).at(t_s)``; use
     :func:`plan_surfaces` once per run when calling at many time steps.
     """

@@ -268,8 +268,14 @@ def asperity_closure(film_law: ContactResult, case: ContactCase, state: Lubrican
     p_fluid = np.maximum(p_bar - p_a, 0.0)
     open_fraction = 1.0 - table.contact_fraction(film)
     heights = composite_height_quantiles(profile, case.rq1, case.rq2)
-    pressure_std = pressure_spread(profile, case, state, extra["inlet_over_beta"], micro_pressure_coefficient,
-                                   fluctuations)[2]
+    spread = extra.get("micro_pressure", {})
+    same_spread = (extra.get("profile_sha256") == profile_hash(profile) and "std_pa" in spread
+                   and (spread.get("form") == fluctuations if micro_pressure_coefficient is None
+                        else spread.get("form") == "given" and spread.get("coefficient") == micro_pressure_coefficient))
+    # the film law's spread is this one when it was formed the same way on the same profile
+    pressure_std = (float(spread["std_pa"]) if same_spread else
+                    pressure_spread(profile, case, state, extra["inlet_over_beta"], micro_pressure_coefficient,
+                                    fluctuations)[2])
 
     def couette(p, h, weight):
         tau = fluctuation_averaged_shear_stress(state.viscosity, p, pressure_std, case.u_s, h, heights, state.tau0,

@@ -183,3 +183,23 @@ def test_any_registered_profile_runs_through_the_closure(lub):
     assert base.converged and flank.converged
     assert flank.extra["asperity"]["surviving_fraction_1"] > base.extra["asperity"]["surviving_fraction_1"]
     assert base.asperity_load_share < flank.asperity_load_share < 1.0
+
+
+def test_closure_reuses_the_film_laws_spread_and_isothermal_traction_only_where_they_are_the_same(lub):
+    """The closure takes σ_p and the isothermal zone traction from its film-law result when they were formed the same
+    way on the same profile: with those records removed (so both are recomputed) the closure gives the same μ and
+    share to rounding, on a thermal contact where asperities carry load; asked for another spread form it does not
+    take the film law's σ_p."""
+    case = ContactCase.from_engineering(0.8, 5.0, 3.0, 1.0, 90.0, 0.5, 0.5)
+    state = lub.state(case.temperature)
+    fl = solve_contact(case, lub, "fast", "auto", model="homogenised",
+                       homogenised=HomogenisedOptions(closure="film_law"))
+    assert "thermal" in fl.extra and fl.extra["micro_pressure"]["form"] == "spectral"
+    reused = am.asperity_closure(fl, case, state, None, BOUNDARY_FILM_M)
+    assert reused.asperity_load_share > 0.1
+    bare = replace(fl, extra={k: v for k, v in fl.extra.items() if k != "profile_sha256"})
+    recomputed = am.asperity_closure(bare, case, state, None, BOUNDARY_FILM_M)
+    assert reused.mu == pytest.approx(recomputed.mu, rel=1e-13)
+    assert reused.asperity_load_share == pytest.approx(recomputed.asperity_load_share, rel=1e-13)
+    other = am.asperity_closure(fl, case, state, None, BOUNDARY_FILM_M, fluctuations="inlet")
+    assert other.mu != pytest.approx(reused.mu, rel=1e-6)
