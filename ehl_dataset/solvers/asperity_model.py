@@ -75,6 +75,7 @@ from ..validation import check_range
 from .film_law_model import (composite_height_quantiles, fluctuation_averaged_shear_stress, pressure_spread,
                              solve_film_law)
 from .levels import AccuracyLevel
+from .planner import CLOSURE_MEASURED_LAMBDA
 from .result import ContactResult
 
 ASPERITY_MODEL_VERSION = "asperity-2026.11-2"
@@ -314,6 +315,9 @@ def asperity_closure(film_law: ContactResult, case: ContactCase, state: Lubrican
     mu = float(sum(parts.values()))
     converged = bool(np.isfinite(mu)) and residual < 1e-6
     message = film_law.message if converged else f"not converged: load balance residual {residual:.3g}"
+    if converged and not film_law.lambda_bar >= CLOSURE_MEASURED_LAMBDA:
+        message += (f"; lambda_bar {film_law.lambda_bar:.3g} below the asperity closure's measured range "
+                    f"(lambda_bar >= {CLOSURE_MEASURED_LAMBDA:g}; docs/explanation/roughness.md)")
     record.update(share_residual=residual, fluid_film_ratio=float(film[0] / film0[0]),
                   contact_fraction_max=float(np.max(1.0 - open_fraction)), fluid_couette_ratio=ratio)
     extra.update(parts, closure="asperity", asperity=record)

@@ -62,6 +62,16 @@ from ..validation import InputError
 from .levels import PlannerThresholds, level_settings
 
 
+CLOSURE_MEASURED_LAMBDA = 0.3
+"""λ̄ from which the asperity-load closure, the planner's model for rough contacts, is within its measured errors
+[-]. On the deterministic references it is within 6.5 % on the baseline profile's 12 validation cases (λ̄ 0.05–3.7,
+where its constants were fitted), within 13 % on the baseline's roughness sweep at case A's conditions down to
+λ̄ 0.33, and −17 % to +22 % on the flank-like reference's contact-carrying points at λ̄ 0.30–0.32 (their uncertainty
+8–29 %); below λ̄ 0.3 the measured errors reach +49 % and +117 % on that sweep (λ̄ 0.2 and 0.12) and +42 % and +45 %
+on the flank-like reference (λ̄ 0.064 and 0.10) (docs/explanation/roughness.md,
+validation/results/flank_reference_closures.json)."""
+
+
 def thresholds_for(level) -> PlannerThresholds:
     """The planner's thresholds at one accuracy level.
 
@@ -173,7 +183,8 @@ def plan_effects(case, lubricant, level="standard", correlation_length_m: float 
     with its pressure-fluctuation closure is within its measured range) and ``limit``, the limit that decided
     (``lambda_bar``, ``eyring_number``, ``closure_range``, ``below_closure_lambda`` or ``above_closure_roughness``:
     :func:`narrow_film_law_range`), and for one narrower than ``a_over_beta_homogenised`` the same under
-    ``narrow_contact``; for every rough contact sent to the homogenised model ``closure`` is ``"asperity"``.
+    ``narrow_contact``; for every rough contact sent to the homogenised model ``closure`` is ``"asperity"`` and
+    ``closure_range`` says whether λ̄ is within the closure's measured range (:data:`CLOSURE_MEASURED_LAMBDA`).
 
     Parameters
     ----------
@@ -291,6 +302,12 @@ def plan_effects(case, lubricant, level="standard", correlation_length_m: float 
         reasons["narrow_contact"] = {"within_measured_range": bool(narrow_valid), "limit": narrow_limit}
     if homogenised:
         reasons["closure"] = "asperity"
+        reasons["closure_range"] = {"within_measured_range": bool(lam >= CLOSURE_MEASURED_LAMBDA),
+                                    "limit": "lambda_bar", "lambda_bar_from": CLOSURE_MEASURED_LAMBDA}
+        if not lam >= CLOSURE_MEASURED_LAMBDA:
+            decisions["model"] += (f"; lambda_bar={lam:.3g} < {CLOSURE_MEASURED_LAMBDA:g}: outside the asperity-load "
+                                   "closure's measured range (errors up to +117 % measured there against the "
+                                   "deterministic references: docs/explanation/roughness.md)")
     return Effects(roughness=rough, transient=rough and not homogenised, shear_thinning=not newtonian,
                    compressibility=True,
                    mode="auto", reasons=reasons, thermal=thermal)

@@ -3,6 +3,7 @@
 import dataclasses
 import json
 import math
+from pathlib import Path
 
 
 import pytest
@@ -16,8 +17,8 @@ from ehl_dataset.solver import solve_contact as solve
 from ehl_dataset.solvers.homogenised import HomogenisedOptions
 from ehl_dataset.names import ROUGH_MODELS
 from ehl_dataset.solvers.levels import REGISTRY, PlannerThresholds
-from ehl_dataset.solvers.planner import (dimensionless_numbers, plan_effects, planned_closure, resolve_effects,
-                                          thresholds_for)
+from ehl_dataset.solvers.planner import (CLOSURE_MEASURED_LAMBDA, dimensionless_numbers, plan_effects,
+                                          planned_closure, resolve_effects, thresholds_for)
 from ehl_dataset.validation import InputError
 
 ATF = load_lubricant("atf")
@@ -443,3 +444,31 @@ def test_one_level_registry_keyed_by_the_level_names_and_no_fallback():
                  lambda: plan_effects(case(), ATF, renamed)):
         with pytest.raises(InputError, match="invalid level='custom'"):
             call()
+
+
+def test_the_closure_range_flags_contacts_below_the_lambda_where_its_errors_were_measured_large():
+    """CLOSURE_MEASURED_LAMBDA against the committed comparison of the shipped closure with the deterministic
+    references (validation/results/flank_reference_closures.json, `python validation/flank_reference/closure_check.py`):
+    every reference point at or above it is within 25 % (the flank-like points carrying asperity load there: −17 %,
+    −14 %, +22 %), and below it the two flank-like points at λ̄ 0.064 and 0.10 are more than 40 % above the reference. A rough
+    contact on either side is recorded as within / outside, and below it the model sentence and the result's message
+    say so."""
+    data = json.loads((Path(__file__).resolve().parents[2] / "validation" / "results"
+                       / "flank_reference_closures.json").read_text())
+    mu = data["variants"]["asperity_spectral_shipped_constants"]["mu"]
+    errors = [(row["case"], row["lambda_bar"], mu[i] / row["mu"] - 1.0) for i, row in enumerate(data["cases"])]
+    assert all(abs(err) <= 0.25 for _, lam, err in errors if lam >= CLOSURE_MEASURED_LAMBDA), errors
+    low_flank = [err for name, lam, err in errors if name.startswith("flank") and lam <= 0.11]
+    assert len(low_flank) == 2 and min(low_flank) > 0.40, errors
+    lub = load_lubricant("atf")
+    above = ContactCase.from_engineering(0.5, 5.0, 5.0, 0.3, 90.0, 0.3, 0.3)
+    below = ContactCase.from_engineering(0.5, 5.0, 2.0, 0.3, 90.0, 0.5, 0.5)
+    for contact, within in ((above, True), (below, False)):
+        plan = plan_effects(contact, lub, "fast")
+        assert plan.reasons["closure"] == "asperity"
+        assert (plan.reasons["numbers"]["lambda_bar"] >= CLOSURE_MEASURED_LAMBDA) is within
+        assert plan.reasons["closure_range"]["within_measured_range"] is within
+        sentence = plan.reasons["decisions"]["model"]
+        assert ("outside the asperity-load closure's measured range" in sentence) is not within
+        result = solve(contact, lub, "fast", "isothermal")
+        assert result.converged and ("below the asperity closure's measured range" in result.message) is not within
