@@ -218,7 +218,8 @@ def draw_figure(report, path) -> None:
                 continue
             marker, color = styles[row["group"]]
             ax.loglog(row["wall_time_s"], max(abs(err), 1e-5) * 100, marker, color=color)
-            ax.annotate(row["label"].replace("ehl-grid:", "grid ").replace("ehl:", "per point "),
+            label = row["label"].replace("ehl-grid:", "grid ").replace("ehl:", "per point ")
+            ax.annotate(label.replace("surrogate ", "").replace(".json", ""),
                         (row["wall_time_s"], max(abs(err), 1e-5) * 100), fontsize=7,
                         xytext=(4, -10) if row["group"] == "smooth EHL per point" else (4, 2),
                         textcoords="offset points")
@@ -235,7 +236,7 @@ def draw_figure(report, path) -> None:
         ax.set_ylabel("|P / P_ref − 1| [%]")
         ax.set_title(f"{case['case']}: P_ref = {ref['power_loss_w']:.0f} W" if ref else case["case"], fontsize=9)
         ax.grid(True, which="both", lw=0.3)
-        ax.legend(fontsize=7, loc="center right")
+        ax.legend(fontsize=7, loc="lower left")
     fig.tight_layout()
     fig.savefig(path, dpi=130)
     plt.close(fig)
