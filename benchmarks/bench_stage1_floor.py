@@ -203,6 +203,7 @@ def default_model(rows: np.ndarray, lub) -> dict:
     return {"effects": "isothermal", "smooth_wall_s": stats(smooth_walls), "default_wall_s": stats(default_walls),
             "smooth_cpu_s": stats(smooth_cpus), "default_cpu_s": stats(default_cpus),
             "cpu_ratio_default_over_smooth": stats(ratios),
+            "contacts_above_3x": int(sum(r > 3.0 for r in ratios)),
             "ratio_of_median_cpu": statistics.median(default_cpus) / statistics.median(smooth_cpus),
             "models": {m: models.count(m) for m in sorted(set(models))}, "converged": converged}
 
