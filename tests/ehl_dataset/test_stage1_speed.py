@@ -109,3 +109,24 @@ def test_neighbour_warm_start_converges_to_the_cold_solution():
         for key in ("mu", "h_min", "h_central", "p_max"):
             assert getattr(w, key) == pytest.approx(getattr(c, key), rel=10 * lvl.tol_step), key
     assert sum(w.iterations for w in warm[1:]) < sum(c.iterations for c in cold[1:])
+
+
+def test_a_light_load_continuation_takes_a_grid_with_enough_nodes(monkeypatch):
+    """75W90 at 0.5 GPa, 10 mm, 20 m/s, SR 0.7, 50 °C (λ̄ 3.7: a six-stage load continuation) at `fast`: the grid
+    COARSENING times coarser than the level's has 37 nodes, on which that continuation stalls (and the level's grid
+    from scratch does not converge either); the solve takes the FALLBACK_COARSENING grid instead and converges to the
+    solution it gives when that is the only continuation grid, and within 0.1 % of μ at `standard`."""
+    lub = load_lubricant("gear_oil_75w90")
+    case = ContactCase(5e8, 0.01, 20.0, 0.7, 323.15, 0.0, 0.0)
+    assert steady.steady_grid(get_level("fast"), steady.COARSENING,
+                              h_c=10.0).size < steady.COARSE_MIN_NODES  # h_c large: the level's own spacing
+    steady._STEADY_CACHE.clear()
+    result = solve_contact(case, lub, "fast", "auto", model="smooth")
+    route = result.extra["continuation"]
+    assert result.converged and route["coarse"]["nodes"] >= steady.COARSE_MIN_NODES and "fine_from_scratch" not in route
+    steady._STEADY_CACHE.clear()
+    monkeypatch.setattr(steady, "COARSENING", steady.FALLBACK_COARSENING)
+    alone = solve_contact(case, lub, "fast", "auto", model="smooth")
+    assert result.mu == alone.mu
+    steady._STEADY_CACHE.clear()
+    assert result.mu == pytest.approx(solve_contact(case, lub, "standard", "auto", model="smooth").mu, rel=1e-3)
