@@ -33,6 +33,7 @@ import numpy as np
 from ehl_dataset.model.contact import ContactCase
 from ehl_dataset.model.effects import Effects
 from ehl_dataset.model.lubricant import load_lubricant
+from ehl_dataset.model.roughness import DEFAULT_PROFILE, PROFILES, named_profile
 from ehl_dataset.solver import SOLVER_VERSION, solve_contact
 from ehl_dataset.solvers.homogenised import HomogenisedOptions
 
@@ -62,6 +63,25 @@ def random_cases(n: int, seed: int):
              float(rng.choice(TEMP)), *RQ[int(rng.integers(len(RQ)))]) for _ in range(n)]
 
 
+FLANK_DEFAULT_SINCE = "ehl-2026.11-17"
+"""EHL solver version from which the package's default roughness is ``flank_ground`` (``baseline_synthetic`` before)."""
+
+
+def row_roughness(row: dict) -> str:
+    """The roughness profile a result row was solved on: its ``roughness`` entry; for a row without one, the default
+    of its solver version (``baseline_synthetic`` before :data:`FLANK_DEFAULT_SINCE` and for rows from before the
+    version was recorded per row), else "not recorded"."""
+    if "roughness" in row:
+        return str(row["roughness"])
+    if row.get("solver_version") is None:
+        return "baseline_synthetic"
+    version = re.fullmatch(r"ehl-(\d+)\.(\d+)-(\d+)", str(row["solver_version"]))
+    since = re.fullmatch(r"ehl-(\d+)\.(\d+)-(\d+)", FLANK_DEFAULT_SINCE)
+    if version and tuple(map(int, version.groups())) < tuple(map(int, since.groups())):
+        return "baseline_synthetic"
+    return "not recorded"
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--level", default="fast")
@@ -86,6 +106,10 @@ def main(argv=None) -> int:
     parser.add_argument("--effects", default="full", choices=("full", "isothermal", "auto"),
                         help="effect plan of every solve (default full; isothermal: the film-law closure without its "
                              "thermal correction, like the deterministic solver, which has none)")
+    parser.add_argument("--roughness", default=DEFAULT_PROFILE, choices=sorted(PROFILES),
+                        help="shipped roughness profile of both surfaces (default: the package's default, "
+                             f"{DEFAULT_PROFILE}); recorded in every row, and --resume refuses a file whose rows were "
+                             "solved on another")
     parser.add_argument("--resume", action="store_true",
                         help="keep the rows of the output file that exists, run only the cases it lacks, and rewrite "
                              "the report after every case (a long run that is stopped loses at most one case)")
@@ -110,6 +134,12 @@ def main(argv=None) -> int:
         suffix += f"_shard{index}of{count}"
     out = Path(args.out or RESULTS_DIR / f"ehl_mixed_{args.sample}_{args.level}{suffix}.json")
     rows = json.loads(out.read_text())["rows"] if args.resume and out.exists() else []
+    other = sorted({row_roughness(r) for r in rows} - {args.roughness})
+    if other:
+        print(f"--resume: {out} holds rows solved on roughness {', '.join(other)}, not {args.roughness}; resume with "
+              "that --roughness or write another --out", file=sys.stderr)
+        return 2
+    profile = named_profile(args.roughness)
     done = {tuple(r["case"]) for r in rows}
     for case_args in cases:
         if tuple(case_args) in done:
@@ -118,7 +148,7 @@ def main(argv=None) -> int:
         start, cpu_start = time.perf_counter(), time.process_time()
         try:
             res = solve_contact(case, lub, args.level, effects, time_limit_s=args.time_limit_s,
-                                model=args.model, homogenised=homogenised)
+                                model=args.model, homogenised=homogenised, roughness=profile)
             row = {"case": case_args, "converged": res.converged, "mu": res.mu, "mu_std": res.mu_std,
                    "finite": bool(np.isfinite([res.mu, res.h_min, res.h_central]).all()), "h_min_m": res.h_min,
                    "h_central_m": res.h_central,
@@ -141,6 +171,7 @@ def main(argv=None) -> int:
         except Exception as err:  # recorded, the sweep goes on
             row = {"case": case_args, "converged": False, "error": f"{type(err).__name__}: {err}"}
         row["solver_version"] = SOLVER_VERSION  # per row: a resumed file may span versions
+        row["roughness"] = args.roughness
         row["wall_time_s"] = time.perf_counter() - start
         row["cpu_time_s"] = time.process_time() - cpu_start  # one BLAS thread: unaffected by other processes
         rows.append(row)

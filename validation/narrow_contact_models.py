@@ -8,14 +8,16 @@ The runs it reads (all at ``fast``, ATF, 600 s limit per case, random points of 
 deterministic run is resumed as time allows, the transient run has the first 54 random points):
 
     python benchmarks/bench_ehl_mixed.py --model deterministic --sample random --n 200 --seed 1 --level fast \\
-        --time-limit-s 600 --resume --out benchmarks/results/ehl_mixed_random200_fast_deterministic.json
+        --roughness baseline_synthetic --time-limit-s 600 --resume \\
+        --out benchmarks/results/ehl_mixed_random200_fast_deterministic.json
     python benchmarks/bench_ehl_mixed.py --model auto --sample random --n 54 --seed 1 --level fast \\
-        --time-limit-s 600 --out benchmarks/results/ehl_mixed_random54_fast_transient.json
+        --roughness baseline_synthetic --time-limit-s 600 \\
+        --out benchmarks/results/ehl_mixed_random54_fast_transient.json
     python benchmarks/bench_ehl_mixed.py --model homogenised --closure film_law --effects isothermal \\
-        --sample random --n 200 --seed 1 --level fast \\
+        --sample random --n 200 --seed 1 --level fast --roughness baseline_synthetic \\
         --out benchmarks/results/ehl_mixed_random200_fast_homogenised_film_law_isothermal.json
     python benchmarks/bench_ehl_mixed.py --model smooth --sample random --n 200 --seed 1 --level fast \\
-        --out benchmarks/results/ehl_mixed_random200_fast_smooth.json
+        --roughness baseline_synthetic --out benchmarks/results/ehl_mixed_random200_fast_smooth.json
     (the same with --sample corners: ehl_mixed_corners_fast_deterministic.json, ehl_mixed_corners_fast.json (the
     transient solver, effects=full), ehl_mixed_corners_fast_homogenised_film_law_isothermal.json,
     ehl_mixed_corners_fast_smooth.json)
