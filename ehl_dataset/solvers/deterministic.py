@@ -56,6 +56,11 @@ from .result import ContactResult
 from .steady import ContactScales, dowson_higginson_lambda, moes_h_c, solve_steady
 from .time_average import time_mean
 
+START_COARSENING = 3.0
+"""Ratio of the continuation grid of the steady smooth solve that starts every run
+(:func:`~ehl_dataset.solvers.steady.solve_steady`'s ``coarsening``): the one of det-2026.11-21's results and saved
+states, whose fingerprints hash the converged start bit for bit."""
+
 MODEL_VERSION = "det-2026.11-21"
 """Version of the deterministic model's numerics, recorded with its results; bump with any change that can alter a
 solved value (what each version changed is listed in CHANGELOG.md, "Solver versions").
@@ -715,7 +720,9 @@ def solve_deterministic(case: ContactCase, state: LubricantState, plan: Effects,
                            plan.compressibility, options.face_mean, options.band, options.couette_flux,
                            film_floor=options.film_floor)
     smooth_plan = Effects(False, False, plan.shear_thinning, plan.compressibility, plan.mode, {})
-    smooth = solve_steady(case, state, get_level("standard"), smooth_plan)
+    # the start's continuation grid is the one the run fingerprints (:func:`_fingerprint`, which hashes the converged
+    # start) were made with, so that saved states stay valid
+    smooth = solve_steady(case, state, get_level("standard"), smooth_plan, coarsening=START_COARSENING)
     if not smooth.converged:
         return _failed(case, state, plan, level_name, start, clock, f"smooth start: {smooth.message}", {})
     p0 = np.interp(x * a, smooth.x, smooth.pressure) / case.p_h

@@ -259,7 +259,8 @@ def moes_h_c(case: ContactCase, state: LubricantState, scales: ContactScales) ->
                                    case.load_per_length)) / scales.film_scale
 
 
-def solve_steady(case: ContactCase, state: LubricantState, lvl: AccuracyLevel, plan: Effects) -> ContactResult:
+def solve_steady(case: ContactCase, state: LubricantState, lvl: AccuracyLevel, plan: Effects,
+                 coarsening: float | None = None) -> ContactResult:
     """Steady, isothermal, smooth line contact (paper Eq. 1, 3–6 without the time term and roughness); with
     ``plan.thermal`` the Couette traction of the isothermal film is corrected for shear heating and the flash
     temperature (:mod:`ehl_dataset.model.thermal`; pressure and film stay isothermal), the isothermal μ kept in
@@ -268,10 +269,13 @@ def solve_steady(case: ContactCase, state: LubricantState, lvl: AccuracyLevel, p
     Two grids: the continuation (which may take tens of Newton iterations) runs on a grid
     :data:`COARSENING` times coarser, and its interpolated solution starts the Newton iteration on the level's
     grid, which then needs only a few iterations. If the coarse stage fails, the fine grid is solved from scratch.
+    ``coarsening`` replaces :data:`COARSENING` (the converged solution then differs within the Newton tolerances, so
+    a caller that must reproduce earlier bits passes the ratio they were made with).
     """
     start = time.perf_counter()
+    coarsening = COARSENING if coarsening is None else float(coarsening)
     scales = ContactScales.of(case, state, plan.shear_thinning)
-    key = _cache_key(case, state, lvl, plan)
+    key = _cache_key(case, state, lvl, plan) + (coarsening,)
     with _STEADY_CACHE_LOCK:
         cached = _STEADY_CACHE.get(key)
         if cached is not None:
@@ -299,10 +303,10 @@ def solve_steady(case: ContactCase, state: LubricantState, lvl: AccuracyLevel, p
         if not outcome.converged:
             outcome = None
     coarse_problems = []
-    grids = [steady_grid(lvl, COARSENING, h_c=h_c)]
+    grids = [steady_grid(lvl, coarsening, h_c=h_c)]
     if grids[0].size < COARSE_MIN_NODES:
         grids = []  # too coarse for the continuation
-    if FALLBACK_COARSENING != COARSENING:
+    if FALLBACK_COARSENING != coarsening:
         grids.append(steady_grid(lvl, FALLBACK_COARSENING, h_c=h_c))
     for attempt, x_coarse in enumerate(grids):
         if (outcome is not None and outcome.converged) or not x_coarse.size < 0.6 * x.size:
