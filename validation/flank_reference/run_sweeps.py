@@ -99,6 +99,12 @@ ESTIMATE_S = 60.0
 """Wall time [s] of the short coarse run that measures a point's cost."""
 
 
+def portable(text: str) -> str:
+    """``text`` with this checkout's absolute path replaced by paths relative to the repository (results are
+    committed and read on other machines)."""
+    return text.replace(str(ROOT.parent) + "/", "")
+
+
 def point_name(point: dict) -> str:
     p, r, u, sr, t = point["conditions"]
     return f"{point['sweep']}_p{p:g}_r{r:g}_u{u:g}_sr{sr:g}_T{t:g}_rq{point['rq_um']:g}"
@@ -154,7 +160,8 @@ def segment(point: dict, n: int, result, wall_s: float, case) -> dict:
         "asperity_load_share_sem": e.get("asperity_load_share_sem"), "lambda_bar": result.lambda_bar,
         "h_central_m": result.h_central, "h_min_m": result.h_min, "smooth_mu": e.get("smooth_mu"),
         "smooth_h_min_m": e.get("smooth_h_min_m"), "residuals": result.residuals,
-        "converged": bool(result.converged), "message": result.message, "time_limited": e.get("time_limited"),
+        "converged": bool(result.converged), "message": portable(result.message),
+        "time_limited": e.get("time_limited"),
         "wall_time_s": wall_s, "model_version": e.get("model_version", MODEL_VERSION),
         "roughness_name": e.get("roughness_name"), "roughness_sha256": e.get("roughness_sha256"),
         "continued_from": e.get("continued_from"),
@@ -271,7 +278,7 @@ def run(record: dict, spacings=SPACINGS, only: str | None = None, all_spacings: 
             result = solve_deterministic(case, state, Effects.full(), options, roughness=profile,
                                          checkpoint=checkpoint)
         except Exception as error:  # one run's error must not stop the queue; its record says why
-            message = f"{type(error).__name__}: {error}"
+            message = portable(f"{type(error).__name__}: {error}")
             (RESULTS / f"{name}.error.json").write_text(json.dumps(
                 {"run": name, "error": message, "model_version": MODEL_VERSION,
                  "wall_time_s": time.perf_counter() - start}, indent=1))
