@@ -270,9 +270,10 @@ def asperity_closure(film_law: ContactResult, case: ContactCase, state: Lubrican
     open_fraction = 1.0 - table.contact_fraction(film)
     heights = composite_height_quantiles(profile, case.rq1, case.rq2)
     spread = extra.get("micro_pressure", {})
-    same_spread = (extra.get("profile_sha256") == profile_hash(profile) and "std_pa" in spread
-                   and (spread.get("form") == fluctuations if micro_pressure_coefficient is None
-                        else spread.get("form") == "given" and spread.get("coefficient") == micro_pressure_coefficient))
+    same_profile = extra.get("profile_sha256") == profile_hash(profile)
+    same_form = (spread.get("form") == fluctuations if micro_pressure_coefficient is None
+                 else spread.get("form") == "given" and spread.get("coefficient") == micro_pressure_coefficient)
+    same_spread = same_profile and "std_pa" in spread and same_form
     # the film law's spread is this one when it was formed the same way on the same profile
     pressure_std = (float(spread["std_pa"]) if same_spread else
                     pressure_spread(profile, case, state, extra["inlet_over_beta"], micro_pressure_coefficient,
@@ -297,9 +298,8 @@ def asperity_closure(film_law: ContactResult, case: ContactCase, state: Lubrican
             # the film law's isothermal zone integral is this average when it was taken with the same spread, floor
             # and profile
             dry = extra["thermal"].get("zone_couette_isothermal_n_per_m")
-            same_average = (dry is not None and extra.get("boundary_film_m") == boundary_film_m
-                            and extra.get("micro_pressure", {}).get("std_pa") == pressure_std
-                            and extra.get("profile_sha256") == profile_hash(profile))
+            same_average = (dry is not None and same_profile and extra.get("boundary_film_m") == boundary_film_m
+                            and spread.get("std_pa") == pressure_std)
             if not same_average:
                 dry = couette(p_bar, film0, 1.0)
             ratio = wet / dry if dry != 0.0 else 1.0
