@@ -2,7 +2,13 @@
 
 from __future__ import annotations
 
+from functools import lru_cache
+
 import numpy as np
+
+GRID_CACHE_SIZE = 256
+"""Clustered grids kept per process (:func:`clustered_grid`; a steady solve asks for two or three, each built from a
+quadrature on some 16,000 points, ~0.35 ms)."""
 
 
 def clustered_grid(x_start: float, x_end: float, dx_fine: float, dx_coarse: float,
@@ -12,9 +18,18 @@ def clustered_grid(x_start: float, x_end: float, dx_fine: float, dx_coarse: floa
     The local spacing is s(X) = dx_fine + (dx_coarse − dx_fine)·min(1, d(X)/transition) with d the distance to the
     nearest band. Nodes are equidistributed in the stretched coordinate ξ(X) = ∫ dX/s, so neighbouring spacings
     differ smoothly (ratio → 1 as the grid is refined), which keeps the finite-volume scheme second order.
+    The grids of the last :data:`GRID_CACHE_SIZE` argument sets are kept; each call returns a fresh copy.
     """
     if not (x_end > x_start and dx_coarse >= dx_fine > 0.0):
         raise ValueError("need x_end > x_start and dx_coarse >= dx_fine > 0")
+    bands = tuple((float(lo), float(hi)) for lo, hi in bands)
+    return _clustered_grid(float(x_start), float(x_end), float(dx_fine), float(dx_coarse), bands,
+                           float(transition)).copy()
+
+
+@lru_cache(maxsize=GRID_CACHE_SIZE)
+def _clustered_grid(x_start: float, x_end: float, dx_fine: float, dx_coarse: float,
+                    bands: tuple[tuple[float, float], ...], transition: float) -> np.ndarray:
     fine_grid = np.linspace(x_start, x_end, int(np.ceil((x_end - x_start) / (0.1 * dx_fine))) + 1)
     dist = np.full_like(fine_grid, np.inf)
     for lo, hi in bands:
@@ -27,6 +42,7 @@ def clustered_grid(x_start: float, x_end: float, dx_fine: float, dx_coarse: floa
     targets = np.linspace(0.0, xi[-1], n_cells + 1)
     nodes = np.interp(targets, xi, fine_grid)
     nodes[0], nodes[-1] = x_start, x_end
+    nodes.flags.writeable = False
     return nodes
 
 

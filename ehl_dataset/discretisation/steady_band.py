@@ -139,21 +139,26 @@ def newton_band(lb, eb, binv, kb, kl):
     ku = kl
     band = np.zeros((2 * kl + ku + 1, m))
     col_h0 = np.zeros(m)
+    row = np.zeros(2 * kl + 1)  # row r of the band, columns r − kl … r + kl, summed before it is stored
     for r in range(m):
-        diagonal = kl + ku + r
+        row[:] = 0.0
+        offset = kl - r
         for o in range(BAND):
             q = r + o - 2  # L: interior column q, times row q of B
             a = lb[r, o]
             if a != 0.0 and 0 <= q < m:
                 for c in range(max(0, q - width, r - kl), min(m, q + width + 1, r + kl + 1)):
-                    band[diagonal - c, c] += a * binv[q, c - q + width]
+                    row[c + offset] += a * binv[q, c - q + width]
             j = r + o - 1  # E: node j, times row j of K_I B
             e = eb[r, o]
             if e != 0.0 and 0 <= j < n:
                 col_h0[r] += e
                 shift = half + 1 - j
                 for c in range(max(0, r - kl, j - 1 - half), min(m, r + kl + 1, j + half)):
-                    band[diagonal - c, c] += e * kb[j, c + shift]
+                    row[c + offset] += e * kb[j, c + shift]
+        diagonal = kl + ku + r
+        for c in range(max(0, r - kl), min(m, r + kl + 1)):
+            band[diagonal - c, c] = row[c + offset]
     return band, col_h0
 
 

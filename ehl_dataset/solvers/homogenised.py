@@ -42,6 +42,7 @@ from ..validation import InputError, check_range
 from .asperity_model import solve_asperity
 from .film_law_model import solve_film_law
 from .levels import AccuracyLevel
+from .krylov import WIDE_BAND, WIDE_INVERSE_WIDTH
 from .newton import ReynoldsProblem, newton_solve
 from .result import ContactResult
 from .steady import ContactScales, dowson_higginson_lambda, solve_steady, solve_steady_problem
@@ -109,6 +110,12 @@ class HomogenisedProblem(ReynoldsProblem):
     """The steady averaged-Reynolds problem (module docstring) in the interface of
     :class:`~ehl_dataset.solvers.newton.ReynoldsProblem`: the unknown ``p`` is the total pressure P [p_h], the film
     ``h`` the mean gap d [a²/r_eq]; ``cavitation_offset`` makes Newton's cavitation condition act on P − p_a(d)."""
+
+    # exact linear solves (with the wide preconditioner band they need): near film collapse this Newton iteration is
+    # sensitive to its iterates; with the forcing term 1 GPa, 5 mm, 0.05 m/s, SR 0.5, 100 °C, Rq 0.5/0.5 µm with the
+    # isotropic closure at `fast` stalled
+    inexact_newton = False
+    preconditioner_widths = (WIDE_INVERSE_WIDTH, WIDE_BAND)
 
     def __init__(self, *args, table=None, film_scale: float = 1.0, sr: float = 0.0, closure: str = "transverse",
                  h_b_m: float = BOUNDARY_FILM_M, transport="variance", flow_floor_m: float | None = None, **kwargs):

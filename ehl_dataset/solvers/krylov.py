@@ -28,11 +28,23 @@ from ..discretisation.mixed_system import preconditioner_band
 from ..discretisation.steady_band import (apply_inverse_band, band_lu_solve, band_matvec, deflection_band,
                                           inverse_band, newton_band)
 
-STEADY_INVERSE_WIDTH = 16
+STEADY_INVERSE_WIDTH = 6
 """Half width w of the banded inverse kernel B ≈ K⁻¹ of :class:`SteadyBandedPreconditioner` [nodes]."""
-STEADY_BAND = 32
-"""Half width of the band of S B that :class:`SteadyBandedPreconditioner` factorises [nodes] (about 2w: the film part
-E K B reaches beyond the band of B)."""
+STEADY_BAND = 16
+"""Half width of the band of S B that :class:`SteadyBandedPreconditioner` factorises [nodes] (more than w + 2: the
+film part E K B reaches beyond the band of B). With the inexact Newton iteration's forcing term
+(:data:`~ehl_dataset.solvers.newton.FORCING_CAP`), on 60 random paper-factorial contacts at ``standard`` (median CPU
+of a steady smooth solve, GMRES iterations a contact): w = 16, half width 32: 24.3 ms, 36; 8, 20: 21.0 ms, 46; 8, 16:
+20.0 ms, 52; 6, 16: 18.8 ms, 52; 6, 12: 19.6 ms, 61 (a cheaper band LU against more GMRES iterations); μ within
+2e-11. Solved to 1e-10 instead of the forcing term, the narrow bands need more GMRES iterations than the dense
+fallback allows."""
+WIDE_INVERSE_WIDTH = 16
+"""Half width w of B for problems that solve every Newton system to
+:data:`~ehl_dataset.solvers.newton.KRYLOV_TOLERANCE` (the homogenised model's averaged-Reynolds problem) [nodes]."""
+WIDE_BAND = 32
+"""Half width of the factorised band of S B for those problems [nodes]: to the tight tolerance the narrow band of
+:data:`STEADY_BAND` needs more GMRES iterations than it saves (steady smooth solves to 1e-10 with half widths 8 and
+16: median 56 ms against 32 ms with these on 60 random paper-factorial contacts)."""
 STEADY_SYMBOL_POINTS = 1024
 """Angles at which the discrete symbol is sampled for the unit-spacing coefficients of B
 (:func:`~ehl_dataset.discretisation.deflection.inverse_kernel_band`): once per process, ~10 ms (the default 2¹⁴ took
@@ -146,21 +158,29 @@ class SteadyGridBand:
         Control-volume widths w_i of the N nodes [a].
     load_row : numpy.ndarray
         Derivative of the relative load error with respect to the interior pressures, M = N − 2 entries [-].
+    width : int or None
+        Half width w of B [nodes]; None takes :data:`STEADY_INVERSE_WIDTH`.
+    band : int or None
+        Half width of the band of S B the preconditioner factorises [nodes]; None takes :data:`STEADY_BAND`.
     """
 
-    def __init__(self, kmat: np.ndarray, weights: np.ndarray, load_row: np.ndarray):
-        width = STEADY_INVERSE_WIDTH
+    def __init__(self, kmat: np.ndarray, weights: np.ndarray, load_row: np.ndarray, width: int | None = None,
+                 band: int | None = None):
+        width = STEADY_INVERSE_WIDTH if width is None else int(width)
+        self.band = STEADY_BAND if band is None else int(band)
         coefficients = _UNIT_COEFFICIENTS.get(width)
         if coefficients is None:
             coefficients = _UNIT_COEFFICIENTS.setdefault(width, inverse_kernel_band(width, 1.0, STEADY_SYMBOL_POINTS))
         self.kmat = kmat
         self.binv = inverse_band(np.ascontiguousarray(weights, dtype=float), coefficients)
-        self.kb = deflection_band(np.ascontiguousarray(kmat), self.binv, STEADY_BAND + 2)
+        self.kb = deflection_band(np.ascontiguousarray(kmat), self.binv, self.band + 2)
         self.load = _transpose_band_product(self.binv, np.asarray(load_row, dtype=float))
 
     @classmethod
-    def of(cls, kmat: np.ndarray, weights: np.ndarray, load_row: np.ndarray) -> "SteadyGridBand":
-        """The kept data of the deflection matrix ``kmat`` (the same object), computed on the first request.
+    def of(cls, kmat: np.ndarray, weights: np.ndarray, load_row: np.ndarray, width: int | None = None,
+           band: int | None = None) -> "SteadyGridBand":
+        """The kept data of the deflection matrix ``kmat`` (the same object) and the widths, computed on the first
+        request.
 
         Parameters
         ----------
@@ -170,18 +190,22 @@ class SteadyGridBand:
             Control-volume widths of the N nodes [a].
         load_row : numpy.ndarray
             Load-row derivative over the M interior pressures [-].
+        width, band : int or None
+            Half widths of B and of the factorised band (:class:`SteadyGridBand`) [nodes].
 
         Returns
         -------
         SteadyGridBand
             The data, shared by every problem on the same matrix.
         """
-        key = id(kmat)
+        width = STEADY_INVERSE_WIDTH if width is None else int(width)
+        band = STEADY_BAND if band is None else int(band)
+        key = (id(kmat), width, band)
         entry = _STEADY_GRIDS.get(key)
         if entry is not None and entry.kmat is kmat:  # the entry holds kmat, so its id cannot be reused meanwhile
             _STEADY_GRIDS.move_to_end(key)
             return entry
-        entry = cls(kmat, weights, load_row)
+        entry = cls(kmat, weights, load_row, width, band)
         if not kmat.flags.writeable:  # only the shared read-only matrices of influence_matrix are kept
             _STEADY_GRIDS[key] = entry
             while len(_STEADY_GRIDS) > STEADY_GRID_CACHE_SIZE:
@@ -217,7 +241,7 @@ class SteadyBandedPreconditioner:
     """
 
     def __init__(self, lb: np.ndarray, eb: np.ndarray, grid: SteadyGridBand):
-        self.kl = STEADY_BAND
+        self.kl = grid.band
         self.grid = grid
         self.m = lb.shape[0]
         band, col_h0 = newton_band(lb, eb, grid.binv, grid.kb, self.kl)

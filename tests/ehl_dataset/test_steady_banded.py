@@ -82,7 +82,7 @@ def test_inverse_band_is_the_uniform_band_where_the_grid_is_uniform():
 
 def test_banded_gmres_solves_a_real_newton_system_to_the_krylov_tolerance():
     _, system, rhs = _newton_system()
-    solver = LinearSolver(reuse=True)
+    solver = LinearSolver(reuse=True, inexact=False)
     delta = solver.solve(system, rhs)
     assert solver.banded_solves == 1 and solver.fallbacks == 0 and solver.factorisations == 0
     dense = system.dense()
@@ -90,6 +90,22 @@ def test_banded_gmres_solves_a_real_newton_system_to_the_krylov_tolerance():
     assert np.linalg.norm(dense @ delta - rhs) <= 10 * KRYLOV_TOLERANCE * np.linalg.norm(rhs)
     reference = np.linalg.solve(dense, rhs)
     assert np.allclose(delta, reference, rtol=0.0, atol=1e-7 * np.abs(reference).max())
+
+
+def test_inexact_newton_solves_to_the_forcing_term_and_no_further():
+    """Inexact Newton (Dembo, Eisenstat & Steihaug 1982): the relative residual of the linear solve is the forcing term
+    η = min(FORCING_CAP, ‖F‖∞) or below, and, since GMRES stops as soon as it gets there, above the exact solve's."""
+    _, system, rhs = _newton_system()
+    forcing = min(newton.FORCING_CAP, max(float(np.max(np.abs(rhs))), KRYLOV_TOLERANCE))
+    assert forcing > 100 * KRYLOV_TOLERANCE  # a start far from the solution: the forcing term is loose
+    inexact, exact = LinearSolver(reuse=True, inexact=True), LinearSolver(reuse=True, inexact=False)
+    delta, reference = inexact.solve(system, rhs), exact.solve(system, rhs)
+    dense = system.dense()
+    relative = np.linalg.norm(dense @ delta - rhs) / np.linalg.norm(rhs)
+    assert KRYLOV_TOLERANCE < relative <= 10 * forcing
+    assert inexact.banded_iterations < exact.banded_iterations
+    # the correction is the exact one to about the forcing term (S δ = b + r, |r| ≤ η|b|)
+    assert np.abs(delta - reference).max() <= 1e3 * forcing * np.abs(reference).max()
 
 
 def test_steady_solve_on_the_banded_path_equals_the_dense_path(monkeypatch):
