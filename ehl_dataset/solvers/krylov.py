@@ -33,18 +33,20 @@ STEADY_INVERSE_WIDTH = 6
 STEADY_BAND = 16
 """Half width of the band of S B that :class:`SteadyBandedPreconditioner` factorises [nodes] (more than w + 2: the
 film part E K B reaches beyond the band of B). With the inexact Newton iteration's forcing term
-(:data:`~ehl_dataset.solvers.newton.FORCING_CAP`), on 60 random paper-factorial contacts at ``standard`` (median CPU
-of a steady smooth solve, GMRES iterations a contact): w = 16, half width 32: 24.3 ms, 36; 8, 20: 21.0 ms, 46; 8, 16:
-20.0 ms, 52; 6, 16: 18.8 ms, 52; 6, 12: 19.6 ms, 61 (a cheaper band LU against more GMRES iterations); μ within
-2e-11. Solved to 1e-10 instead of the forcing term, the narrow bands need more GMRES iterations than the dense
-fallback allows."""
+(:func:`~ehl_dataset.solvers.newton.forcing_term`), on 100 random paper-factorial contacts at ``standard`` (each solved
+once untimed, then every way in a rotating order; median CPU of a steady smooth solve, GMRES iterations a contact):
+w = 16 with half width 32: 18.9 ms, 27; 8, 20: 17.1 ms, 34; 8, 16: 16.5 ms, 39; 6, 16: 17.1 ms, 39; 6, 12: 15.8 ms,
+46 (a cheaper band LU against more GMRES iterations; differences of ~1 ms are within the run-to-run spread); μ, h_min,
+h_c, p_max within 2.4e-8. Solved to 1e-10 instead, the narrow bands need more GMRES iterations than they save
+(:data:`WIDE_BAND`)."""
 WIDE_INVERSE_WIDTH = 16
 """Half width w of B for problems that solve every Newton system to
 :data:`~ehl_dataset.solvers.newton.KRYLOV_TOLERANCE` (the homogenised model's averaged-Reynolds problem) [nodes]."""
 WIDE_BAND = 32
 """Half width of the factorised band of S B for those problems [nodes]: to the tight tolerance the narrow band of
-:data:`STEADY_BAND` needs more GMRES iterations than it saves (steady smooth solves to 1e-10 with half widths 8 and
-16: median 56 ms against 32 ms with these on 60 random paper-factorial contacts)."""
+:data:`STEADY_BAND` needs more GMRES iterations than it saves (steady smooth solves to 1e-10 on 60 random paper-factorial
+contacts: median 56 ms with w = 16 and a band of half width 16, 32 ms with these, measured first and so at a
+disadvantage)."""
 STEADY_SYMBOL_POINTS = 1024
 """Angles at which the discrete symbol is sampled for the unit-spacing coefficients of B
 (:func:`~ehl_dataset.discretisation.deflection.inverse_kernel_band`): once per process, ~10 ms (the default 2¹⁴ took

@@ -63,6 +63,13 @@ FALLBACK_COARSENING = 3.0
 converge (at `fast` that grid can be too coarse for a light-load continuation: 37 nodes on 75W90 at 0.5 GPa, 10 mm,
 20 m/s, SR 0.7, 50 °C, where 72 nodes converge and the level's grid from scratch does not)."""
 
+COARSE_TOLERANCE = 1e-3
+"""Newton tolerance (residual, load and step) of the continuation on the coarse grid of :func:`solve_steady`, whose
+solution only starts the Newton iteration on the level's grid (the level's own, tighter tolerances apply there). On
+100 random paper-factorial contacts at `standard`, solved both ways interleaved: Newton iterations a contact 22.6 →
+19.9, median CPU 13.4 → 12.6 ms, the same iterations on the level's grid (7.06), μ, h_min, h_c, p_max within 6.3e-10
+of the solutions with the level's tolerances on the coarse grid."""
+
 STEADY_CACHE_SIZE = 64
 """Number of steady solutions kept per process (:func:`solve_steady`). The steady smooth solve does not depend on the
 roughness, and a factorial solves each load, speed and temperature once per roughness pair (the film-law model starts
@@ -267,8 +274,8 @@ def solve_steady(case: ContactCase, state: LubricantState, lvl: AccuracyLevel, p
     ``extra["thermal"]["mu_isothermal"]``.
 
     Two grids: the continuation (which may take tens of Newton iterations) runs on a grid
-    :data:`COARSENING` times coarser, and its interpolated solution starts the Newton iteration on the level's
-    grid, which then needs only a few iterations. If the coarse stage fails, the fine grid is solved from scratch.
+    :data:`COARSENING` times coarser, to :data:`COARSE_TOLERANCE`, and its interpolated solution starts the Newton
+    iteration on the level's grid, which then needs only a few iterations. If the coarse stage fails, the fine grid is solved from scratch.
     ``coarsening`` replaces :data:`COARSENING` (the converged solution then differs within the Newton tolerances, so
     a caller that must reproduce earlier bits passes the ratio they were made with).
     """
@@ -303,6 +310,8 @@ def solve_steady(case: ContactCase, state: LubricantState, lvl: AccuracyLevel, p
         if not outcome.converged:
             outcome = None
     coarse_problems = []
+    coarse_level = replace(lvl, tol_residual=max(lvl.tol_residual, COARSE_TOLERANCE),
+                           tol_load=max(lvl.tol_load, COARSE_TOLERANCE), tol_step=max(lvl.tol_step, COARSE_TOLERANCE))
     grids = [steady_grid(lvl, coarsening, h_c=h_c)]
     if grids[0].size < COARSE_MIN_NODES:
         grids = []  # too coarse for the continuation
@@ -314,7 +323,7 @@ def solve_steady(case: ContactCase, state: LubricantState, lvl: AccuracyLevel, p
         coarse = _problem_on(x_coarse, case, state, plan, scales)
         coarse_problems.append(coarse)
         p0, h00 = _initial_guess(x_coarse, coarse, case, state, scales)
-        coarse_out, its, stages = solve_steady_problem(coarse, p0, h00, lvl)
+        coarse_out, its, stages = solve_steady_problem(coarse, p0, h00, coarse_level)
         iterations += its
         suffix = "" if attempt == 0 else "_fallback"
         record["coarse" + suffix] = {"nodes": int(x_coarse.size), "stages": stages, "converged": coarse_out.converged}

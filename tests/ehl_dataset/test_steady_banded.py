@@ -94,9 +94,11 @@ def test_banded_gmres_solves_a_real_newton_system_to_the_krylov_tolerance():
 
 def test_inexact_newton_solves_to_the_forcing_term_and_no_further():
     """Inexact Newton (Dembo, Eisenstat & Steihaug 1982): the relative residual of the linear solve is the forcing term
-    η = min(FORCING_CAP, ‖F‖∞) or below, and, since GMRES stops as soon as it gets there, above the exact solve's."""
+    η = min(FORCING_CAP, FORCING_SCALE·‖F‖∞^½) or below, and, since GMRES stops as soon as it gets there, above the
+    exact solve's."""
     _, system, rhs = _newton_system()
-    forcing = min(newton.FORCING_CAP, max(float(np.max(np.abs(rhs))), KRYLOV_TOLERANCE))
+    forcing = min(newton.FORCING_CAP, max(newton.FORCING_SCALE * np.max(np.abs(rhs)) ** 0.5, KRYLOV_TOLERANCE))
+    assert newton.forcing_term(rhs) == forcing
     assert forcing > 100 * KRYLOV_TOLERANCE  # a start far from the solution: the forcing term is loose
     inexact, exact = LinearSolver(reuse=True, inexact=True), LinearSolver(reuse=True, inexact=False)
     delta, reference = inexact.solve(system, rhs), exact.solve(system, rhs)
