@@ -26,6 +26,11 @@ import numpy as np
 
 from .reynolds import BAND
 
+_u = np.uintp
+"""Index cast: numba checks every signed index for a negative value (Python's wrap-around), which keeps the inner
+loops below from vectorising; their indices are never negative, and as unsigned integers they are not checked
+(``newton_band`` 236 → 104 µs on a 425-node grid)."""
+
 
 @numba.njit(cache=True)
 def newton_bands(dp, dh, rows, d_a, d_b):
@@ -129,7 +134,7 @@ def apply_inverse_band(binv, v):
 
 @numba.njit(cache=True)
 def newton_band(lb, eb, binv, kb, kl):
-    """LAPACK band storage ((3·kl + 1) × M, for ``dgbtrf`` with kl = ku) of the band |r − c| ≤ ``kl`` of S B
+    """LAPACK band storage ((3·kl + 1) × M in Fortran order, for ``dgbtrf`` with kl = ku) of the band |r − c| ≤ ``kl`` of S B
     (:func:`newton_bands`, B :func:`inverse_band`, ``kb`` :func:`deflection_band` with half ≥ kl + 2), and the
     column E·1 of ΔH0: M[r, c] = Σ_o lb[r, o] B[r + o − 2, c] + Σ_o eb[r, o] (K_I B)[r + o − 1, c]."""
     m = lb.shape[0]
@@ -137,7 +142,7 @@ def newton_band(lb, eb, binv, kb, kl):
     width = (binv.shape[1] - 1) // 2
     half = (kb.shape[1] - 1) // 2
     ku = kl
-    band = np.zeros((2 * kl + ku + 1, m))
+    band_t = np.zeros((m, 2 * kl + ku + 1))  # the transpose, so that the band itself is in Fortran order
     col_h0 = np.zeros(m)
     row = np.zeros(2 * kl + 1)  # row r of the band, columns r − kl … r + kl, summed before it is stored
     for r in range(m):
@@ -148,18 +153,18 @@ def newton_band(lb, eb, binv, kb, kl):
             a = lb[r, o]
             if a != 0.0 and 0 <= q < m:
                 for c in range(max(0, q - width, r - kl), min(m, q + width + 1, r + kl + 1)):
-                    row[c + offset] += a * binv[q, c - q + width]
+                    row[_u(c + offset)] += a * binv[_u(q), _u(c - q + width)]
             j = r + o - 1  # E: node j, times row j of K_I B
             e = eb[r, o]
             if e != 0.0 and 0 <= j < n:
                 col_h0[r] += e
                 shift = half + 1 - j
                 for c in range(max(0, r - kl, j - 1 - half), min(m, r + kl + 1, j + half)):
-                    row[c + offset] += e * kb[j, c + shift]
+                    row[_u(c + offset)] += e * kb[_u(j), _u(c + shift)]
         diagonal = kl + ku + r
         for c in range(max(0, r - kl), min(m, r + kl + 1)):
-            band[diagonal - c, c] = row[c + offset]
-    return band, col_h0
+            band_t[_u(c), _u(diagonal - c)] = row[_u(c + offset)]
+    return band_t.T, col_h0
 
 
 @numba.njit(cache=True)
@@ -179,11 +184,11 @@ def band_lu_solve(lu, piv, kl, b):
         xj = x[j]
         if xj != 0.0:
             for t in range(1, min(kl, m - 1 - j) + 1):
-                x[j + t] -= lu[kv + t, j] * xj
+                x[_u(j + t)] -= lu[_u(kv + t), _u(j)] * xj
     for j in range(m - 1, -1, -1):
         x[j] /= lu[kv, j]
         xj = x[j]
         if xj != 0.0:
             for i in range(max(0, j - kv), j):
-                x[i] -= lu[kv + i - j, j] * xj
+                x[_u(i)] -= lu[_u(kv + i - j), _u(j)] * xj
     return x

@@ -247,7 +247,7 @@ class SteadyBandedPreconditioner:
         self.grid = grid
         self.m = lb.shape[0]
         band, col_h0 = newton_band(lb, eb, grid.binv, grid.kb, self.kl)
-        self.lu, self.piv, info = lapack.dgbtrf(band, self.kl, self.kl)
+        self.lu, self.piv, info = lapack.dgbtrf(band, self.kl, self.kl, overwrite_ab=True)
         if info < 0:
             raise ValueError(f"dgbtrf: illegal argument {-info}")
         self.singular = info > 0

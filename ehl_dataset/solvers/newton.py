@@ -219,6 +219,21 @@ class ReynoldsProblem:
                                self.face_order(), self.face_poiseuille())
         return res, dp, dh, (m, m_p, m_h)
 
+    def compiled_arguments(self, homotopy: float) -> tuple | None:
+        """The trailing arguments of :func:`~ehl_dataset.solvers.newton_kernels.line_search` for this problem, or None
+        where :func:`newton_solve` must take its array form: a subclass that changes the residual, the film or the
+        cavitation condition, a film allowed to close, or a lubricant law the kernels do not know."""
+        cls = type(self)
+        plain = all(getattr(cls, name) is getattr(ReynoldsProblem, name)
+                    for name in ("residual", "fluid", "rheology", "film", "load", "cavitation_offset", "face_order",
+                                 "face_poiseuille", "jacobian_diagonal"))
+        if not plain or self.law is None or self.film_may_close:
+            return None
+        return (self.x, self.kmat, np.ascontiguousarray(self.gap, dtype=float), float(self.p_h), float(homotopy),
+                self.law[0], self.law[1], bool(self.compressible and self.state.compressible), EXPONENT_CAP,
+                EXPONENT_FLOOR, float(self.shear), float(self.lam), self.squeeze, self.m_old, self.face_order(),
+                self.face_poiseuille(), self.weights)
+
     def cavitation_offset(self, h):
         """(s, ∂s/∂H) per node when the cavitation condition applies to P − s(H) rather than to P (the homogenised
         model, whose unknown is the total pressure and whose fluid pressure is P − p_a(H)); None here."""
@@ -488,14 +503,22 @@ def newton_solve(problem: ReynoldsProblem, p0: np.ndarray, h00: float, *, homoto
     message = "iteration limit reached"
     load_row = np.zeros(n - 1)
     load_row[:-1] = problem.weights[1:-1] / (0.5 * math.pi)
+    compiled = problem.compiled_arguments(homotopy)
+    kappa = np.empty(0)
     for iteration in range(1, max_iterations + 1):
-        load_err = problem.load(p)
-        if iteration == 1 or not freeze_scaling:
-            diag = np.abs(problem.jacobian_diagonal(dp, dh))
-            kappa = 1.0 / np.maximum(diag, 1e-12 * max(float(diag.max()), 1e-300))
-        shift = problem.cavitation_offset(h)
-        p_cav = p if shift is None else p - shift[0]
-        phi, d_a, d_b, r_free, r_cav = newton_kernels.complementarity(p_cav[1:-1], res, kappa, m_ref)
+        if compiled is not None:
+            shift = None
+            load_err, kappa, phi, d_a, d_b, r_free, r_cav = newton_kernels.iteration_state(
+                p, res, dp, dh, problem.kmat, problem.rows, problem.weights, m_ref, kappa,
+                iteration == 1 or not freeze_scaling)
+        else:
+            load_err = problem.load(p)
+            if iteration == 1 or not freeze_scaling:
+                diag = np.abs(problem.jacobian_diagonal(dp, dh))
+                kappa = 1.0 / np.maximum(diag, 1e-12 * max(float(diag.max()), 1e-300))
+            shift = problem.cavitation_offset(h)
+            p_cav = p if shift is None else p - shift[0]
+            phi, d_a, d_b, r_free, r_cav = newton_kernels.complementarity(p_cav[1:-1], res, kappa, m_ref)
         # the step test is waived when the equations hold 1000× below tolerance: a nearly singular Jacobian
         # can keep the step from settling although the residual vanishes
         waiver = 1e-3
@@ -520,14 +543,21 @@ def newton_solve(problem: ReynoldsProblem, p0: np.ndarray, h00: float, *, homoto
         except (np.linalg.LinAlgError, ValueError) as err:
             message = f"linear solve failed: {err}"
             break
-        d_p = np.zeros(n)
-        d_p[1:-1] = delta[:-1]
-        d_h0 = float(delta[-1])
         merit0 = float(phi @ phi) + load_err**2
-        largest = float(np.max(np.abs(d_p)))
-        omega = min(1.0, max_pressure_step / largest) if largest > 0 else 1.0
-        accepted = False
-        for _ in range(30):
+        if compiled is not None:
+            accepted, omega, p_new, h0_new, h_new, res_new, dp_new, dh_new, *m_new = newton_kernels.line_search(
+                p, h0, delta, merit0, max_pressure_step, kappa, m_ref, pseudo_dt > 0.0, monotone, *compiled)
+            h0_new, m_new = float(h0_new), tuple(m_new)
+            trials = ()
+        else:
+            d_p = np.zeros(n)
+            d_p[1:-1] = delta[:-1]
+            d_h0 = float(delta[-1])
+            largest = float(np.max(np.abs(d_p)))
+            omega = min(1.0, max_pressure_step / largest) if largest > 0 else 1.0
+            accepted = False
+            trials = range(30)
+        for _ in trials:
             p_new = p + omega * d_p
             h0_new = h0 + omega * d_h0
             h_new = problem.film(p_new, h0_new)

@@ -18,7 +18,7 @@ import math
 import numba
 import numpy as np
 
-from ..discretisation.reynolds import assemble
+from ..discretisation.reynolds import assemble, jacobian_diagonal
 from ..model.lubricant import DH_GAMMA_PER_PA, DH_LAMBDA_PER_PA, LubricantState, ViscosityPressureLaw
 
 LAW_CODES = {"barus": 0, "roelands": 1, "two_slope": 2}
@@ -168,3 +168,75 @@ def complementarity(a, res, kappa, m_ref):
         else:
             r_cav = max(r_cav, abs(phi[i]))
     return phi, d_a, d_b, r_free / m_ref, r_cav
+
+
+@numba.njit(cache=True)
+def iteration_state(p, res, dp, dh, kmat, rows, weights, m_ref, kappa, rescale):
+    """The state of one iteration of :func:`~ehl_dataset.solvers.newton.newton_solve` on a plain problem: the relative
+    load error Σ w P/(π/2) − 1, the Jacobi scaling κ_i = 1/|∂R_i/∂P_i + Σ_o ∂R_i/∂H_j K_ji| (floored at 1e-12 of
+    the largest; recomputed where ``rescale``, else ``kappa`` kept) and :func:`complementarity`.
+
+    Returns (load error, κ, φ, ∂φ/∂a, ∂φ/∂R, r_free, r_cav)."""
+    load_err = np.dot(weights, p) / (0.5 * math.pi) - 1.0
+    if rescale:
+        diag = jacobian_diagonal(dp, dh, kmat, rows)
+        largest = 0.0
+        for i in range(diag.size):
+            diag[i] = abs(diag[i])
+            largest = max(largest, diag[i])
+        lowest = 1e-12 * max(largest, 1e-300)
+        kappa = np.empty(diag.size)
+        for i in range(diag.size):
+            kappa[i] = 1.0 / max(diag[i], lowest)
+    phi, d_a, d_b, r_free, r_cav = complementarity(p[1:-1], res, kappa, m_ref)
+    return load_err, kappa, phi, d_a, d_b, r_free, r_cav
+
+
+@numba.njit(cache=True)
+def line_search(p, h0, delta, merit0, max_pressure_step, kappa, m_ref, transient, monotone, x, kmat, gap, p_h,
+                homotopy, code, params, compressible, cap, floor, shear, lam, squeeze, m_old, face_order,
+                face_poiseuille, weights):
+    """The damped step of :func:`~ehl_dataset.solvers.newton.newton_solve` on a plain problem (the film must stay
+    open): from (P, H0) along the correction ``delta`` (interior ΔP, then ΔH0), ω = min(1, ``max_pressure_step``/
+    max|ΔP|) halved up to 30 times until the film H = H0 + gap + K P is open, the residual finite and — unless
+    ``transient`` (pseudo-transient continuation, which takes any finite step) — the merit |φ|² + load error²
+    decreased by the Armijo factor 1 − 1e-4 ω (or ω < 0.3 when not ``monotone``).
+
+    Returns (accepted, ω, P, H0, H, R, ∂R/∂P, ∂R/∂H, m, ∂m/∂P, ∂m/∂H) at the accepted step."""
+    n = p.size
+    d_p = np.zeros(n)
+    d_p[1:n - 1] = delta[:n - 2]
+    d_h0 = delta[n - 2]
+    largest = 0.0
+    for i in range(n):
+        largest = max(largest, abs(d_p[i]))
+    omega = min(1.0, max_pressure_step / largest) if largest > 0.0 else 1.0
+    for _ in range(30):
+        p_new = p + omega * d_p
+        h0_new = h0 + omega * d_h0
+        h_new = h0_new + gap + np.dot(kmat, p_new)
+        is_open = True
+        for i in range(n):
+            if not h_new[i] > 0.0:
+                is_open = False
+                break
+        if is_open:
+            res, dp, dh, m, m_p, m_h = residual(x, p_new, h_new, p_h, homotopy, code, params, compressible, cap,
+                                                floor, shear, lam, squeeze, m_old, face_order, face_poiseuille)
+            finite = True
+            for i in range(n):
+                if not math.isfinite(res[i]):
+                    finite = False
+                    break
+            if finite:
+                if transient:
+                    return True, omega, p_new, h0_new, h_new, res, dp, dh, m, m_p, m_h
+                phi = complementarity(p_new[1:-1], res, kappa, m_ref)[0]
+                load = np.dot(weights, p_new) / (0.5 * math.pi) - 1.0
+                merit = np.dot(phi, phi) + load**2
+                if merit <= (1.0 - 1e-4 * omega) * merit0 or (not monotone and omega < 0.3):
+                    return True, omega, p_new, h0_new, h_new, res, dp, dh, m, m_p, m_h
+        omega *= 0.5
+    empty = np.empty(0)
+    band = np.empty((0, 4))
+    return False, omega, p, h0, p, empty, band, band, empty, empty, empty

@@ -88,3 +88,36 @@ def test_an_unknown_state_takes_the_array_form():
 
     assert newton_kernels.law_parameters(Custom()) is None
     assert newton_kernels.law_parameters(_state("roelands"))[0] == newton_kernels.LAW_CODES["roelands"]
+
+
+@pytest.mark.parametrize("conditions", [(2.0, 60, 15, 0.1, 75), (0.5, 5, 20, 0.7, 50)])
+def test_compiled_newton_iteration_takes_the_array_forms_iterates(monkeypatch, conditions):
+    """The compiled state and line search (newton_kernels.iteration_state, line_search) are the array form's
+    arithmetic: the same Newton iterations and the same converged solution (to round-off) for a heavy contact and a
+    light one (a load continuation with pseudo-transient steps) on the `standard` steady solve."""
+    from ehl_dataset.solver import solve_contact
+
+    case = ContactCase.from_engineering(*conditions)
+    lubricant = load_lubricant("atf")
+    steady._STEADY_CACHE.clear()
+    compiled = solve_contact(case, lubricant, "standard", model="smooth")
+    monkeypatch.setattr(ReynoldsProblem, "compiled_arguments", lambda self, homotopy: None)
+    steady._STEADY_CACHE.clear()
+    arrays = solve_contact(case, lubricant, "standard", model="smooth")
+    steady._STEADY_CACHE.clear()
+    assert compiled.converged and arrays.converged
+    assert compiled.iterations == arrays.iterations
+    assert compiled.extra["continuation"]["coarse"] == arrays.extra["continuation"]["coarse"]
+    assert np.allclose(compiled.pressure, arrays.pressure, rtol=0.0, atol=1e-12 * case.p_h)
+    for key in ("mu", "h_min", "h_central"):
+        assert getattr(compiled, key) == pytest.approx(getattr(arrays, key), rel=1e-12), key
+
+
+def test_a_problem_that_changes_its_equations_takes_the_array_form():
+    from ehl_dataset.solvers.homogenised import HomogenisedProblem
+
+    problem = _problem("two_slope", True, 0.0)
+    assert problem.compiled_arguments(1.0) is not None
+    problem.film_may_close = True
+    assert problem.compiled_arguments(1.0) is None
+    assert HomogenisedProblem.residual is not ReynoldsProblem.residual  # its own residual: never compiled here
