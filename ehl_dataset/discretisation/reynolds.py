@@ -25,6 +25,9 @@ import numpy as np
 
 BAND = 4
 """Band width of the local derivative blocks: columns i − 2, i − 1, i, i + 1 (array offset j − i + 2)."""
+_u = np.uintp
+"""Index cast for inner loops whose indices are never negative: numba checks a signed index for Python's wrap-around,
+which keeps a loop from vectorising."""
 
 
 @numba.njit(cache=True)
@@ -127,7 +130,7 @@ def full_jacobian(dp, dh, kmat, rows):
             coef = dh[i, o]
             if coef != 0.0:
                 for c in range(n_in):
-                    jac[r, c] += coef * kmat[j, c + 1]
+                    jac[_u(r), _u(c)] += coef * kmat[_u(j), _u(c + 1)]
                 jac[r, n_in] += coef
             if 1 <= j <= n - 2:
                 jac[r, j - 1] += dp[i, o]
@@ -172,8 +175,8 @@ def newton_matrix(dp, dh, kmat, rows, d_a, d_b, load_row):
                 continue
             coef = scale * dh[i, o]
             if coef != 0.0:
-                for c in range(n_in):
-                    system[r, c] += coef * kmat[j, c + 1]
+                for c in range(n_in):  # unsigned indices: no wrap-around checks, a vectorised loop
+                    system[_u(r), _u(c)] += coef * kmat[_u(j), _u(c + 1)]
                 system[r, n_in] += coef
             if 1 <= j <= n - 2:
                 system[r, j - 1] += scale * dp[i, o]
