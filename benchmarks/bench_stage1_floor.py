@@ -12,8 +12,10 @@ In one run, on contacts drawn (seeded) from the axes of ``data/factorials/paper2
   ``linear``: the linear-solve counters of the steady solves summed (dense LU factorisations, GMRES solves with the
   banded preconditioner and their iterations, fallbacks from it to the dense LU).
 * ``dense_baseline`` — the first ``--baseline-n`` of the same contacts with the dense Newton path
-  (``ehl_dataset.solvers.newton.REUSE_FACTORISATION = False``: one LU factorisation per Newton iteration, the same
-  discretisation and iterates), and the largest relative difference of μ, h_min, h_c, p_max between the two paths.
+  (``ehl_dataset.solvers.newton.REUSE_FACTORISATION = False``: one LU factorisation per Newton iteration, exact
+  linear solves of the same discretisation), and the largest relative difference of μ, h_min, h_c, p_max between the
+  two paths (the default path's inexact Newton iteration converges to the same discrete solution within the Newton
+  tolerances).
 * ``previous_path`` (``--previous-n``) — the first contacts solved as before the banded preconditioner
   (``newton.BANDED_PRECONDITIONER = False``: the reused dense LU; ``steady.START_FILM_EXPONENT = 0``), in the same
   run, and the largest relative difference of the outputs to the default path.

@@ -36,13 +36,15 @@ EXPONENT_FLOOR = 10.0
 """Floor −10 on ln(η/η0) for the linear continuation below p = 0 (wild Newton iterates only)."""
 REUSE_FACTORISATION = True
 """Whether :class:`LinearSolver` reuses factorisations (False: the dense path, one LU per Newton iteration, kept as the
-baseline of ``benchmarks/bench_stage1_floor.py``; both give the same iterates to within :data:`KRYLOV_TOLERANCE`)."""
+baseline of ``benchmarks/bench_stage1_floor.py``, whose linear solves are exact; with ``inexact`` solves the
+default path converges to the same solution within the Newton tolerances)."""
 REUSE_MIN_UNKNOWNS = 200
 """Newton systems of at least this many unknowns reuse an LU factorisation across iterations (:class:`LinearSolver`);
 smaller ones are factorised every iteration, which costs less than a Krylov solve there."""
 KRYLOV_TOLERANCE = 1e-10
-"""Relative residual ‖b − S δ‖/‖b‖ to which :class:`LinearSolver` solves a Newton system by GMRES: far below the
-Newton tolerances, so that the iterates are those of exact linear solves up to round-off."""
+"""Relative residual ‖b − S δ‖/‖b‖ to which :class:`LinearSolver` solves a Newton system by GMRES when it solves
+exactly (not ``inexact``, or the floor of :func:`forcing_term`): far below the Newton tolerances, so that the iterates
+are those of exact linear solves up to round-off."""
 KRYLOV_ITERATIONS = 10
 """GMRES iterations allowed with a reused factorisation before the Newton matrix is factorised afresh (GMRES gives up
 from the third iteration on when its mean residual reduction would not reach :data:`KRYLOV_TOLERANCE` within them)."""
