@@ -209,7 +209,8 @@ class ReynoldsProblem:
 
     def residual(self, p, h, homotopy=1.0):
         """Reynolds residual R (N), banded ∂R/∂P, ∂R/∂H, and m = ρ̄H with ∂m/∂P, ∂m/∂H."""
-        if self.law is not None and type(self).fluid is ReynoldsProblem.fluid:
+        if (self.law is not None and type(self).fluid is ReynoldsProblem.fluid
+                and type(self).rheology is ReynoldsProblem.rheology):
             res, dp, dh, m, m_p, m_h = newton_kernels.residual(
                 self.x, np.asarray(p, dtype=float), np.asarray(h, dtype=float), float(self.p_h), float(homotopy),
                 self.law[0], self.law[1], bool(self.compressible and self.state.compressible), EXPONENT_CAP,
