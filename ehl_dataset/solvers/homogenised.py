@@ -43,7 +43,7 @@ from .asperity_model import solve_asperity
 from .film_law_model import solve_film_law
 from .levels import AccuracyLevel
 from .krylov import WIDE_BAND, WIDE_INVERSE_WIDTH
-from .newton import ReynoldsProblem, newton_solve
+from .newton import BANDED_MIN_UNKNOWNS, ReynoldsProblem, newton_solve
 from .result import ContactResult
 from .steady import ContactScales, dowson_higginson_lambda, solve_steady, solve_steady_problem
 
@@ -116,6 +116,7 @@ class HomogenisedProblem(ReynoldsProblem):
     # isotropic closure at `fast` stalled
     inexact_newton = False
     preconditioner_widths = (WIDE_INVERSE_WIDTH, WIDE_BAND)
+    banded_min_unknowns = BANDED_MIN_UNKNOWNS
 
     def __init__(self, *args, table=None, film_scale: float = 1.0, sr: float = 0.0, closure: str = "transverse",
                  h_b_m: float = BOUNDARY_FILM_M, transport="variance", flow_floor_m: float | None = None, **kwargs):
