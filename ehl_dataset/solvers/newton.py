@@ -163,9 +163,7 @@ class ReynoldsProblem:
         """(φ = ln(η/η0) scaled by ``homotopy``, ∂φ/∂P, ρ̄, ∂ρ̄/∂P) at dimensionless pressures ``p`` (compiled,
         :func:`~ehl_dataset.solvers.newton_kernels.rheology`, for the lubricant laws it knows)."""
         if self.law is not None:
-            return newton_kernels.rheology(np.asarray(p, dtype=float), float(self.p_h), float(homotopy), self.law[0],
-                                           self.law[1], bool(self.compressible and self.state.compressible),
-                                           EXPONENT_CAP, EXPONENT_FLOOR)
+            return newton_kernels.rheology(np.asarray(p, dtype=float), *self._law_arguments(homotopy))
         pa = p * self.p_h
         law = self.state.law
         # Below p = 0 (only in Newton iterates; the solution has p ≥ 0) the laws are continued linearly from p = 0
@@ -221,10 +219,8 @@ class ReynoldsProblem:
         if (self.law is not None and type(self).fluid is ReynoldsProblem.fluid
                 and type(self).rheology is ReynoldsProblem.rheology):
             res, dp, dh, m, m_p, m_h = newton_kernels.residual(
-                self.x, np.asarray(p, dtype=float), np.asarray(h, dtype=float), float(self.p_h), float(homotopy),
-                self.law[0], self.law[1], bool(self.compressible and self.state.compressible), EXPONENT_CAP,
-                EXPONENT_FLOOR, float(self.shear), float(self.lam), self.squeeze, self.m_old, self.face_order(),
-                self.face_poiseuille())
+                self.x, np.asarray(p, dtype=float), np.asarray(h, dtype=float), *self._law_arguments(homotopy),
+                *self._equation_arguments())
             return res, dp, dh, (m, m_p, m_h)
         eps, eps_p, eps_h, m, m_p, m_h = self.fluid(p, h, homotopy)
         res, dp, dh = assemble(self.x, p, eps, eps_p, eps_h, m, m_p, m_h, self.squeeze, self.m_old,
@@ -241,10 +237,19 @@ class ReynoldsProblem:
                                  "face_poiseuille", "jacobian_diagonal"))
         if not plain or self.law is None or self.film_may_close:
             return None
-        return (self.x, self.kmat, np.ascontiguousarray(self.gap, dtype=float), float(self.p_h), float(homotopy),
-                self.law[0], self.law[1], bool(self.compressible and self.state.compressible), EXPONENT_CAP,
-                EXPONENT_FLOOR, float(self.shear), float(self.lam), self.squeeze, self.m_old, self.face_order(),
-                self.face_poiseuille(), self.weights)
+        return (self.x, self.kmat, np.ascontiguousarray(self.gap, dtype=float), *self._law_arguments(homotopy),
+                *self._equation_arguments(), self.weights)
+
+    def _law_arguments(self, homotopy: float) -> tuple:
+        """(p_h, homotopy, law code, law parameters, compressible, exponent cap, exponent floor): the lubricant's part
+        of the arguments of the compiled kernels (:mod:`~ehl_dataset.solvers.newton_kernels`)."""
+        return (float(self.p_h), float(homotopy), self.law[0], self.law[1],
+                bool(self.compressible and self.state.compressible), EXPONENT_CAP, EXPONENT_FLOOR)
+
+    def _equation_arguments(self) -> tuple:
+        """(S, λ̄, squeeze, m_old, face orders, face Poiseuille weights): the discretisation's part of them."""
+        return (float(self.shear), float(self.lam), self.squeeze, self.m_old, self.face_order(),
+                self.face_poiseuille())
 
     def cavitation_offset(self, h):
         """(s, ∂s/∂H) per node when the cavitation condition applies to P − s(H) rather than to P (the homogenised

@@ -104,10 +104,9 @@ def test_inexact_newton_solves_to_the_forcing_term_and_no_further():
     delta, reference = inexact.solve(system, rhs), exact.solve(system, rhs)
     dense = system.dense()
     relative = np.linalg.norm(dense @ delta - rhs) / np.linalg.norm(rhs)
-    assert KRYLOV_TOLERANCE < relative <= 10 * forcing
+    # GMRES's residual estimate equals the true residual up to round-off (far below η here)
+    assert KRYLOV_TOLERANCE < relative <= forcing * (1.0 + 1e-6)
     assert inexact.banded_iterations < exact.banded_iterations
-    # the correction is the exact one to about the forcing term (S δ = b + r, |r| ≤ η|b|)
-    assert np.abs(delta - reference).max() <= 1e3 * forcing * np.abs(reference).max()
 
 
 def test_steady_solve_on_the_banded_path_equals_the_dense_path(monkeypatch):
